@@ -1,0 +1,187 @@
+/*
+ * hkf.h - libhkf, the adaptive Kalman filter of the marker-free head tracker.
+ *
+ * Implements "A Marker-free Head Tracker Using Vision-based Head Pose
+ * Estimation with Adaptive Kalman Filter" (Hu, Lv et al.): a constant-velocity
+ * Kalman filter over head (pitch, yaw, roll) whose observation noise R follows
+ * an inverted Gaussian of the measured angle (Eq. 8), with a "loop closure"
+ * that pulls measurements near the driver's centre pose onto it (Eq. 9).
+ *
+ * Pure C99, no malloc, no stdio, no mutable globals. The caller owns the
+ * hkf_filter_t; all its members are private. Units: degrees and seconds.
+ * Every array of three is in the paper's axis order: pitch, yaw, roll.
+ *
+ *     hkf_filter_t f;
+ *     if (hkf_init(&f, &hkf_default_settings) != HKF_OK) ...
+ *     each frame with a face:  hkf_update(&f, z, dt, &out);
+ *     each frame without one:  hkf_predict(&f, dt, &out);
+ *     between frames:          hkf_extrapolate(&f, dt_ahead, &out);
+ *
+ * dt is always the time since the previous hkf_update or hkf_predict call.
+ */
+#ifndef HKF_H
+#define HKF_H
+
+#include "hkf_real.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { HKF_AXIS_PITCH = 0, HKF_AXIS_YAW = 1, HKF_AXIS_ROLL = 2, HKF_AXES = 3 };
+
+/* Every function that can fail returns one of these: 0 = OK, < 0 = error. */
+typedef enum {
+    HKF_OK = 0,
+    HKF_ERROR_NULL_ARGUMENT = -1,      /* a pointer argument is NULL */
+    HKF_ERROR_NON_FINITE = -2,         /* a measurement or dt is NaN or infinite */
+    HKF_ERROR_DT_RANGE = -3,           /* dt <= 0 or dt > settings.max_dt */
+    HKF_ERROR_ANGLE_RANGE = -4,        /* |angle| > HKF_MAX_ABS_ANGLE */
+    HKF_ERROR_NOT_INITIALIZED = -5,    /* no measurement has started a track yet */
+    /* hkf_init: settings that make no sense */
+    HKF_ERROR_SETTING_NON_FINITE = -20,  /* a setting is NaN or infinite */
+    HKF_ERROR_SETTING_NOISE_MODE = -21,  /* noise_mode is not a hkf_noise_mode_t */
+    HKF_ERROR_SETTING_SIGMA = -22,       /* a noise curve has sigma <= 0 */
+    HKF_ERROR_SETTING_R_RANGE = -23,     /* not 0 < r_min <= r_max */
+    HKF_ERROR_SETTING_R_CONST = -24,     /* an r_const <= 0 */
+    HKF_ERROR_SETTING_PROCESS_NOISE = -25, /* a process_noise < 0 */
+    HKF_ERROR_SETTING_LOOP_CLOSURE = -26,  /* loop_closure not a hkf_loop_closure_t */
+    HKF_ERROR_SETTING_LC_XI = -27,       /* not 0 <= lc_xi <= 1 */
+    HKF_ERROR_SETTING_LC_THETA = -28,    /* lc_theta < 0 */
+    HKF_ERROR_SETTING_P0 = -29,          /* p0_angle or p0_rate <= 0 */
+    HKF_ERROR_SETTING_GATE = -30,        /* gate_sigma < 0, or gate on with max_gate_rejections 0 */
+    HKF_ERROR_SETTING_COAST_TIME = -31,  /* coast_time <= 0 */
+    HKF_ERROR_SETTING_MAX_DT = -32       /* max_dt <= 0 */
+} hkf_result_t;
+
+/* A short English description of a hkf_result_t, for logs. Never NULL. */
+const char *hkf_result_string(int result);
+
+/* Measurements beyond this magnitude are rejected (HKF_ERROR_ANGLE_RANGE):
+ * no head pose is that large, and it keeps every value inside the range of
+ * a Q16.16 fixed-point build. */
+#define HKF_MAX_ABS_ANGLE 3600
+
+/* Paper Eq. 8, amplitude form: e(x) = tau - lambda * exp(-(x - mu)^2 / (2 sigma^2)). */
+typedef struct {
+    hkf_real_t tau;     /* deg: the error far from mu */
+    hkf_real_t lambda;  /* deg: the depth of the dip; tau - lambda is the error at mu */
+    hkf_real_t mu;      /* deg: the angle of least error */
+    hkf_real_t sigma;   /* deg: the width of the dip, > 0 */
+} hkf_noise_curve_t;
+
+typedef enum {
+    HKF_NOISE_CONSTANT = 0,        /* R = r_const: the paper's "standard KF" baseline */
+    HKF_NOISE_ADAPTIVE = 1,        /* R = e(z): the paper */
+    HKF_NOISE_ADAPTIVE_SQUARED = 2 /* R = e(z)^2: e read as a standard deviation */
+} hkf_noise_mode_t;
+
+typedef enum {
+    HKF_LOOP_CLOSURE_OFF = 0,
+    HKF_LOOP_CLOSURE_NORM = 1,    /* the paper: |z - centre| over the three axes <= lc_theta */
+    HKF_LOOP_CLOSURE_PER_AXIS = 2 /* each axis on its own: |z_a - centre_a| <= lc_theta */
+} hkf_loop_closure_t;
+
+typedef struct {
+    hkf_real_t process_noise[3];   /* q per axis, deg^2/s^3 (white-noise acceleration density) */
+    hkf_noise_mode_t noise_mode;   /* how R is chosen */
+    hkf_noise_curve_t noise[3];    /* e(x) per axis, deg */
+    hkf_real_t r_const[3];         /* R per axis in HKF_NOISE_CONSTANT mode, deg^2 */
+    hkf_real_t r_min, r_max;       /* clamp of R in every mode, deg^2 */
+    int loop_closure;              /* a hkf_loop_closure_t; 0 = off, 1 = on (vector norm) */
+    hkf_real_t lc_xi;              /* fusion factor xi of Eq. 9, 0..1 */
+    hkf_real_t lc_theta;           /* loop-closure threshold, deg */
+    hkf_real_t p0_angle, p0_rate;  /* initial variances: deg^2, (deg/s)^2 */
+    hkf_real_t gate_sigma;         /* innovation gate, in sigmas; 0 = off */
+    unsigned max_gate_rejections;  /* gated measurements in a row; the next gated one restarts the track */
+    hkf_real_t coast_time;         /* s without a measurement before the track is LOST */
+    hkf_real_t max_dt;             /* s; a larger dt is rejected */
+} hkf_settings_t;
+
+/* The defaults: the paper's filter (adaptive R with the FSA-Net curves of
+ * Table I, loop closure xi = 0.618, theta = 2 deg), gate off. */
+extern const hkf_settings_t hkf_default_settings;
+
+/* Noise curves of the paper's Table I, per axis (pitch, yaw, roll). Table I
+ * prints roll to three significant digits, which loses tau - lambda (the
+ * error at the centre); these presets set the roll centre error to that
+ * model's pitch centre error (3.36 deg FSA-Net, 3.70 deg Hopenet). */
+extern const hkf_noise_curve_t hkf_noise_fsanet[3];
+extern const hkf_noise_curve_t hkf_noise_hopenet[3];
+
+typedef enum {
+    HKF_STATUS_UNINITIALIZED = 0, /* no measurement yet */
+    HKF_STATUS_TRACKING = 1,      /* the last call was a measurement update */
+    HKF_STATUS_COASTING = 2,      /* no measurement for less than coast_time: predicting */
+    HKF_STATUS_LOST = 3           /* no measurement for coast_time: rate zeroed, angle held */
+} hkf_status_t;
+
+/* Bits of hkf_output_t.flags: what happened in this call. */
+#define HKF_FLAG_LOOP_CLOSURE 0x1u  /* Eq. 9 moved the measurement onto the centre */
+#define HKF_FLAG_GATED        0x2u  /* the innovation gate rejected the measurement */
+#define HKF_FLAG_REACQUIRED   0x4u  /* the track (re)started from this measurement */
+#define HKF_FLAG_EXTRAPOLATED 0x8u  /* hkf_extrapolate: a prediction, not a posterior */
+
+typedef struct {
+    hkf_real_t angle[3];     /* deg; yaw in [-180, 180) */
+    hkf_real_t rate[3];      /* deg/s */
+    hkf_real_t variance[3];  /* deg^2: the angle's variance */
+    hkf_real_t r[3];         /* deg^2: R of the last measurement update */
+    unsigned flags;          /* HKF_FLAG_* */
+    hkf_status_t status;
+} hkf_output_t;
+
+/* Private: members may change between versions. Sized statically so callers
+ * can place it anywhere (stack, static storage, a controller's RAM). */
+typedef struct {
+    hkf_settings_t settings;
+    hkf_real_t gauss_scale[3];   /* 1 / (2 sigma^2) per axis */
+    hkf_real_t noise_floor[3];   /* tau - lambda per axis */
+    hkf_real_t angle[3], rate[3];
+    hkf_real_t p00[3], p01[3], p11[3];
+    hkf_real_t r[3];
+    hkf_real_t center[3];
+    hkf_real_t time_since_measurement;
+    unsigned gate_rejections;
+    int center_source;           /* none, from the first measurement, or explicit */
+    hkf_status_t status;
+} hkf_filter_t;
+
+/* Validates the settings and starts an empty filter (no track yet). */
+int hkf_init(hkf_filter_t *f, const hkf_settings_t *s);
+
+/* Forgets the track (and a centre not set by hkf_set_center); keeps the settings. */
+void hkf_reset(hkf_filter_t *f);
+
+/* One measurement z (deg) taken dt s after the previous call: predict, loop
+ * closure, adaptive R, update. The first measurement starts the track and
+ * ignores dt. Writes the posterior to out (which may be NULL). On error the
+ * filter is untouched. */
+int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output_t *out);
+
+/* No measurement this frame (face lost): predict dt s ahead. See the coasting
+ * rule in hkf.c. Writes the prediction to out (which may be NULL). */
+int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out);
+
+/* The pose dt_ahead s after the last call, without changing the filter: for
+ * publishing at a display rate between camera frames. 0 <= dt_ahead <= max_dt. */
+int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *out);
+
+/* The current state, as the last update or predict left it. */
+int hkf_get_output(const hkf_filter_t *f, hkf_output_t *out);
+
+/* The loop-closure centre kappa: set it explicitly (it then survives
+ * hkf_reset), or to the current estimate. By default the first measurement
+ * sets it. */
+int hkf_set_center(hkf_filter_t *f, const hkf_real_t center[3]);
+int hkf_recenter(hkf_filter_t *f);
+int hkf_get_center(const hkf_filter_t *f, hkf_real_t center[3]);
+
+/* Paper Eq. 8 (amplitude form) and the clamp: R for a measured angle x on one axis. */
+hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HKF_H */

@@ -1,0 +1,409 @@
+/*
+ * hkf_filter.c - the adaptive Kalman filter of Hu, Lv et al., one file with
+ * every equation of the paper.
+ *
+ * The paper's filter has the 6-state x = (pitch, yaw, roll, their rates),
+ * F = [[I, dt I], [0, I]], H = [I 0]. With Q, R and P0 block-diagonal per axis
+ * it splits exactly into three 2-state filters (angle, rate), each with a
+ * closed-form scalar gain: no matrix inverse, no general matrix code.
+ *
+ * Per axis the covariance is P = [[p00, p01], [p01, p11]].
+ *
+ * Missing measurements (the coasting rule):
+ *   hkf_predict advances the constant-velocity model and counts the time
+ *   since the last accepted measurement. Once that time reaches coast_time the
+ *   track is LOST: the rate and its covariance are zeroed, and later predicts
+ *   hold the angle (and its variance) still. The next measurement re-acquires:
+ *   the track restarts from it as from the first one, keeping the centre.
+ *   A measurement the innovation gate rejects counts as a missing one.
+ */
+#include "hkf/hkf.h"
+#include "hkf_internal.h"
+#include "hkf_math.h"
+
+enum { CENTER_NONE = 0, CENTER_FROM_TRACK = 1, CENTER_EXPLICIT = 2 };
+
+static void write_output(const hkf_filter_t *f, unsigned flags, hkf_output_t *out)
+{
+    int a;
+    if (out == 0) {
+        return;
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        out->angle[a] = f->angle[a];
+        out->rate[a] = f->rate[a];
+        out->variance[a] = f->p00[a];
+        out->r[a] = f->r[a];
+    }
+    out->flags = flags;
+    out->status = f->status;
+}
+
+static int check_dt(const hkf_filter_t *f, hkf_real_t dt)
+{
+    if (!hkf_is_finite(dt)) {
+        return HKF_ERROR_NON_FINITE;
+    }
+    if (!(dt > 0 && dt <= f->settings.max_dt)) {
+        return HKF_ERROR_DT_RANGE;
+    }
+    return HKF_OK;
+}
+
+static int check_angles(const hkf_real_t v[3])
+{
+    int a;
+    for (a = 0; a < HKF_AXES; ++a) {
+        if (!hkf_is_finite(v[a])) {
+            return HKF_ERROR_NON_FINITE;
+        }
+        if (hkf_abs(v[a]) > (hkf_real_t)HKF_MAX_ABS_ANGLE) {
+            return HKF_ERROR_ANGLE_RANGE;
+        }
+    }
+    return HKF_OK;
+}
+
+/* Angle differences on the yaw axis go the short way round. */
+static hkf_real_t axis_difference(int axis, hkf_real_t a, hkf_real_t b)
+{
+    return axis == HKF_AXIS_YAW ? hkf_wrap180(a - b) : a - b;
+}
+
+/* Paper Eq. 1-3, per axis:
+ *   x = F x                   angle += rate dt
+ *   P = F P F' + Q            Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]]
+ * (Q: continuous white-noise acceleration of density q.) */
+static void predict_axes(hkf_filter_t *f, hkf_real_t dt)
+{
+    const hkf_real_t dt2 = dt * dt;
+    int a;
+    for (a = 0; a < HKF_AXES; ++a) {
+        const hkf_real_t q = f->settings.process_noise[a];
+        const hkf_real_t p01 = f->p01[a];
+        const hkf_real_t p11 = f->p11[a];
+        f->angle[a] += f->rate[a] * dt;
+        f->p00[a] += dt * (HKF_REAL(2.0) * p01 + dt * p11) + q * dt2 * dt * HKF_REAL(0.33333333333333333);
+        f->p01[a] = p01 + dt * p11 + q * dt2 * HKF_REAL(0.5);
+        f->p11[a] = p11 + q * dt;
+    }
+    f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
+}
+
+/* Paper Eq. 9, loop closure: with d = z - kappa, if |d| <= theta_lc then
+ * z = kappa + xi d  (= xi z + (1 - xi) kappa). |d| is the Euclidean norm over
+ * the three axes (compared squared), or each axis alone in PER_AXIS mode.
+ * Returns whether it moved the measurement. */
+static int loop_closure(const hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t zc[3])
+{
+    const hkf_settings_t *s = &f->settings;
+    const hkf_real_t theta2 = s->lc_theta * s->lc_theta;
+    hkf_real_t d[3];
+    hkf_real_t norm2 = 0;
+    int a, closed = 0;
+    for (a = 0; a < HKF_AXES; ++a) {
+        zc[a] = z[a];
+        d[a] = axis_difference(a, z[a], f->center[a]);
+        norm2 += d[a] * d[a];
+    }
+    if (s->loop_closure == HKF_LOOP_CLOSURE_OFF || f->center_source == CENTER_NONE) {
+        return 0;
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        const int inside = s->loop_closure == HKF_LOOP_CLOSURE_NORM ? norm2 <= theta2
+                                                                    : d[a] * d[a] <= theta2;
+        if (inside) {
+            zc[a] = f->center[a] + s->lc_xi * d[a];
+            closed = 1;
+        }
+    }
+    zc[HKF_AXIS_YAW] = hkf_wrap180(zc[HKF_AXIS_YAW]);
+    return closed;
+}
+
+/* Paper Eq. 8, amplitude form:  e(x) = tau - lambda exp(-(x - mu)^2 / (2 sigma^2)).
+ * The paper prints Eq. 8 with the normalising factor 1/(sqrt(2 pi) sigma),
+ * but its Table I only makes sense without it (FSA-Net yaw: 7.64 - 4.11 =
+ * 3.53 deg at the centre, ~7.6 deg at +-90 deg; normalised, pitch R would be a
+ * near-constant 315). Written as (tau - lambda) + lambda (1 - exp(.)) so the
+ * roll curves (tau, lambda ~ 1e5) do not cancel catastrophically in float. */
+hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
+{
+    const hkf_settings_t *s;
+    hkf_real_t r;
+    if (f == 0 || axis < 0 || axis >= HKF_AXES) {
+        return 0;
+    }
+    s = &f->settings;
+    if (s->noise_mode == HKF_NOISE_CONSTANT) {
+        r = s->r_const[axis];
+    } else {
+        const hkf_real_t u = x - s->noise[axis].mu;
+        const hkf_real_t dip = hkf_one_minus_exp_neg(u * u * f->gauss_scale[axis]);
+        const hkf_real_t e = f->noise_floor[axis] + s->noise[axis].lambda * dip;
+        if (s->noise_mode == HKF_NOISE_ADAPTIVE) {
+            r = e;
+        } else {
+            r = e > 0 ? e * e : 0;
+        }
+    }
+    if (r < s->r_min) {
+        r = s->r_min;
+    } else if (r > s->r_max) {
+        r = s->r_max;
+    }
+    return r;
+}
+
+/* Step 5: the first measurement (or the first after LOST, or after too many
+ * gated ones) starts the track: angle = z, rate = 0, P = diag(p0). */
+static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
+{
+    int a;
+    for (a = 0; a < HKF_AXES; ++a) {
+        f->angle[a] = z[a];
+        f->rate[a] = 0;
+        f->p00[a] = f->settings.p0_angle;
+        f->p01[a] = 0;
+        f->p11[a] = f->settings.p0_rate;
+        f->r[a] = hkf_observation_noise(f, a, z[a]);
+    }
+    f->angle[HKF_AXIS_YAW] = hkf_wrap180(z[HKF_AXIS_YAW]);
+    if (f->center_source == CENTER_NONE) {
+        for (a = 0; a < HKF_AXES; ++a) {
+            f->center[a] = f->angle[a];
+        }
+        f->center_source = CENTER_FROM_TRACK;
+    }
+    f->time_since_measurement = 0;
+    f->gate_rejections = 0;
+    f->status = HKF_STATUS_TRACKING;
+}
+
+/* A frame without an accepted measurement, dt s long: count it, and lose
+ * the track once coast_time has passed without one. */
+static void count_missing(hkf_filter_t *f, hkf_real_t dt)
+{
+    int a;
+    f->time_since_measurement += dt;
+    f->status = HKF_STATUS_COASTING;
+    if (f->time_since_measurement >= f->settings.coast_time) {
+        for (a = 0; a < HKF_AXES; ++a) {
+            f->rate[a] = 0;
+            f->p01[a] = 0;
+            f->p11[a] = 0;
+        }
+        f->status = HKF_STATUS_LOST;
+    }
+}
+
+int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
+{
+    int a, result;
+    if (f == 0 || s == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = hkf_settings_check(s);
+    if (result != HKF_OK) {
+        return result;
+    }
+    f->settings = *s;
+    for (a = 0; a < HKF_AXES; ++a) {
+        const hkf_noise_curve_t *c = &s->noise[a];
+        f->gauss_scale[a] = hkf_div(HKF_REAL(1.0), HKF_REAL(2.0) * c->sigma * c->sigma);
+        f->noise_floor[a] = c->tau - c->lambda;
+        f->center[a] = 0;
+    }
+    f->center_source = CENTER_NONE;
+    hkf_reset(f);
+    return HKF_OK;
+}
+
+void hkf_reset(hkf_filter_t *f)
+{
+    int a;
+    if (f == 0) {
+        return;
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        f->angle[a] = 0;
+        f->rate[a] = 0;
+        f->p00[a] = f->settings.p0_angle;
+        f->p01[a] = 0;
+        f->p11[a] = f->settings.p0_rate;
+        f->r[a] = 0;
+    }
+    if (f->center_source != CENTER_EXPLICIT) {
+        f->center_source = CENTER_NONE;
+    }
+    f->time_since_measurement = 0;
+    f->gate_rejections = 0;
+    f->status = HKF_STATUS_UNINITIALIZED;
+}
+
+int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output_t *out)
+{
+    hkf_real_t zc[3], y[3], r[3], s[3];
+    hkf_real_t nis = 0;
+    unsigned flags = 0;
+    int a, result;
+    if (f == 0 || z == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = check_angles(z);
+    if (result != HKF_OK) {
+        return result;
+    }
+    if (f->status == HKF_STATUS_UNINITIALIZED) {
+        start_track(f, z);
+        write_output(f, HKF_FLAG_REACQUIRED, out);
+        return HKF_OK;
+    }
+    result = check_dt(f, dt);
+    if (result != HKF_OK) {
+        return result;
+    }
+    if (f->status == HKF_STATUS_LOST) {
+        start_track(f, z);
+        write_output(f, HKF_FLAG_REACQUIRED, out);
+        return HKF_OK;
+    }
+
+    predict_axes(f, dt);
+    if (loop_closure(f, z, zc)) {
+        flags |= HKF_FLAG_LOOP_CLOSURE;
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        r[a] = hkf_observation_noise(f, a, zc[a]);                    /* Eq. 8 */
+        y[a] = axis_difference(a, zc[a], f->angle[a]);                /* Eq. 4: y = z - H x */
+        s[a] = f->p00[a] + r[a];                                      /* Eq. 5: S = H P H' + R */
+        nis += y[a] * y[a] * hkf_div(HKF_REAL(1.0), s[a]);
+    }
+
+    /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
+     * exceeds gate_sigma; after max_gate_rejections in a row, believe it. */
+    if (f->settings.gate_sigma > 0 && nis > f->settings.gate_sigma * f->settings.gate_sigma) {
+        if (f->gate_rejections >= f->settings.max_gate_rejections) {
+            start_track(f, z);
+            write_output(f, HKF_FLAG_GATED | HKF_FLAG_REACQUIRED, out);
+        } else {
+            count_missing(f, dt);
+            f->gate_rejections += 1u;
+            write_output(f, HKF_FLAG_GATED | flags, out);
+        }
+        return HKF_OK;
+    }
+
+    for (a = 0; a < HKF_AXES; ++a) {
+        const hkf_real_t inv_s = hkf_div(HKF_REAL(1.0), s[a]);
+        const hkf_real_t k0 = f->p00[a] * inv_s;                      /* Eq. 6: K = P H' S^-1 */
+        const hkf_real_t k1 = f->p01[a] * inv_s;
+        f->angle[a] += k0 * y[a];                                     /* Eq. 7: x = x + K y */
+        f->rate[a] += k1 * y[a];
+        f->p11[a] -= k1 * f->p01[a];                                  /* Eq. 7: P = (I - K H) P */
+        f->p01[a] -= k0 * f->p01[a];
+        f->p00[a] -= k0 * f->p00[a];
+        f->r[a] = r[a];
+    }
+    f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
+    f->time_since_measurement = 0;
+    f->gate_rejections = 0;
+    f->status = HKF_STATUS_TRACKING;
+    write_output(f, flags, out);
+    return HKF_OK;
+}
+
+int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out)
+{
+    int result;
+    if (f == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (f->status == HKF_STATUS_UNINITIALIZED) {
+        return HKF_ERROR_NOT_INITIALIZED;
+    }
+    result = check_dt(f, dt);
+    if (result != HKF_OK) {
+        return result;
+    }
+    if (f->status != HKF_STATUS_LOST) {
+        predict_axes(f, dt);
+        count_missing(f, dt);
+    }
+    write_output(f, 0u, out);
+    return HKF_OK;
+}
+
+int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *out)
+{
+    hkf_filter_t ahead;
+    if (f == 0 || out == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (f->status == HKF_STATUS_UNINITIALIZED) {
+        return HKF_ERROR_NOT_INITIALIZED;
+    }
+    if (!hkf_is_finite(dt_ahead)) {
+        return HKF_ERROR_NON_FINITE;
+    }
+    if (!(dt_ahead >= 0 && dt_ahead <= f->settings.max_dt)) {
+        return HKF_ERROR_DT_RANGE;
+    }
+    ahead = *f;
+    predict_axes(&ahead, dt_ahead);
+    write_output(&ahead, HKF_FLAG_EXTRAPOLATED, out);
+    return HKF_OK;
+}
+
+int hkf_get_output(const hkf_filter_t *f, hkf_output_t *out)
+{
+    if (f == 0 || out == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    write_output(f, 0u, out);
+    return HKF_OK;
+}
+
+int hkf_set_center(hkf_filter_t *f, const hkf_real_t center[3])
+{
+    int a, result;
+    if (f == 0 || center == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = check_angles(center);
+    if (result != HKF_OK) {
+        return result;
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        f->center[a] = center[a];
+    }
+    f->center[HKF_AXIS_YAW] = hkf_wrap180(center[HKF_AXIS_YAW]);
+    f->center_source = CENTER_EXPLICIT;
+    return HKF_OK;
+}
+
+int hkf_recenter(hkf_filter_t *f)
+{
+    if (f == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (f->status == HKF_STATUS_UNINITIALIZED) {
+        return HKF_ERROR_NOT_INITIALIZED;
+    }
+    return hkf_set_center(f, f->angle);
+}
+
+int hkf_get_center(const hkf_filter_t *f, hkf_real_t center[3])
+{
+    int a;
+    if (f == 0 || center == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (f->center_source == CENTER_NONE) {
+        return HKF_ERROR_NOT_INITIALIZED;
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        center[a] = f->center[a];
+    }
+    return HKF_OK;
+}

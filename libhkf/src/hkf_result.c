@@ -1,0 +1,29 @@
+/* hkf_result.c - descriptions of the hkf_result_t codes. */
+#include "hkf/hkf.h"
+
+const char *hkf_result_string(int result)
+{
+    switch (result) {
+    case HKF_OK: return "ok";
+    case HKF_ERROR_NULL_ARGUMENT: return "a pointer argument is NULL";
+    case HKF_ERROR_NON_FINITE: return "a measurement or dt is NaN or infinite";
+    case HKF_ERROR_DT_RANGE: return "dt is not in (0, max_dt]";
+    case HKF_ERROR_ANGLE_RANGE: return "an angle is beyond +-HKF_MAX_ABS_ANGLE degrees";
+    case HKF_ERROR_NOT_INITIALIZED: return "no measurement has started a track yet";
+    case HKF_ERROR_SETTING_NON_FINITE: return "a setting is NaN or infinite";
+    case HKF_ERROR_SETTING_NOISE_MODE: return "noise_mode is not a hkf_noise_mode_t";
+    case HKF_ERROR_SETTING_SIGMA: return "a noise curve's sigma is not > 0";
+    case HKF_ERROR_SETTING_R_RANGE: return "r_min and r_max do not satisfy 0 < r_min <= r_max";
+    case HKF_ERROR_SETTING_R_CONST: return "an r_const is not > 0";
+    case HKF_ERROR_SETTING_PROCESS_NOISE: return "a process_noise is negative";
+    case HKF_ERROR_SETTING_LOOP_CLOSURE: return "loop_closure is not a hkf_loop_closure_t";
+    case HKF_ERROR_SETTING_LC_XI: return "lc_xi is not in [0, 1]";
+    case HKF_ERROR_SETTING_LC_THETA: return "lc_theta is negative";
+    case HKF_ERROR_SETTING_P0: return "p0_angle or p0_rate is not > 0";
+    case HKF_ERROR_SETTING_GATE:
+        return "gate_sigma is negative, or the gate is on with max_gate_rejections 0";
+    case HKF_ERROR_SETTING_COAST_TIME: return "coast_time is not > 0";
+    case HKF_ERROR_SETTING_MAX_DT: return "max_dt is not > 0";
+    default: return "unknown hkf result code";
+    }
+}

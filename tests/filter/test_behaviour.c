@@ -1,0 +1,267 @@
+/*
+ * test_behaviour.c - what a head tracker needs beyond the paper's equations:
+ * coasting and losing the track, re-acquiring, the innovation gate,
+ * extrapolation, recentring, and state carried across calls.
+ */
+#include "test_support.h"
+
+#include "head_motion_sim.h"
+
+static const hkf_real_t frame_dt = (hkf_real_t)(1.0 / 30.0);
+
+/* Starts a filter on a head turning at `rate` deg/s in yaw (perfect measurements). */
+static void track_turning_head(hkf_filter_t *f, const hkf_settings_t *s, double rate, int frames)
+{
+    hkf_real_t z[3];
+    int i;
+    assert_int_equal(hkf_init(f, s), HKF_OK);
+    for (i = 0; i < frames; ++i) {
+        set3(z, 0, rate * (double)frame_dt * i, 0);
+        assert_int_equal(hkf_update(f, z, frame_dt, NULL), HKF_OK);
+    }
+}
+
+/* The coasting rule: predicts follow the rate until coast_time has passed
+ * without a measurement; then the track is LOST, the rate zeroed, the angle held. */
+static void test_coast_then_lost(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t before, out;
+    double held;
+    int i;
+    (void)state;
+    s.coast_time = (hkf_real_t)0.19;
+    s.r_const[1] = (hkf_real_t)0.1;
+    track_turning_head(&f, &s, 30.0, 60);
+    assert_int_equal(hkf_get_output(&f, &before), HKF_OK);
+    assert_near(before.rate[1], 30, 0.5);
+
+    for (i = 1; i <= 5; ++i) { /* 5 frames = 0.167 s < 0.19 s */
+        assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_OK);
+        assert_int_equal(out.status, HKF_STATUS_COASTING);
+        assert_near(out.angle[1], before.angle[1] + before.rate[1] * frame_dt * i, 1e-3);
+        assert_true(out.variance[1] > before.variance[1]);
+    }
+    assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_OK); /* 0.2 s */
+    assert_int_equal(out.status, HKF_STATUS_LOST);
+    assert_near(out.rate[1], 0, 0);
+    held = out.angle[1];
+    for (i = 0; i < 100; ++i) {
+        assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_OK);
+    }
+    assert_int_equal(out.status, HKF_STATUS_LOST);
+    assert_near(out.angle[1], held, 0);
+}
+
+/* The next measurement after LOST restarts the track from it, keeping the centre. */
+static void test_reacquire_after_lost(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3], centre[3];
+    int i;
+    (void)state;
+    s.coast_time = (hkf_real_t)0.1;
+    track_turning_head(&f, &s, 10.0, 30);
+    for (i = 0; i < 10; ++i) {
+        assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_OK);
+    }
+    assert_int_equal(out.status, HKF_STATUS_LOST);
+    set3(z, 3, -40, 1);
+    assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
+    assert_int_equal(out.status, HKF_STATUS_TRACKING);
+    assert_true(out.flags & HKF_FLAG_REACQUIRED);
+    assert_near(out.angle[1], -40, TEST_TOL);
+    assert_near(out.rate[1], 0, 0);
+    assert_near(out.variance[1], s.p0_angle, TEST_TOL);
+    assert_int_equal(hkf_get_center(&f, centre), HKF_OK);
+    assert_near(centre[1], 0, TEST_TOL); /* still the first measurement's */
+}
+
+/* The gate (off by default) rejects an outlier: the state only predicts. */
+static void test_gate_rejects_outlier_then_reacquires(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f, predicted;
+    hkf_output_t out, expected;
+    hkf_real_t z[3];
+    int i;
+    (void)state;
+    assert_true(hkf_default_settings.gate_sigma == 0);
+    s.gate_sigma = (hkf_real_t)4;
+    s.max_gate_rejections = 3u;
+    track_turning_head(&f, &s, 0.0, 30);
+    set3(z, 0, 45, 0); /* far beyond 4 sigma */
+    for (i = 0; i < 3; ++i) {
+        predicted = f;
+        assert_int_equal(hkf_predict(&predicted, frame_dt, &expected), HKF_OK);
+        assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
+        assert_true(out.flags & HKF_FLAG_GATED);
+        assert_false(out.flags & HKF_FLAG_REACQUIRED);
+        assert_near(out.angle[1], expected.angle[1], 0);
+        assert_near(out.variance[1], expected.variance[1], 0);
+    }
+    /* the fourth in a row is believed: the head really moved */
+    assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
+    assert_true(out.flags & HKF_FLAG_REACQUIRED);
+    assert_near(out.angle[1], 45, TEST_TOL);
+    /* and an ordinary measurement after that is accepted */
+    set3(z, 0, 45.5, 0);
+    assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
+    assert_int_equal(out.flags & HKF_FLAG_GATED, 0u);
+    assert_int_equal(out.status, HKF_STATUS_TRACKING);
+}
+
+/* Extrapolation predicts without touching the filter. */
+static void test_extrapolate_is_pure(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f, copy;
+    hkf_output_t now, ahead;
+    (void)state;
+    s.r_const[1] = (hkf_real_t)0.1;
+    track_turning_head(&f, &s, 60.0, 60);
+    copy = f;
+    assert_int_equal(hkf_get_output(&f, &now), HKF_OK);
+    assert_int_equal(hkf_extrapolate(&f, (hkf_real_t)0.01, &ahead), HKF_OK);
+    assert_memory_equal(&f, &copy, sizeof f);
+    assert_near(ahead.angle[1], now.angle[1] + now.rate[1] * 0.01, 1e-3);
+    assert_true(ahead.flags & HKF_FLAG_EXTRAPOLATED);
+    assert_true(ahead.variance[1] > now.variance[1]);
+    assert_int_equal(hkf_extrapolate(&f, (hkf_real_t)0, &ahead), HKF_OK);
+    assert_near(ahead.angle[1], now.angle[1], 0);
+}
+
+/* Recentre: to an explicit pose (kept across reset) or to the current estimate. */
+static void test_recenter_and_reset(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3], c[3];
+    (void)state;
+    s.loop_closure = HKF_LOOP_CLOSURE_NORM;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    assert_int_equal(hkf_get_center(&f, c), HKF_ERROR_NOT_INITIALIZED);
+    set3(z, 1, 2, 3);
+    assert_int_equal(hkf_update(&f, z, 0, &out), HKF_OK);
+    set3(z, 1, 12, 3);
+    assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
+    assert_int_equal(hkf_recenter(&f), HKF_OK);
+    assert_int_equal(hkf_get_center(&f, c), HKF_OK);
+    assert_near(c[1], out.angle[1], 0);
+
+    /* an automatic centre is forgotten by reset; an explicit one is not */
+    set3(c, 0, 190, 0); /* wraps to -170 */
+    assert_int_equal(hkf_set_center(&f, c), HKF_OK);
+    hkf_reset(&f);
+    assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_ERROR_NOT_INITIALIZED);
+    assert_int_equal(hkf_get_center(&f, c), HKF_OK);
+    assert_near(c[1], -170, TEST_TOL);
+    /* a measurement 1 deg from the explicit centre is pulled onto it */
+    set3(z, 0, -170, 0);
+    assert_int_equal(hkf_update(&f, z, 0, &out), HKF_OK);
+    set3(z, 0, -169, 0);
+    assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
+    assert_true(out.flags & HKF_FLAG_LOOP_CLOSURE);
+    assert_int_equal(hkf_init(&f, &s), HKF_OK); /* init forgets everything */
+    assert_int_equal(hkf_get_center(&f, c), HKF_ERROR_NOT_INITIALIZED);
+}
+
+/* State carries across calls: a run fed in two chunks, with the filter
+ * moved to other storage in between (as a controller might persist it),
+ * gives exactly the outputs of an uninterrupted run. */
+static void test_state_carried_across_chunks(void **state)
+{
+    enum { FRAMES = 900 };
+    sim_config_t config = sim_default_config();
+    sim_t sim;
+    sim_frame_t frames[FRAMES];
+    hkf_filter_t whole, first, second;
+    hkf_output_t a, b;
+    double previous = 0.0;
+    int i, k;
+    (void)state;
+    sim_init(&sim, &config, 7u);
+    for (i = 0; i < FRAMES; ++i) {
+        sim_next(&sim, &frames[i]);
+    }
+    assert_int_equal(hkf_init(&whole, &hkf_default_settings), HKF_OK);
+    assert_int_equal(hkf_init(&first, &hkf_default_settings), HKF_OK);
+    for (i = 0; i < FRAMES; ++i) {
+        hkf_filter_t *chunked = i < FRAMES / 2 ? &first : &second;
+        const hkf_real_t dt = (hkf_real_t)(frames[i].time - previous);
+        hkf_real_t z[3];
+        int ra, rb;
+        if (i == FRAMES / 2) {
+            memcpy(&second, &first, sizeof second);
+            memset(&first, 0xA5, sizeof first);
+        }
+        set3(z, frames[i].measured[0], frames[i].measured[1], frames[i].measured[2]);
+        ra = frames[i].valid ? hkf_update(&whole, z, dt, &a) : hkf_predict(&whole, dt, &a);
+        rb = frames[i].valid ? hkf_update(chunked, z, dt, &b) : hkf_predict(chunked, dt, &b);
+        assert_int_equal(ra, rb);
+        if (ra == HKF_OK) {
+            for (k = 0; k < 3; ++k) {
+                assert_near(a.angle[k], b.angle[k], 0);
+                assert_near(a.variance[k], b.variance[k], 0);
+            }
+        }
+        previous = frames[i].time;
+    }
+}
+
+/* Constant vs adaptive R on a head held at 60 deg yaw: Eq. 8 trusts the
+ * estimator less there (R = 7.03 vs 3.53), so the adaptive filter holds a
+ * steadier pose; near the centre both R are the same. */
+static void test_constant_vs_adaptive_r(void **state)
+{
+    hkf_settings_t constant = hkf_default_settings, adaptive = hkf_default_settings;
+    hkf_filter_t fc, fa;
+    hkf_output_t oc, oa;
+    sim_rng_t rng;
+    double step_c = 0.0, step_a = 0.0, prev_c = 0.0, prev_a = 0.0;
+    int i;
+    (void)state;
+    constant.noise_mode = HKF_NOISE_CONSTANT;
+    constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    adaptive.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    assert_int_equal(hkf_init(&fc, &constant), HKF_OK);
+    assert_int_equal(hkf_init(&fa, &adaptive), HKF_OK);
+    sim_rng_seed(&rng, 3u);
+    for (i = 0; i < 600; ++i) {
+        hkf_real_t z[3];
+        set3(z, 0, 60.0 + 2.6 * sim_rng_gaussian(&rng), 0);
+        assert_int_equal(hkf_update(&fc, z, frame_dt, &oc), HKF_OK);
+        assert_int_equal(hkf_update(&fa, z, frame_dt, &oa), HKF_OK);
+        if (i > 30) {
+            step_c += (oc.angle[1] - prev_c) * (oc.angle[1] - prev_c);
+            step_a += (oa.angle[1] - prev_a) * (oa.angle[1] - prev_a);
+        }
+        prev_c = oc.angle[1];
+        prev_a = oa.angle[1];
+    }
+    assert_near(oc.r[1], 3.53, 1e-4);
+    assert_near(oa.r[1], 7.03197, 0.05); /* Eq. 8 at the noisy measured yaw */
+    assert_true(oa.r[1] > 6.5);
+    assert_true(step_a < 0.85 * step_c);
+    /* at the centre the curve gives the constant's value */
+    assert_near(hkf_observation_noise(&fa, HKF_AXIS_YAW, (hkf_real_t)-0.35),
+                hkf_observation_noise(&fc, HKF_AXIS_YAW, (hkf_real_t)-0.35), 1e-4);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_coast_then_lost),
+        cmocka_unit_test(test_reacquire_after_lost),
+        cmocka_unit_test(test_gate_rejects_outlier_then_reacquires),
+        cmocka_unit_test(test_extrapolate_is_pure),
+        cmocka_unit_test(test_recenter_and_reset),
+        cmocka_unit_test(test_state_carried_across_chunks),
+        cmocka_unit_test(test_constant_vs_adaptive_r),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,291 @@
+/*
+ * test_equations.c - each equation of the paper, against numbers worked out
+ * by hand (or from Table I) in the comments.
+ */
+#include "test_support.h"
+
+/* Step 5: the first measurement starts the track: angle = z, rate = 0,
+ * P = diag(p0), centre = z. dt of the first call is ignored. */
+static void test_first_measurement_starts_track(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3], c[3];
+    (void)state;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 5, -30, 2);
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0, &out), HKF_OK);
+    assert_near(out.angle[0], 5, TEST_TOL);
+    assert_near(out.angle[1], -30, TEST_TOL);
+    assert_near(out.angle[2], 2, TEST_TOL);
+    assert_near(out.rate[1], 0, TEST_TOL);
+    assert_near(out.variance[1], 4, TEST_TOL);
+    assert_int_equal(out.status, HKF_STATUS_TRACKING);
+    assert_true(out.flags & HKF_FLAG_REACQUIRED);
+    assert_int_equal(hkf_get_center(&f, c), HKF_OK);
+    assert_near(c[1], -30, TEST_TOL);
+}
+
+/* Eq. 1-3 from P = diag(4, 8), q = 12, dt = 0.5:
+ *   p00 = 4 + dt^2 8 + q dt^3 / 3 = 4 + 2 + 0.5 = 6.5
+ *   p01 = dt 8 + q dt^2 / 2 = 4 + 1.5 = 5.5
+ *   p11 = 8 + q dt = 14
+ * and with that predicted P, a measurement 3 deg off, R = 2 (Eq. 4-7):
+ *   S = 8.5, K = (6.5, 5.5) / 8.5
+ *   angle = z0 + 3 * 6.5 / 8.5, rate = 3 * 5.5 / 8.5
+ *   p00 = (1 - K0) 6.5 = 13 / 8.5, p01 = (1 - K0) 5.5 = 11 / 8.5,
+ *   p11 = 14 - K1 5.5 = 14 - 30.25 / 8.5 */
+static void test_predict_eq1_to_3(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3];
+    (void)state;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 1, 2, 3);
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0, &out), HKF_OK);
+    assert_int_equal(hkf_predict(&f, (hkf_real_t)0.5, &out), HKF_OK);
+    assert_near(out.variance[0], 6.5, TEST_TOL);
+    assert_near(out.variance[1], 6.5, TEST_TOL);
+    assert_near(out.angle[2], 3, TEST_TOL); /* rate 0: the angle stays */
+    assert_int_equal(out.status, HKF_STATUS_COASTING);
+}
+
+static void test_update_eq4_to_7(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out, ahead;
+    hkf_real_t z[3];
+    const double k0 = 6.5 / 8.5, k1 = 5.5 / 8.5;
+    const double p00 = 13.0 / 8.5, p01 = 11.0 / 8.5, p11 = 14.0 - 30.25 / 8.5;
+    int a;
+    (void)state;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 1, 2, 3);
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0, &out), HKF_OK);
+    set3(z, 4, 5, 6);
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0.5, &out), HKF_OK);
+    for (a = 0; a < 3; ++a) {
+        assert_near(out.angle[a], (a + 1) + 3.0 * k0, TEST_TOL);
+        assert_near(out.rate[a], 3.0 * k1, TEST_TOL);
+        assert_near(out.variance[a], p00, TEST_TOL);
+        assert_near(out.r[a], 2, TEST_TOL);
+    }
+    assert_int_equal(out.status, HKF_STATUS_TRACKING);
+    assert_int_equal(out.flags, 0u);
+    /* p01 and p11 show through a prediction 1 s ahead (Eq. 1-3 once more):
+     * p00 + 2 p01 + p11 + q / 3 */
+    assert_int_equal(hkf_extrapolate(&f, (hkf_real_t)1, &ahead), HKF_OK);
+    assert_near(ahead.variance[0], p00 + 2.0 * p01 + p11 + 4.0, TEST_TOL);
+    assert_near(ahead.angle[0], 1 + 3.0 * k0 + 3.0 * k1, TEST_TOL);
+}
+
+/* Eq. 8, amplitude form, with the FSA-Net curves of Table I (values worked
+ * out in double: yaw 3.53 at mu, 7.5833 at 90, 6.1960 at -45; pitch 3.5996
+ * at 0, 14.1886 at 30; roll 3.36 at mu (the centre error the preset chose;
+ * float rounds lambda = 328996.64 by up to 0.016), 6.8880 at 20). */
+static void test_observation_noise_eq8(void **state)
+{
+    hkf_settings_t s = hkf_default_settings;
+    hkf_filter_t f;
+    (void)state;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)-0.35), 3.53, 1e-4);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)90), 7.58328, 1e-4);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)-45), 6.19602, 1e-4);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_PITCH, (hkf_real_t)0), 3.59963, 1e-3);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_PITCH, (hkf_real_t)30), 14.18861, 2e-3);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_ROLL, (hkf_real_t)-0.562), 3.36, 0.02);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_ROLL, (hkf_real_t)20), 6.88796, 0.02);
+    assert_near(hkf_observation_noise(&f, 3, (hkf_real_t)0), 0, 0);
+
+    /* e read as a standard deviation: R = e^2 */
+    s.noise_mode = HKF_NOISE_ADAPTIVE_SQUARED;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)90), 7.58328 * 7.58328, 2e-3);
+
+    /* the clamp applies in every mode */
+    s.r_max = (hkf_real_t)5;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)90), 5, 0);
+    s.noise_mode = HKF_NOISE_CONSTANT;
+    s.r_min = (hkf_real_t)4;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)90), 4, 0); /* r_const 3.53 */
+
+    /* a curve deeper than its plateau (e < 0) is clamped, never negative */
+    s = hkf_default_settings;
+    s.noise[1].lambda = (hkf_real_t)20;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)0), s.r_min, 0);
+}
+
+/* The R an update uses is Eq. 8 at the (loop-closed) measured angle. */
+static void test_update_uses_adaptive_r(void **state)
+{
+    hkf_settings_t s = hkf_default_settings;
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3];
+    (void)state;
+    s.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 0, 88, 0);
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0, &out), HKF_OK);
+    set3(z, 0, 90, 20);
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)(1.0 / 30.0), &out), HKF_OK);
+    assert_near(out.r[HKF_AXIS_YAW], 7.58328, 1e-4);
+    assert_near(out.r[HKF_AXIS_ROLL], 6.88796, 0.02);
+}
+
+/* Runs one filter that starts at `start` and takes `z`; returns the posterior. */
+static hkf_output_t two_steps(const hkf_settings_t *s, const hkf_real_t start[3], const hkf_real_t z[3])
+{
+    hkf_filter_t f;
+    hkf_output_t out;
+    assert_int_equal(hkf_init(&f, s), HKF_OK);
+    assert_int_equal(hkf_update(&f, start, (hkf_real_t)0, &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)(1.0 / 30.0), &out), HKF_OK);
+    return out;
+}
+
+/* Eq. 9: a measurement within theta_lc of the centre is replaced by
+ * xi z + (1 - xi) kappa, so the filter must give exactly what a filter
+ * without loop closure gives for that replaced measurement. */
+static void test_loop_closure_eq9(void **state)
+{
+    hkf_settings_t on = plain_settings(), off;
+    hkf_real_t start[3], z[3], fused[3];
+    hkf_output_t a, b;
+    int k;
+    (void)state;
+    on.loop_closure = HKF_LOOP_CLOSURE_NORM;
+    on.lc_xi = (hkf_real_t)0.618;
+    on.lc_theta = (hkf_real_t)2;
+    off = on;
+    off.loop_closure = HKF_LOOP_CLOSURE_OFF;
+
+    set3(start, 10, 20, 30); /* the first measurement is the centre */
+    set3(z, 10.6, 20.8, 30.0); /* |d| = 1 */
+    set3(fused, 10 + 0.618 * 0.6, 20 + 0.618 * 0.8, 30);
+    a = two_steps(&on, start, z);
+    b = two_steps(&off, start, fused);
+    assert_true(a.flags & HKF_FLAG_LOOP_CLOSURE);
+    for (k = 0; k < 3; ++k) {
+        assert_near(a.angle[k], b.angle[k], TEST_TOL);
+        assert_near(a.rate[k], b.rate[k], 10 * TEST_TOL);
+    }
+
+    /* further than theta_lc: untouched */
+    set3(z, 11.5, 21.5, 30.0); /* |d| = 2.12 */
+    a = two_steps(&on, start, z);
+    b = two_steps(&off, start, z);
+    assert_false(a.flags & HKF_FLAG_LOOP_CLOSURE);
+    assert_near(a.angle[1], b.angle[1], 0);
+}
+
+/* The boundary: |d| exactly theta_lc closes; just beyond does not.
+ * theta = 5 and d = (3, 4, 0) make the norm exactly 5 in any precision. */
+static void test_loop_closure_boundary(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_real_t start[3], z[3];
+    hkf_output_t out;
+    (void)state;
+    s.loop_closure = HKF_LOOP_CLOSURE_NORM;
+    s.lc_theta = (hkf_real_t)5;
+    set3(start, 0, 0, 0);
+    set3(z, 3, 4, 0);
+    out = two_steps(&s, start, z);
+    assert_true(out.flags & HKF_FLAG_LOOP_CLOSURE);
+    set3(z, 3, 4.001, 0);
+    out = two_steps(&s, start, z);
+    assert_false(out.flags & HKF_FLAG_LOOP_CLOSURE);
+
+    /* per-axis mode: each axis against theta alone, so (3, 4, 0) with
+     * theta 3.5 closes pitch and roll, not yaw */
+    s.loop_closure = HKF_LOOP_CLOSURE_PER_AXIS;
+    s.lc_theta = (hkf_real_t)3.5;
+    set3(z, 3, 4, 0);
+    out = two_steps(&s, start, z);
+    assert_true(out.flags & HKF_FLAG_LOOP_CLOSURE);
+    {
+        hkf_settings_t off = s;
+        hkf_real_t fused[3];
+        hkf_output_t ref;
+        off.loop_closure = HKF_LOOP_CLOSURE_OFF;
+        set3(fused, 3 * 0.618, 4, 0);
+        ref = two_steps(&off, start, fused);
+        assert_near(out.angle[0], ref.angle[0], TEST_TOL);
+        assert_near(out.angle[1], ref.angle[1], TEST_TOL);
+    }
+}
+
+/* Eq. 9 across the yaw seam: centre 179, z = -179 is 2 deg away, not 358. */
+static void test_loop_closure_across_yaw_seam(void **state)
+{
+    hkf_settings_t s = plain_settings(), off;
+    hkf_real_t start[3], z[3], fused[3];
+    hkf_output_t a, b;
+    (void)state;
+    s.loop_closure = HKF_LOOP_CLOSURE_NORM;
+    s.lc_theta = (hkf_real_t)2.5;
+    off = s;
+    off.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    set3(start, 0, 179, 0);
+    set3(z, 0, -179, 0);
+    set3(fused, 0, 179 + 0.618 * 2 - 360, 0);
+    a = two_steps(&s, start, z);
+    b = two_steps(&off, start, fused);
+    assert_true(a.flags & HKF_FLAG_LOOP_CLOSURE);
+    assert_near(a.angle[1], b.angle[1], TEST_TOL);
+}
+
+/* Yaw through +-180: a head turning steadily at 40 deg/s from 100 deg, with
+ * perfect measurements, is followed across the seam (at 2 s) without a
+ * jump, and every published yaw is in [-180, 180); then back again. */
+static void test_yaw_crosses_180(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3];
+    const double dt = 1.0 / 30.0;
+    double truth = 100.0, previous = 100.0;
+    int i;
+    (void)state;
+    s.r_const[1] = (hkf_real_t)0.5;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    for (i = 0; i < 240; ++i) {
+        const double rate = i < 120 ? 40.0 : -40.0; /* turns back after 4 s */
+        truth = yaw_diff(truth + (i > 0 ? rate * dt : 0.0), 0.0);
+        set3(z, 0, truth, 0);
+        assert_int_equal(hkf_update(&f, z, (hkf_real_t)dt, &out), HKF_OK);
+        assert_true(out.angle[1] >= -180 && out.angle[1] < 180);
+        assert_true(fabs(yaw_diff(out.angle[1], previous)) < 3.0); /* no jump */
+        previous = out.angle[1];
+        if ((i >= 50 && i < 120) || i >= 200) { /* once the rate has settled */
+            assert_near(yaw_diff(out.angle[1], truth), 0, 0.05);
+            assert_near(out.rate[1], rate, 0.5);
+        }
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_first_measurement_starts_track),
+        cmocka_unit_test(test_predict_eq1_to_3),
+        cmocka_unit_test(test_update_eq4_to_7),
+        cmocka_unit_test(test_observation_noise_eq8),
+        cmocka_unit_test(test_update_uses_adaptive_r),
+        cmocka_unit_test(test_loop_closure_eq9),
+        cmocka_unit_test(test_loop_closure_boundary),
+        cmocka_unit_test(test_loop_closure_across_yaw_seam),
+        cmocka_unit_test(test_yaw_crosses_180),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

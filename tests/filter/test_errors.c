@@ -1,0 +1,191 @@
+/*
+ * test_errors.c - every error path: bad settings give their specific code,
+ * bad input gives its code and leaves the filter byte-for-byte untouched.
+ */
+#include "test_support.h"
+
+static const hkf_real_t frame_dt = (hkf_real_t)(1.0 / 30.0);
+
+typedef struct {
+    const char *what;
+    void (*spoil)(hkf_settings_t *s);
+    int expected;
+} bad_setting_t;
+
+static void nan_q(hkf_settings_t *s) { s->process_noise[1] = (hkf_real_t)NAN; }
+static void inf_tau(hkf_settings_t *s) { s->noise[2].tau = (hkf_real_t)INFINITY; }
+static void nan_r_max(hkf_settings_t *s) { s->r_max = (hkf_real_t)NAN; }
+static void nan_max_dt(hkf_settings_t *s) { s->max_dt = (hkf_real_t)NAN; }
+static void bad_mode(hkf_settings_t *s) { s->noise_mode = (hkf_noise_mode_t)7; }
+static void zero_sigma(hkf_settings_t *s) { s->noise[0].sigma = 0; }
+static void negative_sigma(hkf_settings_t *s) { s->noise[2].sigma = -1; }
+static void zero_r_min(hkf_settings_t *s) { s->r_min = 0; }
+static void r_min_above_max(hkf_settings_t *s) { s->r_min = 10; s->r_max = 5; }
+static void zero_r_const(hkf_settings_t *s) { s->r_const[2] = 0; }
+static void negative_q(hkf_settings_t *s) { s->process_noise[0] = -1; }
+static void bad_loop_closure(hkf_settings_t *s) { s->loop_closure = 3; }
+static void negative_xi(hkf_settings_t *s) { s->lc_xi = (hkf_real_t)-0.1; }
+static void xi_above_one(hkf_settings_t *s) { s->lc_xi = (hkf_real_t)1.01; }
+static void negative_theta(hkf_settings_t *s) { s->lc_theta = -1; }
+static void zero_p0_angle(hkf_settings_t *s) { s->p0_angle = 0; }
+static void zero_p0_rate(hkf_settings_t *s) { s->p0_rate = 0; }
+static void negative_gate(hkf_settings_t *s) { s->gate_sigma = -1; }
+static void gate_without_rejections(hkf_settings_t *s) { s->gate_sigma = 3; s->max_gate_rejections = 0; }
+static void zero_coast(hkf_settings_t *s) { s->coast_time = 0; }
+static void zero_max_dt(hkf_settings_t *s) { s->max_dt = 0; }
+
+static void test_init_rejects_each_bad_setting(void **state)
+{
+    static const bad_setting_t table[] = {
+        {"NaN q", nan_q, HKF_ERROR_SETTING_NON_FINITE},
+        {"infinite tau", inf_tau, HKF_ERROR_SETTING_NON_FINITE},
+        {"NaN r_max", nan_r_max, HKF_ERROR_SETTING_NON_FINITE},
+        {"NaN max_dt", nan_max_dt, HKF_ERROR_SETTING_NON_FINITE},
+        {"noise mode 7", bad_mode, HKF_ERROR_SETTING_NOISE_MODE},
+        {"sigma 0", zero_sigma, HKF_ERROR_SETTING_SIGMA},
+        {"sigma -1", negative_sigma, HKF_ERROR_SETTING_SIGMA},
+        {"r_min 0", zero_r_min, HKF_ERROR_SETTING_R_RANGE},
+        {"r_min > r_max", r_min_above_max, HKF_ERROR_SETTING_R_RANGE},
+        {"r_const 0", zero_r_const, HKF_ERROR_SETTING_R_CONST},
+        {"q < 0", negative_q, HKF_ERROR_SETTING_PROCESS_NOISE},
+        {"loop closure 3", bad_loop_closure, HKF_ERROR_SETTING_LOOP_CLOSURE},
+        {"xi < 0", negative_xi, HKF_ERROR_SETTING_LC_XI},
+        {"xi > 1", xi_above_one, HKF_ERROR_SETTING_LC_XI},
+        {"theta < 0", negative_theta, HKF_ERROR_SETTING_LC_THETA},
+        {"p0_angle 0", zero_p0_angle, HKF_ERROR_SETTING_P0},
+        {"p0_rate 0", zero_p0_rate, HKF_ERROR_SETTING_P0},
+        {"gate < 0", negative_gate, HKF_ERROR_SETTING_GATE},
+        {"gate on, 0 rejections", gate_without_rejections, HKF_ERROR_SETTING_GATE},
+        {"coast_time 0", zero_coast, HKF_ERROR_SETTING_COAST_TIME},
+        {"max_dt 0", zero_max_dt, HKF_ERROR_SETTING_MAX_DT},
+    };
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof table / sizeof table[0]; ++i) {
+        hkf_settings_t s = hkf_default_settings;
+        hkf_filter_t f;
+        int result;
+        table[i].spoil(&s);
+        result = hkf_init(&f, &s);
+        if (result != table[i].expected) {
+            print_error("%s: hkf_init gave %d (%s), expected %d\n", table[i].what, result,
+                        hkf_result_string(result), table[i].expected);
+            fail();
+        }
+        assert_string_not_equal(hkf_result_string(result), "unknown hkf result code");
+    }
+}
+
+static void test_defaults_and_presets_are_valid(void **state)
+{
+    hkf_settings_t s = hkf_default_settings;
+    hkf_filter_t f;
+    (void)state;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    memcpy(s.noise, hkf_noise_hopenet, sizeof s.noise);
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    /* Hopenet yaw at its centre: 10.74 - 7.017 */
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)-5.57), 3.723, 1e-3);
+    assert_string_equal(hkf_result_string(12345), "unknown hkf result code");
+}
+
+static void test_null_arguments(void **state)
+{
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3] = {0, 0, 0};
+    (void)state;
+    assert_int_equal(hkf_init(NULL, &hkf_default_settings), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_init(&f, NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    assert_int_equal(hkf_update(NULL, z, frame_dt, &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_update(&f, NULL, frame_dt, &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_predict(NULL, frame_dt, &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_extrapolate(NULL, 0, &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_extrapolate(&f, 0, NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_get_output(NULL, &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_get_output(&f, NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_set_center(NULL, z), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_set_center(&f, NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_recenter(NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_get_center(NULL, z), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_get_center(&f, NULL), HKF_ERROR_NULL_ARGUMENT);
+    hkf_reset(NULL); /* harmless */
+    assert_near(hkf_observation_noise(NULL, 0, 0), 0, 0);
+    /* out may be NULL for update and predict */
+    assert_int_equal(hkf_update(&f, z, 0, NULL), HKF_OK);
+    assert_int_equal(hkf_predict(&f, frame_dt, NULL), HKF_OK);
+}
+
+static void test_before_first_measurement(void **state)
+{
+    hkf_filter_t f;
+    hkf_output_t out;
+    (void)state;
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_ERROR_NOT_INITIALIZED);
+    assert_int_equal(hkf_extrapolate(&f, 0, &out), HKF_ERROR_NOT_INITIALIZED);
+    assert_int_equal(hkf_recenter(&f), HKF_ERROR_NOT_INITIALIZED);
+}
+
+/* Bad input on a running filter: the code, and not one byte changed. */
+static void test_bad_input_leaves_state_untouched(void **state)
+{
+    hkf_filter_t f, copy;
+    hkf_output_t out;
+    hkf_real_t z[3] = {1, 2, 3};
+    hkf_real_t bad[3];
+    const hkf_real_t dt = frame_dt;
+    const hkf_real_t max_dt = hkf_default_settings.max_dt;
+    int i;
+    (void)state;
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    for (i = 0; i < 10; ++i) {
+        assert_int_equal(hkf_update(&f, z, dt, &out), HKF_OK);
+    }
+    copy = f;
+
+    for (i = 0; i < 3; ++i) {
+        memcpy(bad, z, sizeof bad);
+        bad[i] = (hkf_real_t)NAN;
+        assert_int_equal(hkf_update(&f, bad, dt, &out), HKF_ERROR_NON_FINITE);
+        bad[i] = (hkf_real_t)-INFINITY;
+        assert_int_equal(hkf_update(&f, bad, dt, &out), HKF_ERROR_NON_FINITE);
+        bad[i] = (hkf_real_t)(HKF_MAX_ABS_ANGLE + 1);
+        assert_int_equal(hkf_update(&f, bad, dt, &out), HKF_ERROR_ANGLE_RANGE);
+        assert_int_equal(hkf_set_center(&f, bad), HKF_ERROR_ANGLE_RANGE);
+    }
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)NAN, &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_update(&f, z, (hkf_real_t)INFINITY, &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_update(&f, z, 0, &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_update(&f, z, -dt, &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_update(&f, z, max_dt * (hkf_real_t)1.001, &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_predict(&f, (hkf_real_t)NAN, &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_predict(&f, 0, &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_predict(&f, -dt, &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_predict(&f, max_dt * 2, &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_extrapolate(&f, (hkf_real_t)NAN, &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_extrapolate(&f, -dt, &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_extrapolate(&f, max_dt * 2, &out), HKF_ERROR_DT_RANGE);
+    assert_memory_equal(&f, &copy, sizeof f);
+
+    /* the largest dt allowed is accepted */
+    assert_int_equal(hkf_predict(&f, max_dt, &out), HKF_OK);
+    /* and a bad first measurement does not start a track */
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    bad[0] = (hkf_real_t)NAN;
+    assert_int_equal(hkf_update(&f, bad, 0, &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_predict(&f, dt, &out), HKF_ERROR_NOT_INITIALIZED);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_init_rejects_each_bad_setting),
+        cmocka_unit_test(test_defaults_and_presets_are_valid),
+        cmocka_unit_test(test_null_arguments),
+        cmocka_unit_test(test_before_first_measurement),
+        cmocka_unit_test(test_bad_input_leaves_state_untouched),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,199 @@
+/* head_motion_sim.c - see head_motion_sim.h. */
+#include "head_motion_sim.h"
+
+#include <math.h>
+#include <stddef.h>
+
+#define SIM_PI 3.14159265358979323846
+
+void sim_rng_seed(sim_rng_t *rng, uint64_t seed)
+{
+    /* splitmix64 once, so that small seeds still give well-mixed states */
+    uint64_t z = seed + 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    rng->state = z ? z : 0x2545F4914F6CDD1Dull;
+}
+
+double sim_rng_uniform(sim_rng_t *rng)
+{
+    uint64_t x = rng->state;
+    x ^= x >> 12;
+    x ^= x << 25;
+    x ^= x >> 27;
+    rng->state = x;
+    return (double)((x * 0x2545F4914F6CDD1Dull) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+double sim_rng_gaussian(sim_rng_t *rng)
+{
+    /* Box-Muller; 1 - u keeps the logarithm's argument in (0, 1] */
+    const double u1 = 1.0 - sim_rng_uniform(rng);
+    const double u2 = sim_rng_uniform(rng);
+    return sqrt(-2.0 * log(u1)) * cos(2.0 * SIM_PI * u2);
+}
+
+/* The drive: each step moves (minimum-jerk) to a pose, then holds it. */
+typedef struct {
+    double move_s, hold_s;
+    double pose[3]; /* pitch, yaw, roll */
+} script_step_t;
+
+static const script_step_t script[] = {
+    {0.0, 3.0, {0.0, 0.0, 0.0}},       /* looking ahead */
+    {0.45, 0.8, {-8.0, -55.0, 0.0}},   /* left mirror */
+    {0.45, 2.5, {0.5, -0.8, 0.3}},
+    {0.35, 0.6, {12.0, 22.0, 2.0}},    /* rear-view mirror */
+    {0.35, 2.0, {-0.4, 0.6, -0.2}},
+    {0.5, 0.9, {-10.0, 60.0, -3.0}},   /* right mirror */
+    {0.5, 2.0, {0.0, 0.0, 0.0}},
+    {0.6, 0.5, {-5.0, -100.0, 5.0}},   /* shoulder check */
+    {0.6, 2.5, {0.3, 0.4, 0.0}},
+    {0.6, 1.5, {-25.0, 5.0, 0.0}},     /* glance at the instruments */
+    {0.6, 2.0, {0.0, 0.0, 0.0}},
+    {0.8, 1.5, {0.0, 0.0, 18.0}},      /* head tilt */
+    {0.8, 2.0, {0.0, -0.5, 0.0}},
+    {2.0, 1.0, {10.0, -40.0, -10.0}},  /* a slow look around */
+    {2.0, 2.0, {0.0, 0.0, 0.0}},
+};
+#define SCRIPT_STEPS (sizeof script / sizeof script[0])
+
+double sim_script_period(void)
+{
+    double total = 0.0;
+    size_t i;
+    for (i = 0; i < SCRIPT_STEPS; ++i) {
+        total += script[i].move_s + script[i].hold_s;
+    }
+    return total;
+}
+
+void sim_head_pose(double t, double pose[3])
+{
+    const double period = sim_script_period();
+    double local = fmod(t, period);
+    size_t i;
+    int a;
+    if (local < 0.0) {
+        local += period;
+    }
+    for (i = 0; i < SCRIPT_STEPS; ++i) {
+        const script_step_t *step = &script[i];
+        const double *from = script[(i + SCRIPT_STEPS - 1) % SCRIPT_STEPS].pose;
+        if (local < step->move_s) {
+            const double s = local / step->move_s;
+            const double w = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s); /* minimum jerk */
+            for (a = 0; a < 3; ++a) {
+                pose[a] = from[a] + w * (step->pose[a] - from[a]);
+            }
+            return;
+        }
+        local -= step->move_s;
+        if (local < step->hold_s) {
+            for (a = 0; a < 3; ++a) {
+                pose[a] = step->pose[a];
+            }
+            return;
+        }
+        local -= step->hold_s;
+    }
+    for (a = 0; a < 3; ++a) {
+        pose[a] = script[SCRIPT_STEPS - 1].pose[a];
+    }
+}
+
+/* The estimator's mean absolute error at a true angle: the FSA-Net curves of
+ * the paper's Table I (amplitude form), roll's centre error set to pitch's. */
+static double estimator_mae(int axis, double x)
+{
+    static const double curve[3][4] = {
+        /* tau, lambda, mu, sigma */
+        {315.43, 312.07, -5.19, 132.41},
+        {7.64, 4.11, -0.35, 30.87},
+        {329000.0, 328996.64, -0.562, 4440.0},
+    };
+    const double u = x - curve[axis][2];
+    return curve[axis][0] - curve[axis][1] * exp(-u * u / (2.0 * curve[axis][3] * curve[axis][3]));
+}
+
+sim_config_t sim_default_config(void)
+{
+    sim_config_t c;
+    c.fps = 30.0;
+    c.noise_scale = 1.0;
+    c.outlier_rate = 0.005;
+    c.dropout_rate = 0.004;
+    c.dropout_max_s = 0.4;
+    c.frame_jitter_s = 0.002;
+    return c;
+}
+
+void sim_init(sim_t *sim, const sim_config_t *config, uint64_t seed)
+{
+    int a;
+    sim->config = *config;
+    sim_rng_seed(&sim->rng, seed);
+    sim->frame = 0;
+    for (a = 0; a < 3; ++a) {
+        sim->bias[a] = sim_rng_gaussian(&sim->rng);
+    }
+    sim->dropout_frames_left = 0;
+}
+
+void sim_next(sim_t *sim, sim_frame_t *out)
+{
+    /* On video most of a deep estimator's error is a bias that drifts with
+     * the pose and the light, not frame-to-frame jitter: 30 % of the error
+     * variance is white, 70 % a bias drifting with a 1 s time constant.
+     * A Gaussian's std is its MAE times sqrt(pi / 2). */
+    const double mae_to_std = sqrt(SIM_PI / 2.0);
+    const double white = sqrt(0.3), drift = sqrt(0.7);
+    const sim_config_t *c = &sim->config;
+    const double dt = 1.0 / c->fps;
+    const double keep = exp(-dt / 1.0);
+    const double nominal = (double)sim->frame * dt;
+    double jitter = c->frame_jitter_s * sim_rng_gaussian(&sim->rng);
+    double before[3], after[3], speed2 = 0.0;
+    int a;
+
+    if (jitter > 0.4 * dt) {
+        jitter = 0.4 * dt;
+    } else if (jitter < -0.4 * dt) {
+        jitter = -0.4 * dt;
+    }
+    out->time = nominal + (sim->frame > 0 ? jitter : 0.0);
+    sim_head_pose(out->time, out->truth);
+    sim_head_pose(out->time - 0.005, before);
+    sim_head_pose(out->time + 0.005, after);
+    for (a = 0; a < 3; ++a) {
+        const double v = (after[a] - before[a]) / 0.01;
+        speed2 += v * v;
+    }
+    out->still = speed2 < 1.0;
+
+    for (a = 0; a < 3; ++a) {
+        const double std = c->noise_scale * mae_to_std * estimator_mae(a, out->truth[a]);
+        sim->bias[a] = keep * sim->bias[a] + sqrt(1.0 - keep * keep) * sim_rng_gaussian(&sim->rng);
+        out->measured[a] = out->truth[a] + std * (white * sim_rng_gaussian(&sim->rng) + drift * sim->bias[a]);
+    }
+    if (sim_rng_uniform(&sim->rng) < c->outlier_rate) {
+        for (a = 0; a < 3; ++a) {
+            out->measured[a] += 20.0 * sim_rng_gaussian(&sim->rng);
+        }
+    }
+    if (out->measured[1] >= 180.0) {
+        out->measured[1] -= 360.0;
+    } else if (out->measured[1] < -180.0) {
+        out->measured[1] += 360.0;
+    }
+
+    if (sim->dropout_frames_left == 0 && sim_rng_uniform(&sim->rng) < c->dropout_rate) {
+        sim->dropout_frames_left = 1 + (int)(sim_rng_uniform(&sim->rng) * c->dropout_max_s * c->fps);
+    }
+    out->valid = sim->dropout_frames_left == 0;
+    if (sim->dropout_frames_left > 0) {
+        --sim->dropout_frames_left;
+    }
+    ++sim->frame;
+}
