@@ -23,7 +23,7 @@
 
 enum { CENTER_NONE = 0, CENTER_FROM_TRACK = 1, CENTER_EXPLICIT = 2 };
 
-static void write_output(const hkf_filter_t *f, unsigned flags, hkf_output_t *out)
+static void write_output(const hkf_filter_t *restrict f, unsigned flags, hkf_output_t *restrict out)
 {
     int a;
     if (out == 0) {
@@ -52,7 +52,12 @@ static int check_dt(const hkf_filter_t *f, hkf_real_t dt)
 
 static int check_angles(const hkf_real_t v[3])
 {
+    const hkf_real_t limit = (hkf_real_t)HKF_MAX_ABS_ANGLE;
     int a;
+    /* NaN fails every comparison, so this one test passes only good input */
+    if (hkf_abs(v[0]) <= limit && hkf_abs(v[1]) <= limit && hkf_abs(v[2]) <= limit) {
+        return HKF_OK;
+    }
     for (a = 0; a < HKF_AXES; ++a) {
         if (!hkf_is_finite(v[a])) {
             return HKF_ERROR_NON_FINITE;
@@ -74,7 +79,7 @@ static hkf_real_t axis_difference(int axis, hkf_real_t a, hkf_real_t b)
  *   x = F x                   angle += rate dt
  *   P = F P F' + Q            Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]]
  * (Q: continuous white-noise acceleration of density q.) */
-static void predict_axes(hkf_filter_t *f, hkf_real_t dt)
+static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
 {
     const hkf_real_t dt2 = dt * dt;
     int a;
@@ -94,30 +99,39 @@ static void predict_axes(hkf_filter_t *f, hkf_real_t dt)
  * z = kappa + xi d  (= xi z + (1 - xi) kappa). |d| is the Euclidean norm over
  * the three axes (compared squared), or each axis alone in PER_AXIS mode.
  * Returns whether it moved the measurement. */
-static int loop_closure(const hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t zc[3])
+static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t zc[restrict 3])
 {
     const hkf_settings_t *s = &f->settings;
     const hkf_real_t theta2 = s->lc_theta * s->lc_theta;
     hkf_real_t d[3];
-    hkf_real_t norm2 = 0;
     int a, closed = 0;
     for (a = 0; a < HKF_AXES; ++a) {
         zc[a] = z[a];
-        d[a] = axis_difference(a, z[a], f->center[a]);
-        norm2 += d[a] * d[a];
     }
     if (s->loop_closure == HKF_LOOP_CLOSURE_OFF || f->center_source == CENTER_NONE) {
         return 0;
     }
     for (a = 0; a < HKF_AXES; ++a) {
-        const int inside = s->loop_closure == HKF_LOOP_CLOSURE_NORM ? norm2 <= theta2
-                                                                    : d[a] * d[a] <= theta2;
-        if (inside) {
-            zc[a] = f->center[a] + s->lc_xi * d[a];
+        d[a] = axis_difference(a, z[a], f->center[a]);
+    }
+    if (s->loop_closure == HKF_LOOP_CLOSURE_NORM) {
+        if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= theta2) {
+            for (a = 0; a < HKF_AXES; ++a) {
+                zc[a] = f->center[a] + s->lc_xi * d[a];
+            }
             closed = 1;
         }
+    } else {
+        for (a = 0; a < HKF_AXES; ++a) {
+            if (d[a] * d[a] <= theta2) {
+                zc[a] = f->center[a] + s->lc_xi * d[a];
+                closed = 1;
+            }
+        }
     }
-    zc[HKF_AXIS_YAW] = hkf_wrap180(zc[HKF_AXIS_YAW]);
+    if (closed) {
+        zc[HKF_AXIS_YAW] = hkf_wrap180(zc[HKF_AXIS_YAW]);
+    }
     return closed;
 }
 
@@ -127,14 +141,10 @@ static int loop_closure(const hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t
  * 3.53 deg at the centre, ~7.6 deg at +-90 deg; normalised, pitch R would be a
  * near-constant 315). Written as (tau - lambda) + lambda (1 - exp(.)) so the
  * roll curves (tau, lambda ~ 1e5) do not cancel catastrophically in float. */
-hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
+static hkf_real_t observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
 {
-    const hkf_settings_t *s;
+    const hkf_settings_t *s = &f->settings;
     hkf_real_t r;
-    if (f == 0 || axis < 0 || axis >= HKF_AXES) {
-        return 0;
-    }
-    s = &f->settings;
     if (s->noise_mode == HKF_NOISE_CONSTANT) {
         r = s->r_const[axis];
     } else {
@@ -155,6 +165,14 @@ hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
     return r;
 }
 
+hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
+{
+    if (f == 0 || axis < 0 || axis >= HKF_AXES) {
+        return 0;
+    }
+    return observation_noise(f, axis, x);
+}
+
 /* Step 5: the first measurement (or the first after LOST, or after too many
  * gated ones) starts the track: angle = z, rate = 0, P = diag(p0). */
 static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
@@ -166,7 +184,7 @@ static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
         f->p00[a] = f->settings.p0_angle;
         f->p01[a] = 0;
         f->p11[a] = f->settings.p0_rate;
-        f->r[a] = hkf_observation_noise(f, a, z[a]);
+        f->r[a] = observation_noise(f, a, z[a]);
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(z[HKF_AXIS_YAW]);
     if (f->center_source == CENTER_NONE) {
@@ -241,10 +259,10 @@ void hkf_reset(hkf_filter_t *f)
     f->status = HKF_STATUS_UNINITIALIZED;
 }
 
-int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output_t *out)
+int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
 {
-    hkf_real_t zc[3], y[3], r[3], s[3];
-    hkf_real_t nis = 0;
+    hkf_real_t zc[3], y[3], r[3], inv_s[3];
+    const hkf_real_t gate = f == 0 ? 0 : f->settings.gate_sigma;
     unsigned flags = 0;
     int a, result;
     if (f == 0 || z == 0) {
@@ -274,15 +292,15 @@ int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output
         flags |= HKF_FLAG_LOOP_CLOSURE;
     }
     for (a = 0; a < HKF_AXES; ++a) {
-        r[a] = hkf_observation_noise(f, a, zc[a]);                    /* Eq. 8 */
+        r[a] = observation_noise(f, a, zc[a]);                        /* Eq. 8 */
         y[a] = axis_difference(a, zc[a], f->angle[a]);                /* Eq. 4: y = z - H x */
-        s[a] = f->p00[a] + r[a];                                      /* Eq. 5: S = H P H' + R */
-        nis += y[a] * y[a] * hkf_div(HKF_REAL(1.0), s[a]);
+        inv_s[a] = hkf_div(HKF_REAL(1.0), f->p00[a] + r[a]);          /* Eq. 5: S = H P H' + R */
     }
 
     /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
      * exceeds gate_sigma; after max_gate_rejections in a row, believe it. */
-    if (f->settings.gate_sigma > 0 && nis > f->settings.gate_sigma * f->settings.gate_sigma) {
+    if (gate > 0 &&
+        y[0] * y[0] * inv_s[0] + y[1] * y[1] * inv_s[1] + y[2] * y[2] * inv_s[2] > gate * gate) {
         if (f->gate_rejections >= f->settings.max_gate_rejections) {
             start_track(f, z);
             write_output(f, HKF_FLAG_GATED | HKF_FLAG_REACQUIRED, out);
@@ -295,9 +313,8 @@ int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output
     }
 
     for (a = 0; a < HKF_AXES; ++a) {
-        const hkf_real_t inv_s = hkf_div(HKF_REAL(1.0), s[a]);
-        const hkf_real_t k0 = f->p00[a] * inv_s;                      /* Eq. 6: K = P H' S^-1 */
-        const hkf_real_t k1 = f->p01[a] * inv_s;
+        const hkf_real_t k0 = f->p00[a] * inv_s[a];                   /* Eq. 6: K = P H' S^-1 */
+        const hkf_real_t k1 = f->p01[a] * inv_s[a];
         f->angle[a] += k0 * y[a];                                     /* Eq. 7: x = x + K y */
         f->rate[a] += k1 * y[a];
         f->p11[a] -= k1 * f->p01[a];                                  /* Eq. 7: P = (I - K H) P */

@@ -2,19 +2,41 @@
  * hkf_math.h - the small math layer under the filter (private).
  *
  * The filter code uses only these and + - * on hkf_real_t, so a fixed-point
- * build replaces this file's bodies, not the filter. libm is used for exp only.
+ * build replaces this file's bodies, not the filter. libm is used only for
+ * exp in the double build.
  */
 #ifndef HKF_MATH_H
 #define HKF_MATH_H
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 #include "hkf/hkf_real.h"
 
 #if defined(HKF_REAL_DOUBLE)
-static inline hkf_real_t hkf_exp(hkf_real_t x) { return exp(x); }
+/* exp(-u) for u >= 0 */
+static inline hkf_real_t hkf_exp_neg(hkf_real_t u) { return exp(-u); }
 #define HKF_SERIES_BELOW HKF_REAL(1e-5)
 #else
-static inline hkf_real_t hkf_exp(hkf_real_t x) { return expf(x); }
+/* exp(-u) for u >= 0, inline and without libm's call: exp(-u) = 2^-(u log2 e)
+ * = 2^n 2^f with n the nearest integer and |f| <= 1/2; 2^f = e^(f ln 2) by a
+ * degree-6 Taylor polynomial (truncation < 1.2e-7 relative, about float's
+ * rounding), and 2^n set in the exponent bits. */
+static inline hkf_real_t hkf_exp_neg(hkf_real_t u)
+{
+    const float t = -u * 1.44269504088896341f; /* log2(e) */
+    float n, g, p;
+    int32_t bits;
+    if (t < -126.0f) {
+        return 0.0f;
+    }
+    n = (float)(int)(t - 0.5f); /* t <= 0: truncation of t - 1/2 rounds to nearest */
+    g = (t - n) * 0.693147180559945309f; /* f ln 2, |g| <= 0.347 */
+    p = 1.0f + g * (1.0f + g * (0.5f + g * (1.0f / 6.0f + g * (1.0f / 24.0f + g * (1.0f / 120.0f + g * (1.0f / 720.0f))))));
+    bits = ((int32_t)n + 127) << 23;
+    memcpy(&n, &bits, sizeof n);
+    return p * n;
+}
 #define HKF_SERIES_BELOW HKF_REAL(0.01)
 #endif
 
@@ -27,21 +49,31 @@ static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
     if (u < HKF_SERIES_BELOW) {
         return u * (HKF_REAL(1.0) - HKF_REAL(0.5) * u * (HKF_REAL(1.0) - u * HKF_REAL(0.33333333333333333)));
     }
-    return HKF_REAL(1.0) - hkf_exp(-u);
+    return HKF_REAL(1.0) - hkf_exp_neg(u);
 }
 
 static inline hkf_real_t hkf_div(hkf_real_t a, hkf_real_t b) { return a / b; }
 
 static inline int hkf_is_finite(hkf_real_t x) { return isfinite(x) != 0; }
 
-static inline hkf_real_t hkf_abs(hkf_real_t x) { return x < 0 ? -x : x; }
+#if defined(HKF_REAL_DOUBLE)
+static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabs(x); }  /* a bit mask, no call */
+#else
+static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabsf(x); }
+#endif
 
 /* Wraps an angle to [-180, 180). Callers keep |x| below a few times
- * HKF_MAX_ABS_ANGLE, so an int holds the number of turns. */
+ * HKF_MAX_ABS_ANGLE, so an int holds the number of turns. Most angles are
+ * in range already: that costs two comparisons. */
 static inline hkf_real_t hkf_wrap180(hkf_real_t x)
 {
-    const int turns = (int)((x + HKF_REAL(180.0)) * HKF_REAL(0.0027777777777777778) /* 1/360 */);
-    hkf_real_t w = x - HKF_REAL(360.0) * (hkf_real_t)turns;
+    int turns;
+    hkf_real_t w;
+    if (x >= HKF_REAL(-180.0) && x < HKF_REAL(180.0)) {
+        return x;
+    }
+    turns = (int)((x + HKF_REAL(180.0)) * HKF_REAL(0.0027777777777777778) /* 1/360 */);
+    w = x - HKF_REAL(360.0) * (hkf_real_t)turns;
     if (w < HKF_REAL(-180.0)) {
         w += HKF_REAL(360.0);
     } else if (w >= HKF_REAL(180.0)) {
