@@ -7,7 +7,9 @@
  * it splits exactly into three 2-state filters (angle, rate), each with a
  * closed-form scalar gain: no matrix inverse, no general matrix code.
  *
- * Per axis the covariance is P = [[p00, p01], [p01, p11]].
+ * Per axis the covariance is P = [[p00, p01], [p01, p11]]. The per-axis
+ * arrays have a fourth, idle lane (zero process noise, zero measurement) so
+ * that the compiler turns each axis loop into a few SIMD instructions.
  *
  * Missing measurements (the coasting rule):
  *   hkf_predict advances the constant-velocity model and counts the time
@@ -69,12 +71,6 @@ static int check_angles(const hkf_real_t v[3])
     return HKF_OK;
 }
 
-/* Angle differences on the yaw axis go the short way round. */
-static hkf_real_t axis_difference(int axis, hkf_real_t a, hkf_real_t b)
-{
-    return axis == HKF_AXIS_YAW ? hkf_wrap180(a - b) : a - b;
-}
-
 /* Paper Eq. 1-3, per axis:
  *   x = F x                   angle += rate dt
  *   P = F P F' + Q            Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]]
@@ -83,8 +79,8 @@ static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
 {
     const hkf_real_t dt2 = dt * dt;
     int a;
-    for (a = 0; a < HKF_AXES; ++a) {
-        const hkf_real_t q = f->settings.process_noise[a];
+    for (a = 0; a < HKF_LANES; ++a) {
+        const hkf_real_t q = f->q[a];
         const hkf_real_t p01 = f->p01[a];
         const hkf_real_t p11 = f->p11[a];
         f->angle[a] += f->rate[a] * dt;
@@ -99,27 +95,33 @@ static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
  * z = kappa + xi d  (= xi z + (1 - xi) kappa). |d| is the Euclidean norm over
  * the three axes (compared squared), or each axis alone in PER_AXIS mode.
  * Returns whether it moved the measurement. */
-static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t zc[restrict 3])
+static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restrict 3],
+                        hkf_real_t zc[restrict HKF_LANES])
 {
     const hkf_settings_t *s = &f->settings;
     const hkf_real_t theta2 = s->lc_theta * s->lc_theta;
-    hkf_real_t d[3];
+    hkf_real_t d[HKF_LANES], norm2 = 0;
     int a, closed = 0;
-    for (a = 0; a < HKF_AXES; ++a) {
-        zc[a] = z[a];
-    }
+    zc[0] = z[0];
+    zc[1] = z[1];
+    zc[2] = z[2];
+    zc[3] = 0;
     if (s->loop_closure == HKF_LOOP_CLOSURE_OFF || f->center_source == CENTER_NONE) {
         return 0;
     }
-    for (a = 0; a < HKF_AXES; ++a) {
-        d[a] = axis_difference(a, z[a], f->center[a]);
+    for (a = 0; a < HKF_LANES; ++a) {
+        d[a] = zc[a] - f->center[a];
     }
+    d[HKF_AXIS_YAW] = hkf_wrap180(d[HKF_AXIS_YAW]);
     if (s->loop_closure == HKF_LOOP_CLOSURE_NORM) {
-        if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= theta2) {
-            for (a = 0; a < HKF_AXES; ++a) {
+        for (a = 0; a < HKF_LANES; ++a) {
+            norm2 += d[a] * d[a];
+        }
+        closed = norm2 <= theta2;
+        if (closed) {
+            for (a = 0; a < HKF_LANES; ++a) {
                 zc[a] = f->center[a] + s->lc_xi * d[a];
             }
-            closed = 1;
         }
     } else {
         for (a = 0; a < HKF_AXES; ++a) {
@@ -141,28 +143,53 @@ static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restr
  * 3.53 deg at the centre, ~7.6 deg at +-90 deg; normalised, pitch R would be a
  * near-constant 315). Written as (tau - lambda) + lambda (1 - exp(.)) so the
  * roll curves (tau, lambda ~ 1e5) do not cancel catastrophically in float. */
-static hkf_real_t observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
+static inline hkf_real_t noise_curve(const hkf_filter_t *restrict f, int lane, hkf_real_t x)
 {
-    const hkf_settings_t *s = &f->settings;
-    hkf_real_t r;
-    if (s->noise_mode == HKF_NOISE_CONSTANT) {
-        r = s->r_const[axis];
-    } else {
-        const hkf_real_t u = x - s->noise[axis].mu;
-        const hkf_real_t dip = hkf_one_minus_exp_neg(u * u * f->gauss_scale[axis]);
-        const hkf_real_t e = f->noise_floor[axis] + s->noise[axis].lambda * dip;
-        if (s->noise_mode == HKF_NOISE_ADAPTIVE) {
-            r = e;
-        } else {
-            r = e > 0 ? e * e : 0;
+    const hkf_real_t u = x - f->mu[lane];
+    return f->noise_floor[lane] + f->lambda[lane] * hkf_one_minus_exp_neg(u * u * f->gauss_scale[lane]);
+}
+
+static inline hkf_real_t clamp(hkf_real_t x, hkf_real_t low, hkf_real_t high)
+{
+    x = x < low ? low : x;
+    return x > high ? high : x;
+}
+
+/* R for every lane at the measured angles x: the mode is tested once, so
+ * each lane loop is straight-line code the compiler vectorizes. */
+static void observation_noise_lanes(const hkf_filter_t *restrict f, const hkf_real_t x[restrict HKF_LANES],
+                                    hkf_real_t r[restrict HKF_LANES])
+{
+    const hkf_real_t low = f->settings.r_min, high = f->settings.r_max;
+    int a;
+    if (f->settings.noise_mode == HKF_NOISE_CONSTANT) {
+        for (a = 0; a < HKF_LANES; ++a) {
+            r[a] = clamp(f->r_const[a], low, high);
+        }
+        return;
+    }
+    for (a = 0; a < HKF_LANES; ++a) {
+        r[a] = noise_curve(f, a, x[a]);
+    }
+    if (f->settings.noise_mode == HKF_NOISE_ADAPTIVE_SQUARED) {
+        for (a = 0; a < HKF_LANES; ++a) {
+            r[a] = r[a] > 0 ? r[a] * r[a] : 0;
         }
     }
-    if (r < s->r_min) {
-        r = s->r_min;
-    } else if (r > s->r_max) {
-        r = s->r_max;
+    for (a = 0; a < HKF_LANES; ++a) {
+        r[a] = clamp(r[a], low, high);
     }
-    return r;
+}
+
+static hkf_real_t observation_noise(const hkf_filter_t *restrict f, int lane, hkf_real_t x)
+{
+    hkf_real_t lanes[HKF_LANES], r[HKF_LANES];
+    int a;
+    for (a = 0; a < HKF_LANES; ++a) {
+        lanes[a] = x;
+    }
+    observation_noise_lanes(f, lanes, r);
+    return r[lane];
 }
 
 hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
@@ -178,14 +205,14 @@ hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
 static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
 {
     int a;
-    for (a = 0; a < HKF_AXES; ++a) {
-        f->angle[a] = z[a];
+    for (a = 0; a < HKF_LANES; ++a) {
+        f->angle[a] = a < HKF_AXES ? z[a] : 0;
         f->rate[a] = 0;
         f->p00[a] = f->settings.p0_angle;
         f->p01[a] = 0;
         f->p11[a] = f->settings.p0_rate;
-        f->r[a] = observation_noise(f, a, z[a]);
     }
+    observation_noise_lanes(f, f->angle, f->r);
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(z[HKF_AXIS_YAW]);
     if (f->center_source == CENTER_NONE) {
         for (a = 0; a < HKF_AXES; ++a) {
@@ -206,7 +233,7 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
     f->time_since_measurement += dt;
     f->status = HKF_STATUS_COASTING;
     if (f->time_since_measurement >= f->settings.coast_time) {
-        for (a = 0; a < HKF_AXES; ++a) {
+        for (a = 0; a < HKF_LANES; ++a) {
             f->rate[a] = 0;
             f->p01[a] = 0;
             f->p11[a] = 0;
@@ -226,10 +253,23 @@ int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
         return result;
     }
     f->settings = *s;
-    for (a = 0; a < HKF_AXES; ++a) {
-        const hkf_noise_curve_t *c = &s->noise[a];
-        f->gauss_scale[a] = hkf_div(HKF_REAL(1.0), HKF_REAL(2.0) * c->sigma * c->sigma);
-        f->noise_floor[a] = c->tau - c->lambda;
+    for (a = 0; a < HKF_LANES; ++a) {
+        if (a < HKF_AXES) {
+            const hkf_noise_curve_t *c = &s->noise[a];
+            f->q[a] = s->process_noise[a];
+            f->r_const[a] = s->r_const[a];
+            f->mu[a] = c->mu;
+            f->lambda[a] = c->lambda;
+            f->gauss_scale[a] = hkf_div(HKF_REAL(1.0), HKF_REAL(2.0) * c->sigma * c->sigma);
+            f->noise_floor[a] = c->tau - c->lambda;
+        } else { /* the idle lane: a still, perfectly observed axis */
+            f->q[a] = 0;
+            f->r_const[a] = s->r_min;
+            f->mu[a] = 0;
+            f->lambda[a] = 0;
+            f->gauss_scale[a] = 0;
+            f->noise_floor[a] = s->r_min;
+        }
         f->center[a] = 0;
     }
     f->center_source = CENTER_NONE;
@@ -243,7 +283,7 @@ void hkf_reset(hkf_filter_t *f)
     if (f == 0) {
         return;
     }
-    for (a = 0; a < HKF_AXES; ++a) {
+    for (a = 0; a < HKF_LANES; ++a) {
         f->angle[a] = 0;
         f->rate[a] = 0;
         f->p00[a] = f->settings.p0_angle;
@@ -261,7 +301,7 @@ void hkf_reset(hkf_filter_t *f)
 
 int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
 {
-    hkf_real_t zc[3], y[3], r[3], inv_s[3];
+    hkf_real_t zc[HKF_LANES], y[HKF_LANES], r[HKF_LANES], inv_s[HKF_LANES];
     const hkf_real_t gate = f == 0 ? 0 : f->settings.gate_sigma;
     unsigned flags = 0;
     int a, result;
@@ -291,9 +331,12 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     if (loop_closure(f, z, zc)) {
         flags |= HKF_FLAG_LOOP_CLOSURE;
     }
-    for (a = 0; a < HKF_AXES; ++a) {
-        r[a] = observation_noise(f, a, zc[a]);                        /* Eq. 8 */
-        y[a] = axis_difference(a, zc[a], f->angle[a]);                /* Eq. 4: y = z - H x */
+    observation_noise_lanes(f, zc, r);                                /* Eq. 8 */
+    for (a = 0; a < HKF_LANES; ++a) {
+        y[a] = zc[a] - f->angle[a];                                   /* Eq. 4: y = z - H x */
+    }
+    y[HKF_AXIS_YAW] = hkf_wrap180(y[HKF_AXIS_YAW]);
+    for (a = 0; a < HKF_LANES; ++a) {
         inv_s[a] = hkf_div(HKF_REAL(1.0), f->p00[a] + r[a]);          /* Eq. 5: S = H P H' + R */
     }
 
@@ -312,7 +355,7 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
         return HKF_OK;
     }
 
-    for (a = 0; a < HKF_AXES; ++a) {
+    for (a = 0; a < HKF_LANES; ++a) {
         const hkf_real_t k0 = f->p00[a] * inv_s[a];                   /* Eq. 6: K = P H' S^-1 */
         const hkf_real_t k1 = f->p01[a] * inv_s[a];
         f->angle[a] += k0 * y[a];                                     /* Eq. 7: x = x + K y */

@@ -10,7 +10,6 @@
 
 #include <math.h>
 #include <stdint.h>
-#include <string.h>
 #include "hkf/hkf_real.h"
 
 #if defined(HKF_REAL_DOUBLE)
@@ -24,18 +23,14 @@ static inline hkf_real_t hkf_exp_neg(hkf_real_t u) { return exp(-u); }
  * rounding), and 2^n set in the exponent bits. */
 static inline hkf_real_t hkf_exp_neg(hkf_real_t u)
 {
-    const float t = -u * 1.44269504088896341f; /* log2(e) */
-    float n, g, p;
-    int32_t bits;
-    if (t < -126.0f) {
-        return 0.0f;
-    }
-    n = (float)(int)(t - 0.5f); /* t <= 0: truncation of t - 1/2 rounds to nearest */
-    g = (t - n) * 0.693147180559945309f; /* f ln 2, |g| <= 0.347 */
-    p = 1.0f + g * (1.0f + g * (0.5f + g * (1.0f / 6.0f + g * (1.0f / 24.0f + g * (1.0f / 120.0f + g * (1.0f / 720.0f))))));
-    bits = ((int32_t)n + 127) << 23;
-    memcpy(&n, &bits, sizeof n);
-    return p * n;
+    const float t0 = -u * 1.44269504088896341f; /* log2(e) */
+    const float t = t0 < -126.0f ? -126.0f : t0; /* below 2^-126 the dip is 1 anyway */
+    const int32_t n = (int32_t)(t - 0.5f);      /* t <= 0: nearest integer */
+    const float g = (t - (float)n) * 0.693147180559945309f; /* f ln 2, |g| <= 0.347 */
+    const float p = 1.0f + g * (1.0f + g * (0.5f + g * (1.0f / 6.0f + g * (1.0f / 24.0f + g * (1.0f / 120.0f + g * (1.0f / 720.0f))))));
+    union { int32_t i; float x; } two_n; /* 2^n from its exponent bits */
+    two_n.i = (n + 127) * 8388608;       /* << 23 */
+    return p * two_n.x;
 }
 #define HKF_SERIES_BELOW HKF_REAL(0.01)
 #endif
@@ -46,10 +41,9 @@ static inline hkf_real_t hkf_exp_neg(hkf_real_t u)
  * below the type's epsilon under HKF_SERIES_BELOW. */
 static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
 {
-    if (u < HKF_SERIES_BELOW) {
-        return u * (HKF_REAL(1.0) - HKF_REAL(0.5) * u * (HKF_REAL(1.0) - u * HKF_REAL(0.33333333333333333)));
-    }
-    return HKF_REAL(1.0) - hkf_exp_neg(u);
+    const hkf_real_t series = u * (HKF_REAL(1.0) - HKF_REAL(0.5) * u * (HKF_REAL(1.0) - u * HKF_REAL(0.33333333333333333)));
+    const hkf_real_t direct = HKF_REAL(1.0) - hkf_exp_neg(u);
+    return u < HKF_SERIES_BELOW ? series : direct; /* both, then a select: no branch */
 }
 
 static inline hkf_real_t hkf_div(hkf_real_t a, hkf_real_t b) { return a / b; }

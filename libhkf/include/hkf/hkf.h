@@ -132,15 +132,20 @@ typedef struct {
 } hkf_output_t;
 
 /* Private: members may change between versions. Sized statically so callers
- * can place it anywhere (stack, static storage, a controller's RAM). */
+ * can place it anywhere (stack, static storage, a controller's RAM).
+ * Per-axis arrays have a fourth, idle lane so the axis loops vectorize. */
+#define HKF_LANES 4
 typedef struct {
     hkf_settings_t settings;
-    hkf_real_t gauss_scale[3];   /* 1 / (2 sigma^2) per axis */
-    hkf_real_t noise_floor[3];   /* tau - lambda per axis */
-    hkf_real_t angle[3], rate[3];
-    hkf_real_t p00[3], p01[3], p11[3];
-    hkf_real_t r[3];
-    hkf_real_t center[3];
+    /* per-lane copies of the settings the axis loops read (lane 3 idle) */
+    hkf_real_t q[HKF_LANES], r_const[HKF_LANES];
+    hkf_real_t mu[HKF_LANES], lambda[HKF_LANES];
+    hkf_real_t gauss_scale[HKF_LANES];  /* 1 / (2 sigma^2) */
+    hkf_real_t noise_floor[HKF_LANES];  /* tau - lambda */
+    hkf_real_t angle[HKF_LANES], rate[HKF_LANES];
+    hkf_real_t p00[HKF_LANES], p01[HKF_LANES], p11[HKF_LANES];
+    hkf_real_t r[HKF_LANES];
+    hkf_real_t center[HKF_LANES];
     hkf_real_t time_since_measurement;
     unsigned gate_rejections;
     int center_source;           /* none, from the first measurement, or explicit */
