@@ -9,6 +9,10 @@ packages=(
   libeigen3-dev                                 # the 6x6 reference filter (tests, benchmark)
   libopencv-dev                                 # cv::KalmanFilter (benchmark); the estimator
   valgrind                                      # instruction counts (benchmark)
+  liblcm-dev liblcm-bin liblcm-java             # LCM: library, lcm-gen, logger/logplayer, lcm.jar
+  libjchart2d-java                              # charts in lcm-spy (hkf-spy)
+  default-jdk-headless                          # javac for the Java message types
+  iproute2 util-linux                           # private network namespaces for the LCM tests
   python3                                       # benchmark report
 )
 

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# hkf-filter --offline on a simulated drive written by hkf-simlog: deterministic,
+# one pose per usable measurement, CSV export, --rate extrapolation, and the
+# bad-input paths (undecodable message, missing file, bad setting).
+# usage: offline_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1 source=$2
+simlog=$build/tools/hkf-simlog filter=$build/tools/hkf-filter
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$simlog" --out "$work/raw.lcmlog" --seconds 30 --seed 5
+"$filter" --offline "$work/raw.lcmlog" "$work/a.lcmlog" --csv "$work/a.csv" 2>"$work/a.txt"
+"$filter" --offline "$work/raw.lcmlog" "$work/b.lcmlog" 2>"$work/b.txt"
+cat "$work/a.txt"
+cmp -s "$work/a.lcmlog" "$work/b.lcmlog" || fail "two offline runs differ"
+grep -q "900 measurements" "$work/a.txt" || fail "expected 900 measurements"
+published=$(sed -n 's/.* \([0-9]*\) poses published.*/\1/p' "$work/a.txt")
+without=$(sed -n 's/.*(\([0-9]*\) without a face).*/\1/p' "$work/a.txt")
+[ "$published" -ge $((900 - without)) ] && [ "$published" -le 900 ] || fail "published $published of 900 ($without without a face)"
+rows=$(($(wc -l <"$work/a.csv") - 1))
+[ "$rows" -eq "$published" ] || fail "CSV has $rows rows, $published poses published"
+python3 "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/a.lcmlog" "$work/b.lcmlog"
+if grep -qi nan "$work/a.csv"; then fail "NaN in the CSV"; fi
+
+# --rate: extrapolated poses in between, in log time
+"$filter" --offline "$work/raw.lcmlog" "$work/r.lcmlog" --rate 120 2>"$work/r.txt"
+cat "$work/r.txt"
+extrapolated=$(sed -n 's/.*(\([0-9]*\) extrapolated).*/\1/p' "$work/r.txt")
+[ "$extrapolated" -gt 2000 ] || fail "expected ~2700 extrapolated poses at 120 Hz over 30 s, got $extrapolated"
+
+# an undecodable message is counted, never fatal
+python3 - "$work/raw.lcmlog" "$work/corrupt.lcmlog" "$source/tools/logs" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[3])
+import lcmlog
+events = list(lcmlog.read_events(sys.argv[1]))[:10]
+events.insert(5, lcmlog.Event(99, events[4].timestamp + 1, "HEAD_POSE_RAW", b"\x00garbage"))
+lcmlog.write_events(sys.argv[2], events)
+PY
+"$filter" --offline "$work/corrupt.lcmlog" "$work/c.lcmlog" 2>"$work/c.txt" || fail "exit status on an undecodable message"
+cat "$work/c.txt"
+grep -q "1 undecodable" "$work/c.txt" || fail "undecodable message not counted"
+grep -q "11 measurements\|10 measurements" "$work/c.txt" || fail "the good messages were not all handled"
+
+# bad input: a clear error and a non-zero exit
+if "$filter" --offline "$work/missing.lcmlog" "$work/x.lcmlog" 2>"$work/e.txt"; then fail "missing input accepted"; fi
+grep -q "missing.lcmlog" "$work/e.txt" || fail "error does not name the file"
+if "$filter" --set lc_xi=2 --print-config 2>"$work/e.txt"; then fail "lc_xi=2 accepted"; fi
+grep -q "lc_xi" "$work/e.txt" || fail "error does not name lc_xi"
+if "$filter" --rate -5 2>/dev/null; then fail "--rate -5 accepted"; fi
+"$filter" --help | grep -q "usage: hkf-filter" || fail "--help"
+echo "offline_test: all checks passed"

@@ -1,0 +1,270 @@
+/*
+ * test_filter_node.c - hkf-filter's message handling (filter_node.c), case by
+ * case: what it publishes, what it rejects and counts.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "filter_node.h"
+#include "head_motion_sim.h"
+
+#define T0 1700000000000000LL
+#define FRAME_US 33333LL
+
+static node_config_t config;
+static filter_node_t node;
+
+static int setup(void **state)
+{
+    (void)state;
+    node_config_defaults(&config);
+    assert_int_equal(filter_node_init(&node, &config), 0);
+    return 0;
+}
+
+static hkf_head_pose_measurement_t measurement(int64_t utime, int valid, double pitch, double yaw, double roll)
+{
+    hkf_head_pose_measurement_t m;
+    memset(&m, 0, sizeof m);
+    m.utime = utime;
+    m.model = "fsanet";
+    m.valid = valid;
+    m.pitch = (float)pitch;
+    m.yaw = (float)yaw;
+    m.roll = (float)roll;
+    return m;
+}
+
+/* Valid measurements give exactly libhkf's posterior with the model's curves. */
+static void test_poses_match_libhkf(void **state)
+{
+    sim_config_t sc = sim_default_config();
+    sim_t sim;
+    hkf_filter_t reference;
+    int known, i, published = 0;
+    const hkf_settings_t s = node_config_for_model(&config, "fsanet", &known);
+    (void)state;
+    assert_true(known);
+    assert_int_equal(hkf_init(&reference, &s), HKF_OK);
+    sim_init(&sim, &sc, 11u);
+    for (i = 0; i < 900; ++i) {
+        sim_frame_t frame;
+        hkf_head_pose_t pose;
+        hkf_output_t out;
+        const int64_t utime = T0 + (int64_t)llround(i * 1e6 / 30.0);
+        const hkf_real_t dt = i == 0 ? 0.0f : (hkf_real_t)((utime - (T0 + (int64_t)llround((i - 1) * 1e6 / 30.0))) * 1e-6);
+        hkf_head_pose_measurement_t m;
+        int ref_result;
+        sim_next(&sim, &frame);
+        m = measurement(utime, frame.valid, frame.measured[0], frame.measured[1], frame.measured[2]);
+        if (frame.valid) {
+            const hkf_real_t z[3] = {m.pitch, m.yaw, m.roll};
+            ref_result = hkf_update(&reference, z, dt, &out);
+        } else {
+            ref_result = hkf_predict(&reference, dt, &out);
+        }
+        if (filter_node_measurement(&node, &m, &pose)) {
+            ++published;
+            assert_int_equal(ref_result, HKF_OK);
+            assert_true(pose.yaw == out.angle[1] && pose.pitch == out.angle[0] && pose.roll == out.angle[2]);
+            assert_true(pose.yaw_rate == out.rate[1] && pose.variance[1] == out.variance[1] && pose.r[2] == out.r[2]);
+            assert_true(pose.utime == utime);
+            assert_int_equal(pose.status, frame.valid ? HKF_HEAD_POSE_T_TRACKING : pose.status);
+            assert_true(pose.seq == published);
+            assert_false(pose.extrapolated);
+        } else {
+            assert_int_not_equal(ref_result, HKF_OK); /* only before the first face */
+        }
+    }
+    assert_int_equal(node.counts.received, 900);
+    assert_int_equal(node.counts.published, (unsigned long)published);
+    assert_true(node.counts.without_face > 0);
+}
+
+/* No face: coast, and before the first face publish nothing. */
+static void test_without_face(void **state)
+{
+    hkf_head_pose_measurement_t m = measurement(T0, 0, 0, 0, 0);
+    hkf_head_pose_t pose;
+    int i;
+    (void)state;
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 0);
+    m = measurement(T0 + FRAME_US, 1, 1, 2, 3);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    for (i = 2; i < 20; ++i) {
+        m = measurement(T0 + i * FRAME_US, 0, 0, 0, 0);
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        if (i <= 8) { /* (i - 1) frames = at most 0.233 s without a face < coast_time 0.25 s */
+            assert_int_equal(pose.status, HKF_HEAD_POSE_T_COASTING);
+        } else if (i >= 10) {
+            assert_int_equal(pose.status, HKF_HEAD_POSE_T_LOST);
+        }
+        assert_true(pose.measurement_utime == T0 + FRAME_US); /* the last face's time */
+    }
+    assert_int_equal(pose.status, HKF_HEAD_POSE_T_LOST);
+    assert_true(fabsf(pose.yaw - 2.0f) < 1e-4f);
+    assert_int_equal(node.counts.without_face, 19);
+}
+
+/* Out-of-order and duplicate utimes are rejected and counted, and change nothing. */
+static void test_out_of_order_and_duplicates(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose, expected;
+    filter_node_t copy;
+    (void)state;
+    m = measurement(T0, 1, 0, 10, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    m = measurement(T0 + FRAME_US, 1, 0, 11, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    copy = node;
+    m = measurement(T0 + FRAME_US, 1, 0, 50, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 0);
+    m = measurement(T0, 1, 0, 50, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 0);
+    assert_int_equal(node.counts.duplicates, 1);
+    assert_int_equal(node.counts.out_of_order, 1);
+    m = measurement(T0 + 2 * FRAME_US, 1, 0, 12, 0);
+    assert_int_equal(filter_node_measurement(&copy, &m, &expected), 1);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.yaw == expected.yaw && pose.yaw_rate == expected.yaw_rate);
+}
+
+/* Non-finite or absurd angles are rejected; no NaN is ever published. */
+static void test_bad_values_never_published(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    (void)state;
+    m = measurement(T0, 1, 0, 10, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    m = measurement(T0 + FRAME_US, 1, NAN, 10, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 0);
+    m = measurement(T0 + 2 * FRAME_US, 1, 0, INFINITY, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 0);
+    m = measurement(T0 + 3 * FRAME_US, 1, 0, 0, 1e9);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 0);
+    assert_int_equal(node.counts.bad_values, 3);
+    m = measurement(T0 + 4 * FRAME_US, 1, 0, 11, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(isfinite(pose.yaw) && isfinite(pose.pitch) && isfinite(pose.roll) && isfinite(pose.variance[0]));
+    /* a NaN in a frame without a face is harmless: the angles are not read */
+    m = measurement(T0 + 5 * FRAME_US, 0, NAN, NAN, NAN);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(isfinite(pose.yaw));
+}
+
+/* A gap longer than max_dt restarts the track from the new measurement. */
+static void test_gap_restarts_track(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    (void)state;
+    m = measurement(T0, 1, 0, 10, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    m = measurement(T0 + 5000000, 1, 3, -40, 1);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_int_equal(node.counts.restarts, 1);
+    assert_true(pose.yaw == -40.0f && pose.yaw_rate == 0.0f);
+}
+
+/* The measurement's model picks its curves; unknown models use the base ones. */
+static void test_model_table(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    hkf_filter_t probe;
+    int known;
+    hkf_settings_t hopenet;
+    (void)state;
+    m = measurement(T0, 1, 0, 30, 0);
+    m.model = "hopenet";
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    m = measurement(T0 + FRAME_US, 1, 0, 30, 0);
+    m.model = "hopenet";
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    hopenet = node_config_for_model(&config, "hopenet", &known);
+    assert_true(known);
+    assert_int_equal(hkf_init(&probe, &hopenet), HKF_OK);
+    assert_true(fabsf(pose.r[1] - hkf_observation_noise(&probe, HKF_AXIS_YAW, 30.0f)) < 1e-5f);
+    /* Hopenet's yaw curve at 30 deg: 10.74 - 7.017 exp(-(35.57^2) / (2 48.28^2)) */
+    assert_true(fabsf(pose.r[1] - (10.74f - 7.017f * expf(-35.57f * 35.57f / (2.0f * 48.28f * 48.28f)))) < 1e-3f);
+    assert_int_equal(node.counts.unknown_models, 0);
+
+    m = measurement(T0 + 2 * FRAME_US, 1, 0, 30, 0);
+    m.model = "mystery-net";
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_int_equal(node.counts.unknown_models, 1);
+    assert_int_equal(node.counts.restarts, 1);
+    assert_true(fabsf(pose.r[1] - 7.64f + 4.11f * expf(-30.35f * 30.35f / (2.0f * 30.87f * 30.87f))) < 1e-3f);
+}
+
+static void test_commands(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    hkf_tracker_command_t command;
+    hkf_real_t centre[3];
+    int i;
+    (void)state;
+    for (i = 0; i < 10; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0, 20 + i, 0);
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    }
+    command.utime = 0;
+    command.command = HKF_TRACKER_COMMAND_T_RECENTER;
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    assert_int_equal(hkf_get_center(&node.filter, centre), HKF_OK);
+    assert_true(centre[1] == pose.yaw);
+    command.command = HKF_TRACKER_COMMAND_T_RESET;
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    assert_int_equal(hkf_get_center(&node.filter, centre), HKF_ERROR_NOT_INITIALIZED);
+    m = measurement(T0 + 10 * FRAME_US, 1, 5, -5, 5);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.yaw == -5.0f && pose.yaw_rate == 0.0f);
+    command.command = 99;
+    assert_int_equal(filter_node_command(&node, &command), -1);
+    assert_int_equal(node.counts.commands, 2);
+}
+
+/* Extrapolated poses between measurements: rate times the time ahead. */
+static void test_extrapolation(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose, ahead;
+    int i;
+    (void)state;
+    assert_int_equal(filter_node_extrapolate(&node, T0, &ahead), 0); /* nothing yet */
+    for (i = 0; i < 30; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0, 40.0 * i * FRAME_US * 1e-6, 0);
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    }
+    assert_int_equal(filter_node_extrapolate(&node, m.utime + 10000, &ahead), 1);
+    assert_true(ahead.extrapolated);
+    assert_true(ahead.utime == m.utime + 10000 && ahead.measurement_utime == m.utime);
+    assert_true(fabsf(ahead.yaw - (pose.yaw + pose.yaw_rate * 0.01f)) < 1e-4f);
+    assert_true(ahead.seq == pose.seq + 1);
+    assert_int_equal(filter_node_extrapolate(&node, m.utime - 1, &ahead), 0); /* not into the past */
+    assert_int_equal(node.counts.extrapolated, 1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_poses_match_libhkf, setup),
+        cmocka_unit_test_setup(test_without_face, setup),
+        cmocka_unit_test_setup(test_out_of_order_and_duplicates, setup),
+        cmocka_unit_test_setup(test_bad_values_never_published, setup),
+        cmocka_unit_test_setup(test_gap_restarts_track, setup),
+        cmocka_unit_test_setup(test_model_table, setup),
+        cmocka_unit_test_setup(test_commands, setup),
+        cmocka_unit_test_setup(test_extrapolation, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,156 @@
+/* filter_node.c - see filter_node.h. */
+#include "filter_node.h"
+
+#include <math.h>
+#include <string.h>
+
+static int setup_filter(filter_node_t *node, const char *model)
+{
+    int known;
+    const hkf_settings_t s = node_config_for_model(node->config, model, &known);
+    if (model != node->model) {
+        strncpy(node->model, model, sizeof node->model - 1);
+        node->model[sizeof node->model - 1] = '\0';
+    }
+    return hkf_init(&node->filter, &s);
+}
+
+int filter_node_init(filter_node_t *node, const node_config_t *config)
+{
+    memset(node, 0, sizeof *node);
+    node->config = config;
+    return setup_filter(node, "");
+}
+
+static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utime, hkf_head_pose_t *pose)
+{
+    int a;
+    memset(pose, 0, sizeof *pose);
+    pose->utime = utime;
+    pose->measurement_utime = node->last_measurement_utime;
+    pose->seq = ++node->seq;
+    pose->status = out->status == HKF_STATUS_TRACKING   ? HKF_HEAD_POSE_T_TRACKING
+                   : out->status == HKF_STATUS_COASTING ? HKF_HEAD_POSE_T_COASTING
+                                                        : HKF_HEAD_POSE_T_LOST;
+    pose->pitch = out->angle[HKF_AXIS_PITCH];
+    pose->yaw = out->angle[HKF_AXIS_YAW];
+    pose->roll = out->angle[HKF_AXIS_ROLL];
+    pose->pitch_rate = out->rate[HKF_AXIS_PITCH];
+    pose->yaw_rate = out->rate[HKF_AXIS_YAW];
+    pose->roll_rate = out->rate[HKF_AXIS_ROLL];
+    for (a = 0; a < 3; ++a) {
+        pose->variance[a] = out->variance[a];
+        pose->r[a] = out->r[a];
+    }
+    pose->loop_closure_active = (out->flags & HKF_FLAG_LOOP_CLOSURE) != 0;
+    pose->extrapolated = (out->flags & HKF_FLAG_EXTRAPOLATED) != 0;
+    pose->latency_us = 0;
+    ++node->counts.published;
+}
+
+static int finite_angles(const hkf_head_pose_measurement_t *m)
+{
+    return isfinite(m->pitch) && isfinite(m->yaw) && isfinite(m->roll) &&
+           fabsf(m->pitch) <= HKF_MAX_ABS_ANGLE && fabsf(m->yaw) <= HKF_MAX_ABS_ANGLE &&
+           fabsf(m->roll) <= HKF_MAX_ABS_ANGLE;
+}
+
+int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
+{
+    hkf_output_t out;
+    hkf_real_t dt = 0;
+    int result;
+    ++node->counts.received;
+    if (node->have_time && m->utime < node->last_utime) {
+        ++node->counts.out_of_order;
+        return 0;
+    }
+    if (node->have_time && m->utime == node->last_utime) {
+        ++node->counts.duplicates;
+        return 0;
+    }
+    if (m->valid && !finite_angles(m)) {
+        ++node->counts.bad_values;
+        return 0;
+    }
+    if (node->have_time) {
+        dt = (hkf_real_t)((double)(m->utime - node->last_utime) * 1e-6);
+    }
+    node->have_time = 1;
+    node->last_utime = m->utime;
+
+    if (!m->valid) {
+        ++node->counts.without_face;
+        result = hkf_predict(&node->filter, dt, &out);
+        if (result == HKF_ERROR_DT_RANGE) { /* a long gap: forget the track */
+            hkf_reset(&node->filter);
+            ++node->counts.restarts;
+            return 0;
+        }
+        if (result != HKF_OK) { /* no track yet */
+            return 0;
+        }
+        fill_pose(node, &out, m->utime, pose);
+        return 1;
+    }
+
+    if (strncmp(m->model ? m->model : "", node->model, sizeof node->model) != 0) {
+        if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
+            ++node->counts.restarts;
+        }
+        if (setup_filter(node, m->model ? m->model : "") != HKF_OK) {
+            return 0; /* cannot happen: the config was validated at start */
+        }
+    }
+    {
+        int known;
+        (void)node_config_for_model(node->config, node->model, &known);
+        node->counts.unknown_models += !known;
+    }
+    {
+        const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
+        result = hkf_update(&node->filter, z, dt, &out);
+        if (result == HKF_ERROR_DT_RANGE) {
+            hkf_reset(&node->filter);
+            ++node->counts.restarts;
+            result = hkf_update(&node->filter, z, dt, &out);
+        }
+    }
+    if (result != HKF_OK) {
+        ++node->counts.bad_values;
+        return 0;
+    }
+    node->last_measurement_utime = m->utime;
+    fill_pose(node, &out, m->utime, pose);
+    return 1;
+}
+
+int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
+{
+    hkf_output_t out;
+    if (!node->have_time || utime < node->last_utime) {
+        return 0;
+    }
+    if (hkf_extrapolate(&node->filter, (hkf_real_t)((double)(utime - node->last_utime) * 1e-6), &out) != HKF_OK) {
+        return 0; /* no track, or too far ahead */
+    }
+    fill_pose(node, &out, utime, pose);
+    ++node->counts.extrapolated;
+    return 1;
+}
+
+int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command)
+{
+    switch (command->command) {
+    case HKF_TRACKER_COMMAND_T_RECENTER:
+        ++node->counts.commands;
+        (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
+        return 0;
+    case HKF_TRACKER_COMMAND_T_RESET:
+        ++node->counts.commands;
+        (void)setup_filter(node, node->model);
+        return 0;
+    default:
+        return -1;
+    }
+}

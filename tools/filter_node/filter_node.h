@@ -1,0 +1,64 @@
+/*
+ * filter_node.h - hkf-filter's logic, free of any transport: a raw head pose
+ * message in, a filtered one out. The live node and the offline log mode
+ * both call these, so they share one code path.
+ *
+ * Rules:
+ * - valid measurement -> hkf_update, publish a pose;
+ * - valid = false -> hkf_predict (coast), publish a pose once a track exists;
+ * - utime older than the last one -> rejected (out of order); equal -> rejected (duplicate);
+ * - non-finite or absurd angles -> rejected and counted, never published;
+ * - a gap longer than max_dt -> the track restarts from this measurement;
+ * - the measurement's `model` picks its noise curves from the model table;
+ *   a change of model restarts the track with the new curves.
+ */
+#ifndef FILTER_NODE_H
+#define FILTER_NODE_H
+
+#include <stdint.h>
+
+#include "hkf/hkf.h"
+#include "hkf_head_pose_measurement_t.h"
+#include "hkf_head_pose_t.h"
+#include "hkf_tracker_command_t.h"
+#include "node_config.h"
+
+typedef struct {
+    unsigned long received;        /* measurements handled */
+    unsigned long published;       /* poses produced (including extrapolated) */
+    unsigned long extrapolated;    /* of those, extrapolated */
+    unsigned long without_face;    /* valid = false */
+    unsigned long out_of_order;    /* rejected: utime older than the last */
+    unsigned long duplicates;      /* rejected: utime equal to the last */
+    unsigned long bad_values;      /* rejected: non-finite or out-of-range angles */
+    unsigned long decode_errors;   /* messages that did not decode */
+    unsigned long restarts;        /* tracks restarted after a gap or a model change */
+    unsigned long unknown_models;  /* measurements whose model is not in the table */
+    unsigned long commands;        /* commands applied */
+} filter_node_counts_t;
+
+typedef struct {
+    const node_config_t *config;
+    hkf_filter_t filter;
+    char model[NODE_MODEL_NAME_MAX];  /* the model the filter is set up for */
+    int have_time;                    /* a measurement has been seen */
+    int64_t last_utime;               /* its capture time */
+    int64_t last_measurement_utime;   /* capture time of the last valid measurement used */
+    int64_t seq;
+    filter_node_counts_t counts;
+} filter_node_t;
+
+/* 0, or a hkf_result_t when the base settings are invalid. */
+int filter_node_init(filter_node_t *node, const node_config_t *config);
+
+/* Handles one measurement; returns 1 when *pose is to be published. */
+int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose);
+
+/* The pose at capture-clock time utime (>= the last measurement's), for
+ * publishing between measurements; returns 1 when *pose is to be published. */
+int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose);
+
+/* RECENTER or RESET; returns 0, or -1 for an unknown command. */
+int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command);
+
+#endif /* FILTER_NODE_H */

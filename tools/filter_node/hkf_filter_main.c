@@ -1,0 +1,435 @@
+/*
+ * hkf-filter - the filter node: subscribes raw head poses (HEAD_POSE_RAW),
+ * publishes filtered ones (HEAD_POSE), obeys HEAD_TRACKER_CMD. Offline, it
+ * filters an LCM log into another LCM log, deterministically, through the
+ * same filter_node code.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/select.h>
+#include <time.h>
+
+#include <lcm/lcm.h>
+
+#include "filter_node.h"
+#include "node_config.h"
+
+#define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
+
+typedef struct {
+    const char *input_url, *output_url;
+    const char *input_channel, *output_channel, *command_channel;
+    const char *offline_in, *offline_out;
+    const char *csv_path;
+    double rate_hz;
+    int print_config;
+    node_config_t config;
+} options_t;
+
+typedef struct {
+    options_t *options;
+    filter_node_t node;
+    lcm_t *out_lcm;
+    FILE *csv;
+    int64_t last_arrival_us;   /* wall clock when the last measurement was handled */
+    int reported_decode_errors;
+} node_run_t;
+
+static volatile sig_atomic_t stop_requested = 0;
+
+static void on_signal(int signal_number)
+{
+    (void)signal_number;
+    stop_requested = 1;
+}
+
+static int64_t wall_utime(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+static void usage(FILE *to)
+{
+    fprintf(to,
+            "usage: hkf-filter [options]                       live: LCM in, LCM out\n"
+            "       hkf-filter --offline IN.lcmlog OUT.lcmlog [options]   log in, log out\n"
+            "Filters raw head poses (hkf.head_pose_measurement_t) with libhkf's adaptive Kalman\n"
+            "filter into hkf.head_pose_t; RECENTER / RESET arrive as hkf.tracker_command_t.\n"
+            "  --lcm-url URL        LCM provider for input and output (default " DEFAULT_LCM_URL ")\n"
+            "  --input-url URL      LCM provider to subscribe on (default: --lcm-url)\n"
+            "  --output-url URL     LCM provider to publish on (default: --lcm-url)\n"
+            "  --input-channel C    raw poses (default HEAD_POSE_RAW)\n"
+            "  --output-channel C   filtered poses (default HEAD_POSE)\n"
+            "  --command-channel C  commands (default HEAD_TRACKER_CMD)\n"
+            "  --rate HZ            also publish poses extrapolated to this rate between measurements\n"
+            "  --config FILE        settings file (see tools/filter_node/hkf-filter.conf)\n"
+            "  --set KEY=VALUE      override one setting (repeatable), e.g. --set lc_theta=3,\n"
+            "                       --set model.whenet.noise.yaw='7 4 0 30'\n"
+            "  --print-config       print the effective settings and exit\n"
+            "  --offline IN OUT     filter the log IN into the log OUT as fast as possible\n"
+            "  --csv FILE           also write every published pose as CSV\n"
+            "  --help               this text\n"
+            "Stops on SIGINT / SIGTERM (live) or at the end of IN (offline) with a summary.\n");
+}
+
+/* 0 = run, 1 = done (help, print-config), 2 = bad arguments */
+static int parse_options(int argc, char **argv, options_t *o)
+{
+    char error[600];
+    const char *lcm_url = DEFAULT_LCM_URL;
+    int i;
+    memset(o, 0, sizeof *o);
+    node_config_defaults(&o->config);
+    o->input_channel = "HEAD_POSE_RAW";
+    o->output_channel = "HEAD_POSE";
+    o->command_channel = "HEAD_TRACKER_CMD";
+    for (i = 1; i < argc; ++i) {
+        const char *arg = argv[i];
+        const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+            usage(stdout);
+            return 1;
+        } else if (strcmp(arg, "--print-config") == 0) {
+            o->print_config = 1;
+        } else if (value == NULL) {
+            fprintf(stderr, "hkf-filter: unknown or incomplete argument '%s' (see --help)\n", arg);
+            return 2;
+        } else if (strcmp(arg, "--lcm-url") == 0) {
+            lcm_url = argv[++i];
+        } else if (strcmp(arg, "--input-url") == 0) {
+            o->input_url = argv[++i];
+        } else if (strcmp(arg, "--output-url") == 0) {
+            o->output_url = argv[++i];
+        } else if (strcmp(arg, "--input-channel") == 0) {
+            o->input_channel = argv[++i];
+        } else if (strcmp(arg, "--output-channel") == 0) {
+            o->output_channel = argv[++i];
+        } else if (strcmp(arg, "--command-channel") == 0) {
+            o->command_channel = argv[++i];
+        } else if (strcmp(arg, "--rate") == 0) {
+            char *end = NULL;
+            o->rate_hz = strtod(argv[++i], &end);
+            if (*end != '\0' || !(o->rate_hz > 0.0 && o->rate_hz <= 10000.0)) {
+                fprintf(stderr, "hkf-filter: --rate wants a frequency from 0 to 10000 Hz, not '%s'\n", argv[i]);
+                return 2;
+            }
+        } else if (strcmp(arg, "--config") == 0) {
+            if (node_config_read_file(&o->config, argv[++i], error, sizeof error) != 0) {
+                fprintf(stderr, "hkf-filter: %s\n", error);
+                return 2;
+            }
+        } else if (strcmp(arg, "--set") == 0) {
+            if (node_config_set(&o->config, argv[++i], error, sizeof error) != 0) {
+                fprintf(stderr, "hkf-filter: --set: %s\n", error);
+                return 2;
+            }
+        } else if (strcmp(arg, "--csv") == 0) {
+            o->csv_path = argv[++i];
+        } else if (strcmp(arg, "--offline") == 0 && i + 2 < argc) {
+            o->offline_in = argv[++i];
+            o->offline_out = argv[++i];
+        } else {
+            fprintf(stderr, "hkf-filter: unknown or incomplete argument '%s' (see --help)\n", arg);
+            return 2;
+        }
+    }
+    o->input_url = o->input_url ? o->input_url : lcm_url;
+    o->output_url = o->output_url ? o->output_url : lcm_url;
+    return 0;
+}
+
+/* Every settings set (the base and each model's) must pass hkf_init. */
+static int validate_config(const node_config_t *config)
+{
+    hkf_filter_t probe;
+    int m, result = hkf_init(&probe, &config->settings);
+    if (result != HKF_OK) {
+        fprintf(stderr, "hkf-filter: invalid settings: %s\n", hkf_result_string(result));
+        return -1;
+    }
+    for (m = 0; m < config->model_count; ++m) {
+        int known;
+        const hkf_settings_t s = node_config_for_model(config, config->models[m].name, &known);
+        result = hkf_init(&probe, &s);
+        if (result != HKF_OK) {
+            fprintf(stderr, "hkf-filter: invalid settings for model '%s': %s\n", config->models[m].name,
+                    hkf_result_string(result));
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static void write_csv_header(FILE *csv)
+{
+    fprintf(csv, "utime,measurement_utime,seq,status,pitch,yaw,roll,pitch_rate,yaw_rate,roll_rate,"
+                 "var_pitch,var_yaw,var_roll,r_pitch,r_yaw,r_roll,loop_closure_active,extrapolated,latency_us\n");
+}
+
+static void write_csv_pose(FILE *csv, const hkf_head_pose_t *p)
+{
+    fprintf(csv, "%lld,%lld,%lld,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld\n",
+            (long long)p->utime, (long long)p->measurement_utime, (long long)p->seq, p->status, (double)p->pitch,
+            (double)p->yaw, (double)p->roll, (double)p->pitch_rate, (double)p->yaw_rate, (double)p->roll_rate,
+            (double)p->variance[0], (double)p->variance[1], (double)p->variance[2], (double)p->r[0], (double)p->r[1],
+            (double)p->r[2], p->loop_closure_active, p->extrapolated, (long long)p->latency_us);
+}
+
+static void print_summary(const filter_node_t *node, FILE *to)
+{
+    const filter_node_counts_t *c = &node->counts;
+    fprintf(to,
+            "hkf-filter: %lu measurements (%lu without a face), %lu poses published (%lu extrapolated); "
+            "rejected: %lu out of order, %lu duplicates, %lu bad values, %lu undecodable; "
+            "%lu track restarts, %lu with an unknown model, %lu commands\n",
+            c->received, c->without_face, c->published, c->extrapolated, c->out_of_order, c->duplicates,
+            c->bad_values, c->decode_errors, c->restarts, c->unknown_models, c->commands);
+}
+
+static void report_decode_error(node_run_t *run, const char *channel)
+{
+    ++run->node.counts.decode_errors;
+    if (run->reported_decode_errors++ < 5) {
+        fprintf(stderr, "hkf-filter: a message on %s did not decode; counted and skipped\n", channel);
+    }
+}
+
+/* ---- live ---- */
+
+static void publish(node_run_t *run, hkf_head_pose_t *pose)
+{
+    pose->latency_us = wall_utime() - pose->measurement_utime;
+    if (hkf_head_pose_t_publish(run->out_lcm, run->options->output_channel, pose) != 0) {
+        fprintf(stderr, "hkf-filter: publishing on %s failed\n", run->options->output_channel);
+    }
+    if (run->csv != NULL) {
+        write_csv_pose(run->csv, pose);
+    }
+}
+
+static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    node_run_t *run = user;
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    if (hkf_head_pose_measurement_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0) {
+        report_decode_error(run, channel);
+        return;
+    }
+    if (filter_node_measurement(&run->node, &m, &pose)) {
+        publish(run, &pose);
+    }
+    run->last_arrival_us = wall_utime();
+    hkf_head_pose_measurement_t_decode_cleanup(&m);
+}
+
+static void on_command(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    node_run_t *run = user;
+    hkf_tracker_command_t command;
+    if (hkf_tracker_command_t_decode(rbuf->data, 0, (int)rbuf->data_size, &command) < 0) {
+        report_decode_error(run, channel);
+        return;
+    }
+    if (filter_node_command(&run->node, &command) != 0) {
+        fprintf(stderr, "hkf-filter: unknown command %d on %s ignored\n", command.command, channel);
+    }
+}
+
+static int run_live(node_run_t *run)
+{
+    const options_t *o = run->options;
+    lcm_t *in = lcm_create(o->input_url);
+    const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
+    int64_t next_tick = wall_utime() + tick_us;
+    struct sigaction action;
+    if (in == NULL) {
+        fprintf(stderr, "hkf-filter: cannot open LCM provider '%s'\n", o->input_url);
+        return 1;
+    }
+    run->out_lcm = strcmp(o->input_url, o->output_url) == 0 ? in : lcm_create(o->output_url);
+    if (run->out_lcm == NULL) {
+        fprintf(stderr, "hkf-filter: cannot open LCM provider '%s'\n", o->output_url);
+        lcm_destroy(in);
+        return 1;
+    }
+    lcm_subscribe(in, o->input_channel, on_measurement, run);
+    lcm_subscribe(in, o->command_channel, on_command, run);
+    memset(&action, 0, sizeof action);
+    action.sa_handler = on_signal;
+    sigaction(SIGINT, &action, NULL);
+    sigaction(SIGTERM, &action, NULL);
+    fprintf(stderr, "hkf-filter: %s -> %s on %s%s%s\n", o->input_channel, o->output_channel, o->input_url,
+            run->out_lcm != in ? " -> " : "", run->out_lcm != in ? o->output_url : "");
+
+    while (!stop_requested) {
+        const int fd = lcm_get_fileno(in);
+        int64_t wait_us = 100000;
+        fd_set readable;
+        struct timeval timeout;
+        int ready;
+        if (tick_us > 0) {
+            const int64_t until = next_tick - wall_utime();
+            wait_us = until < 0 ? 0 : (until < wait_us ? until : wait_us);
+        }
+        FD_ZERO(&readable);
+        FD_SET(fd, &readable);
+        timeout.tv_sec = (time_t)(wait_us / 1000000);
+        timeout.tv_usec = (suseconds_t)(wait_us % 1000000);
+        ready = select(fd + 1, &readable, NULL, NULL, &timeout);
+        if (ready < 0 && errno != EINTR) {
+            perror("hkf-filter: select");
+            break;
+        }
+        if (ready > 0 && lcm_handle(in) != 0) {
+            fprintf(stderr, "hkf-filter: LCM receive failed\n");
+            break;
+        }
+        if (tick_us > 0 && wall_utime() >= next_tick) {
+            /* between measurements: the pose at the capture clock's "now" */
+            hkf_head_pose_t pose;
+            const int64_t since = wall_utime() - run->last_arrival_us;
+            if (run->node.have_time && since > 0 &&
+                filter_node_extrapolate(&run->node, run->node.last_utime + since, &pose)) {
+                publish(run, &pose);
+            }
+            next_tick += tick_us;
+            if (next_tick < wall_utime()) {
+                next_tick = wall_utime() + tick_us;
+            }
+        }
+    }
+    if (run->out_lcm != in) {
+        lcm_destroy(run->out_lcm);
+    }
+    lcm_destroy(in);
+    return 0;
+}
+
+/* ---- offline ---- */
+
+static int write_pose_event(lcm_eventlog_t *log, const char *channel, int64_t timestamp, int64_t number,
+                            const hkf_head_pose_t *pose)
+{
+    unsigned char buffer[512];
+    lcm_eventlog_event_t event;
+    const int size = hkf_head_pose_t_encoded_size(pose);
+    if (size > (int)sizeof buffer || hkf_head_pose_t_encode(buffer, 0, size, pose) < 0) {
+        return -1;
+    }
+    event.eventnum = number;
+    event.timestamp = timestamp;
+    event.channellen = (int32_t)strlen(channel);
+    event.datalen = size;
+    event.channel = (char *)channel;
+    event.data = buffer;
+    return lcm_eventlog_write_event(log, &event);
+}
+
+static int run_offline(node_run_t *run)
+{
+    const options_t *o = run->options;
+    lcm_eventlog_t *in = lcm_eventlog_create(o->offline_in, "r");
+    lcm_eventlog_t *out;
+    lcm_eventlog_event_t *event;
+    const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
+    int64_t written = 0;
+    int status = 0;
+    if (in == NULL) {
+        fprintf(stderr, "hkf-filter: cannot read the LCM log '%s'\n", o->offline_in);
+        return 1;
+    }
+    out = lcm_eventlog_create(o->offline_out, "w");
+    if (out == NULL) {
+        fprintf(stderr, "hkf-filter: cannot write the LCM log '%s'\n", o->offline_out);
+        lcm_eventlog_destroy(in);
+        return 1;
+    }
+    while ((event = lcm_eventlog_read_next_event(in)) != NULL) {
+        hkf_head_pose_t pose;
+        if (strcmp(event->channel, o->command_channel) == 0) {
+            hkf_tracker_command_t command;
+            if (hkf_tracker_command_t_decode(event->data, 0, event->datalen, &command) < 0) {
+                report_decode_error(run, event->channel);
+            } else if (filter_node_command(&run->node, &command) != 0) {
+                fprintf(stderr, "hkf-filter: unknown command %d ignored\n", command.command);
+            }
+        } else if (strcmp(event->channel, o->input_channel) == 0) {
+            hkf_head_pose_measurement_t m;
+            if (hkf_head_pose_measurement_t_decode(event->data, 0, event->datalen, &m) < 0) {
+                report_decode_error(run, event->channel);
+            } else {
+                /* extrapolated poses at the --rate ticks before this measurement, in log time */
+                if (tick_us > 0 && run->node.have_time) {
+                    int64_t t = (run->node.last_utime / tick_us + 1) * tick_us;
+                    for (; t < m.utime; t += tick_us) {
+                        if (filter_node_extrapolate(&run->node, t, &pose)) {
+                            status |= write_pose_event(out, o->output_channel, event->timestamp, written++, &pose);
+                            if (run->csv != NULL) {
+                                write_csv_pose(run->csv, &pose);
+                            }
+                        }
+                    }
+                }
+                if (filter_node_measurement(&run->node, &m, &pose)) {
+                    status |= write_pose_event(out, o->output_channel, event->timestamp, written++, &pose);
+                    if (run->csv != NULL) {
+                        write_csv_pose(run->csv, &pose);
+                    }
+                }
+                hkf_head_pose_measurement_t_decode_cleanup(&m);
+            }
+        }
+        lcm_eventlog_free_event(event);
+    }
+    lcm_eventlog_destroy(in);
+    lcm_eventlog_destroy(out);
+    if (status != 0) {
+        fprintf(stderr, "hkf-filter: error writing '%s'\n", o->offline_out);
+        return 1;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    static options_t options;
+    static node_run_t run;
+    int status;
+    switch (parse_options(argc, argv, &options)) {
+    case 1: return 0;
+    case 2: return 2;
+    default: break;
+    }
+    if (validate_config(&options.config) != 0) {
+        return 2;
+    }
+    if (options.print_config) {
+        node_config_print(&options.config, stdout);
+        return 0;
+    }
+    run.options = &options;
+    filter_node_init(&run.node, &options.config);
+    if (options.csv_path != NULL) {
+        run.csv = fopen(options.csv_path, "w");
+        if (run.csv == NULL) {
+            fprintf(stderr, "hkf-filter: cannot write '%s': %s\n", options.csv_path, strerror(errno));
+            return 1;
+        }
+        write_csv_header(run.csv);
+    }
+    status = options.offline_in != NULL ? run_offline(&run) : run_live(&run);
+    if (run.csv != NULL && fclose(run.csv) != 0) {
+        fprintf(stderr, "hkf-filter: error writing '%s'\n", options.csv_path);
+        status = 1;
+    }
+    print_summary(&run.node, stderr);
+    return status;
+}

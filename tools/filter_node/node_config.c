@@ -1,0 +1,423 @@
+/* node_config.c - see node_config.h. */
+#include "node_config.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef enum { KIND_REAL, KIND_REAL3, KIND_CURVE, KIND_NOISE_MODE, KIND_LOOP_CLOSURE, KIND_UINT } key_kind_t;
+
+typedef struct {
+    const char *name;
+    key_kind_t kind;
+    size_t offset; /* in hkf_settings_t */
+    const char *comment;
+} config_key_t;
+
+#define FIELD(f) offsetof(hkf_settings_t, f)
+
+static const config_key_t keys[] = {
+    {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll), deg^2/s^3"},
+    {"noise_mode", KIND_NOISE_MODE, FIELD(noise_mode), "constant | adaptive | adaptive_squared"},
+    {"noise.pitch", KIND_CURVE, FIELD(noise[0]), "Eq. 8 curve: tau lambda mu sigma, deg"},
+    {"noise.yaw", KIND_CURVE, FIELD(noise[1]), "Eq. 8 curve: tau lambda mu sigma, deg"},
+    {"noise.roll", KIND_CURVE, FIELD(noise[2]), "Eq. 8 curve: tau lambda mu sigma, deg"},
+    {"r_const", KIND_REAL3, FIELD(r_const), "R per axis in constant mode, deg^2"},
+    {"r_min", KIND_REAL, FIELD(r_min), "lower clamp of R, deg^2"},
+    {"r_max", KIND_REAL, FIELD(r_max), "upper clamp of R, deg^2"},
+    {"loop_closure", KIND_LOOP_CLOSURE, FIELD(loop_closure), "off | norm | per_axis (Eq. 9)"},
+    {"lc_xi", KIND_REAL, FIELD(lc_xi), "loop-closure fusion factor, 0..1"},
+    {"lc_theta", KIND_REAL, FIELD(lc_theta), "loop-closure threshold, deg"},
+    {"p0_angle", KIND_REAL, FIELD(p0_angle), "initial angle variance, deg^2"},
+    {"p0_rate", KIND_REAL, FIELD(p0_rate), "initial rate variance, (deg/s)^2"},
+    {"gate_sigma", KIND_REAL, FIELD(gate_sigma), "innovation gate in sigmas, 0 = off"},
+    {"max_gate_rejections", KIND_UINT, FIELD(max_gate_rejections), "gated measurements in a row before restarting"},
+    {"coast_time", KIND_REAL, FIELD(coast_time), "s without a face before the track is LOST"},
+    {"max_dt", KIND_REAL, FIELD(max_dt), "s; a longer gap restarts the track"},
+};
+#define KEY_COUNT (sizeof keys / sizeof keys[0])
+
+static const char *const noise_mode_names[] = {"constant", "adaptive", "adaptive_squared"};
+static const char *const loop_closure_names[] = {"off", "norm", "per_axis"};
+
+/* The paper's two estimators are in the table from the start. */
+static void add_builtin_model(node_config_t *config, const char *name, const hkf_noise_curve_t noise[3])
+{
+    node_model_t *m = &config->models[config->model_count++];
+    strcpy(m->name, name);
+    memcpy(m->noise, noise, sizeof m->noise);
+    m->r_const[0] = noise[0].tau - noise[0].lambda;
+    m->r_const[1] = noise[1].tau - noise[1].lambda;
+    m->r_const[2] = noise[2].tau - noise[2].lambda;
+}
+
+void node_config_defaults(node_config_t *config)
+{
+    memset(config, 0, sizeof *config);
+    config->settings = hkf_default_settings;
+    add_builtin_model(config, "fsanet", hkf_noise_fsanet);
+    add_builtin_model(config, "hopenet", hkf_noise_hopenet);
+}
+
+static const config_key_t *find_key(const char *name)
+{
+    size_t i;
+    for (i = 0; i < KEY_COUNT; ++i) {
+        if (strcmp(keys[i].name, name) == 0) {
+            return &keys[i];
+        }
+    }
+    return NULL;
+}
+
+/* Reads exactly n numbers separated by blanks. */
+static int parse_reals(const char *text, hkf_real_t *out, int n)
+{
+    const char *p = text;
+    int i;
+    for (i = 0; i < n; ++i) {
+        char *end = NULL;
+        double v;
+        errno = 0;
+        v = strtod(p, &end);
+        if (end == p || errno != 0) {
+            return -1;
+        }
+        out[i] = (hkf_real_t)v;
+        p = end;
+    }
+    while (isspace((unsigned char)*p)) {
+        ++p;
+    }
+    return *p == '\0' ? 0 : -1;
+}
+
+static int parse_name(const char *text, const char *const *names, int count)
+{
+    int i;
+    for (i = 0; i < count; ++i) {
+        if (strcmp(text, names[i]) == 0) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value, char *error, size_t error_size)
+{
+    char *base = (char *)s + key->offset;
+    int n;
+    switch (key->kind) {
+    case KIND_REAL:
+        if (parse_reals(value, (hkf_real_t *)(void *)base, 1) == 0) {
+            return 0;
+        }
+        snprintf(error, error_size, "%s wants a number, not '%s'", key->name, value);
+        return -1;
+    case KIND_REAL3:
+        if (parse_reals(value, (hkf_real_t *)(void *)base, 3) == 0) {
+            return 0;
+        }
+        snprintf(error, error_size, "%s wants three numbers (pitch yaw roll), not '%s'", key->name, value);
+        return -1;
+    case KIND_CURVE: {
+        hkf_real_t v[4];
+        hkf_noise_curve_t *c = (hkf_noise_curve_t *)(void *)base;
+        if (parse_reals(value, v, 4) == 0) {
+            c->tau = v[0];
+            c->lambda = v[1];
+            c->mu = v[2];
+            c->sigma = v[3];
+            return 0;
+        }
+        snprintf(error, error_size, "%s wants four numbers (tau lambda mu sigma), not '%s'", key->name, value);
+        return -1;
+    }
+    case KIND_NOISE_MODE:
+        n = parse_name(value, noise_mode_names, 3);
+        if (n >= 0) {
+            *(hkf_noise_mode_t *)(void *)base = (hkf_noise_mode_t)n;
+            return 0;
+        }
+        snprintf(error, error_size, "noise_mode is constant, adaptive or adaptive_squared, not '%s'", value);
+        return -1;
+    case KIND_LOOP_CLOSURE:
+        n = parse_name(value, loop_closure_names, 3);
+        if (n >= 0) {
+            *(int *)(void *)base = n;
+            return 0;
+        }
+        snprintf(error, error_size, "loop_closure is off, norm or per_axis, not '%s'", value);
+        return -1;
+    case KIND_UINT: {
+        char *end = NULL;
+        unsigned long v;
+        errno = 0;
+        v = strtoul(value, &end, 10);
+        if (end != value && *end == '\0' && errno == 0 && v <= 1000000ul && value[0] != '-') {
+            *(unsigned *)(void *)base = (unsigned)v;
+            return 0;
+        }
+        snprintf(error, error_size, "%s wants a whole number from 0 to 1000000, not '%s'", key->name, value);
+        return -1;
+    }
+    }
+    return -1;
+}
+
+static node_model_t *find_or_add_model(node_config_t *config, const char *name, char *error, size_t error_size)
+{
+    int i;
+    node_model_t *m;
+    for (i = 0; i < config->model_count; ++i) {
+        if (strcmp(config->models[i].name, name) == 0) {
+            return &config->models[i];
+        }
+    }
+    if (name[0] == '\0' || strlen(name) >= NODE_MODEL_NAME_MAX) {
+        snprintf(error, error_size, "a model name has 1 to %d characters, not '%s'", NODE_MODEL_NAME_MAX - 1, name);
+        return NULL;
+    }
+    if (config->model_count == NODE_MAX_MODELS) {
+        snprintf(error, error_size, "more than %d models", NODE_MAX_MODELS);
+        return NULL;
+    }
+    m = &config->models[config->model_count++];
+    memset(m, 0, sizeof *m);
+    strcpy(m->name, name);
+    memcpy(m->noise, config->settings.noise, sizeof m->noise);
+    memcpy(m->r_const, config->settings.r_const, sizeof m->r_const);
+    return m;
+}
+
+/* A model entry has only the noise curves and r_const of the settings. */
+static int set_model_key(node_config_t *config, const char *model, const char *key_name, const char *value,
+                         char *error, size_t error_size)
+{
+    const config_key_t *key = find_key(key_name);
+    node_model_t *m;
+    hkf_settings_t scratch;
+    if (key == NULL || (key->kind != KIND_CURVE && strcmp(key_name, "r_const") != 0)) {
+        snprintf(error, error_size, "a model sets noise.pitch, noise.yaw, noise.roll or r_const, not '%s'", key_name);
+        return -1;
+    }
+    m = find_or_add_model(config, model, error, error_size);
+    if (m == NULL) {
+        return -1;
+    }
+    scratch = config->settings;
+    memcpy(scratch.noise, m->noise, sizeof m->noise);
+    memcpy(scratch.r_const, m->r_const, sizeof m->r_const);
+    if (set_key(&scratch, key, value, error, error_size) != 0) {
+        return -1;
+    }
+    memcpy(m->noise, scratch.noise, sizeof m->noise);
+    memcpy(m->r_const, scratch.r_const, sizeof m->r_const);
+    return 0;
+}
+
+static char *trim(char *s)
+{
+    char *end;
+    while (isspace((unsigned char)*s)) {
+        ++s;
+    }
+    end = s + strlen(s);
+    while (end > s && isspace((unsigned char)end[-1])) {
+        *--end = '\0';
+    }
+    return s;
+}
+
+/* Splits "key = value" (comments already removed). */
+static int split_assignment(char *line, char **key, char **value)
+{
+    char *eq = strchr(line, '=');
+    if (eq == NULL) {
+        return -1;
+    }
+    *eq = '\0';
+    *key = trim(line);
+    *value = trim(eq + 1);
+    return (*key)[0] != '\0' && (*value)[0] != '\0' ? 0 : -1;
+}
+
+static int apply(node_config_t *config, const char *model, char *key, char *value, char *error, size_t error_size)
+{
+    const config_key_t *k;
+    if (strncmp(key, "model.", 6) == 0 && model == NULL) {
+        char *name = key + 6, *dot = strchr(name, '.');
+        if (dot == NULL) {
+            snprintf(error, error_size, "'%s' is not model.NAME.KEY", key);
+            return -1;
+        }
+        *dot = '\0';
+        return set_model_key(config, name, dot + 1, value, error, error_size);
+    }
+    if (model != NULL) {
+        return set_model_key(config, model, key, value, error, error_size);
+    }
+    k = find_key(key);
+    if (k == NULL) {
+        snprintf(error, error_size, "unknown key '%s' (--print-config lists them)", key);
+        return -1;
+    }
+    return set_key(&config->settings, k, value, error, error_size);
+}
+
+int node_config_set(node_config_t *config, const char *assignment, char *error, size_t error_size)
+{
+    char line[512], *key, *value;
+    if (strlen(assignment) >= sizeof line) {
+        snprintf(error, error_size, "setting too long");
+        return -1;
+    }
+    strcpy(line, assignment);
+    if (split_assignment(line, &key, &value) != 0) {
+        snprintf(error, error_size, "'%s' is not KEY=VALUE", assignment);
+        return -1;
+    }
+    return apply(config, NULL, key, value, error, error_size);
+}
+
+int node_config_read_file(node_config_t *config, const char *path, char *error, size_t error_size)
+{
+    FILE *in = fopen(path, "r");
+    char line[512], model[NODE_MODEL_NAME_MAX + 1] = "";
+    char message[400];
+    int number = 0, in_model = 0;
+    if (in == NULL) {
+        snprintf(error, error_size, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    while (fgets(line, sizeof line, in) != NULL) {
+        char *text, *hash, *key, *value;
+        ++number;
+        if (strchr(line, '\n') == NULL && !feof(in)) {
+            snprintf(error, error_size, "%s:%d: line too long", path, number);
+            fclose(in);
+            return -1;
+        }
+        hash = strchr(line, '#');
+        if (hash != NULL) {
+            *hash = '\0';
+        }
+        text = trim(line);
+        if (text[0] == '\0') {
+            continue;
+        }
+        if (text[0] == '[') {
+            char name[NODE_MODEL_NAME_MAX + 1];
+            int n = 0;
+            if (sscanf(text, "[model %32[^] \t]]%n", name, &n) != 1 || n == 0 || text[n] != '\0') {
+                snprintf(error, error_size, "%s:%d: a section is [model NAME], not '%s'", path, number, text);
+                fclose(in);
+                return -1;
+            }
+            if (find_or_add_model(config, name, message, sizeof message) == NULL) {
+                snprintf(error, error_size, "%s:%d: %s", path, number, message);
+                fclose(in);
+                return -1;
+            }
+            strcpy(model, name);
+            in_model = 1;
+            continue;
+        }
+        if (split_assignment(text, &key, &value) != 0) {
+            snprintf(error, error_size, "%s:%d: expected KEY = VALUE, got '%s'", path, number, text);
+            fclose(in);
+            return -1;
+        }
+        if (apply(config, in_model ? model : NULL, key, value, message, sizeof message) != 0) {
+            snprintf(error, error_size, "%s:%d: %s", path, number, message);
+            fclose(in);
+            return -1;
+        }
+    }
+    if (ferror(in)) {
+        snprintf(error, error_size, "%s: read error", path);
+        fclose(in);
+        return -1;
+    }
+    fclose(in);
+    return 0;
+}
+
+hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known)
+{
+    hkf_settings_t s = config->settings;
+    int i;
+    *known = 0;
+    for (i = 0; i < config->model_count; ++i) {
+        if (strcmp(config->models[i].name, model) == 0) {
+            memcpy(s.noise, config->models[i].noise, sizeof s.noise);
+            memcpy(s.r_const, config->models[i].r_const, sizeof s.r_const);
+            *known = 1;
+            break;
+        }
+    }
+    return s;
+}
+
+/* The shortest text that reads back as the same hkf_real_t. */
+static const char *format_real(hkf_real_t v, char *text, size_t size)
+{
+    int precision;
+    for (precision = 6; precision < 17; ++precision) {
+        snprintf(text, size, "%.*g", precision, (double)v);
+        if ((hkf_real_t)strtod(text, NULL) == v) {
+            break;
+        }
+    }
+    return text;
+}
+
+static void print_key(const hkf_settings_t *s, const config_key_t *key, FILE *out)
+{
+    char a[32], b[32], c[32], d[32];
+    const char *base = (const char *)s + key->offset;
+    const hkf_real_t *v = (const hkf_real_t *)(const void *)base;
+    char value[160];
+    switch (key->kind) {
+    case KIND_REAL: snprintf(value, sizeof value, "%s", format_real(v[0], a, sizeof a)); break;
+    case KIND_REAL3:
+        snprintf(value, sizeof value, "%s %s %s", format_real(v[0], a, sizeof a), format_real(v[1], b, sizeof b),
+                 format_real(v[2], c, sizeof c));
+        break;
+    case KIND_CURVE: {
+        const hkf_noise_curve_t *curve = (const hkf_noise_curve_t *)(const void *)base;
+        snprintf(value, sizeof value, "%s %s %s %s", format_real(curve->tau, a, sizeof a),
+                 format_real(curve->lambda, b, sizeof b), format_real(curve->mu, c, sizeof c),
+                 format_real(curve->sigma, d, sizeof d));
+        break;
+    }
+    case KIND_NOISE_MODE: snprintf(value, sizeof value, "%s", noise_mode_names[*(const hkf_noise_mode_t *)(const void *)base]); break;
+    case KIND_LOOP_CLOSURE: snprintf(value, sizeof value, "%s", loop_closure_names[*(const int *)(const void *)base]); break;
+    case KIND_UINT: snprintf(value, sizeof value, "%u", *(const unsigned *)(const void *)base); break;
+    }
+    fprintf(out, "%-20s = %-40s # %s\n", key->name, value, key->comment);
+}
+
+void node_config_print(const node_config_t *config, FILE *out)
+{
+    size_t i;
+    int m;
+    fprintf(out, "# hkf-filter effective configuration\n");
+    for (i = 0; i < KEY_COUNT; ++i) {
+        print_key(&config->settings, &keys[i], out);
+    }
+    for (m = 0; m < config->model_count; ++m) {
+        const node_model_t *model = &config->models[m];
+        hkf_settings_t s = config->settings;
+        memcpy(s.noise, model->noise, sizeof s.noise);
+        memcpy(s.r_const, model->r_const, sizeof s.r_const);
+        fprintf(out, "\n[model %s]\n", model->name);
+        for (i = 0; i < KEY_COUNT; ++i) {
+            if (keys[i].kind == KIND_CURVE || strcmp(keys[i].name, "r_const") == 0) {
+                print_key(&s, &keys[i], out);
+            }
+        }
+    }
+}

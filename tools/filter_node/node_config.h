@@ -1,0 +1,47 @@
+/*
+ * node_config.h - hkf-filter's settings: every hkf_settings_t field, plus a
+ * table mapping an estimator model's id to its noise curves. Read from a
+ * config file (format: tools/filter_node/hkf-filter.conf) and overridden by
+ * "key = value" strings from the command line.
+ */
+#ifndef NODE_CONFIG_H
+#define NODE_CONFIG_H
+
+#include <stdio.h>
+
+#include "hkf/hkf.h"
+
+#define NODE_MAX_MODELS 16
+#define NODE_MODEL_NAME_MAX 32
+
+typedef struct {
+    char name[NODE_MODEL_NAME_MAX];  /* the measurement's `model` field */
+    hkf_noise_curve_t noise[3];      /* its Eq. 8 curves: pitch, yaw, roll */
+    hkf_real_t r_const[3];           /* its constant R, deg^2 */
+} node_model_t;
+
+typedef struct {
+    hkf_settings_t settings;         /* for a model not in the table */
+    node_model_t models[NODE_MAX_MODELS];
+    int model_count;
+} node_config_t;
+
+/* libhkf's defaults, and the models "fsanet" and "hopenet" with the paper's
+ * Table I curves (r_const = each curve's minimum). */
+void node_config_defaults(node_config_t *config);
+
+/* Reads a config file into config (on top of what it holds). On error writes
+ * "FILE:LINE: what" into error and returns -1. */
+int node_config_read_file(node_config_t *config, const char *path, char *error, size_t error_size);
+
+/* Applies one "key = value" line; a key may name a model ("model.NAME.noise.yaw").
+ * Returns -1 with a message in error when the key or value is bad. */
+int node_config_set(node_config_t *config, const char *assignment, char *error, size_t error_size);
+
+/* The settings for a model id: its table entry's curves over the base settings. */
+hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known);
+
+/* Writes the configuration in the config-file format (reads back the same). */
+void node_config_print(const node_config_t *config, FILE *out);
+
+#endif /* NODE_CONFIG_H */
