@@ -73,7 +73,8 @@ static void test_measurement_round_trip(void **state)
     m.detection_score = 0.875f;
     m.inference_us = 16700;
     received = 0;
-    hkf_head_pose_measurement_t_subscribe(lcm, "HEAD_POSE_RAW", on_measurement, NULL);
+    hkf_head_pose_measurement_t_subscription_t *sub =
+        hkf_head_pose_measurement_t_subscribe(lcm, "HEAD_POSE_RAW", on_measurement, NULL);
     assert_int_equal(hkf_head_pose_measurement_t_publish(lcm, "HEAD_POSE_RAW", &m), 0);
     assert_int_equal(lcm_handle(lcm), 0);
     assert_int_equal(received, 1);
@@ -86,6 +87,7 @@ static void test_measurement_round_trip(void **state)
     assert_memory_equal(received_measurement.face_box, m.face_box, sizeof m.face_box);
     assert_true(received_measurement.detection_score == 0.875f);
     assert_true(received_measurement.inference_us == 16700);
+    assert_int_equal(hkf_head_pose_measurement_t_unsubscribe(lcm, sub), 0);
     lcm_destroy(lcm);
 }
 
@@ -111,11 +113,12 @@ static void test_pose_round_trip(void **state)
     p.extrapolated = 1;
     p.latency_us = 250;
     received = 0;
-    hkf_head_pose_t_subscribe(lcm, "HEAD_POSE", on_pose, NULL);
+    hkf_head_pose_t_subscription_t *sub = hkf_head_pose_t_subscribe(lcm, "HEAD_POSE", on_pose, NULL);
     assert_int_equal(hkf_head_pose_t_publish(lcm, "HEAD_POSE", &p), 0);
     assert_int_equal(lcm_handle(lcm), 0);
     assert_int_equal(received, 1);
     assert_memory_equal(&received_pose, &p, sizeof p); /* no pointers in this type */
+    assert_int_equal(hkf_head_pose_t_unsubscribe(lcm, sub), 0);
     lcm_destroy(lcm);
 }
 
@@ -128,12 +131,14 @@ static void test_command_round_trip(void **state)
     c.utime = 5;
     c.command = HKF_TRACKER_COMMAND_T_RESET;
     received = 0;
-    hkf_tracker_command_t_subscribe(lcm, "HEAD_TRACKER_CMD", on_command, NULL);
+    hkf_tracker_command_t_subscription_t *sub =
+        hkf_tracker_command_t_subscribe(lcm, "HEAD_TRACKER_CMD", on_command, NULL);
     assert_int_equal(hkf_tracker_command_t_publish(lcm, "HEAD_TRACKER_CMD", &c), 0);
     assert_int_equal(lcm_handle(lcm), 0);
     assert_int_equal(received, 1);
     assert_int_equal(received_command.command, HKF_TRACKER_COMMAND_T_RESET);
     assert_true(received_command.utime == 5);
+    assert_int_equal(hkf_tracker_command_t_unsubscribe(lcm, sub), 0);
     lcm_destroy(lcm);
 }
 
