@@ -49,4 +49,17 @@ grep -q "300 measurements" "$work/live.txt" || fail "the live filter did not rec
 python3 "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" \
   "$work/expected.lcmlog" "$work/recorded.lcmlog" || fail "recorded HEAD_POSE differs from the offline output"
 "$source/tests/lcm/java_decode_test.sh" "$build" "$source" "$work/recorded.lcmlog" || fail "Java decode"
+
+# live --rate: extrapolated poses between the replayed measurements
+"$build/tools/hkf-filter" --lcm-url "$url" --rate 120 2>"$work/rate.txt" &
+pids+=($!)
+filter_pid=$!
+sleep 0.5
+lcm-logplayer -s 4 --lcm-url "$url" "$work/raw.lcmlog"
+sleep 0.5
+kill -TERM "$filter_pid"
+wait "$filter_pid" || fail "hkf-filter did not exit cleanly on SIGTERM"
+cat "$work/rate.txt"
+extrapolated=$(sed -n 's/.*(\([0-9]*\) extrapolated).*/\1/p' "$work/rate.txt")
+[ "${extrapolated:-0}" -gt 100 ] || fail "expected extrapolated poses at 120 Hz, got ${extrapolated:-none}"
 echo "replay_netns_test: passed"

@@ -251,7 +251,10 @@ static void test_extrapolation(void **state)
     assert_true(fabsf(ahead.yaw - (pose.yaw + pose.yaw_rate * 0.01f)) < 1e-4f);
     assert_true(ahead.seq == pose.seq + 1);
     assert_int_equal(filter_node_extrapolate(&node, m.utime - 1, &ahead), 0); /* not into the past */
-    assert_int_equal(node.counts.extrapolated, 1);
+    /* nor further than coast_time (0.25 s) past the last message */
+    assert_int_equal(filter_node_extrapolate(&node, m.utime + 240000, &ahead), 1);
+    assert_int_equal(filter_node_extrapolate(&node, m.utime + 260000, &ahead), 0);
+    assert_int_equal(node.counts.extrapolated, 2);
 }
 
 int main(void)

@@ -128,11 +128,12 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
 int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
 {
     hkf_output_t out;
-    if (!node->have_time || utime < node->last_utime) {
-        return 0;
+    const double ahead = (double)(utime - node->last_utime) * 1e-6;
+    if (!node->have_time || ahead < 0.0 || ahead > (double)node->config->settings.coast_time) {
+        return 0; /* nothing to extrapolate, or the estimator has gone quiet */
     }
-    if (hkf_extrapolate(&node->filter, (hkf_real_t)((double)(utime - node->last_utime) * 1e-6), &out) != HKF_OK) {
-        return 0; /* no track, or too far ahead */
+    if (hkf_extrapolate(&node->filter, (hkf_real_t)ahead, &out) != HKF_OK) {
+        return 0; /* no track */
     }
     fill_pose(node, &out, utime, pose);
     ++node->counts.extrapolated;

@@ -1,0 +1,203 @@
+/*
+ * hkf-bench-latency - raw -> filtered latency through a running hkf-filter.
+ * Publishes raw head poses (HEAD_POSE_RAW) at a fixed rate, stamped with the
+ * wall clock, receives the filtered poses (HEAD_POSE), and prints latency
+ * percentiles (publish of the raw pose -> receipt of its filtered pose, i.e.
+ * two LCM hops plus the filter) and how many raw poses got no answer.
+ * Run it with tools/benchmarks/lcm_latency.sh, which starts hkf-filter in a
+ * private network namespace.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/select.h>
+#include <time.h>
+
+#include <lcm/lcm.h>
+
+#include "head_motion_sim.h"
+#include "hkf_head_pose_measurement_t.h"
+#include "hkf_head_pose_t.h"
+
+typedef struct {
+    long count, sent;
+    int64_t *published_us; /* per raw message: wall clock when published */
+    double *latency_us;    /* per raw message: < 0 until answered */
+    long answered, duplicates, unexpected;
+} bench_t;
+
+static int64_t wall_utime(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, const hkf_head_pose_t *pose, void *user)
+{
+    bench_t *b = user;
+    const int64_t now = wall_utime();
+    /* raw message i is stamped published_us[i] (strictly increasing): find it */
+    long low = 0, high = b->sent - 1, i = -1;
+    (void)rbuf;
+    while (low <= high) {
+        const long mid = low + (high - low) / 2;
+        if (b->published_us[mid] == pose->measurement_utime) {
+            i = mid;
+            break;
+        }
+        if (b->published_us[mid] < pose->measurement_utime) {
+            low = mid + 1;
+        } else {
+            high = mid - 1;
+        }
+    }
+    (void)channel;
+    if (pose->extrapolated) {
+        return;
+    }
+    if (i < 0 || i >= b->count) {
+        ++b->unexpected;
+        return;
+    }
+    if (b->latency_us[i] >= 0.0) {
+        ++b->duplicates;
+        return;
+    }
+    b->latency_us[i] = (double)(now - b->published_us[i]);
+    ++b->answered;
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void wait_and_handle(lcm_t *lcm, int64_t until)
+{
+    for (;;) {
+        const int64_t left = until - wall_utime();
+        fd_set readable;
+        struct timeval timeout;
+        const int fd = lcm_get_fileno(lcm);
+        if (left <= 0) {
+            return;
+        }
+        FD_ZERO(&readable);
+        FD_SET(fd, &readable);
+        timeout.tv_sec = (time_t)(left / 1000000);
+        timeout.tv_usec = (suseconds_t)(left % 1000000);
+        if (select(fd + 1, &readable, NULL, NULL, &timeout) > 0) {
+            lcm_handle(lcm);
+        }
+    }
+}
+
+int main(int argc, char **argv)
+{
+    const char *url = "udpm://239.255.76.67:7667?ttl=0";
+    double rate = 30.0, seconds = 10.0;
+    bench_t b;
+    lcm_t *lcm;
+    sim_config_t config = sim_default_config();
+    sim_t sim;
+    double *sorted;
+    long i, n = 0;
+    int a;
+    hkf_head_pose_t_subscription_t *sub;
+
+    for (a = 1; a < argc; ++a) {
+        if (strcmp(argv[a], "--help") == 0) {
+            printf("usage: hkf-bench-latency [--rate HZ] [--seconds S] [--lcm-url URL]\n"
+                   "Publishes HEAD_POSE_RAW at HZ (default 30) for S s (default 10) to a running\n"
+                   "hkf-filter and prints raw->filtered latency percentiles and dropped messages.\n");
+            return 0;
+        } else if (strcmp(argv[a], "--rate") == 0 && a + 1 < argc) {
+            rate = atof(argv[++a]);
+        } else if (strcmp(argv[a], "--seconds") == 0 && a + 1 < argc) {
+            seconds = atof(argv[++a]);
+        } else if (strcmp(argv[a], "--lcm-url") == 0 && a + 1 < argc) {
+            url = argv[++a];
+        } else {
+            fprintf(stderr, "hkf-bench-latency: unknown or incomplete argument '%s'\n", argv[a]);
+            return 2;
+        }
+    }
+    if (!(rate >= 1.0 && rate <= 20000.0) || !(seconds >= 0.1 && seconds <= 600.0)) {
+        fprintf(stderr, "hkf-bench-latency: --rate 1..20000 Hz and --seconds 0.1..600 please\n");
+        return 2;
+    }
+    lcm = lcm_create(url);
+    if (lcm == NULL) {
+        fprintf(stderr, "hkf-bench-latency: cannot open LCM provider '%s'\n", url);
+        return 1;
+    }
+    memset(&b, 0, sizeof b);
+    b.count = (long)(rate * seconds);
+    b.latency_us = malloc((size_t)b.count * sizeof *b.latency_us);
+    b.published_us = malloc((size_t)b.count * sizeof *b.published_us);
+    sorted = malloc((size_t)b.count * sizeof *sorted);
+    if (b.latency_us == NULL || b.published_us == NULL || sorted == NULL) {
+        fprintf(stderr, "hkf-bench-latency: out of memory\n");
+        return 1;
+    }
+    for (i = 0; i < b.count; ++i) {
+        b.latency_us[i] = -1.0;
+    }
+    sub = hkf_head_pose_t_subscribe(lcm, "HEAD_POSE", on_pose, &b);
+    config.fps = rate;
+    config.dropout_rate = 0.0; /* every raw pose should come back filtered */
+    sim_init(&sim, &config, 1u);
+
+    {
+        const int64_t period = (int64_t)llround(1e6 / rate);
+        const int64_t start = wall_utime() + 200000;
+        for (i = 0; i < b.count; ++i) {
+            sim_frame_t frame;
+            hkf_head_pose_measurement_t m;
+            int64_t now;
+            wait_and_handle(lcm, start + i * period);
+            sim_next(&sim, &frame);
+            memset(&m, 0, sizeof m);
+            m.model = "fsanet";
+            m.valid = 1;
+            m.seq = i;
+            m.pitch = (float)frame.measured[0];
+            m.yaw = (float)frame.measured[1];
+            m.roll = (float)frame.measured[2];
+            now = wall_utime();
+            if (i > 0 && now <= b.published_us[i - 1]) {
+                now = b.published_us[i - 1] + 1;
+            }
+            m.utime = now; /* the capture time: this frame is "captured" now */
+            b.published_us[i] = now;
+            b.sent = i + 1;
+            hkf_head_pose_measurement_t_publish(lcm, "HEAD_POSE_RAW", &m);
+        }
+        wait_and_handle(lcm, wall_utime() + 500000); /* late answers */
+    }
+
+    for (i = 0; i < b.count; ++i) {
+        if (b.latency_us[i] >= 0.0) {
+            sorted[n++] = b.latency_us[i];
+        }
+    }
+    qsort(sorted, (size_t)n, sizeof *sorted, compare_doubles);
+    if (n == 0) {
+        printf("rate %.0f Hz: %ld sent, 0 answered\n", rate, b.count);
+    } else {
+        printf("rate %.0f Hz: %ld sent, %ld answered, %ld dropped; latency us: p50 %.0f, p99 %.0f, max %.0f\n", rate,
+               b.count, b.answered, b.count - b.answered, sorted[n / 2], sorted[(long)(0.99 * (double)(n - 1))],
+               sorted[n - 1]);
+    }
+    hkf_head_pose_t_unsubscribe(lcm, sub);
+    lcm_destroy(lcm);
+    free(b.latency_us);
+    free(b.published_us);
+    free(sorted);
+    return n > 0 ? 0 : 1;
+}
