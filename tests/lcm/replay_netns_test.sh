@@ -9,16 +9,8 @@ set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)
 
 if [ "${HKF_IN_NETNS:-}" != 1 ]; then
-  if [ "$(id -u)" != 0 ] || ! unshare --net true 2>/dev/null; then
-    echo "SKIP: needs root and unshare --net for a private network namespace"
-    exit 77
-  fi
-  HKF_IN_NETNS=1 exec unshare --net "$0" "$@"
+  HKF_IN_NETNS=1 exec "$source/tools/lcm-netns" "$0" "$@"
 fi
-
-ip link set lo up
-ip link set lo multicast on
-ip route add 224.0.0.0/4 dev lo
 url="udpm://239.255.76.67:7667?ttl=0"
 work=$(mktemp -d)
 pids=()
@@ -29,21 +21,31 @@ fail() { echo "FAIL: $*" >&2; cat "$work"/*.txt >&2 2>/dev/null || true; exit 1;
 "$build/tools/hkf-simlog" --out "$work/raw.lcmlog" --seconds 10 --seed 3
 "$build/tools/hkf-filter" --offline "$work/raw.lcmlog" "$work/expected.lcmlog" 2>"$work/offline.txt"
 
+# live_run NAME SPEED SIGNAL [hkf-filter options]: hkf-filter live while
+# lcm-logplayer replays the raw log, then SIGNAL; its summary goes to NAME.txt.
+live_run() {
+  local name=$1 speed=$2 signal=$3
+  shift 3
+  "$build/tools/hkf-filter" --lcm-url "$url" "$@" 2>"$work/$name.txt" &
+  local filter_pid=$!
+  pids+=("$filter_pid")
+  sleep 0.5
+  lcm-logplayer -s "$speed" --lcm-url "$url" "$work/raw.lcmlog"
+  sleep 0.5
+  kill -"$signal" "$filter_pid"
+  wait "$filter_pid" || fail "hkf-filter did not exit cleanly on SIG$signal"
+  grep -q "poses published" "$work/$name.txt" || fail "no summary after SIG$signal"
+  cat "$work/$name.txt"
+}
+
 lcm-logger -q -f -c HEAD_POSE --lcm-url "$url" "$work/recorded.lcmlog" &
-pids+=($!)
 logger_pid=$!
-"$build/tools/hkf-filter" --lcm-url "$url" 2>"$work/live.txt" &
-pids+=($!)
-filter_pid=$!
-sleep 1
-lcm-logplayer -s 2 --lcm-url "$url" "$work/raw.lcmlog"
-sleep 1
-kill -INT "$filter_pid"
-wait "$filter_pid" || fail "hkf-filter did not exit cleanly on SIGINT"
+pids+=("$logger_pid")
+live_run live 2 INT
 sleep 0.3
 kill -INT "$logger_pid"
 wait "$logger_pid" || true
-cat "$work/offline.txt" "$work/live.txt"
+cat "$work/offline.txt"
 grep -q "300 measurements" "$work/live.txt" || fail "the live filter did not receive all 300 measurements"
 
 python3 "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" \
@@ -51,15 +53,7 @@ python3 "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/pytho
 "$source/tests/lcm/java_decode_test.sh" "$build" "$source" "$work/recorded.lcmlog" || fail "Java decode"
 
 # live --rate: extrapolated poses between the replayed measurements
-"$build/tools/hkf-filter" --lcm-url "$url" --rate 120 2>"$work/rate.txt" &
-pids+=($!)
-filter_pid=$!
-sleep 0.5
-lcm-logplayer -s 4 --lcm-url "$url" "$work/raw.lcmlog"
-sleep 0.5
-kill -TERM "$filter_pid"
-wait "$filter_pid" || fail "hkf-filter did not exit cleanly on SIGTERM"
-cat "$work/rate.txt"
+live_run rate 4 TERM --rate 120
 extrapolated=$(sed -n 's/.*(\([0-9]*\) extrapolated).*/\1/p' "$work/rate.txt")
 [ "${extrapolated:-0}" -gt 100 ] || fail "expected extrapolated poses at 120 Hz, got ${extrapolated:-none}"
 echo "replay_netns_test: passed"

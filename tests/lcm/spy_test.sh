@@ -19,8 +19,7 @@ echo "spy_test: class path checked"
 # network namespace, must find the three hkf types.
 if [ "$(id -u)" = 0 ] && command -v Xvfb >/dev/null && unshare --net true 2>/dev/null; then
   out=$(mktemp)
-  unshare --net bash -c '
-    ip link set lo up; ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo
+  "$(dirname "$0")/../../tools/lcm-netns" bash -c '
     Xvfb :97 -screen 0 1024x768x24 >/dev/null 2>&1 & xvfb=$!
     sleep 1
     DISPLAY=:97 "$1" --lcm-url "udpm://239.255.76.67:7667?ttl=0" >"$2" 2>&1 & spy=$!

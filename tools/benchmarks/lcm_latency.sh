@@ -6,15 +6,8 @@ set -euo pipefail
 build=$(cd "$1" && pwd)
 seconds=${2:-10}
 if [ "${HKF_IN_NETNS:-}" != 1 ]; then
-  if [ "$(id -u)" != 0 ]; then
-    echo "lcm_latency: needs root for a private network namespace (unshare --net)" >&2
-    exit 1
-  fi
-  HKF_IN_NETNS=1 exec unshare --net "$0" "$@"
+  HKF_IN_NETNS=1 exec "$(dirname "$0")/../lcm-netns" "$0" "$@"
 fi
-ip link set lo up
-ip link set lo multicast on
-ip route add 224.0.0.0/4 dev lo
 url="udpm://239.255.76.67:7667?ttl=0"
 log=$(mktemp)
 "$build/tools/hkf-filter" --lcm-url "$url" 2>"$log" &
