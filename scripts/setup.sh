@@ -14,7 +14,7 @@ packages=(
   default-jdk-headless                          # javac for the Java message types
   iproute2 util-linux                           # private network namespaces for the LCM tests
   xvfb unzip                                    # hkf-spy test: lcm-spy on a virtual display
-  python3                                       # benchmark report
+  python3 python3-venv python3-pip              # Python tools (.venv, from tools/requirements.txt)
 )
 
 missing=()
@@ -28,4 +28,19 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+# Python tools in .venv, pinned by tools/requirements.txt.
+root=$(cd "$(dirname "$0")/.." && pwd)
+if [ ! -x "$root/.venv/bin/python" ]; then
+  echo "setup: creating .venv"
+  python3 -m venv "$root/.venv"
+fi
+stamp=$root/.venv/.requirements
+if ! cmp -s "$root/tools/requirements.txt" "$stamp" 2>/dev/null; then
+  echo "setup: installing tools/requirements.txt into .venv"
+  "$root/.venv/bin/pip" install -q --disable-pip-version-check -r "$root/tools/requirements.txt"
+  cp "$root/tools/requirements.txt" "$stamp"
+fi
+
+# Third-party models, converted by our scripts into build/models.
+"$root/tools/models/fetch_models.sh" "$root/build/models"
 echo "setup: all dependencies present"

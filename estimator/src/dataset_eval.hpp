@@ -1,0 +1,30 @@
+// dataset_eval.hpp - a head-pose model on a labelled image set laid out like
+// ../shared/data/aflw2000: labels.csv (image,yaw_deg,pitch_deg,roll_deg,x_min,
+// y_min,x_max,y_max) and images/. Each face is cropped from its label's box
+// enlarged by the model's crop margin.
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+#include "pose_model.hpp"
+
+namespace hkf_estimator {
+
+struct EvalResult {
+    long images = 0;        // rows handled
+    long unreadable = 0;    // images that could not be read (reported, skipped)
+    long evaluated = 0;     // rows whose three label angles are within +-99 deg (the standard protocol)
+    double mae[3] = {0, 0, 0};  // pitch, yaw, roll, deg
+    double seconds = 0;     // time spent in the model
+};
+
+// Runs the model over DIR's labels (at most limit rows when limit > 0), writes
+// "image,pitch_deg,yaw_deg,roll_deg" (hkf convention) to predictions, and
+// reports progress through progress(done, total). Throws EstimatorError on a
+// missing or malformed labels.csv.
+EvalResult evaluate_dataset(PoseModel &model, const std::string &dir, long limit, std::ostream &predictions,
+                            const std::function<void(long, long)> &progress);
+
+}  // namespace hkf_estimator

@@ -1,0 +1,97 @@
+// model_spec.cpp - see model_spec.hpp.
+#include "model_spec.hpp"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace hkf_estimator {
+namespace {
+
+std::string trim(const std::string &s)
+{
+    const auto begin = s.find_first_not_of(" \t\r\n");
+    if (begin == std::string::npos) return "";
+    return s.substr(begin, s.find_last_not_of(" \t\r\n") - begin + 1);
+}
+
+template <typename T>
+T parse_one(std::istringstream &in, const std::string &where)
+{
+    T value;
+    if (!(in >> value)) throw EstimatorError(where + ": a value is missing or malformed");
+    return value;
+}
+
+void expect_end(std::istringstream &in, const std::string &where)
+{
+    std::string rest;
+    if (in >> rest) throw EstimatorError(where + ": unexpected '" + rest + "'");
+}
+
+}  // namespace
+
+ModelSpec load_model_spec(const std::string &spec_dir, const std::string &name, const std::string &models_dir)
+{
+    const std::string path = spec_dir + "/" + name + ".model";
+    std::ifstream file(path);
+    if (!file) throw EstimatorError("no model description " + path + " (--model names a file in " + spec_dir + ")");
+    ModelSpec spec;
+    spec.name = name;
+    std::map<std::string, bool> seen;
+    std::string line;
+    for (int number = 1; std::getline(file, line); ++number) {
+        const std::string text = trim(line.substr(0, line.find('#')));
+        if (text.empty()) continue;
+        const auto eq = text.find('=');
+        const std::string where = path + ":" + std::to_string(number);
+        if (eq == std::string::npos) throw EstimatorError(where + ": expected KEY = VALUE");
+        const std::string key = trim(text.substr(0, eq));
+        std::istringstream in(trim(text.substr(eq + 1)));
+        seen[key] = true;
+        if (key == "file") {
+            spec.file = models_dir + "/" + parse_one<std::string>(in, where);
+        } else if (key == "input") {
+            spec.input_width = parse_one<int>(in, where);
+            spec.input_height = parse_one<int>(in, where);
+            if (spec.input_width < 8 || spec.input_height < 8 || spec.input_width > 4096 || spec.input_height > 4096)
+                throw EstimatorError(where + ": input size out of range");
+        } else if (key == "color") {
+            const auto c = parse_one<std::string>(in, where);
+            if (c != "rgb" && c != "bgr") throw EstimatorError(where + ": color is rgb or bgr");
+            spec.rgb = c == "rgb";
+        } else if (key == "scale") {
+            spec.scale = parse_one<float>(in, where);
+        } else if (key == "mean" || key == "std" || key == "signs") {
+            auto &target = key == "mean" ? spec.mean : key == "std" ? spec.std : spec.signs;
+            for (float &v : target) v = parse_one<float>(in, where);
+            if (key == "std")
+                for (float v : target)
+                    if (!(v > 0.f)) throw EstimatorError(where + ": std must be positive");
+        } else if (key == "decoder") {
+            spec.decoder = parse_one<std::string>(in, where);
+            if (spec.decoder != "angle_bins") throw EstimatorError(where + ": unknown decoder '" + spec.decoder + "'");
+        } else if (key == "yaw_bins" || key == "pitch_bins" || key == "roll_bins") {
+            AngleBins &b = key == "yaw_bins" ? spec.yaw : key == "pitch_bins" ? spec.pitch : spec.roll;
+            b.output = parse_one<std::string>(in, where);
+            b.bins = parse_one<int>(in, where);
+            b.step = parse_one<float>(in, where);
+            b.offset = parse_one<float>(in, where);
+            if (b.bins < 2 || b.bins > 10000 || !(b.step > 0.f)) throw EstimatorError(where + ": bad bins");
+        } else if (key == "crop_margin") {
+            spec.crop_margin = parse_one<float>(in, where);
+            if (!(spec.crop_margin >= 0.f && spec.crop_margin <= 2.f)) throw EstimatorError(where + ": crop_margin 0..2");
+        } else {
+            throw EstimatorError(where + ": unknown key '" + key + "'");
+        }
+        expect_end(in, where);
+    }
+    for (const char *required : {"file", "input", "decoder"})
+        if (!seen[required]) throw EstimatorError(path + ": '" + required + "' is missing");
+    if (spec.decoder == "angle_bins")
+        for (const char *required : {"yaw_bins", "pitch_bins", "roll_bins"})
+            if (!seen[required]) throw EstimatorError(path + ": '" + required + "' is missing");
+    return spec;
+}
+
+}  // namespace hkf_estimator

