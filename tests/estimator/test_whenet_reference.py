@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""WHENet on real AFLW2000 faces, three ways, must agree to 0.01 deg:
+1. the original Keras weights run with NumPy in Keras's terms (whenet_reference.py);
+2. our converted ONNX model run by onnxruntime;
+3. the same ONNX model run by the estimator's C++ code on OpenCV DNN
+   (test_pose_model_reference, fed the exact input tensors).
+usage: test_whenet_reference.py BUILD_DIR SOURCE_DIR DATA_DIR MODELS_DIR
+"""
+import csv
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+import onnxruntime
+from PIL import Image
+
+build, source, data, models = sys.argv[1:5]
+sys.path.insert(0, os.path.join(source, "tools", "models"))
+import whenet_reference as ref  # noqa: E402
+
+MEAN = np.array([0.485, 0.456, 0.406], np.float32)
+STD = np.array([0.229, 0.224, 0.225], np.float32)
+BINS = {"yaw": (3.0, -180.0), "pitch": (3.0, -99.0), "roll": (3.0, -99.0)}
+SIGNS = (1.0, 1.0, -1.0)  # estimator/models/whenet.model: model -> hkf convention (pitch yaw roll)
+TOLERANCE = 0.01
+
+rows = list(csv.DictReader(open(os.path.join(data, "labels.csv"))))
+# a spread of poses: the first faces turned left, right, up, down, and frontal
+picks = []
+for test in (lambda y, p: y > 40, lambda y, p: y < -40, lambda y, p: p > 20, lambda y, p: p < -20,
+             lambda y, p: abs(y) < 10 and abs(p) < 10):
+    for r in rows:
+        if test(float(r["yaw_deg"]), float(r["pitch_deg"])) and r not in picks:
+            picks.append(r)
+            break
+
+session = onnxruntime.InferenceSession(os.path.join(models, "whenet.onnx"), providers=["CPUExecutionProvider"])
+inputs, expected, failures = [], [], 0
+print(f"{'image':16} {'numpy yaw/pitch/roll':>26} {'onnxruntime':>26}  max diff")
+for r in picks:
+    image = Image.open(os.path.join(data, "images", r["image"])).convert("RGB")
+    x0, y0, x1, y1 = (float(r[k]) for k in ("x_min", "y_min", "x_max", "y_max"))
+    w, h = x1 - x0, y1 - y0
+    box = (int(max(0, x0 - 0.2 * w)), int(max(0, y0 - 0.2 * h)), int(min(image.width, x1 + 0.2 * w)),
+           int(min(image.height, y1 + 0.2 * h)))
+    rgb = np.asarray(image.crop(box).resize((224, 224), Image.BILINEAR), np.float32) / 255.0
+    nhwc = ((rgb - MEAN) / STD)[None].astype(np.float32)
+    keras = [ref.decode(l[0], *BINS[n]) for l, n in zip(ref.whenet_logits(os.path.join(models, "WHENet.h5"),
+                                                                           nhwc.astype(np.float64)), ("yaw", "pitch", "roll"))]
+    nchw = np.ascontiguousarray(nhwc.transpose(0, 3, 1, 2))
+    yaw, pitch, roll = session.run(["yaw", "pitch", "roll"], {"input": nchw})
+    ort = [ref.decode(yaw[0].astype(np.float64), *BINS["yaw"]), ref.decode(pitch[0].astype(np.float64), *BINS["pitch"]),
+           ref.decode(roll[0].astype(np.float64), *BINS["roll"])]
+    diff = max(abs(a - b) for a, b in zip(keras, ort))
+    failures += diff > TOLERANCE
+    print(f"{r['image']:16} {keras[0]:8.3f} {keras[1]:8.3f} {keras[2]:8.3f} {ort[0]:8.3f} {ort[1]:8.3f} {ort[2]:8.3f}  {diff:.5f}")
+    inputs.append(nchw)
+    expected.append([SIGNS[0] * ort[1], SIGNS[1] * ort[0], SIGNS[2] * ort[2]])  # hkf order: pitch yaw roll
+
+# the same tensors through the estimator's OpenCV code
+with tempfile.NamedTemporaryFile(suffix=".bin", delete=False) as f:
+    f.write(struct.pack("<iiii", len(inputs), 3, 224, 224))
+    for x, e in zip(inputs, expected):
+        f.write(x.astype("<f4").tobytes())
+        f.write(np.array(e, "<f4").tobytes())
+    path = f.name
+run = subprocess.run([os.path.join(build, "tests", "test_pose_model_reference"), path, models,
+                      os.path.join(source, "estimator", "models")], capture_output=True, text=True)
+os.unlink(path)
+print(run.stdout, end="")
+print(run.stderr, end="", file=sys.stderr)
+checks = len(picks) + 1
+failed = failures + (run.returncode != 0)
+print(f"{checks - failed} passed, {failed} failed")
+sys.exit(1 if failed or len(picks) < 5 else 0)
