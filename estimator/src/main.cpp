@@ -1,6 +1,7 @@
-// hkf-estimator - the head-pose estimator process. This version evaluates a
-// head-pose model on a labelled image set (the face pipeline on cameras and
-// videos, publishing over LCM, comes next).
+// hkf-estimator - the head-pose estimator process: a camera, video file or
+// image folder in, hkf.head_pose_measurement_t on HEAD_POSE_RAW out (see
+// pipeline.hpp); or, with --dataset, the evaluation of a head-pose model on a
+// labelled image set.
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -11,7 +12,9 @@
 #include <opencv2/core/utility.hpp>
 
 #include "dataset_eval.hpp"
+#include "face_detector.hpp"
 #include "model_spec.hpp"
+#include "pipeline.hpp"
 #include "pose_model.hpp"
 
 namespace {
@@ -20,15 +23,37 @@ struct Options {
     std::string dataset, model = "whenet", predictions;
     std::string models_dir = HKF_DEFAULT_MODELS_DIR, spec_dir = HKF_DEFAULT_SPEC_DIR;
     long limit = 0;
+    hkf_estimator::PipelineOptions pipeline;
+    hkf_estimator::DetectorRange range = hkf_estimator::DetectorRange::Short;
 };
+
+bool parse_number(const std::string &text, double low, double high, double &value)
+{
+    char *end = nullptr;
+    value = std::strtod(text.c_str(), &end);
+    return end != text.c_str() && *end == '\0' && value >= low && value <= high;
+}
 
 void usage(std::ostream &out)
 {
-    out << "usage: hkf-estimator --dataset DIR --predictions OUT.csv [--model NAME] [--limit N]\n"
-           "Evaluates a head-pose model on a labelled image set laid out like ../shared/data/aflw2000\n"
-           "(labels.csv and images/): crops each face from its label's box, writes\n"
-           "image,pitch_deg,yaw_deg,roll_deg (hkf angle convention) and prints the MAE per axis over\n"
-           "the images whose three angles are within +-99 deg.\n"
+    out << "usage: hkf-estimator --source SRC [options]        camera / video / images -> LCM\n"
+           "       hkf-estimator --dataset DIR --predictions OUT.csv [--model NAME] [--limit N]\n"
+           "Finds the driver's face (BlazeFace), estimates its head pose and publishes\n"
+           "hkf.head_pose_measurement_t on HEAD_POSE_RAW for every frame (valid = false: no face).\n"
+           "  --source SRC       a camera (0, /dev/video0), a video file, or a folder of images\n"
+           "  --realtime         pace a file at its frame rate (default: as fast as possible)\n"
+           "  --fps F            frame rate of an image folder (default 30)\n"
+           "  --detector R       short (faces within ~2 m, default) or full range\n"
+           "  --region X,Y,W,H   only faces whose centre is in this region (px) are taken\n"
+           "  --annotate OUT.mp4 write the video with face box and pose axes (raw thin, filtered thick)\n"
+           "  --show             also show it in a window (needs a display)\n"
+           "  --lcm-url URL      default udpm://239.255.76.67:7667?ttl=0 (stays on this host)\n"
+           "  --channel C        default HEAD_POSE_RAW\n"
+           "  --max-frames N     stop after N frames\n"
+           "--dataset mode evaluates a head-pose model on a labelled image set laid out like\n"
+           "../shared/data/aflw2000 (labels.csv and images/): crops each face from its label's box,\n"
+           "writes image,pitch_deg,yaw_deg,roll_deg (hkf angle convention) and prints the MAE per\n"
+           "axis over the images whose three angles are within +-99 deg.\n"
            "  --model NAME       a description in the model folder (default whenet)\n"
            "  --limit N          only the first N images\n"
            "  --models-dir DIR   converted models (default " HKF_DEFAULT_MODELS_DIR ", or $HKF_MODELS_DIR)\n"
@@ -46,12 +71,46 @@ int parse(int argc, char **argv, Options &o)
             usage(std::cout);
             return 1;
         }
+        if (arg == "--realtime" || arg == "--show") {
+            (arg == "--realtime" ? o.pipeline.realtime : o.pipeline.show) = true;
+            continue;
+        }
         if (i + 1 >= argc) {
             std::cerr << "hkf-estimator: unknown or incomplete argument '" << arg << "' (see --help)\n";
             return 2;
         }
         const std::string value = argv[++i];
-        if (arg == "--dataset") o.dataset = value;
+        double number = 0.0;
+        if (arg == "--source") o.pipeline.source = value;
+        else if (arg == "--annotate") o.pipeline.annotate_path = value;
+        else if (arg == "--lcm-url") o.pipeline.lcm_url = value;
+        else if (arg == "--channel") o.pipeline.channel = value;
+        else if (arg == "--fps") {
+            if (!parse_number(value, 0.1, 1000.0, o.pipeline.fps_for_images)) {
+                std::cerr << "hkf-estimator: --fps wants a number from 0.1 to 1000, not '" << value << "'\n";
+                return 2;
+            }
+        } else if (arg == "--max-frames") {
+            if (!parse_number(value, 1.0, 1e9, number) || number != static_cast<long>(number)) {
+                std::cerr << "hkf-estimator: --max-frames wants a positive whole number, not '" << value << "'\n";
+                return 2;
+            }
+            o.pipeline.max_frames = static_cast<long>(number);
+        } else if (arg == "--detector") {
+            if (value != "short" && value != "full") {
+                std::cerr << "hkf-estimator: --detector is short or full, not '" << value << "'\n";
+                return 2;
+            }
+            o.range = value == "short" ? hkf_estimator::DetectorRange::Short : hkf_estimator::DetectorRange::Full;
+        } else if (arg == "--region") {
+            float x, y, w, h;
+            char extra;
+            if (std::sscanf(value.c_str(), "%f,%f,%f,%f%c", &x, &y, &w, &h, &extra) != 4 || w <= 0 || h <= 0) {
+                std::cerr << "hkf-estimator: --region wants X,Y,W,H in px, not '" << value << "'\n";
+                return 2;
+            }
+            o.pipeline.tracker.region = cv::Rect2f(x, y, w, h);
+        } else if (arg == "--dataset") o.dataset = value;
         else if (arg == "--model") o.model = value;
         else if (arg == "--predictions") o.predictions = value;
         else if (arg == "--models-dir") o.models_dir = value;
@@ -68,8 +127,12 @@ int parse(int argc, char **argv, Options &o)
             return 2;
         }
     }
-    if (o.dataset.empty() || o.predictions.empty()) {
-        std::cerr << "hkf-estimator: --dataset DIR and --predictions OUT.csv are required (see --help)\n";
+    if (o.pipeline.source.empty() == o.dataset.empty()) {
+        std::cerr << "hkf-estimator: give either --source SRC or --dataset DIR (see --help)\n";
+        return 2;
+    }
+    if (!o.dataset.empty() && o.predictions.empty()) {
+        std::cerr << "hkf-estimator: --dataset DIR needs --predictions OUT.csv (see --help)\n";
         return 2;
     }
     return 0;
@@ -88,6 +151,10 @@ int main(int argc, char **argv)
     }
     try {
         PoseModel model(load_model_spec(o.spec_dir, o.model, o.models_dir));
+        if (!o.pipeline.source.empty()) {
+            FaceDetector detector(o.models_dir, o.range);
+            return run_pipeline(model, detector, o.pipeline);
+        }
         std::ofstream predictions(o.predictions);
         if (!predictions) throw EstimatorError("cannot write " + o.predictions);
         auto last = std::chrono::steady_clock::now();

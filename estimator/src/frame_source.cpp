@@ -1,0 +1,65 @@
+// frame_source.cpp - see frame_source.hpp.
+#include "frame_source.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "model_spec.hpp"
+
+namespace hkf_estimator {
+
+int64_t wall_utime()
+{
+    return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+FrameSource::FrameSource(const std::string &spec, double fps_for_images) : fps_(fps_for_images)
+{
+    namespace fs = std::filesystem;
+    const bool index = !spec.empty() && std::all_of(spec.begin(), spec.end(), ::isdigit);
+    if (index || spec.rfind("/dev/video", 0) == 0) {
+        live_ = true;
+        const bool opened = index ? capture_.open(std::stoi(spec), cv::CAP_V4L2) : capture_.open(spec, cv::CAP_V4L2);
+        if (!opened) throw EstimatorError("cannot open camera " + spec + " (no such V4L2 device here?)");
+        const double camera_fps = capture_.get(cv::CAP_PROP_FPS);
+        if (camera_fps > 0) fps_ = camera_fps;
+        description_ = "camera " + spec;
+    } else if (fs::is_directory(spec)) {
+        for (const auto &entry : fs::directory_iterator(spec)) {
+            std::string ext = entry.path().extension().string();
+            std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+            if (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".bmp") images_.push_back(entry.path().string());
+        }
+        std::sort(images_.begin(), images_.end());
+        if (images_.empty()) throw EstimatorError("no images (.jpg .jpeg .png .bmp) in " + spec);
+        description_ = "folder " + spec + " (" + std::to_string(images_.size()) + " images)";
+    } else {
+        if (!fs::exists(spec)) throw EstimatorError("no such file or camera: " + spec);
+        if (!capture_.open(spec, cv::CAP_FFMPEG) || !capture_.isOpened())
+            throw EstimatorError("cannot read video " + spec + " (not a video OpenCV can decode)");
+        const double file_fps = capture_.get(cv::CAP_PROP_FPS);
+        if (file_fps > 0 && file_fps < 1000) fps_ = file_fps;
+        description_ = "video " + spec;
+    }
+    start_utime_ = wall_utime();
+}
+
+bool FrameSource::read(Frame &frame)
+{
+    if (!images_.empty()) {
+        if (next_index_ >= static_cast<int64_t>(images_.size())) return false;
+        frame.image = cv::imread(images_[static_cast<size_t>(next_index_)], cv::IMREAD_COLOR);
+        if (frame.image.empty()) throw EstimatorError("cannot read image " + images_[static_cast<size_t>(next_index_)]);
+    } else {
+        if (!capture_.read(frame.image) || frame.image.empty()) return false;
+    }
+    frame.index = next_index_++;
+    frame.utime = live_ ? wall_utime() : start_utime_ + static_cast<int64_t>(std::llround(1e6 * static_cast<double>(frame.index) / fps_));
+    return true;
+}
+
+}  // namespace hkf_estimator

@@ -1,0 +1,228 @@
+// pipeline.cpp - see pipeline.hpp.
+#include "pipeline.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+#include <opencv2/highgui.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "frame_source.hpp"
+#include "hkf/head_pose_measurement_t.hpp"
+#include "hkf/head_pose_t.hpp"
+#include "pose_drawing.hpp"
+
+namespace hkf_estimator {
+namespace {
+
+std::atomic<bool> stop_requested{false};
+extern "C" void on_signal(int) { stop_requested = true; }
+
+// The one-frame slot between the capture and the processing thread.
+class LatestFrame {
+public:
+    // Puts a frame in. When the slot is full: with drop_old, the old frame is
+    // replaced (and counted); without, the call waits until it is taken.
+    void put(Frame frame, bool drop_old)
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        if (!drop_old) taken_.wait(lock, [&] { return !full_ || closed_; });
+        if (full_) ++dropped_;
+        frame_ = std::move(frame);
+        full_ = true;
+        arrived_.notify_one();
+    }
+    // The newest frame; nullopt once the source has ended and the slot is empty.
+    std::optional<Frame> take()
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        arrived_.wait(lock, [&] { return full_ || closed_; });
+        if (!full_) return std::nullopt;
+        full_ = false;
+        taken_.notify_one();
+        return std::move(frame_);
+    }
+    void close()
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        closed_ = true;
+        arrived_.notify_all();
+        taken_.notify_all();
+    }
+    long dropped() const
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return dropped_;
+    }
+
+private:
+    mutable std::mutex mutex_;
+    std::condition_variable arrived_, taken_;
+    Frame frame_;
+    bool full_ = false, closed_ = false;
+    long dropped_ = 0;
+};
+
+struct FilteredPose {
+    std::mutex mutex;
+    bool have = false;
+    HeadPose pose;
+    void on_message(const lcm::ReceiveBuffer *, const std::string &, const hkf::head_pose_t *msg)
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        pose = HeadPose{msg->pitch, msg->yaw, msg->roll};
+        have = true;
+    }
+};
+
+double percentile(std::vector<double> v, double q)
+{
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1))];
+}
+
+}  // namespace
+
+int run_pipeline(PoseModel &model, FaceDetector &detector, const PipelineOptions &options)
+{
+    FrameSource source(options.source, options.fps_for_images);
+    lcm::LCM lcm(options.lcm_url);
+    if (!lcm.good()) throw EstimatorError("cannot open LCM provider " + options.lcm_url);
+    FilteredPose filtered;
+    if (!options.annotate_path.empty() || options.show)
+        lcm.subscribe(options.filtered_channel, &FilteredPose::on_message, &filtered);
+    FaceTracker tracker(detector, options.tracker);
+    cv::VideoWriter writer;
+    bool show = options.show;
+    if (show && std::getenv("DISPLAY") == nullptr) {
+        std::fprintf(stderr, "hkf-estimator: --show needs a display (DISPLAY is not set); no window\n");
+        show = false;
+    }
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+
+    const bool drop_old = source.live() || options.realtime;
+    LatestFrame slot;
+    std::atomic<bool> capture_failed{false};
+    std::string capture_error;
+    std::thread capture([&] {
+        try {
+            const int64_t start = wall_utime();
+            for (long n = 0; !stop_requested && (options.max_frames == 0 || n < options.max_frames); ++n) {
+                Frame frame;
+                if (!source.read(frame)) break;
+                if (options.realtime && !source.live()) {  // pace a file at its frame rate
+                    const int64_t due = start + static_cast<int64_t>(1e6 * static_cast<double>(frame.index) / source.fps());
+                    std::this_thread::sleep_for(std::chrono::microseconds(std::max<int64_t>(0, due - wall_utime())));
+                    frame.utime = wall_utime();
+                }
+                slot.put(std::move(frame), drop_old);
+            }
+        } catch (const EstimatorError &e) {
+            capture_error = e.what();
+            capture_failed = true;
+        }
+        slot.close();
+    });
+
+    std::fprintf(stderr, "hkf-estimator: %s -> %s on %s (model %s)\n", source.description().c_str(), options.channel.c_str(),
+                 options.lcm_url.c_str(), model.spec().name.c_str());
+    long frames = 0, with_face = 0;
+    std::vector<double> latency_ms, inference_ms;
+    const auto started = std::chrono::steady_clock::now();
+    int64_t seq = 0;
+    while (auto frame = slot.take()) {
+        const int64_t taken = wall_utime();
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::optional<Face> face = tracker.track(frame->image, frame->utime);
+        HeadPose pose;
+        if (face) {
+            const cv::Rect crop = face_crop_rect(face->box, model.spec().crop_margin, frame->image.size());
+            if (!crop.empty()) pose = model.estimate(frame->image(crop));
+        }
+        const double inference = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+        hkf::head_pose_measurement_t m;
+        m.utime = frame->utime;
+        m.seq = seq++;
+        m.model = model.spec().name;
+        m.valid = face.has_value();
+        m.pitch = pose.pitch;
+        m.yaw = pose.yaw;
+        m.roll = pose.roll;
+        for (int i = 0; i < 4; ++i) m.face_box[i] = 0.f;
+        m.detection_score = face ? face->score : 0.f;
+        if (face) {
+            m.face_box[0] = face->box.x;
+            m.face_box[1] = face->box.y;
+            m.face_box[2] = face->box.br().x;
+            m.face_box[3] = face->box.br().y;
+        }
+        m.inference_us = static_cast<int64_t>(inference * 1000.0);
+        lcm.publish(options.channel, &m);
+        // from the frame being available (a camera's capture) to its publish
+        latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0 + 0.0);
+        inference_ms.push_back(inference);
+        ++frames;
+        with_face += face.has_value();
+
+        if (!options.annotate_path.empty() || show) {
+            lcm.handleTimeout(0);  // filtered poses that have arrived
+            cv::Mat image = frame->image.clone();
+            if (face) {
+                draw_face(image, *face);
+                const cv::Point2f c(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2);
+                draw_pose_axes(image, pose, c, 0.8f * face->box.width, 2);
+                char text[96];
+                std::snprintf(text, sizeof text, "raw p %.1f y %.1f r %.1f", pose.pitch, pose.yaw, pose.roll);
+                cv::putText(image, text, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
+                std::lock_guard<std::mutex> lock(filtered.mutex);
+                if (filtered.have) {
+                    draw_pose_axes(image, filtered.pose, c, 0.8f * face->box.width, 5);
+                    std::snprintf(text, sizeof text, "filtered p %.1f y %.1f r %.1f", filtered.pose.pitch, filtered.pose.yaw,
+                                  filtered.pose.roll);
+                    cv::putText(image, text, {10, 50}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2);
+                }
+            } else {
+                cv::putText(image, "no face", {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 255), 2);
+            }
+            if (!options.annotate_path.empty()) {
+                if (!writer.isOpened() &&
+                    !writer.open(options.annotate_path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), source.fps(), image.size()))
+                    throw EstimatorError("cannot write video " + options.annotate_path);
+                writer.write(image);
+            }
+            if (show) {
+                cv::imshow("hkf-estimator", image);
+                if (cv::waitKey(1) == 27) stop_requested = true;
+            }
+        }
+        if (frames % 100 == 0)
+            std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", frames, with_face);
+    }
+    capture.join();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (capture_failed) {
+        std::fprintf(stderr, "hkf-estimator: %s\n", capture_error.c_str());
+        return 1;
+    }
+    std::printf("hkf-estimator: %ld frames, %ld with a face, %.1f fps; capture->publish ms p50 %.1f p99 %.1f; "
+                "inference ms p50 %.1f; %ld dropped; %ld full-frame face searches\n",
+                frames, with_face, seconds > 0 ? static_cast<double>(frames) / seconds : 0.0, percentile(latency_ms, 0.5),
+                percentile(latency_ms, 0.99), percentile(inference_ms, 0.5), slot.dropped(), tracker.full_frame_searches());
+    return frames > 0 ? 0 : 1;
+}
+
+}  // namespace hkf_estimator

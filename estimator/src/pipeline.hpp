@@ -1,0 +1,35 @@
+// pipeline.hpp - the estimator process: frames -> face -> head pose -> LCM.
+//
+// A capture thread reads frames into a one-frame slot; the processing thread
+// always takes the newest frame. From a camera, or a file with --realtime, a
+// frame not yet taken when the next arrives is dropped (and counted): no
+// queue ever grows. A file without --realtime is read as fast as processing
+// goes, every frame. Every frame is published on HEAD_POSE_RAW, valid = false
+// when no face was found.
+#pragma once
+
+#include <string>
+
+#include "face_tracker.hpp"
+#include "pose_model.hpp"
+
+namespace hkf_estimator {
+
+struct PipelineOptions {
+    std::string source;
+    double fps_for_images = 30.0;
+    bool realtime = false;             // pace files at their frame rate
+    std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";
+    std::string channel = "HEAD_POSE_RAW";
+    std::string filtered_channel = "HEAD_POSE";  // drawn in --annotate when received
+    std::string annotate_path;         // write an annotated video here
+    bool show = false;                 // a window, when there is a display
+    long max_frames = 0;               // stop after this many (0: all)
+    TrackerSettings tracker;
+};
+
+// Runs until the source ends (or SIGINT / SIGTERM); prints a summary.
+// Returns the process exit status; throws EstimatorError on set-up errors.
+int run_pipeline(PoseModel &model, FaceDetector &detector, const PipelineOptions &options);
+
+}  // namespace hkf_estimator
