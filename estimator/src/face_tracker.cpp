@@ -60,7 +60,7 @@ std::optional<Face> FaceTracker::track(const cv::Mat &frame, int64_t utime)
             found = nearest(faces, size);  // the same face, not another one
         } else {
             for (const Face &f : faces)
-                if (!found || f.box.area() > found->box.area()) found = f;
+                if (f.score >= settings_.acquire_score && (!found || f.box.area() > found->box.area())) found = f;
         }
     }
     if (found) {

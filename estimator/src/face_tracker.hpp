@@ -19,6 +19,7 @@ struct TrackerSettings {
     cv::Rect2f region;                  // px; empty: the whole frame
     double reacquire_any_after = 2.0;   // s without the locked face before any face may be taken
     float search_scale = 2.2f;          // the tracked search region, in face sizes
+    float acquire_score = 0.75f;        // detection score needed to start a track
 };
 
 class FaceTracker {

@@ -32,6 +32,9 @@ expect_error "bad.model:4: unknown key 'warp'" "$est" --dataset "$data" --predic
 expect_error "no model description" "$est" --dataset "$data" --predictions "$work/x.csv" --model nosuch
 expect_error "labels.csv" "$est" --dataset "$work/empty" --predictions "$work/x.csv"
 expect_error "limit" "$est" --dataset "$data" --predictions "$work/x.csv" --limit zero
-expect_error "required" "$est" --dataset "$data"
+expect_error "needs --predictions" "$est" --dataset "$data"
+expect_error "either --source SRC or --dataset DIR" "$est" --limit 3
+expect_error "detector is short or full" "$est" --source x --detector medium
+expect_error "region wants" "$est" --source x --region 1,2,3
 "$est" --help | grep -q "usage: hkf-estimator" || fail "--help"
 echo "estimator_cli_test: all checks passed"

