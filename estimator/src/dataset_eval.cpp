@@ -11,6 +11,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "angle_bins_model.hpp"
+
 namespace hkf_estimator {
 namespace {
 
@@ -56,9 +58,36 @@ std::vector<LabelRow> read_labels(const std::string &path)
     return rows;
 }
 
+// The face to give the estimator: the labelled box, or for a model that needs
+// keypoints the detected face nearest it (searched around the box).
+std::optional<Face> labelled_face(const HeadPoseEstimator &model, FaceDetector &detector, const cv::Mat &image,
+                                  const cv::Rect2f &box)
+{
+    if (!model.needs_keypoints()) {
+        Face face;
+        face.box = box;
+        return face;
+    }
+    const cv::Rect around = face_crop_rect(box, 0.5f, image.size());
+    std::optional<Face> best;
+    const cv::Point2f centre(box.x + box.width / 2, box.y + box.height / 2);
+    float best_distance = std::max(box.width, box.height) / 2;
+    for (Face f : detector.detect(image(around))) {
+        f.box.x += static_cast<float>(around.x);
+        f.box.y += static_cast<float>(around.y);
+        for (auto &k : f.keypoints) k += cv::Point2f(static_cast<float>(around.x), static_cast<float>(around.y));
+        const cv::Point2f d = cv::Point2f(f.box.x + f.box.width / 2, f.box.y + f.box.height / 2) - centre;
+        if (std::hypot(d.x, d.y) < best_distance) {
+            best_distance = std::hypot(d.x, d.y);
+            best = f;
+        }
+    }
+    return best;
+}
+
 }  // namespace
 
-EvalResult evaluate_dataset(PoseModel &model, const std::string &dir, long limit, std::ostream &predictions,
+EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, const std::string &dir, long limit, std::ostream &predictions,
                             const std::function<void(long, long)> &progress)
 {
     const std::vector<LabelRow> rows = read_labels(dir + "/labels.csv");
@@ -70,15 +99,20 @@ EvalResult evaluate_dataset(PoseModel &model, const std::string &dir, long limit
         const LabelRow &row = rows[static_cast<size_t>(i)];
         ++result.images;
         const cv::Mat image = cv::imread(dir + "/images/" + row.image, cv::IMREAD_COLOR);
-        const cv::Rect crop = image.empty() ? cv::Rect() : face_crop_rect(row.box, model.spec().crop_margin, image.size());
-        if (crop.empty()) {
+        if (image.empty() || face_crop_rect(row.box, 0.f, image.size()).empty()) {
             ++result.unreadable;
             std::cerr << "hkf-estimator: cannot read " << dir << "/images/" << row.image << " or its face box; skipped\n";
             continue;
         }
         const auto start = std::chrono::steady_clock::now();
-        const HeadPose pose = model.estimate(image(crop));
+        std::optional<Face> face = labelled_face(model, detector, image, row.box);
+        const std::optional<HeadPose> estimate = face ? model.estimate(image, *face) : std::nullopt;
         result.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!estimate) {
+            ++result.no_face;
+            continue;
+        }
+        const HeadPose pose = *estimate;
         predictions << row.image << ',' << pose.pitch << ',' << pose.yaw << ',' << pose.roll << '\n';
         if (std::fabs(row.yaw) <= 99.f && std::fabs(row.pitch) <= 99.f && std::fabs(row.roll) <= 99.f) {
             const HeadPose truth = label_in_hkf_convention(row);

@@ -8,23 +8,26 @@
 #include <ostream>
 #include <string>
 
-#include "pose_model.hpp"
+#include "face_detector.hpp"
+#include "head_pose_estimator.hpp"
 
 namespace hkf_estimator {
 
 struct EvalResult {
     long images = 0;        // rows handled
     long unreadable = 0;    // images that could not be read (reported, skipped)
+    long no_face = 0;       // the estimator (or, for keypoints, the detector) found no face: skipped
     long evaluated = 0;     // rows whose three label angles are within +-99 deg (the standard protocol)
     double mae[3] = {0, 0, 0};  // pitch, yaw, roll, deg
     double seconds = 0;     // time spent in the model
 };
 
-// Runs the model over DIR's labels (at most limit rows when limit > 0), writes
+// Runs the model over DIR's labels (at most limit rows when limit > 0); a model
+// that needs keypoints gets the detector's face nearest the labelled box. Writes
 // "image,pitch_deg,yaw_deg,roll_deg" (hkf convention) to predictions, and
 // reports progress through progress(done, total). Throws EstimatorError on a
 // missing or malformed labels.csv.
-EvalResult evaluate_dataset(PoseModel &model, const std::string &dir, long limit, std::ostream &predictions,
+EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, const std::string &dir, long limit, std::ostream &predictions,
                             const std::function<void(long, long)> &progress);
 
 }  // namespace hkf_estimator

@@ -15,7 +15,7 @@
 #include "face_detector.hpp"
 #include "model_spec.hpp"
 #include "pipeline.hpp"
-#include "pose_model.hpp"
+#include "head_pose_estimator.hpp"
 
 namespace {
 
@@ -54,7 +54,7 @@ void usage(std::ostream &out)
            "../shared/data/aflw2000 (labels.csv and images/): crops each face from its label's box,\n"
            "writes image,pitch_deg,yaw_deg,roll_deg (hkf angle convention) and prints the MAE per\n"
            "axis over the images whose three angles are within +-99 deg.\n"
-           "  --model NAME       a description in the model folder (default whenet)\n"
+           "  --model NAME       whenet (default) or mesh_pnp: a description in the model folder\n"
            "  --limit N          only the first N images\n"
            "  --models-dir DIR   converted models (default " HKF_DEFAULT_MODELS_DIR ", or $HKF_MODELS_DIR)\n"
            "  --spec-dir DIR     model descriptions (default " HKF_DEFAULT_SPEC_DIR ")\n"
@@ -150,15 +150,13 @@ int main(int argc, char **argv)
     default: break;
     }
     try {
-        PoseModel model(load_model_spec(o.spec_dir, o.model, o.models_dir));
-        if (!o.pipeline.source.empty()) {
-            FaceDetector detector(o.models_dir, o.range);
-            return run_pipeline(model, detector, o.pipeline);
-        }
+        const std::unique_ptr<HeadPoseEstimator> model = make_estimator(load_model_spec(o.spec_dir, o.model, o.models_dir));
+        FaceDetector detector(o.models_dir, o.range);
+        if (!o.pipeline.source.empty()) return run_pipeline(*model, detector, o.pipeline);
         std::ofstream predictions(o.predictions);
         if (!predictions) throw EstimatorError("cannot write " + o.predictions);
         auto last = std::chrono::steady_clock::now();
-        const EvalResult r = evaluate_dataset(model, o.dataset, o.limit, predictions, [&](long done, long total) {
+        const EvalResult r = evaluate_dataset(*model, detector, o.dataset, o.limit, predictions, [&](long done, long total) {
             const auto now = std::chrono::steady_clock::now();
             if (done == total || now - last > std::chrono::seconds(2)) {
                 std::cerr << "hkf-estimator: " << done << "/" << total << " images\n";
@@ -167,8 +165,8 @@ int main(int argc, char **argv)
         });
         predictions.close();
         if (!predictions) throw EstimatorError("error writing " + o.predictions);
-        std::printf("%s on %s: %ld images (%ld unreadable), %ld within +-99 deg\n", o.model.c_str(), o.dataset.c_str(),
-                    r.images, r.unreadable, r.evaluated);
+        std::printf("%s on %s: %ld images (%ld unreadable, %ld without a face found), %ld within +-99 deg\n", o.model.c_str(),
+                    o.dataset.c_str(), r.images, r.unreadable, r.no_face, r.evaluated);
         std::printf("MAE deg: pitch %.2f, yaw %.2f, roll %.2f, mean %.2f; model %.1f ms per image (%d threads)\n",
                     r.mae[0], r.mae[1], r.mae[2], (r.mae[0] + r.mae[1] + r.mae[2]) / 3.0,
                     r.images > r.unreadable ? 1000.0 * r.seconds / static_cast<double>(r.images - r.unreadable) : 0.0,

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <vector>
 
 namespace hkf_estimator {
 namespace {
@@ -70,7 +71,8 @@ ModelSpec load_model_spec(const std::string &spec_dir, const std::string &name, 
                     if (!(v > 0.f)) throw EstimatorError(where + ": std must be positive");
         } else if (key == "decoder") {
             spec.decoder = parse_one<std::string>(in, where);
-            if (spec.decoder != "angle_bins") throw EstimatorError(where + ": unknown decoder '" + spec.decoder + "'");
+            if (spec.decoder != "angle_bins" && spec.decoder != "landmarks_pnp")
+                throw EstimatorError(where + ": unknown decoder '" + spec.decoder + "' (angle_bins, landmarks_pnp)");
         } else if (key == "yaw_bins" || key == "pitch_bins" || key == "roll_bins") {
             AngleBins &b = key == "yaw_bins" ? spec.yaw : key == "pitch_bins" ? spec.pitch : spec.roll;
             b.output = parse_one<std::string>(in, where);
@@ -78,6 +80,19 @@ ModelSpec load_model_spec(const std::string &spec_dir, const std::string &name, 
             b.step = parse_one<float>(in, where);
             b.offset = parse_one<float>(in, where);
             if (b.bins < 2 || b.bins > 10000 || !(b.step > 0.f)) throw EstimatorError(where + ": bad bins");
+        } else if (key == "landmarks") {
+            spec.landmarks_output = parse_one<std::string>(in, where);
+            spec.landmarks = parse_one<int>(in, where);
+            if (spec.landmarks < 6 || spec.landmarks > 100000) throw EstimatorError(where + ": bad landmark count");
+        } else if (key == "face_flag") {
+            spec.flag_output = parse_one<std::string>(in, where);
+            spec.min_face_flag = parse_one<float>(in, where);
+        } else if (key == "canonical") {
+            spec.canonical = models_dir + "/" + parse_one<std::string>(in, where);
+        } else if (key == "roi_scale" || key == "focal_scale") {
+            float &target = key == "roi_scale" ? spec.roi_scale : spec.focal_scale;
+            target = parse_one<float>(in, where);
+            if (!(target > 0.f && target < 100.f)) throw EstimatorError(where + ": " + key + " must be positive");
         } else if (key == "crop_margin") {
             spec.crop_margin = parse_one<float>(in, where);
             if (!(spec.crop_margin >= 0.f && spec.crop_margin <= 2.f)) throw EstimatorError(where + ": crop_margin 0..2");
@@ -88,9 +103,10 @@ ModelSpec load_model_spec(const std::string &spec_dir, const std::string &name, 
     }
     for (const char *required : {"file", "input", "decoder"})
         if (!seen[required]) throw EstimatorError(path + ": '" + required + "' is missing");
-    if (spec.decoder == "angle_bins")
-        for (const char *required : {"yaw_bins", "pitch_bins", "roll_bins"})
-            if (!seen[required]) throw EstimatorError(path + ": '" + required + "' is missing");
+    const auto required = spec.decoder == "angle_bins" ? std::vector<const char *>{"yaw_bins", "pitch_bins", "roll_bins"}
+                                                       : std::vector<const char *>{"landmarks", "face_flag", "canonical"};
+    for (const char *key : required)
+        if (!seen[key]) throw EstimatorError(path + ": '" + key + "' is missing");
     return spec;
 }
 

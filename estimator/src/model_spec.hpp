@@ -27,8 +27,16 @@ struct ModelSpec {
     bool rgb = true;         // false: BGR
     float scale = 1.f;
     std::array<float, 3> mean{0.f, 0.f, 0.f}, std{1.f, 1.f, 1.f};
-    std::string decoder;     // "angle_bins"
+    std::string decoder;     // "angle_bins" or "landmarks_pnp"
+    // angle_bins: the three heads
     AngleBins yaw, pitch, roll;
+    // landmarks_pnp: the mesh output (x y z per landmark, input px), its face
+    // flag, the canonical 3D face (x y z per line), the region and the camera
+    std::string landmarks_output, flag_output, canonical;
+    int landmarks = 0;
+    float roi_scale = 1.5f;        // the region: the detection box's long side times this
+    float min_face_flag = 0.5f;    // below: no face in the region
+    float focal_scale = 1.0f;      // focal length in px = this * the frame's long side
     std::array<float, 3> signs{1.f, 1.f, 1.f};  // model -> hkf convention, pitch yaw roll
     float crop_margin = 0.2f;
 };

@@ -95,7 +95,7 @@ double percentile(std::vector<double> v, double q)
 
 }  // namespace
 
-int run_pipeline(PoseModel &model, FaceDetector &detector, const PipelineOptions &options)
+int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const PipelineOptions &options)
 {
     FrameSource source(options.source, options.fps_for_images);
     lcm::LCM lcm(options.lcm_url);
@@ -146,12 +146,10 @@ int run_pipeline(PoseModel &model, FaceDetector &detector, const PipelineOptions
     while (auto frame = slot.take()) {
         const int64_t taken = wall_utime();
         const auto t0 = std::chrono::steady_clock::now();
-        const std::optional<Face> face = tracker.track(frame->image, frame->utime);
-        HeadPose pose;
-        if (face) {
-            const cv::Rect crop = face_crop_rect(face->box, model.spec().crop_margin, frame->image.size());
-            if (!crop.empty()) pose = model.estimate(frame->image(crop));
-        }
+        std::optional<Face> face = tracker.track(frame->image, frame->utime);
+        std::optional<HeadPose> estimate = face ? model.estimate(frame->image, *face) : std::nullopt;
+        if (!estimate) face.reset();  // the pose model saw no face there either
+        const HeadPose pose = estimate.value_or(HeadPose{});
         const double inference = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
         hkf::head_pose_measurement_t m;

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "face_tracker.hpp"
-#include "pose_model.hpp"
+#include "head_pose_estimator.hpp"
 
 namespace hkf_estimator {
 
@@ -30,6 +30,6 @@ struct PipelineOptions {
 
 // Runs until the source ends (or SIGINT / SIGTERM); prints a summary.
 // Returns the process exit status; throws EstimatorError on set-up errors.
-int run_pipeline(PoseModel &model, FaceDetector &detector, const PipelineOptions &options);
+int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const PipelineOptions &options);
 
 }  // namespace hkf_estimator

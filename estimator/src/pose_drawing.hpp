@@ -4,7 +4,7 @@
 #include <opencv2/core.hpp>
 
 #include "face_detector.hpp"
-#include "pose_model.hpp"
+#include "angle_bins_model.hpp"
 
 namespace hkf_estimator {
 

@@ -15,7 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "model_spec.hpp"
-#include "pose_model.hpp"
+#include "angle_bins_model.hpp"
 
 static double median(std::vector<double> v)
 {
@@ -28,14 +28,14 @@ int main(int argc, char **argv)
     using namespace hkf_estimator;
     if (argc != 4) return 2;
     const std::string data = argv[1];
-    std::unique_ptr<PoseModel> loaded;
+    std::unique_ptr<AngleBinsModel> loaded;
     try {
-        loaded = std::make_unique<PoseModel>(load_model_spec(argv[3], "whenet", argv[2]));
+        loaded = std::make_unique<AngleBinsModel>(load_model_spec(argv[3], "whenet", argv[2]));
     } catch (const EstimatorError &e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;
     }
-    PoseModel &model = *loaded;
+    AngleBinsModel &model = *loaded;
     std::ifstream labels(data + "/labels.csv");
     std::string line;
     std::getline(labels, line);
@@ -56,7 +56,7 @@ int main(int argc, char **argv)
         if (crop.empty()) continue;
         cv::Mat face = img(crop).clone(), mirrored;
         cv::flip(face, mirrored, 1);
-        const HeadPose a = model.estimate(face), b = model.estimate(mirrored);
+        const HeadPose a = model.estimate_crop(face), b = model.estimate_crop(mirrored);
         yaw_sum.push_back(std::fabs(a.yaw + b.yaw));
         roll_sum.push_back(std::fabs(a.roll + b.roll));
         pitch_diff.push_back(std::fabs(a.pitch - b.pitch));

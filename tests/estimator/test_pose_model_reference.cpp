@@ -1,4 +1,4 @@
-// Feeds given input tensors to the estimator's PoseModel (OpenCV DNN) and
+// Feeds given input tensors to the estimator's AngleBinsModel (OpenCV DNN) and
 // compares its decoded angles with the expected ones (from onnxruntime).
 // usage: test_pose_model_reference FILE MODELS_DIR SPEC_DIR
 // FILE: int32 n, c, h, w; then n times: c*h*w float32 input, 3 float32 pitch yaw roll (hkf convention).
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "model_spec.hpp"
-#include "pose_model.hpp"
+#include "angle_bins_model.hpp"
 
 int main(int argc, char **argv)
 {
@@ -23,7 +23,7 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "cannot read %s\n", argv[1]);
         return 2;
     }
-    PoseModel model(load_model_spec(argv[3], "whenet", argv[2]));
+    AngleBinsModel model(load_model_spec(argv[3], "whenet", argv[2]));
     const int n = header[0], sizes[4] = {1, header[1], header[2], header[3]};
     int failures = 0;
     double worst = 0.0;

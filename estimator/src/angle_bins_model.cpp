@@ -1,14 +1,14 @@
-// pose_model.cpp - see pose_model.hpp.
-#include "pose_model.hpp"
+// angle_bins_model.cpp - see angle_bins_model.hpp.
+#include "angle_bins_model.hpp"
 
 #include <cmath>
 #include <fstream>
 
-#include <opencv2/imgproc.hpp>
+#include "network_input.hpp"
 
 namespace hkf_estimator {
 
-PoseModel::PoseModel(ModelSpec spec) : spec_(std::move(spec))
+AngleBinsModel::AngleBinsModel(ModelSpec spec) : spec_(std::move(spec))
 {
     std::ifstream probe(spec_.file, std::ios::binary);
     if (!probe) throw EstimatorError("model file " + spec_.file + " is missing (scripts/setup.sh fetches and converts it)");
@@ -24,24 +24,9 @@ PoseModel::PoseModel(ModelSpec spec) : spec_(std::move(spec))
             throw EstimatorError("model file " + spec_.file + " has no output '" + name + "' (see " + spec_.name + ".model)");
 }
 
-cv::Mat PoseModel::make_input(const cv::Mat &bgr_crop) const
-{
-    if (bgr_crop.empty() || bgr_crop.type() != CV_8UC3) throw EstimatorError("a face crop must be a non-empty 8-bit BGR image");
-    cv::Mat resized, color, scaled;
-    cv::resize(bgr_crop, resized, cv::Size(spec_.input_width, spec_.input_height), 0, 0, cv::INTER_LINEAR);
-    if (spec_.rgb) {
-        cv::cvtColor(resized, color, cv::COLOR_BGR2RGB);
-    } else {
-        color = resized;
-    }
-    color.convertTo(scaled, CV_32FC3, spec_.scale);
-    // (x - mean) / std per channel, in the network's channel order
-    scaled -= cv::Scalar(spec_.mean[0], spec_.mean[1], spec_.mean[2]);
-    cv::divide(scaled, cv::Scalar(spec_.std[0], spec_.std[1], spec_.std[2]), scaled);
-    return cv::dnn::blobFromImage(scaled);  // HWC -> NCHW, no further change
-}
+cv::Mat AngleBinsModel::make_input(const cv::Mat &bgr_crop) const { return network_input(spec_, bgr_crop); }
 
-float PoseModel::decode_bins(const cv::Mat &logits, const AngleBins &bins) const
+float AngleBinsModel::decode_bins(const cv::Mat &logits, const AngleBins &bins) const
 {
     if (static_cast<int>(logits.total()) != bins.bins)
         throw EstimatorError("output '" + bins.output + "' has " + std::to_string(logits.total()) + " values, the description says " +
@@ -58,7 +43,7 @@ float PoseModel::decode_bins(const cv::Mat &logits, const AngleBins &bins) const
     return static_cast<float>(expectation / sum * bins.step + bins.offset);
 }
 
-HeadPose PoseModel::estimate_input(const cv::Mat &input)
+HeadPose AngleBinsModel::estimate_input(const cv::Mat &input)
 {
     net_.setInput(input);
     std::vector<cv::Mat> out;
@@ -68,6 +53,13 @@ HeadPose PoseModel::estimate_input(const cv::Mat &input)
     pose.yaw = spec_.signs[1] * decode_bins(out[1], spec_.yaw);
     pose.roll = spec_.signs[2] * decode_bins(out[2], spec_.roll);
     return pose;
+}
+
+std::optional<HeadPose> AngleBinsModel::estimate(const cv::Mat &frame, const Face &face)
+{
+    const cv::Rect crop = face_crop_rect(face.box, spec_.crop_margin, frame.size());
+    if (crop.empty()) return std::nullopt;
+    return estimate_crop(frame(crop));
 }
 
 cv::Rect face_crop_rect(const cv::Rect2f &box, float margin, const cv::Size &image)

@@ -1,5 +1,6 @@
-// pose_model.hpp - a head-pose network run by OpenCV's DNN module: crop in,
-// pitch/yaw/roll (deg, hkf convention) out.
+// angle_bins_model.hpp - a head-pose network whose outputs are angle bins
+// (WHENet-like), run by OpenCV's DNN module: a face crop in, pitch/yaw/roll
+// (deg, hkf convention) out, each the softmax expectation over its bins.
 #pragma once
 
 #include <string>
@@ -8,27 +9,27 @@
 #include <opencv2/core.hpp>
 #include <opencv2/dnn.hpp>
 
+#include "head_pose_estimator.hpp"
 #include "model_spec.hpp"
 
 namespace hkf_estimator {
 
-struct HeadPose {
-    float pitch = 0.f, yaw = 0.f, roll = 0.f;  // deg, hkf convention (README: "Angle convention")
-};
-
-class PoseModel {
+class AngleBinsModel : public HeadPoseEstimator {
 public:
     // Loads spec.file; throws EstimatorError when it is missing, corrupt, or
     // lacks the outputs the description names.
-    explicit PoseModel(ModelSpec spec);
+    explicit AngleBinsModel(ModelSpec spec);
 
-    const ModelSpec &spec() const { return spec_; }
+    const ModelSpec &spec() const override { return spec_; }
+    bool needs_keypoints() const override { return false; }
+    // The face box enlarged by the crop margin.
+    std::optional<HeadPose> estimate(const cv::Mat &frame, const Face &face) override;
 
     // The network's input for a face crop (BGR, any size): resized, colour
     // order, scale, mean and std applied; NCHW float.
     cv::Mat make_input(const cv::Mat &bgr_crop) const;
 
-    HeadPose estimate(const cv::Mat &bgr_crop) { return estimate_input(make_input(bgr_crop)); }
+    HeadPose estimate_crop(const cv::Mat &bgr_crop) { return estimate_input(make_input(bgr_crop)); }
     HeadPose estimate_input(const cv::Mat &input);
 
 private:

@@ -1,0 +1,34 @@
+// head_pose_estimator.hpp - what every head-pose estimator offers: a frame and
+// a detected face in, a head pose (hkf convention) out. The model
+// description's decoder picks the kind (estimator/models/*.model).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "face_detector.hpp"
+#include "model_spec.hpp"
+
+namespace hkf_estimator {
+
+struct HeadPose {
+    float pitch = 0.f, yaw = 0.f, roll = 0.f;  // deg, hkf convention (README: "Angle convention")
+};
+
+class HeadPoseEstimator {
+public:
+    virtual ~HeadPoseEstimator() = default;
+    virtual const ModelSpec &spec() const = 0;
+    // True when estimate() uses the face's keypoints, not only its box.
+    virtual bool needs_keypoints() const = 0;
+    // The pose of the face in frame (BGR); nullopt when the model finds no face there.
+    virtual std::optional<HeadPose> estimate(const cv::Mat &frame, const Face &face) = 0;
+};
+
+// The estimator a description names: angle_bins or landmarks_pnp. Throws EstimatorError.
+std::unique_ptr<HeadPoseEstimator> make_estimator(const ModelSpec &spec);
+
+}  // namespace hkf_estimator

@@ -1,0 +1,99 @@
+// mesh_pnp_model.cpp - see mesh_pnp_model.hpp.
+#include "mesh_pnp_model.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "head_rotation.hpp"
+#include "network_input.hpp"
+
+namespace hkf_estimator {
+
+namespace {
+
+// The canonical face's frame (x to the subject's left, y up, z towards the
+// camera) turned into camera coordinates for a face looking into the camera.
+const cv::Matx33d kCanonicalToCamera(1, 0, 0, 0, -1, 0, 0, 0, -1);
+
+std::vector<cv::Point3f> read_canonical(const std::string &path, int count)
+{
+    std::ifstream in(path);
+    if (!in) throw EstimatorError("canonical face " + path + " is missing (scripts/setup.sh extracts it)");
+    std::vector<cv::Point3f> points;
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream fields(line);
+        cv::Point3f p;
+        if (!(fields >> p.x >> p.y >> p.z)) throw EstimatorError(path + ": a line is not 'x y z'");
+        points.push_back(p);
+    }
+    if (static_cast<int>(points.size()) != count)
+        throw EstimatorError(path + " has " + std::to_string(points.size()) + " points, the mesh gives " + std::to_string(count));
+    return points;
+}
+
+}  // namespace
+
+MeshPnpModel::MeshPnpModel(ModelSpec spec) : spec_(std::move(spec))
+{
+    std::ifstream probe(spec_.file, std::ios::binary);
+    if (!probe) throw EstimatorError("model file " + spec_.file + " is missing (scripts/setup.sh fetches and converts it)");
+    try {
+        net_ = cv::dnn::readNetFromONNX(spec_.file);
+    } catch (const cv::Exception &e) {
+        throw EstimatorError("cannot load model file " + spec_.file + ": not a readable ONNX model (" + e.err + ")");
+    }
+    for (const auto &name : {spec_.landmarks_output, spec_.flag_output})
+        if (net_.getLayerId(name) < 0) throw EstimatorError("model file " + spec_.file + " has no output '" + name + "'");
+    canonical_ = read_canonical(spec_.canonical, spec_.landmarks);
+}
+
+std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face &face)
+{
+    // the region: square, enlarged, rotated so that the eyes are level
+    const cv::Point2f centre(face.box.x + face.box.width / 2, face.box.y + face.box.height / 2);
+    const float side = std::max(face.box.width, face.box.height) * spec_.roi_scale;
+    const cv::Point2f eyes = face.keypoints[1] - face.keypoints[0];  // the subject's right eye -> left eye
+    const double angle = std::atan2(eyes.y, eyes.x) * 180.0 / M_PI;
+    cv::Mat to_input = cv::getRotationMatrix2D(centre, angle, spec_.input_width / side);
+    to_input.at<double>(0, 2) += spec_.input_width / 2.0 - centre.x;
+    to_input.at<double>(1, 2) += spec_.input_height / 2.0 - centre.y;
+    cv::Mat patch;
+    cv::warpAffine(frame, patch, to_input, cv::Size(spec_.input_width, spec_.input_height), cv::INTER_LINEAR,
+                   cv::BORDER_CONSTANT);
+
+    net_.setInput(network_input(spec_, patch));
+    std::vector<cv::Mat> out;
+    net_.forward(out, std::vector<std::string>{spec_.landmarks_output, spec_.flag_output});
+    if (static_cast<int>(out[0].total()) != 3 * spec_.landmarks) throw EstimatorError("the mesh output has an unexpected size");
+    const float flag = 1.f / (1.f + std::exp(-out[1].ptr<float>()[0]));
+    if (flag < spec_.min_face_flag) return std::nullopt;
+
+    // landmarks back into the frame
+    cv::Mat to_frame;
+    cv::invertAffineTransform(to_input, to_frame);
+    const float *xyz = out[0].ptr<float>();
+    std::vector<cv::Point2f> in_patch(static_cast<size_t>(spec_.landmarks));
+    for (int i = 0; i < spec_.landmarks; ++i) in_patch[static_cast<size_t>(i)] = {xyz[3 * i], xyz[3 * i + 1]};
+    cv::transform(in_patch, landmarks_, to_frame);
+
+    // the pose of the canonical face that projects onto them
+    const double focal = spec_.focal_scale * std::max(frame.cols, frame.rows);
+    const cv::Matx33d camera(focal, 0, frame.cols / 2.0, 0, focal, frame.rows / 2.0, 0, 0, 1);
+    cv::Vec3d rvec, tvec;
+    if (!cv::solvePnP(canonical_, landmarks_, camera, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_SQPNP)) return std::nullopt;
+    cv::Matx33d model_to_camera;
+    cv::Rodrigues(rvec, model_to_camera);
+    HeadPose pose = pose_from_rotation(model_to_camera * kCanonicalToCamera);
+    pose.pitch *= spec_.signs[0];
+    pose.yaw *= spec_.signs[1];
+    pose.roll *= spec_.signs[2];
+    return pose;
+}
+
+}  // namespace hkf_estimator
