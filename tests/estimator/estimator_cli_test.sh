@@ -17,6 +17,13 @@ read -r pitch yaw roll < <(sed -n 's/MAE deg: pitch \([0-9.]*\), yaw \([0-9.]*\)
 awk -v p="$pitch" -v y="$yaw" -v r="$roll" 'BEGIN { exit !(p < 6.5 && y < 6.5 && r < 6.5) }' ||
   fail "MAE $pitch/$yaw/$roll deg is far from WHENet's published ~5.4"
 
+# the second estimator on the same images
+"$est" --dataset "$data" --predictions "$work/m.csv" --limit 150 --model mesh_pnp | tee "$work/mesh.txt"
+read -r pitch yaw roll < <(sed -n 's/MAE deg: pitch \([0-9.]*\), yaw \([0-9.]*\), roll \([0-9.]*\).*/\1 \2 \3/p' "$work/mesh.txt")
+awk -v p="$pitch" -v y="$yaw" -v r="$roll" 'BEGIN { exit !(p < 7 && y < 7 && r < 7) }' || fail "mesh_pnp MAE $pitch/$yaw/$roll deg"
+missed=$(sed -n 's/.*, \([0-9]*\) without a face found.*/\1/p' "$work/mesh.txt")
+[ "$missed" -le 15 ] || fail "mesh_pnp found no face in $missed of 150 images"
+
 expect_error() { # expect_error PATTERN COMMAND...: non-zero exit, PATTERN in stderr
   local pattern=$1
   shift
