@@ -20,7 +20,7 @@
 namespace {
 
 struct Options {
-    std::string dataset, model = "whenet", predictions;
+    std::string dataset, model = "mesh_pnp", predictions;  // the default keeps up with 60 fps
     std::string models_dir = HKF_DEFAULT_MODELS_DIR, spec_dir = HKF_DEFAULT_SPEC_DIR;
     long limit = 0;
     hkf_estimator::PipelineOptions pipeline;
@@ -54,7 +54,8 @@ void usage(std::ostream &out)
            "../shared/data/aflw2000 (labels.csv and images/): crops each face from its label's box,\n"
            "writes image,pitch_deg,yaw_deg,roll_deg (hkf angle convention) and prints the MAE per\n"
            "axis over the images whose three angles are within +-99 deg.\n"
-           "  --model NAME       whenet (default) or mesh_pnp: a description in the model folder\n"
+           "  --model NAME       mesh_pnp (default: keeps up with 60 fps) or whenet (more accurate at\n"
+           "                     large angles, ~30 ms a frame): a description in the model folder\n"
            "  --limit N          only the first N images\n"
            "  --models-dir DIR   converted models (default " HKF_DEFAULT_MODELS_DIR ", or $HKF_MODELS_DIR)\n"
            "  --spec-dir DIR     model descriptions (default " HKF_DEFAULT_SPEC_DIR ")\n"

@@ -10,7 +10,7 @@ trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # real data: the first 150 AFLW2000 images
-"$est" --dataset "$data" --predictions "$work/p.csv" --limit 150 | tee "$work/out.txt"
+"$est" --dataset "$data" --predictions "$work/p.csv" --limit 150 --model whenet | tee "$work/out.txt"
 [ "$(wc -l <"$work/p.csv")" -eq 151 ] || fail "expected 150 predictions"
 head -1 "$work/p.csv" | grep -qx "image,pitch_deg,yaw_deg,roll_deg" || fail "CSV header"
 read -r pitch yaw roll < <(sed -n 's/MAE deg: pitch \([0-9.]*\), yaw \([0-9.]*\), roll \([0-9.]*\).*/\1 \2 \3/p' "$work/out.txt")
@@ -33,8 +33,8 @@ expect_error() { # expect_error PATTERN COMMAND...: non-zero exit, PATTERN in st
 mkdir -p "$work/empty" "$work/corrupt" "$work/specs"
 head -c 4096 /dev/urandom >"$work/corrupt/whenet.onnx"
 printf 'file = whenet.onnx\ninput = 224 224\ndecoder = angle_bins\nwarp = 9\n' >"$work/specs/bad.model"
-expect_error "whenet.onnx is missing" "$est" --dataset "$data" --predictions "$work/x.csv" --models-dir "$work/empty"
-expect_error "not a readable ONNX model" "$est" --dataset "$data" --predictions "$work/x.csv" --models-dir "$work/corrupt"
+expect_error "whenet.onnx is missing" "$est" --dataset "$data" --predictions "$work/x.csv" --model whenet --models-dir "$work/empty"
+expect_error "not a readable ONNX model" "$est" --dataset "$data" --predictions "$work/x.csv" --model whenet --models-dir "$work/corrupt"
 expect_error "bad.model:4: unknown key 'warp'" "$est" --dataset "$data" --predictions "$work/x.csv" --model bad --spec-dir "$work/specs"
 expect_error "no model description" "$est" --dataset "$data" --predictions "$work/x.csv" --model nosuch
 expect_error "labels.csv" "$est" --dataset "$work/empty" --predictions "$work/x.csv"

@@ -70,8 +70,11 @@ for name, first_face in (("face_noface.mov", True), ("noface_face.mov", False)):
     check(all(m.detection_score == 0 and m.face_box[2] == 0 for m in msgs if not m.valid),
           f"{name}: frames without a face carry no box")
 
-# a face video: valid frames, increasing capture time and seq, the model's id
+# a face video, with each estimator: valid frames, increasing capture time and seq, the model's id
 code, out, msgs = run(os.path.join(testdata, "single_face.mp4"))
+check(code == 0 and sum(m.valid for m in msgs) >= 0.95 * len(msgs) > 0 and all(m.model == "mesh_pnp" for m in msgs),
+      f"single_face.mp4, default model mesh_pnp: a face in >= 95% of {len(msgs)} frames")
+code, out, msgs = run(os.path.join(testdata, "single_face.mp4"), "--model", "whenet")
 check(code == 0 and sum(m.valid for m in msgs) >= 0.95 * len(msgs) > 0, f"single_face.mp4: a face in >= 95% of {len(msgs)} frames")
 check(all(b.utime > a.utime and b.seq == a.seq + 1 for a, b in zip(msgs, msgs[1:])), "single_face.mp4: utime and seq increase")
 check(all(m.model == "whenet" for m in msgs), "single_face.mp4: model id whenet")

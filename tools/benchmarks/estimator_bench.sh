@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The estimator's benchmarks: AFLW2000 MAE per model (the whole development
+# split), per-stage cost on 640x480 video in OpenCV DNN beside onnxruntime,
+# and the whole process fed a 640x480 video paced at 60 fps.
+# usage: estimator_bench.sh BUILD_DIR [AFLW_DIR]
+set -euo pipefail
+build=$(cd "$1" && pwd)
+root=$(cd "$(dirname "$0")/../.." && pwd)
+aflw=${2:-$root/../shared/data/aflw2000}
+models=$root/.models
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+echo "## AFLW2000 (development split of $(($(wc -l <"$aflw/labels.csv") - 1)) images), faces cropped from the labels"
+for model in whenet mesh_pnp; do
+  "$build/estimator/hkf-estimator" --dataset "$aflw" --model "$model" --predictions "$work/$model.csv" 2>/dev/null
+done
+echo
+echo "## Per-stage cost"
+"$build/tools/benchmarks/hkf-bench-estimator" "$root/../shared/data/videos/d3.mp4" "$models" "$root/estimator/models" "$work/640x480_60fps.mp4"
+echo
+"$root/.venv/bin/python" "$root/tools/benchmarks/onnxruntime_speed.py" "$models"
+echo
+echo "## The whole process on 640x480 video paced at 60 fps (--realtime)"
+for model in whenet mesh_pnp; do
+  printf '%s: ' "$model"
+  "$build/estimator/hkf-estimator" --source "$work/640x480_60fps.mp4" --realtime --model "$model" --lcm-url memq:// 2>/dev/null
+done
