@@ -13,7 +13,7 @@ packages=(
   libjchart2d-java                              # charts in lcm-spy (hkf-spy)
   default-jdk-headless                          # javac for the Java message types
   iproute2 util-linux                           # private network namespaces for the LCM tests
-  xvfb unzip                                    # hkf-spy test: lcm-spy on a virtual display
+  xvfb unzip file                               # hkf-spy test: lcm-spy on a virtual display; file(1)
   python3 python3-venv python3-pip              # Python tools (.venv, from tools/requirements.txt)
 )
 

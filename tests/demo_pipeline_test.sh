@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# tools/demo/pipeline_demo.sh (./run demo) on a real face video: one filtered
+# pose per frame with a face, an annotated video and a plot.
+# usage: demo_pipeline_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1 source=$2
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+"$source/tools/demo/pipeline_demo.sh" "$build" "$source/.models/testdata/single_face.mp4" "$out" 2>&1 | tee "$out/log.txt"
+frames=$(sed -n 's/^hkf-estimator: \([0-9]*\) frames, \([0-9]*\) with a face.*/\2/p' "$out/log.txt")
+rows=$(($(wc -l <"$out/filtered.csv") - 1))
+[ "$frames" -gt 50 ] && [ "$rows" -ge "$frames" ] || { echo "FAIL: $rows filtered poses for $frames frames with a face" >&2; exit 1; }
+for f in poses.png annotated.mp4; do [ -s "$out/$f" ] || { echo "FAIL: no $f" >&2; exit 1; }; done
+file "$out/poses.png" | grep -q "PNG image" || { echo "FAIL: poses.png is not a PNG" >&2; exit 1; }
+echo "demo_pipeline_test: passed ($rows filtered poses, plot and video written)"

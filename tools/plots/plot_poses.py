@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""Draws raw head poses (an LCM log of hkf.head_pose_measurement_t) against
+the filtered ones (hkf-filter's CSV): pitch, yaw and roll over time, PNG.
+usage: plot_poses.py RAW.lcmlog FILTERED.csv OUT.png --types BUILD/lcmtypes/python"""
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("raw")
+    parser.add_argument("filtered")
+    parser.add_argument("out")
+    parser.add_argument("--types", required=True)
+    parser.add_argument("--title", default="head pose: raw estimate and adaptive Kalman filter")
+    args = parser.parse_args()
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "logs"))
+    sys.path.insert(0, args.types)
+    import lcmlog
+    from hkf import head_pose_measurement_t
+
+    try:
+        raw = [head_pose_measurement_t.decode(e.data) for e in lcmlog.read_events(args.raw) if e.channel == "HEAD_POSE_RAW"]
+        with open(args.filtered) as f:
+            filtered = [r for r in csv.DictReader(f) if r["extrapolated"] == "0"]
+    except (OSError, lcmlog.LogError, ValueError, KeyError) as e:
+        print(f"plot_poses: {e}", file=sys.stderr)
+        return 1
+    if not raw or not filtered:
+        print("plot_poses: nothing to draw", file=sys.stderr)
+        return 1
+    t0 = raw[0].utime
+    fig, axes = plt.subplots(3, 1, figsize=(11, 7), sharex=True)
+    for ax, name in zip(axes, ("pitch", "yaw", "roll")):
+        ax.plot([(m.utime - t0) / 1e6 for m in raw if m.valid], [getattr(m, name) for m in raw if m.valid], ".",
+                markersize=3, color="tab:gray", label="raw estimate")
+        ax.plot([(int(r["utime"]) - t0) / 1e6 for r in filtered], [float(r[name]) for r in filtered], "-",
+                color="tab:blue", linewidth=1.5, label="filtered")
+        lost = [(m.utime - t0) / 1e6 for m in raw if not m.valid]
+        if lost:
+            ax.plot(lost, [ax.get_ylim()[0]] * len(lost), "|", color="tab:red", label="no face")
+        ax.set_ylabel(f"{name}, deg")
+        ax.grid(alpha=0.3)
+    axes[0].legend(loc="upper right", fontsize=8)
+    axes[-1].set_xlabel("time, s")
+    fig.suptitle(args.title)
+    fig.tight_layout()
+    fig.savefig(args.out, dpi=110)
+    print(f"plot_poses: wrote {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
