@@ -2,26 +2,16 @@
 #include "angle_bins_model.hpp"
 
 #include <cmath>
-#include <fstream>
 
-#include "network_input.hpp"
+#include "onnx_network.hpp"
 
 namespace hkf_estimator {
 
-AngleBinsModel::AngleBinsModel(ModelSpec spec) : spec_(std::move(spec))
+AngleBinsModel::AngleBinsModel(ModelSpec spec)
+    : spec_(std::move(spec)),
+      outputs_{spec_.pitch.output, spec_.yaw.output, spec_.roll.output}
 {
-    std::ifstream probe(spec_.file, std::ios::binary);
-    if (!probe) throw EstimatorError("model file " + spec_.file + " is missing (scripts/setup.sh fetches and converts it)");
-    try {
-        net_ = cv::dnn::readNetFromONNX(spec_.file);
-    } catch (const cv::Exception &e) {
-        throw EstimatorError("cannot load model file " + spec_.file + ": not a readable ONNX model (" + e.err + ")");
-    }
-    if (net_.empty()) throw EstimatorError("cannot load model file " + spec_.file + ": empty network");
-    outputs_ = {spec_.pitch.output, spec_.yaw.output, spec_.roll.output};
-    for (const auto &name : outputs_)
-        if (net_.getLayerId(name) < 0)
-            throw EstimatorError("model file " + spec_.file + " has no output '" + name + "' (see " + spec_.name + ".model)");
+    net_ = load_onnx_network(spec_.file, outputs_);
 }
 
 cv::Mat AngleBinsModel::make_input(const cv::Mat &bgr_crop) const { return network_input(spec_, bgr_crop); }

@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 #include <opencv2/imgproc.hpp>
 
 #include "model_spec.hpp"
+#include "onnx_network.hpp"
 
 namespace hkf_estimator {
 
@@ -20,13 +20,6 @@ FaceDetector::FaceDetector(const std::string &models_dir, DetectorRange range, f
 {
     const bool short_range = range == DetectorRange::Short;
     const std::string file = models_dir + (short_range ? "/face_detection_short_range.onnx" : "/face_detection_full_range.onnx");
-    std::ifstream probe(file, std::ios::binary);
-    if (!probe) throw EstimatorError("model file " + file + " is missing (scripts/setup.sh fetches and converts it)");
-    try {
-        net_ = cv::dnn::readNetFromONNX(file);
-    } catch (const cv::Exception &e) {
-        throw EstimatorError("cannot load model file " + file + ": not a readable ONNX model (" + e.err + ")");
-    }
     if (short_range) {
         input_size_ = 128;  // strides 8, 16, 16, 16; two anchors per layer and location
         make_anchors({8, 16, 16, 16}, 2);
@@ -36,8 +29,7 @@ FaceDetector::FaceDetector(const std::string &models_dir, DetectorRange range, f
         make_anchors({4}, 1);
         outputs_ = {"reshaped_classifier_face_4", "reshaped_regressor_face_4"};
     }
-    for (const auto &name : outputs_)
-        if (net_.getLayerId(name) < 0) throw EstimatorError("model file " + file + " has no output '" + name + "'");
+    net_ = load_onnx_network(file, outputs_);
 }
 
 // SSD anchors: layers of equal stride share one grid; per location each layer

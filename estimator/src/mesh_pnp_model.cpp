@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "head_rotation.hpp"
-#include "network_input.hpp"
+#include "onnx_network.hpp"
 
 namespace hkf_estimator {
 
@@ -41,15 +41,7 @@ std::vector<cv::Point3f> read_canonical(const std::string &path, int count)
 
 MeshPnpModel::MeshPnpModel(ModelSpec spec) : spec_(std::move(spec))
 {
-    std::ifstream probe(spec_.file, std::ios::binary);
-    if (!probe) throw EstimatorError("model file " + spec_.file + " is missing (scripts/setup.sh fetches and converts it)");
-    try {
-        net_ = cv::dnn::readNetFromONNX(spec_.file);
-    } catch (const cv::Exception &e) {
-        throw EstimatorError("cannot load model file " + spec_.file + ": not a readable ONNX model (" + e.err + ")");
-    }
-    for (const auto &name : {spec_.landmarks_output, spec_.flag_output})
-        if (net_.getLayerId(name) < 0) throw EstimatorError("model file " + spec_.file + " has no output '" + name + "'");
+    net_ = load_onnx_network(spec_.file, {spec_.landmarks_output, spec_.flag_output});
     canonical_ = read_canonical(spec_.canonical, spec_.landmarks);
 }
 

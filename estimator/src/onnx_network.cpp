@@ -1,10 +1,27 @@
-// network_input.cpp - see network_input.hpp.
-#include "network_input.hpp"
+// onnx_network.cpp - see onnx_network.hpp.
+#include "onnx_network.hpp"
 
-#include <opencv2/dnn.hpp>
+#include <fstream>
+
 #include <opencv2/imgproc.hpp>
 
 namespace hkf_estimator {
+
+cv::dnn::Net load_onnx_network(const std::string &file, const std::vector<std::string> &outputs)
+{
+    std::ifstream probe(file, std::ios::binary);
+    if (!probe) throw EstimatorError("model file " + file + " is missing (scripts/setup.sh fetches and converts it)");
+    cv::dnn::Net net;
+    try {
+        net = cv::dnn::readNetFromONNX(file);
+    } catch (const cv::Exception &e) {
+        throw EstimatorError("cannot load model file " + file + ": not a readable ONNX model (" + e.err + ")");
+    }
+    if (net.empty()) throw EstimatorError("cannot load model file " + file + ": empty network");
+    for (const auto &name : outputs)
+        if (net.getLayerId(name) < 0) throw EstimatorError("model file " + file + " has no output '" + name + "'");
+    return net;
+}
 
 cv::Mat network_input(const ModelSpec &spec, const cv::Mat &bgr)
 {
