@@ -43,11 +43,9 @@ static void write_output(const hkf_filter_t *restrict f, unsigned flags, hkf_out
 
 static int check_dt(const hkf_filter_t *f, hkf_real_t dt)
 {
-    if (!hkf_is_finite(dt)) {
-        return HKF_ERROR_NON_FINITE;
-    }
+    /* NaN fails the range test too; the finite test only names the error */
     if (!(dt > 0 && dt <= f->settings.max_dt)) {
-        return HKF_ERROR_DT_RANGE;
+        return hkf_is_finite(dt) ? HKF_ERROR_DT_RANGE : HKF_ERROR_NON_FINITE;
     }
     return HKF_OK;
 }
@@ -57,7 +55,7 @@ static int check_angles(const hkf_real_t v[3])
     const hkf_real_t limit = (hkf_real_t)HKF_MAX_ABS_ANGLE;
     int a;
     /* NaN fails every comparison, so this one test passes only good input */
-    if (hkf_abs(v[0]) <= limit && hkf_abs(v[1]) <= limit && hkf_abs(v[2]) <= limit) {
+    if ((hkf_abs(v[0]) <= limit) & (hkf_abs(v[1]) <= limit) & (hkf_abs(v[2]) <= limit)) {
         return HKF_OK;
     }
     for (a = 0; a < HKF_AXES; ++a) {
@@ -100,7 +98,7 @@ static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restr
 {
     const hkf_settings_t *s = &f->settings;
     const hkf_real_t theta2 = s->lc_theta * s->lc_theta;
-    hkf_real_t d[HKF_LANES], norm2 = 0;
+    hkf_real_t d[HKF_LANES];
     int a, closed = 0;
     zc[0] = z[0];
     zc[1] = z[1];
@@ -114,9 +112,7 @@ static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restr
     }
     d[HKF_AXIS_YAW] = hkf_wrap180(d[HKF_AXIS_YAW]);
     if (s->loop_closure == HKF_LOOP_CLOSURE_NORM) {
-        for (a = 0; a < HKF_LANES; ++a) {
-            norm2 += d[a] * d[a];
-        }
+        const hkf_real_t norm2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         closed = norm2 <= theta2;
         if (closed) {
             for (a = 0; a < HKF_LANES; ++a) {
@@ -302,7 +298,7 @@ void hkf_reset(hkf_filter_t *f)
 int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
 {
     hkf_real_t zc[HKF_LANES], y[HKF_LANES], r[HKF_LANES], inv_s[HKF_LANES];
-    const hkf_real_t gate = f == 0 ? 0 : f->settings.gate_sigma;
+    hkf_real_t gate;
     unsigned flags = 0;
     int a, result;
     if (f == 0 || z == 0) {
@@ -312,7 +308,11 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     if (result != HKF_OK) {
         return result;
     }
-    if (f->status == HKF_STATUS_UNINITIALIZED) {
+    if (f->status == HKF_STATUS_UNINITIALIZED || f->status == HKF_STATUS_LOST) {
+        /* the first measurement (dt ignored), or the first after LOST */
+        if (f->status == HKF_STATUS_LOST && (result = check_dt(f, dt)) != HKF_OK) {
+            return result;
+        }
         start_track(f, z);
         write_output(f, HKF_FLAG_REACQUIRED, out);
         return HKF_OK;
@@ -320,11 +320,6 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     result = check_dt(f, dt);
     if (result != HKF_OK) {
         return result;
-    }
-    if (f->status == HKF_STATUS_LOST) {
-        start_track(f, z);
-        write_output(f, HKF_FLAG_REACQUIRED, out);
-        return HKF_OK;
     }
 
     predict_axes(f, dt);
@@ -342,6 +337,7 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
 
     /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
      * exceeds gate_sigma; after max_gate_rejections in a row, believe it. */
+    gate = f->settings.gate_sigma;
     if (gate > 0 &&
         y[0] * y[0] * inv_s[0] + y[1] * y[1] * inv_s[1] + y[2] * y[2] * inv_s[2] > gate * gate) {
         if (f->gate_rejections >= f->settings.max_gate_rejections) {

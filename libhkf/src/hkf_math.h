@@ -13,38 +13,35 @@
 #include "hkf/hkf_real.h"
 
 #if defined(HKF_REAL_DOUBLE)
-/* exp(-u) for u >= 0 */
-static inline hkf_real_t hkf_exp_neg(hkf_real_t u) { return exp(-u); }
-#define HKF_SERIES_BELOW HKF_REAL(1e-5)
-#else
-/* exp(-u) for u >= 0, inline and without libm's call: exp(-u) = 2^-(u log2 e)
- * = 2^n 2^f with n the nearest integer and |f| <= 1/2; 2^f = e^(f ln 2) by a
- * degree-6 Taylor polynomial (truncation < 1.2e-7 relative, about float's
- * rounding), and 2^n set in the exponent bits. */
-static inline hkf_real_t hkf_exp_neg(hkf_real_t u)
-{
-    const float t0 = -u * 1.44269504088896341f; /* log2(e) */
-    const float t = t0 < -126.0f ? -126.0f : t0; /* below 2^-126 the dip is 1 anyway */
-    const int32_t n = (int32_t)(t - 0.5f);      /* t <= 0: nearest integer */
-    const float g = (t - (float)n) * 0.693147180559945309f; /* f ln 2, |g| <= 0.347 */
-    const float p = 1.0f + g * (1.0f + g * (0.5f + g * (1.0f / 6.0f + g * (1.0f / 24.0f + g * (1.0f / 120.0f + g * (1.0f / 720.0f))))));
-    union { int32_t i; float x; } two_n; /* 2^n from its exponent bits */
-    two_n.i = (n + 127) * 8388608;       /* << 23 */
-    return p * two_n.x;
-}
-#define HKF_SERIES_BELOW HKF_REAL(0.01)
-#endif
-
 /* 1 - exp(-u) for u >= 0. For small u, exp(-u) is too close to 1 for the
- * type to resolve the difference (the roll curves multiply it by ~1e5), so a
- * short series is used there: u (1 - u/2 (1 - u/3)), relative error < u^3/24,
- * below the type's epsilon under HKF_SERIES_BELOW. */
+ * difference to keep its digits (the roll curves multiply it by ~1e5), so a
+ * short series is used there: u (1 - u/2 (1 - u/3)), relative error < u^3/24. */
 static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
 {
-    const hkf_real_t series = u * (HKF_REAL(1.0) - HKF_REAL(0.5) * u * (HKF_REAL(1.0) - u * HKF_REAL(0.33333333333333333)));
-    const hkf_real_t direct = HKF_REAL(1.0) - hkf_exp_neg(u);
-    return u < HKF_SERIES_BELOW ? series : direct; /* both, then a select: no branch */
+    if (u < 1e-5) {
+        return u * (1.0 - 0.5 * u * (1.0 - u * 0.33333333333333333));
+    }
+    return 1.0 - exp(-u);
 }
+#else
+/* 1 - exp(-u) for u >= 0, inline, without libm and without a branch:
+ * exp(-u) = 2^n e^g with n = round(-u log2 e) and |g| <= ln2 / 2, and
+ * e^g = 1 + q(g), q a degree-6 Taylor polynomial (truncation < 1.2e-7
+ * relative, about float's rounding). Then 1 - exp(-u) = (1 - 2^n) - 2^n q;
+ * for small u, n = 0 and that is -q, computed directly without cancelling,
+ * so the roll curves (lambda ~ 1e5) keep their digits near their centre. */
+static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
+{
+    const float t0 = -u * 1.44269504088896341f; /* log2(e) */
+    const float t = t0 < -126.0f ? -126.0f : t0; /* below 2^-126 the result is 1 anyway */
+    const int32_t n = (int32_t)(t - 0.5f);      /* t <= 0: nearest integer */
+    const float g = (t - (float)n) * 0.693147180559945309f;
+    const float q = g * (1.0f + g * (0.5f + g * (1.0f / 6.0f + g * (1.0f / 24.0f + g * (1.0f / 120.0f + g * (1.0f / 720.0f))))));
+    union { int32_t i; float x; } two_n; /* 2^n from its exponent bits */
+    two_n.i = (n + 127) * 8388608;       /* << 23 */
+    return (1.0f - two_n.x) - two_n.x * q;
+}
+#endif
 
 static inline hkf_real_t hkf_div(hkf_real_t a, hkf_real_t b) { return a / b; }
 
