@@ -171,7 +171,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
         m.inference_us = static_cast<int64_t>(inference * 1000.0);
         lcm.publish(options.channel, &m);
         // from the frame being available (a camera's capture) to its publish
-        latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0 + 0.0);
+        latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0);
         inference_ms.push_back(inference);
         ++frames;
         with_face += face.has_value();
