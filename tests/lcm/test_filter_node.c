@@ -216,12 +216,19 @@ static void test_commands(void **state)
     for (i = 0; i < 10; ++i) {
         m = measurement(T0 + i * FRAME_US, 1, 0, 20 + i, 0);
         assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        assert_true(pose.center[1] == 20.0f); /* the published centre: the first measurement */
     }
     command.utime = 0;
     command.command = HKF_TRACKER_COMMAND_T_RECENTER;
     assert_int_equal(filter_node_command(&node, &command), 0);
     assert_int_equal(hkf_get_center(&node.filter, centre), HKF_OK);
     assert_true(centre[1] == pose.yaw);
+    {
+        const float recentred_yaw = pose.yaw;
+        m = measurement(T0 + 10 * FRAME_US - FRAME_US / 2, 1, 0, 29, 0);
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        assert_true(pose.center[1] == recentred_yaw); /* and the one RECENTER set */
+    }
     command.command = HKF_TRACKER_COMMAND_T_RESET;
     assert_int_equal(filter_node_command(&node, &command), 0);
     assert_int_equal(hkf_get_center(&node.filter, centre), HKF_ERROR_NOT_INITIALIZED);

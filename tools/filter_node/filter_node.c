@@ -24,6 +24,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
 
 static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utime, hkf_head_pose_t *pose)
 {
+    hkf_real_t center[3] = {0, 0, 0};
     int a;
     memset(pose, 0, sizeof *pose);
     pose->utime = utime;
@@ -42,6 +43,10 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
         pose->variance[a] = out->variance[a];
         pose->r[a] = out->r[a];
     }
+    (void)hkf_get_center(&node->filter, center); /* set by the first measurement, so always there once posing */
+    pose->center[0] = (float)center[HKF_AXIS_PITCH];
+    pose->center[1] = (float)center[HKF_AXIS_YAW];
+    pose->center[2] = (float)center[HKF_AXIS_ROLL];
     pose->loop_closure_active = (out->flags & HKF_FLAG_LOOP_CLOSURE) != 0;
     pose->extrapolated = (out->flags & HKF_FLAG_EXTRAPOLATED) != 0;
     pose->latency_us = 0;

@@ -15,7 +15,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import lcmlog  # noqa: E402
 
 COMPARED = ["utime", "measurement_utime", "seq", "status", "pitch", "yaw", "roll", "pitch_rate", "yaw_rate",
-            "roll_rate", "variance", "r", "loop_closure_active", "extrapolated"]
+            "roll_rate", "variance", "r", "center", "loop_closure_active", "extrapolated"]
 
 
 def poses(path, channel, head_pose_t):
