@@ -1,0 +1,121 @@
+/* hkf-opentrack's packet: opentrack's byte layout and our angle mapping. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "opentrack_packet.h"
+
+static hkf_head_pose_t pose_at(float pitch, float yaw, float roll)
+{
+    hkf_head_pose_t pose;
+    memset(&pose, 0, sizeof pose);
+    pose.status = HKF_HEAD_POSE_T_TRACKING;
+    pose.pitch = pitch;
+    pose.yaw = yaw;
+    pose.roll = roll;
+    return pose;
+}
+
+/* Six little-endian doubles: 1.0 is 00 00 00 00 00 00 f0 3f, -2.0 is ... 00 c0. */
+static void test_wire_layout(void **state)
+{
+    const double values[OPENTRACK_FIELDS] = {0.0, 0.0, 0.0, 1.0, -2.0, 0.5};
+    static const unsigned char one[8] = {0, 0, 0, 0, 0, 0, 0xf0, 0x3f};
+    static const unsigned char minus_two[8] = {0, 0, 0, 0, 0, 0, 0, 0xc0};
+    static const unsigned char half[8] = {0, 0, 0, 0, 0, 0, 0xe0, 0x3f};
+    static const unsigned char zero[24] = {0};
+    unsigned char packet[OPENTRACK_PACKET_SIZE];
+    (void)state;
+    opentrack_encode(values, packet);
+    assert_memory_equal(packet, zero, 24);           /* x, y, z */
+    assert_memory_equal(packet + 24, one, 8);        /* yaw */
+    assert_memory_equal(packet + 32, minus_two, 8);  /* pitch */
+    assert_memory_equal(packet + 40, half, 8);       /* roll */
+}
+
+/* The convention mapping: yaw and pitch keep their sign, roll flips. */
+static void test_convention(void **state)
+{
+    opentrack_mapping_t mapping = opentrack_default_mapping();
+    hkf_head_pose_t pose = pose_at(10.0f, 20.0f, 30.0f);
+    double v[OPENTRACK_FIELDS];
+    (void)state;
+    mapping.relative_to_center = 0;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_X] == 0.0 && v[OPENTRACK_Y] == 0.0 && v[OPENTRACK_Z] == 0.0);
+    assert_true(v[OPENTRACK_YAW] == 20.0);
+    assert_true(v[OPENTRACK_PITCH] == 10.0);
+    assert_true(v[OPENTRACK_ROLL] == -30.0);
+}
+
+/* Relative to the centre, yaw the short way round the +-180 seam. */
+static void test_relative_to_center(void **state)
+{
+    const opentrack_mapping_t mapping = opentrack_default_mapping();
+    hkf_head_pose_t pose = pose_at(12.0f, 170.0f, -4.0f);
+    double v[OPENTRACK_FIELDS];
+    (void)state;
+    pose.center[0] = 2.0f;
+    pose.center[1] = -170.0f;
+    pose.center[2] = 1.0f;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_PITCH] == 10.0);
+    assert_true(fabs(v[OPENTRACK_YAW] - (-20.0)) < 1e-9);
+    assert_true(v[OPENTRACK_ROLL] == 5.0);
+    pose.yaw = -170.0f; /* at the centre: exactly zero */
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_YAW] == 0.0);
+}
+
+/* The user's invert and scale come after the mapping, on opentrack's axes. */
+static void test_invert_and_scale(void **state)
+{
+    opentrack_mapping_t mapping = opentrack_default_mapping();
+    hkf_head_pose_t pose = pose_at(10.0f, 20.0f, 30.0f);
+    double v[OPENTRACK_FIELDS];
+    (void)state;
+    mapping.relative_to_center = 0;
+    mapping.invert[opentrack_axis_from_name("roll")] = 1;
+    mapping.scale[opentrack_axis_from_name("yaw")] = 1.5;
+    mapping.invert[opentrack_axis_from_name("pitch")] = 1;
+    mapping.scale[opentrack_axis_from_name("pitch")] = 2.0;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_YAW] == 30.0);
+    assert_true(v[OPENTRACK_PITCH] == -20.0);
+    assert_true(v[OPENTRACK_ROLL] == 30.0);
+    assert_int_equal(opentrack_axis_from_name("x"), -1);
+    assert_int_equal(opentrack_axis_from_name(""), -1);
+}
+
+/* Nothing non-finite is ever produced: a NaN or infinite angle or centre is refused. */
+static void test_non_finite_refused(void **state)
+{
+    const opentrack_mapping_t mapping = opentrack_default_mapping();
+    double v[OPENTRACK_FIELDS];
+    hkf_head_pose_t pose = pose_at(NAN, 0.0f, 0.0f);
+    (void)state;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), -1);
+    pose = pose_at(0.0f, INFINITY, 0.0f);
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), -1);
+    pose = pose_at(0.0f, 0.0f, 0.0f);
+    pose.center[2] = -INFINITY;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), -1);
+    pose.center[2] = 0.0f;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_wire_layout),
+        cmocka_unit_test(test_convention),
+        cmocka_unit_test(test_relative_to_center),
+        cmocka_unit_test(test_invert_and_scale),
+        cmocka_unit_test(test_non_finite_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

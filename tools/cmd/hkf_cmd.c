@@ -1,0 +1,80 @@
+/*
+ * hkf-cmd - sends one command to hkf-filter (hkf.tracker_command_t on
+ * HEAD_TRACKER_CMD): recenter (the loop-closure centre := the current
+ * estimate; hkf-opentrack sends poses relative to it) or reset (forget the
+ * track and the centre). For hotkey tools, scripts and simulator buttons.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include <lcm/lcm.h>
+
+#include "hkf_tracker_command_t.h"
+
+#define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
+
+static void usage(FILE *to)
+{
+    fprintf(to,
+            "usage: hkf-cmd recenter|reset [--lcm-url URL] [--channel C]\n"
+            "Sends a command to a running hkf-filter.\n"
+            "  recenter        the centre pose := the current head pose (opentrack's camera zero\n"
+            "                  follows, through hkf-opentrack)\n"
+            "  reset           forget the track and the centre; the next face starts anew\n"
+            "  --lcm-url URL   LCM provider (default " DEFAULT_LCM_URL ")\n"
+            "  --channel C     command channel (default HEAD_TRACKER_CMD)\n"
+            "  --help          this text\n");
+}
+
+int main(int argc, char **argv)
+{
+    const char *lcm_url = DEFAULT_LCM_URL, *channel = "HEAD_TRACKER_CMD", *verb = NULL;
+    hkf_tracker_command_t command;
+    struct timespec now;
+    lcm_t *lcm;
+    int i, result;
+    for (i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if ((strcmp(argv[i], "--lcm-url") == 0 || strcmp(argv[i], "--channel") == 0) && i + 1 < argc) {
+            *(strcmp(argv[i], "--lcm-url") == 0 ? &lcm_url : &channel) = argv[i + 1];
+            ++i;
+        } else if (argv[i][0] != '-' && verb == NULL) {
+            verb = argv[i];
+        } else {
+            fprintf(stderr, "hkf-cmd: unknown or incomplete argument '%s' (see --help)\n", argv[i]);
+            return 2;
+        }
+    }
+    if (verb == NULL) {
+        fprintf(stderr, "hkf-cmd: which command? recenter or reset (see --help)\n");
+        return 2;
+    }
+    if (strcmp(verb, "recenter") == 0 || strcmp(verb, "recentre") == 0) {
+        command.command = HKF_TRACKER_COMMAND_T_RECENTER;
+    } else if (strcmp(verb, "reset") == 0) {
+        command.command = HKF_TRACKER_COMMAND_T_RESET;
+    } else {
+        fprintf(stderr, "hkf-cmd: unknown command '%s': recenter or reset\n", verb);
+        return 2;
+    }
+    clock_gettime(CLOCK_REALTIME, &now);
+    command.utime = (int64_t)now.tv_sec * 1000000 + now.tv_nsec / 1000;
+    lcm = lcm_create(lcm_url);
+    if (lcm == NULL) {
+        fprintf(stderr, "hkf-cmd: cannot open LCM provider '%s'\n", lcm_url);
+        return 1;
+    }
+    result = hkf_tracker_command_t_publish(lcm, channel, &command);
+    lcm_destroy(lcm);
+    if (result != 0) {
+        fprintf(stderr, "hkf-cmd: publishing on %s failed\n", channel);
+        return 1;
+    }
+    printf("hkf-cmd: %s sent on %s\n", verb, channel);
+    return 0;
+}

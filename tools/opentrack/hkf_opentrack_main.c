@@ -1,0 +1,415 @@
+/*
+ * hkf-opentrack - the bridge to opentrack: subscribes the filtered head pose
+ * (HEAD_POSE) and sends each one to opentrack's "UDP over network" input as
+ * one datagram (opentrack_packet.h has the format and the angle mapping).
+ * opentrack then moves the camera of every game it supports.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <netdb.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/select.h>
+#include <sys/socket.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <lcm/lcm.h>
+
+#include "opentrack_packet.h"
+
+#define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
+
+typedef enum { LOST_HOLD, LOST_CENTER, LOST_SEND } lost_policy_t;
+
+typedef struct {
+    const char *lcm_url, *channel, *host, *port;
+    long bind_port;       /* local source port, 0 = any */
+    double rate_hz;       /* 0: one datagram per pose */
+    lost_policy_t lost;
+    opentrack_mapping_t mapping;
+} options_t;
+
+typedef struct {
+    unsigned long received, sent, held, centered, non_finite, send_errors, decode_errors;
+} bridge_counts_t;
+
+typedef struct {
+    const options_t *options;
+    int socket_fd;
+    unsigned char packet[OPENTRACK_PACKET_SIZE]; /* the latest packet: what --rate repeats, LOST holds */
+    int have_packet;
+    bridge_counts_t counts;
+} bridge_t;
+
+static volatile sig_atomic_t stop_requested = 0;
+
+static void on_signal(int signal_number)
+{
+    (void)signal_number;
+    stop_requested = 1;
+}
+
+static void usage(FILE *to)
+{
+    fprintf(to,
+            "usage: hkf-opentrack [options]\n"
+            "Sends every filtered head pose (hkf.head_pose_t) to opentrack's \"UDP over network\"\n"
+            "input: one datagram of six little-endian doubles x, y, z (cm, always 0), yaw, pitch,\n"
+            "roll (deg), roll's sign flipped to opentrack's convention.\n"
+            "  --lcm-url URL      LCM provider (default " DEFAULT_LCM_URL ")\n"
+            "  --channel C        filtered poses (default HEAD_POSE)\n"
+            "  --host H           opentrack's address (default 127.0.0.1)\n"
+            "  --port P           opentrack's UDP port (default 4242)\n"
+            "  --bind P           send from this local UDP port (default: any free one)\n"
+            "  --absolute         send the absolute angles; by default the pose minus hkf's centre\n"
+            "                     pose, so 'hkf-cmd recenter' re-zeroes the game camera\n"
+            "  --invert AXIS      flip yaw, pitch or roll (repeatable, or a list: yaw,roll)\n"
+            "  --scale AXIS=K     multiply yaw, pitch or roll by K (repeatable), e.g. --scale yaw=1.5\n"
+            "  --lost hold|center|send\n"
+            "                     while the face is LOST: repeat the last pose sent (hold, default),\n"
+            "                     send the centre (0, 0, 0), or send the filter's held pose as is\n"
+            "  --rate HZ          send the latest pose at this fixed rate instead of once per pose\n"
+            "                     (run hkf-filter --rate too, for extrapolated poses in between)\n"
+            "  --help             this text\n"
+            "Non-finite poses are never sent (counted); a destination that refuses (opentrack not\n"
+            "running) is counted and retried with the next pose. Stops on SIGINT / SIGTERM with a summary.\n");
+}
+
+static int parse_invert(const char *list, opentrack_mapping_t *mapping)
+{
+    char buffer[64];
+    char *token, *rest;
+    if (strlen(list) >= sizeof buffer) {
+        return -1;
+    }
+    strcpy(buffer, list);
+    for (token = strtok_r(buffer, ",", &rest); token != NULL; token = strtok_r(NULL, ",", &rest)) {
+        const int axis = opentrack_axis_from_name(token);
+        if (axis < 0) {
+            return -1;
+        }
+        mapping->invert[axis] = 1;
+    }
+    return 0;
+}
+
+static int parse_scale(const char *text, opentrack_mapping_t *mapping)
+{
+    char name[16];
+    const char *equals = strchr(text, '=');
+    char *end = NULL;
+    double k;
+    int axis;
+    if (equals == NULL || equals - text >= (long)sizeof name) {
+        return -1;
+    }
+    memcpy(name, text, (size_t)(equals - text));
+    name[equals - text] = '\0';
+    axis = opentrack_axis_from_name(name);
+    errno = 0;
+    k = strtod(equals + 1, &end);
+    if (axis < 0 || end == equals + 1 || *end != '\0' || errno != 0 || !(k >= -100.0 && k <= 100.0)) {
+        return -1;
+    }
+    mapping->scale[axis] = k;
+    return 0;
+}
+
+static int parse_port(const char *text, long low, long *port)
+{
+    char *end = NULL;
+    errno = 0;
+    *port = strtol(text, &end, 10);
+    return end != text && *end == '\0' && errno == 0 && *port >= low && *port <= 65535 ? 0 : -1;
+}
+
+/* 0 = run, 1 = done (help), 2 = bad arguments */
+static int parse_options(int argc, char **argv, options_t *o)
+{
+    long port;
+    int i;
+    memset(o, 0, sizeof *o);
+    o->lcm_url = DEFAULT_LCM_URL;
+    o->channel = "HEAD_POSE";
+    o->host = "127.0.0.1";
+    o->port = "4242";
+    o->lost = LOST_HOLD;
+    o->mapping = opentrack_default_mapping();
+    for (i = 1; i < argc; ++i) {
+        const char *arg = argv[i];
+        const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+            usage(stdout);
+            return 1;
+        } else if (strcmp(arg, "--absolute") == 0) {
+            o->mapping.relative_to_center = 0;
+            continue;
+        } else if (value == NULL) {
+            fprintf(stderr, "hkf-opentrack: unknown or incomplete argument '%s' (see --help)\n", arg);
+            return 2;
+        }
+        ++i;
+        if (strcmp(arg, "--lcm-url") == 0) {
+            o->lcm_url = value;
+        } else if (strcmp(arg, "--channel") == 0) {
+            o->channel = value;
+        } else if (strcmp(arg, "--host") == 0) {
+            o->host = value;
+        } else if (strcmp(arg, "--port") == 0) {
+            if (parse_port(value, 1, &port) != 0) {
+                fprintf(stderr, "hkf-opentrack: --port wants a UDP port from 1 to 65535, not '%s'\n", value);
+                return 2;
+            }
+            o->port = value;
+        } else if (strcmp(arg, "--bind") == 0) {
+            if (parse_port(value, 1, &o->bind_port) != 0) {
+                fprintf(stderr, "hkf-opentrack: --bind wants a UDP port from 1 to 65535, not '%s'\n", value);
+                return 2;
+            }
+        } else if (strcmp(arg, "--invert") == 0) {
+            if (parse_invert(value, &o->mapping) != 0) {
+                fprintf(stderr, "hkf-opentrack: --invert wants yaw, pitch or roll (or a list), not '%s'\n", value);
+                return 2;
+            }
+        } else if (strcmp(arg, "--scale") == 0) {
+            if (parse_scale(value, &o->mapping) != 0) {
+                fprintf(stderr, "hkf-opentrack: --scale wants AXIS=K (yaw, pitch or roll; K from -100 to 100), "
+                                "not '%s'\n", value);
+                return 2;
+            }
+        } else if (strcmp(arg, "--lost") == 0) {
+            if (strcmp(value, "hold") == 0) {
+                o->lost = LOST_HOLD;
+            } else if (strcmp(value, "center") == 0) {
+                o->lost = LOST_CENTER;
+            } else if (strcmp(value, "send") == 0) {
+                o->lost = LOST_SEND;
+            } else {
+                fprintf(stderr, "hkf-opentrack: --lost wants hold, center or send, not '%s'\n", value);
+                return 2;
+            }
+        } else if (strcmp(arg, "--rate") == 0) {
+            char *end = NULL;
+            errno = 0;
+            o->rate_hz = strtod(value, &end);
+            if (end == value || *end != '\0' || errno != 0 || !(o->rate_hz > 0.0 && o->rate_hz <= 1000.0)) {
+                fprintf(stderr, "hkf-opentrack: --rate wants a frequency above 0 and up to 1000 Hz, not '%s'\n",
+                        value);
+                return 2;
+            }
+        } else {
+            fprintf(stderr, "hkf-opentrack: unknown or incomplete argument '%s' (see --help)\n", arg);
+            return 2;
+        }
+    }
+    return 0;
+}
+
+/* A UDP socket connected to host:port (so a refusing destination shows as an
+ * error on the next send), bound to --bind if given. -1 after a message. */
+static int open_socket(const options_t *o)
+{
+    struct addrinfo hints, *found = NULL, *a;
+    int fd = -1, result;
+    memset(&hints, 0, sizeof hints);
+    hints.ai_family = AF_UNSPEC;
+    hints.ai_socktype = SOCK_DGRAM;
+    result = getaddrinfo(o->host, o->port, &hints, &found);
+    if (result != 0) {
+        fprintf(stderr, "hkf-opentrack: cannot resolve the host '%s': %s\n", o->host, gai_strerror(result));
+        return -1;
+    }
+    for (a = found; a != NULL && fd < 0; a = a->ai_next) {
+        fd = socket(a->ai_family, a->ai_socktype, a->ai_protocol);
+        if (fd < 0) {
+            continue;
+        }
+        if (o->bind_port > 0) {
+            struct sockaddr_storage local;
+            socklen_t length;
+            memset(&local, 0, sizeof local);
+            if (a->ai_family == AF_INET6) {
+                struct sockaddr_in6 *in6 = (struct sockaddr_in6 *)&local;
+                in6->sin6_family = AF_INET6;
+                in6->sin6_port = htons((unsigned short)o->bind_port);
+                in6->sin6_addr = in6addr_any;
+                length = sizeof *in6;
+            } else {
+                struct sockaddr_in *in4 = (struct sockaddr_in *)&local;
+                in4->sin_family = AF_INET;
+                in4->sin_port = htons((unsigned short)o->bind_port);
+                in4->sin_addr.s_addr = htonl(INADDR_ANY);
+                length = sizeof *in4;
+            }
+            if (bind(fd, (struct sockaddr *)&local, length) != 0) {
+                fprintf(stderr, "hkf-opentrack: cannot send from local UDP port %ld: %s\n", o->bind_port,
+                        errno == EADDRINUSE ? "the port is in use by another program" : strerror(errno));
+                close(fd);
+                freeaddrinfo(found);
+                return -1;
+            }
+        }
+        if (connect(fd, a->ai_addr, a->ai_addrlen) != 0) {
+            fprintf(stderr, "hkf-opentrack: cannot reach %s port %s: %s\n", o->host, o->port, strerror(errno));
+            close(fd);
+            fd = -1;
+        }
+    }
+    freeaddrinfo(found);
+    if (fd < 0) {
+        fprintf(stderr, "hkf-opentrack: no usable address for %s port %s\n", o->host, o->port);
+    }
+    return fd;
+}
+
+static void send_packet(bridge_t *bridge)
+{
+    if (send(bridge->socket_fd, bridge->packet, sizeof bridge->packet, MSG_DONTWAIT) ==
+        (ssize_t)sizeof bridge->packet) {
+        ++bridge->counts.sent;
+        return;
+    }
+    /* opentrack not (yet) listening, a full buffer, a network down: the next pose tries again */
+    if (bridge->counts.send_errors++ < 5) {
+        fprintf(stderr, "hkf-opentrack: sending to %s port %s failed: %s%s\n", bridge->options->host,
+                bridge->options->port, strerror(errno),
+                errno == ECONNREFUSED ? " (is opentrack running with the \"UDP over network\" input?)" : "");
+    }
+}
+
+/* One pose -> the packet to send (or none); then sent unless --rate sends it. */
+static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
+{
+    const options_t *o = bridge->options;
+    double values[OPENTRACK_FIELDS];
+    ++bridge->counts.received;
+    if (pose->status == HKF_HEAD_POSE_T_LOST && o->lost == LOST_HOLD) {
+        if (!bridge->have_packet) {
+            return; /* nothing to hold yet */
+        }
+        ++bridge->counts.held;
+    } else if (pose->status == HKF_HEAD_POSE_T_LOST && o->lost == LOST_CENTER) {
+        memset(values, 0, sizeof values);
+        opentrack_encode(values, bridge->packet);
+        bridge->have_packet = 1;
+        ++bridge->counts.centered;
+    } else if (opentrack_pose_values(&o->mapping, pose, values) != 0) {
+        ++bridge->counts.non_finite;
+        return;
+    } else {
+        opentrack_encode(values, bridge->packet);
+        bridge->have_packet = 1;
+    }
+    if (o->rate_hz <= 0.0) {
+        send_packet(bridge);
+    }
+}
+
+static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    bridge_t *bridge = user;
+    hkf_head_pose_t pose;
+    if (hkf_head_pose_t_decode(rbuf->data, 0, (int)rbuf->data_size, &pose) < 0) {
+        if (bridge->counts.decode_errors++ < 5) {
+            fprintf(stderr, "hkf-opentrack: a message on %s did not decode; counted and skipped\n", channel);
+        }
+        return;
+    }
+    handle_pose(bridge, &pose);
+    hkf_head_pose_t_decode_cleanup(&pose);
+}
+
+static int64_t monotonic_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+static int run(bridge_t *bridge)
+{
+    const options_t *o = bridge->options;
+    lcm_t *lcm = lcm_create(o->lcm_url);
+    const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
+    int64_t next_tick = monotonic_us() + tick_us;
+    struct sigaction action;
+    int status = 0;
+    if (lcm == NULL) {
+        fprintf(stderr, "hkf-opentrack: cannot open LCM provider '%s'\n", o->lcm_url);
+        return 1;
+    }
+    lcm_subscribe(lcm, o->channel, on_pose, bridge);
+    memset(&action, 0, sizeof action);
+    action.sa_handler = on_signal;
+    sigaction(SIGINT, &action, NULL);
+    sigaction(SIGTERM, &action, NULL);
+    fprintf(stderr, "hkf-opentrack: %s on %s -> opentrack at %s port %s\n", o->channel, o->lcm_url, o->host, o->port);
+    while (!stop_requested) {
+        const int fd = lcm_get_fileno(lcm);
+        int64_t wait_us = 100000;
+        fd_set readable;
+        struct timeval timeout;
+        int ready;
+        if (tick_us > 0) {
+            const int64_t until = next_tick - monotonic_us();
+            wait_us = until < 0 ? 0 : (until < wait_us ? until : wait_us);
+        }
+        FD_ZERO(&readable);
+        FD_SET(fd, &readable);
+        timeout.tv_sec = (time_t)(wait_us / 1000000);
+        timeout.tv_usec = (suseconds_t)(wait_us % 1000000);
+        ready = select(fd + 1, &readable, NULL, NULL, &timeout);
+        if (ready < 0 && errno != EINTR) {
+            perror("hkf-opentrack: select");
+            status = 1;
+            break;
+        }
+        if (ready > 0 && lcm_handle(lcm) != 0) {
+            fprintf(stderr, "hkf-opentrack: LCM receive failed\n");
+            status = 1;
+            break;
+        }
+        if (tick_us > 0 && monotonic_us() >= next_tick) {
+            if (bridge->have_packet) {
+                send_packet(bridge);
+            }
+            next_tick += tick_us;
+            if (next_tick < monotonic_us()) {
+                next_tick = monotonic_us() + tick_us; /* fell behind: no burst to catch up */
+            }
+        }
+    }
+    lcm_destroy(lcm);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    static options_t options;
+    static bridge_t bridge;
+    const bridge_counts_t *c = &bridge.counts;
+    int status;
+    switch (parse_options(argc, argv, &options)) {
+    case 1: return 0;
+    case 2: return 2;
+    default: break;
+    }
+    bridge.options = &options;
+    bridge.socket_fd = open_socket(&options);
+    if (bridge.socket_fd < 0) {
+        return 1;
+    }
+    status = run(&bridge);
+    close(bridge.socket_fd);
+    fprintf(stderr,
+            "hkf-opentrack: %lu poses received, %lu datagrams sent to %s port %s (%lu repeats of the last pose "
+            "while LOST, %lu centre poses while LOST); dropped: %lu non-finite, %lu send errors, %lu undecodable\n",
+            c->received, c->sent, options.host, options.port, c->held, c->centered, c->non_finite, c->send_errors,
+            c->decode_errors);
+    return status;
+}

@@ -1,0 +1,49 @@
+/*
+ * opentrack_packet.h - hkf.head_pose_t -> the datagram of opentrack's "UDP over
+ * network" input (opentrack's tracker-udp), free of any transport.
+ *
+ * The datagram: six IEEE-754 doubles, little-endian, 48 bytes, in opentrack's
+ * axis order x, y, z (cm), yaw, pitch, roll (deg). hkf estimates no head
+ * position, so x, y, z are 0.
+ *
+ * Angle convention. hkf (README "Angle convention"): pitch > 0 nose up,
+ * yaw > 0 nose to the driver's right, roll > 0 right ear down. opentrack's
+ * own face tracker (tracker-neuralnet) builds its angles in a right-handed
+ * frame x forward, y up, z to the user's right and publishes yaw and pitch
+ * with those signs but roll negated, so in opentrack roll > 0 is LEFT ear
+ * down. Hence, once and only here:
+ *     opentrack yaw = hkf yaw, opentrack pitch = hkf pitch, opentrack roll = -hkf roll.
+ * The user's --invert and --scale apply after this mapping, on opentrack's axes.
+ */
+#ifndef OPENTRACK_PACKET_H
+#define OPENTRACK_PACKET_H
+
+#include "hkf_head_pose_t.h"
+
+#define OPENTRACK_PACKET_SIZE 48
+enum { OPENTRACK_X = 0, OPENTRACK_Y, OPENTRACK_Z, OPENTRACK_YAW, OPENTRACK_PITCH, OPENTRACK_ROLL, OPENTRACK_FIELDS };
+
+/* Which angle axis a user option names; the index into the arrays below. */
+enum { OPENTRACK_AXIS_YAW = 0, OPENTRACK_AXIS_PITCH = 1, OPENTRACK_AXIS_ROLL = 2, OPENTRACK_AXES = 3 };
+
+typedef struct {
+    int relative_to_center;       /* send pose - centre (kappa), so RECENTER re-zeroes the game camera */
+    int invert[OPENTRACK_AXES];   /* flip the sign of yaw, pitch, roll after the convention mapping */
+    double scale[OPENTRACK_AXES]; /* then multiply */
+} opentrack_mapping_t;
+
+/* Relative to the centre, no inversion, scale 1. */
+opentrack_mapping_t opentrack_default_mapping(void);
+
+/* "yaw", "pitch" or "roll" -> OPENTRACK_AXIS_*, or -1. */
+int opentrack_axis_from_name(const char *name);
+
+/* The six values for one pose. Returns 0, or -1 when any value is not finite
+ * (nothing non-finite is ever sent). */
+int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pose_t *pose,
+                          double values[OPENTRACK_FIELDS]);
+
+/* The six values as the 48 bytes on the wire (little-endian, whatever the host). */
+void opentrack_encode(const double values[OPENTRACK_FIELDS], unsigned char packet[OPENTRACK_PACKET_SIZE]);
+
+#endif /* OPENTRACK_PACKET_H */
