@@ -18,9 +18,8 @@ import tempfile
 from PIL import Image, ImageDraw
 
 build, source, models = sys.argv[1:4]
-sys.path.insert(0, os.path.join(source, "tools", "logs"))
 sys.path.insert(0, os.path.join(build, "lcmtypes", "python"))
-import lcmlog  # noqa: E402
+import lcm  # noqa: E402
 from hkf import head_pose_measurement_t  # noqa: E402
 
 estimator = os.path.join(build, "estimator", "hkf-estimator")
@@ -44,7 +43,7 @@ def run(src, *extra):
                        capture_output=True, text=True, timeout=600)
     messages = []
     if os.path.exists(log):
-        messages = [head_pose_measurement_t.decode(e.data) for e in lcmlog.read_events(log) if e.channel == "HEAD_POSE_RAW"]
+        messages = [head_pose_measurement_t.decode(e.data) for e in lcm.EventLog(log, "r") if e.channel == "HEAD_POSE_RAW"]
     return p.returncode, p.stdout + p.stderr, messages
 
 

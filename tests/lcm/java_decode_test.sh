@@ -8,7 +8,7 @@ trap 'rm -rf "$work"' EXIT
 cp="/usr/share/java/lcm.jar:$build/lcmtypes/hkf_lcmtypes.jar"
 javac -nowarn -cp "$cp" -d "$work" "$source/tests/lcm/DecodeHeadPoseLog.java"
 java_says=$(java -cp "$cp:$work" DecodeHeadPoseLog "$log")
-python_says=$(python3 "$source/tests/lcm/decode_head_pose_log.py" "$log" "$source/tools/logs" "$build/lcmtypes/python")
+python_says=$("$source/.venv/bin/python" "$source/tests/lcm/decode_head_pose_log.py" "$log" "$build/lcmtypes/python")
 echo "java:   $java_says"
 echo "python: $python_says"
 [ "${java_says%% *}" -gt 0 ] || { echo "FAIL: no HEAD_POSE message decoded" >&2; exit 1; }

@@ -6,6 +6,7 @@
 set -euo pipefail
 build=$1 source=$2
 simlog=$build/tools/hkf-simlog filter=$build/tools/hkf-filter
+python=$source/.venv/bin/python  # with PyPI lcm (scripts/setup.sh)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -21,7 +22,7 @@ without=$(sed -n 's/.*(\([0-9]*\) without a face).*/\1/p' "$work/a.txt")
 [ "$published" -ge $((900 - without)) ] && [ "$published" -le 900 ] || fail "published $published of 900 ($without without a face)"
 rows=$(($(wc -l <"$work/a.csv") - 1))
 [ "$rows" -eq "$published" ] || fail "CSV has $rows rows, $published poses published"
-python3 "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/a.lcmlog" "$work/b.lcmlog"
+"$python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/a.lcmlog" "$work/b.lcmlog"
 if grep -qi nan "$work/a.csv"; then fail "NaN in the CSV"; fi
 
 # --rate: extrapolated poses in between, in log time
@@ -31,13 +32,15 @@ extrapolated=$(sed -n 's/.*(\([0-9]*\) extrapolated).*/\1/p' "$work/r.txt")
 [ "$extrapolated" -gt 2000 ] || fail "expected ~2700 extrapolated poses at 120 Hz over 30 s, got $extrapolated"
 
 # an undecodable message is counted, never fatal
-python3 - "$work/raw.lcmlog" "$work/corrupt.lcmlog" "$source/tools/logs" <<'PY'
+"$python" - "$work/raw.lcmlog" "$work/corrupt.lcmlog" <<'PY'
 import sys
-sys.path.insert(0, sys.argv[3])
-import lcmlog
-events = list(lcmlog.read_events(sys.argv[1]))[:10]
-events.insert(5, lcmlog.Event(99, events[4].timestamp + 1, "HEAD_POSE_RAW", b"\x00garbage"))
-lcmlog.write_events(sys.argv[2], events)
+import lcm
+events = [(e.timestamp, e.channel, e.data) for e in lcm.EventLog(sys.argv[1], "r")][:10]
+events.insert(5, (events[4][0] + 1, "HEAD_POSE_RAW", b"\x00garbage"))
+out = lcm.EventLog(sys.argv[2], "w", overwrite=True)
+for timestamp, channel, data in events:
+    out.write_event(timestamp, channel, data)
+out.close()
 PY
 "$filter" --offline "$work/corrupt.lcmlog" "$work/c.lcmlog" 2>"$work/c.txt" || fail "exit status on an undecodable message"
 cat "$work/c.txt"

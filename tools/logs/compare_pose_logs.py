@@ -8,18 +8,16 @@ Exit 0 when they match, 1 when not, 2 on bad input.
 """
 import argparse
 import math
-import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import lcmlog  # noqa: E402
+import lcm
 
 COMPARED = ["utime", "measurement_utime", "seq", "status", "pitch", "yaw", "roll", "pitch_rate", "yaw_rate",
             "roll_rate", "variance", "r", "center", "loop_closure_active", "extrapolated"]
 
 
 def poses(path, channel, head_pose_t):
-    return [head_pose_t.decode(e.data) for e in lcmlog.read_events(path) if e.channel == channel]
+    return [head_pose_t.decode(e.data) for e in lcm.EventLog(path, "r") if e.channel == channel]
 
 
 def differ(a, b, tolerance):
@@ -44,7 +42,7 @@ def main():
     try:
         expected = poses(args.expected, args.channel, head_pose_t)
         actual = poses(args.actual, args.channel, head_pose_t)
-    except (OSError, lcmlog.LogError, ValueError) as e:
+    except (OSError, ValueError) as e:
         print(f"compare_pose_logs: {e}", file=sys.stderr)
         return 2
     print(f"compare_pose_logs: {len(expected)} expected, {len(actual)} recorded {args.channel} messages")

@@ -4,9 +4,9 @@ the filtered ones (hkf-filter's CSV): pitch, yaw and roll over time, PNG.
 usage: plot_poses.py RAW.lcmlog FILTERED.csv OUT.png --types BUILD/lcmtypes/python"""
 import argparse
 import csv
-import os
 import sys
 
+import lcm
 import matplotlib
 
 matplotlib.use("Agg")
@@ -21,16 +21,14 @@ def main():
     parser.add_argument("--types", required=True)
     parser.add_argument("--title", default="head pose: raw estimate and adaptive Kalman filter")
     args = parser.parse_args()
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "logs"))
     sys.path.insert(0, args.types)
-    import lcmlog
     from hkf import head_pose_measurement_t
 
     try:
-        raw = [head_pose_measurement_t.decode(e.data) for e in lcmlog.read_events(args.raw) if e.channel == "HEAD_POSE_RAW"]
+        raw = [head_pose_measurement_t.decode(e.data) for e in lcm.EventLog(args.raw, "r") if e.channel == "HEAD_POSE_RAW"]
         with open(args.filtered) as f:
             filtered = [r for r in csv.DictReader(f) if r["extrapolated"] == "0"]
-    except (OSError, lcmlog.LogError, ValueError, KeyError) as e:
+    except (OSError, ValueError, KeyError) as e:
         print(f"plot_poses: {e}", file=sys.stderr)
         return 1
     if not raw or not filtered:
