@@ -56,7 +56,11 @@ bridge nobody --port 4244                        # nothing listens there
 bridge rate --port 4245 --rate 50
 sleep 0.7
 
-lcm-logplayer -s 2 --lcm-url "$url" "$work/raw.lcmlog"
+lcm-logplayer -s 2 --lcm-url "$url" "$work/raw.lcmlog" &
+player_pid=$!
+sleep 2.5
+"$build/tools/hkf-cmd" recenter --lcm-url "$url" || fail "hkf-cmd recenter"   # mid-drive, as a hotkey would
+wait "$player_pid"
 sleep 0.3
 # a hostile pose: NaN pitch, published where the bridges listen
 "$python" - "$types" "$url" <<'PY'
@@ -89,6 +93,21 @@ check "$work/udp4242.hex" || fail "defaults: the bytes differ"
 check "$work/udp4243.hex" --absolute --lost send --invert yaw --scale pitch=2 --scale roll=-0.5 \
   || fail "options: the bytes differ"
 check "$work/udp4245.hex" --rate || fail "--rate: datagrams that were not due"
+grep -q "1 commands" "$work/filter.txt" || fail "hkf-filter did not get the RECENTER"
+# the centre moved once, mid-drive, onto the pose of that moment
+"$python" - "$types" "$work/poses.lcmlog" <<'PY' || fail "RECENTER did not move the published centre"
+import sys
+import lcm
+sys.path.insert(0, sys.argv[1])
+from hkf import head_pose_t
+poses = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[2], "r")]
+poses = [p for p in poses if p.seq > 0]
+changes = [i for i in range(1, len(poses)) if list(poses[i].center) != list(poses[i - 1].center)]
+assert len(changes) == 1 and 30 < changes[0] < 270, changes
+before, after = poses[changes[0] - 1], poses[changes[0]]
+assert list(after.center) == [before.pitch, before.yaw, before.roll], (after.center, before)
+print(f"recenter: the centre moved at pose {changes[0]} onto {[round(c, 2) for c in after.center]}")
+PY
 grep -q "301 poses received" "$work/defaults.txt" || fail "the bridge did not receive the 300 poses and the NaN one"
 grep -q "2 repeats of the last pose while LOST" "$work/defaults.txt" || fail "expected 2 LOST poses held"
 grep -q "1 non-finite" "$work/defaults.txt" || fail "the NaN pose was not counted as dropped"
