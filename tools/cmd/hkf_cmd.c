@@ -40,9 +40,10 @@ int main(int argc, char **argv)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             usage(stdout);
             return 0;
-        } else if ((strcmp(argv[i], "--lcm-url") == 0 || strcmp(argv[i], "--channel") == 0) && i + 1 < argc) {
-            *(strcmp(argv[i], "--lcm-url") == 0 ? &lcm_url : &channel) = argv[i + 1];
-            ++i;
+        } else if (strcmp(argv[i], "--lcm-url") == 0 && i + 1 < argc) {
+            lcm_url = argv[++i];
+        } else if (strcmp(argv[i], "--channel") == 0 && i + 1 < argc) {
+            channel = argv[++i];
         } else if (argv[i][0] != '-' && verb == NULL) {
             verb = argv[i];
         } else {

@@ -11,12 +11,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/select.h>
 #include <time.h>
 
 #include <lcm/lcm.h>
 
 #include "filter_node.h"
+#include "lcm_wait.h"
 #include "node_config.h"
 
 #define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
@@ -270,26 +270,7 @@ static int run_live(node_run_t *run)
             run->out_lcm != in ? " -> " : "", run->out_lcm != in ? o->output_url : "");
 
     while (!stop_requested) {
-        const int fd = lcm_get_fileno(in);
-        int64_t wait_us = 100000;
-        fd_set readable;
-        struct timeval timeout;
-        int ready;
-        if (tick_us > 0) {
-            const int64_t until = next_tick - wall_utime();
-            wait_us = until < 0 ? 0 : (until < wait_us ? until : wait_us);
-        }
-        FD_ZERO(&readable);
-        FD_SET(fd, &readable);
-        timeout.tv_sec = (time_t)(wait_us / 1000000);
-        timeout.tv_usec = (suseconds_t)(wait_us % 1000000);
-        ready = select(fd + 1, &readable, NULL, NULL, &timeout);
-        if (ready < 0 && errno != EINTR) {
-            perror("hkf-filter: select");
-            break;
-        }
-        if (ready > 0 && lcm_handle(in) != 0) {
-            fprintf(stderr, "hkf-filter: LCM receive failed\n");
+        if (lcm_wait_and_handle(in, lcm_wait_time(tick_us > 0 ? next_tick : 0, wall_utime()), "hkf-filter") < 0) {
             break;
         }
         if (tick_us > 0 && wall_utime() >= next_tick) {

@@ -13,13 +13,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/select.h>
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
 
 #include <lcm/lcm.h>
 
+#include "lcm_wait.h"
 #include "opentrack_packet.h"
 
 #define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
@@ -350,27 +350,7 @@ static int run(bridge_t *bridge)
     sigaction(SIGTERM, &action, NULL);
     fprintf(stderr, "hkf-opentrack: %s on %s -> opentrack at %s port %s\n", o->channel, o->lcm_url, o->host, o->port);
     while (!stop_requested) {
-        const int fd = lcm_get_fileno(lcm);
-        int64_t wait_us = 100000;
-        fd_set readable;
-        struct timeval timeout;
-        int ready;
-        if (tick_us > 0) {
-            const int64_t until = next_tick - monotonic_us();
-            wait_us = until < 0 ? 0 : (until < wait_us ? until : wait_us);
-        }
-        FD_ZERO(&readable);
-        FD_SET(fd, &readable);
-        timeout.tv_sec = (time_t)(wait_us / 1000000);
-        timeout.tv_usec = (suseconds_t)(wait_us % 1000000);
-        ready = select(fd + 1, &readable, NULL, NULL, &timeout);
-        if (ready < 0 && errno != EINTR) {
-            perror("hkf-opentrack: select");
-            status = 1;
-            break;
-        }
-        if (ready > 0 && lcm_handle(lcm) != 0) {
-            fprintf(stderr, "hkf-opentrack: LCM receive failed\n");
+        if (lcm_wait_and_handle(lcm, lcm_wait_time(tick_us > 0 ? next_tick : 0, monotonic_us()), "hkf-opentrack") < 0) {
             status = 1;
             break;
         }

@@ -1,0 +1,43 @@
+/* lcm_wait.c - see lcm_wait.h. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "lcm_wait.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/select.h>
+
+int64_t lcm_wait_time(int64_t next_tick_us, int64_t now_us)
+{
+    const int64_t until = next_tick_us - now_us;
+    if (next_tick_us == 0) {
+        return LCM_WAIT_MAX_US;
+    }
+    return until < 0 ? 0 : (until < LCM_WAIT_MAX_US ? until : LCM_WAIT_MAX_US);
+}
+
+int lcm_wait_and_handle(lcm_t *lcm, int64_t wait_us, const char *program)
+{
+    const int fd = lcm_get_fileno(lcm);
+    fd_set readable;
+    struct timeval timeout;
+    int ready;
+    FD_ZERO(&readable);
+    FD_SET(fd, &readable);
+    timeout.tv_sec = (time_t)(wait_us / 1000000);
+    timeout.tv_usec = (suseconds_t)(wait_us % 1000000);
+    ready = select(fd + 1, &readable, NULL, NULL, &timeout);
+    if (ready < 0) {
+        if (errno == EINTR) {
+            return 0;
+        }
+        fprintf(stderr, "%s: waiting for LCM messages failed: %s\n", program, strerror(errno));
+        return -1;
+    }
+    if (ready > 0 && lcm_handle(lcm) != 0) {
+        fprintf(stderr, "%s: LCM receive failed\n", program);
+        return -1;
+    }
+    return ready > 0;
+}

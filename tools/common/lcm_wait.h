@@ -1,0 +1,25 @@
+/*
+ * lcm_wait.h - one wait of a live LCM loop that also keeps a timer (hkf-filter's
+ * and hkf-opentrack's --rate): handle the next message if one arrives within
+ * the wait, otherwise return so the caller can serve its timer or a stop request.
+ */
+#ifndef LCM_WAIT_H
+#define LCM_WAIT_H
+
+#include <stdint.h>
+
+#include <lcm/lcm.h>
+
+/* The longest wait, so that a stop request (a signal) is noticed promptly. */
+#define LCM_WAIT_MAX_US 100000
+
+/* How long to wait: until next_tick_us (on the same clock as now_us), at most
+ * LCM_WAIT_MAX_US, never negative; with no timer (next_tick_us = 0) the maximum. */
+int64_t lcm_wait_time(int64_t next_tick_us, int64_t now_us);
+
+/* Waits up to wait_us for a message and handles it. Returns 1 when one was
+ * handled, 0 when none came (time out, or a signal), -1 on a failure, which
+ * it reports on stderr prefixed by `program`. */
+int lcm_wait_and_handle(lcm_t *lcm, int64_t wait_us, const char *program);
+
+#endif /* LCM_WAIT_H */
