@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Raw pose -> opentrack datagram latency through hkf-filter and hkf-opentrack,
+# at 60 and 250 Hz, in a private network namespace (root; nothing leaves the machine).
+# usage: opentrack_latency.sh BUILD_DIR [SECONDS]
+set -euo pipefail
+build=$(cd "$1" && pwd)
+seconds=${2:-10}
+here=$(cd "$(dirname "$0")" && pwd)
+if [ "${HKF_IN_NETNS:-}" != 1 ]; then
+  HKF_IN_NETNS=1 exec "$here/../lcm-netns" "$0" "$@"
+fi
+url="udpm://239.255.76.67:7667?ttl=0"
+log=$(mktemp)
+"$build/tools/hkf-filter" --lcm-url "$url" 2>"$log" &
+filter=$!
+"$build/tools/hkf-opentrack" --lcm-url "$url" 2>>"$log" &
+bridge=$!
+trap 'kill $filter $bridge 2>/dev/null || true; rm -f "$log"' EXIT
+sleep 0.5
+echo "raw pose -> opentrack datagram through hkf-filter and hkf-opentrack (udpm + UDP on loopback, $(nproc) cores), $seconds s per rate:"
+for rate in 60 250; do
+  "$here/../../.venv/bin/python" "$here/opentrack_latency.py" --types "$build/lcmtypes/python" --lcm-url "$url" \
+    --rate "$rate" --seconds "$seconds"
+done
+kill -INT $filter $bridge
+wait $filter $bridge || true
+cat "$log"
