@@ -47,6 +47,33 @@ cat "$work/c.txt"
 grep -q "1 undecodable" "$work/c.txt" || fail "undecodable message not counted"
 grep -q "11 measurements\|10 measurements" "$work/c.txt" || fail "the good messages were not all handled"
 
+# one raw message stamped INT64_MAX (a corrupt stamp) among 29 good ones: rejected, nothing freezes
+"$python" - "$work/raw.lcmlog" "$work/future.lcmlog" "$build/lcmtypes/python" <<'PY'
+import sys
+import lcm
+sys.path.insert(0, sys.argv[3])
+from hkf import head_pose_measurement_t
+events = [e for e in lcm.EventLog(sys.argv[1], "r") if e.channel == "HEAD_POSE_RAW"][:30]
+bad = head_pose_measurement_t.decode(events[10].data)
+bad.utime = 2**63 - 1
+out = lcm.EventLog(sys.argv[2], "w", overwrite=True)
+for i, e in enumerate(events):
+    out.write_event(e.timestamp, e.channel, bad.encode() if i == 10 else e.data)
+out.close()
+without = lcm.EventLog(sys.argv[2] + ".without", "w", overwrite=True)  # the same log without it
+for i, e in enumerate(events):
+    if i != 10:
+        without.write_event(e.timestamp, e.channel, e.data)
+without.close()
+PY
+"$filter" --offline "$work/future.lcmlog" "$work/f.lcmlog" 2>"$work/f.txt" || fail "exit status on a corrupt stamp"
+cat "$work/f.txt"
+grep -q "1 clock jumps (0 followed)" "$work/f.txt" || fail "the INT64_MAX stamp was not rejected as a clock jump"
+grep -q "0 out of order" "$work/f.txt" || fail "good messages after the bad stamp were rejected"
+"$filter" --offline "$work/future.lcmlog.without" "$work/w.lcmlog" 2>/dev/null
+"$python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/w.lcmlog" "$work/f.lcmlog" \
+  || fail "the poses around the bad stamp differ from those of the log without it"
+
 # bad input: a clear error and a non-zero exit
 if "$filter" --offline "$work/missing.lcmlog" "$work/x.lcmlog" 2>"$work/e.txt"; then fail "missing input accepted"; fi
 grep -q "missing.lcmlog" "$work/e.txt" || fail "error does not name the file"

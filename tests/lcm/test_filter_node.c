@@ -264,6 +264,101 @@ static void test_extrapolation(void **state)
     assert_int_equal(node.counts.extrapolated, 2);
 }
 
+/* Clock rule: feed n frames from frame `first`, capture stamps shifted by
+ * stamp_shift_us, arriving on time; returns how many were published. */
+static int feed(int first, int n, int64_t stamp_shift_us)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    for (i = first; i < first + n; ++i) {
+        m = measurement(T0 + i * FRAME_US + stamp_shift_us, 1, 0, 10, 0);
+        if (filter_node_receive(&node, &m, T0 + i * FRAME_US, &pose)) {
+            assert_true(pose.utime == m.utime && isfinite(pose.yaw)); /* never a pose at a bad stamp */
+            ++published;
+        }
+    }
+    return published;
+}
+
+/* The issue's hostile log: 10 good stamps, one of INT64_MAX, 19 good. The bad
+ * stamp is rejected; nothing freezes. */
+static void test_clock_corrupt_stamp(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    (void)state;
+    assert_int_equal(feed(0, 10, 0), 10);
+    m = measurement(INT64_MAX, 1, 0, 10, 0);
+    assert_int_equal(filter_node_receive(&node, &m, T0 + 10 * FRAME_US, &pose), 0);
+    assert_int_equal(feed(11, 19, 0), 19);
+    assert_int_equal(node.counts.clock_jumps, 1);
+    assert_int_equal(node.counts.clock_resyncs, 0);
+    assert_int_equal(node.counts.restarts, 0);
+    assert_int_equal(node.counts.out_of_order, 0);
+    m = measurement(INT64_MIN, 1, 0, 10, 0); /* and the other extreme */
+    assert_int_equal(filter_node_receive(&node, &m, T0 + 30 * FRAME_US, &pose), 0);
+    assert_int_equal(feed(31, 5, 0), 5);
+    assert_int_equal(node.counts.clock_jumps, 2);
+}
+
+/* The capture clock steps back an hour and stays there: two frames are
+ * rejected, the third consistent one is followed, the track restarts. */
+static void test_clock_jump_backward(void **state)
+{
+    (void)state;
+    assert_int_equal(feed(0, 10, 0), 10);
+    assert_int_equal(feed(10, 20, -3600000000LL), 20 - (FILTER_NODE_RESYNC_MESSAGES - 1));
+    assert_int_equal(node.counts.clock_jumps, FILTER_NODE_RESYNC_MESSAGES - 1);
+    assert_int_equal(node.counts.clock_resyncs, 1);
+    assert_int_equal(node.counts.restarts, 1);
+    assert_true(node.last_utime == T0 + 29 * FRAME_US - 3600000000LL);
+}
+
+/* ... and forward an hour. */
+static void test_clock_jump_forward(void **state)
+{
+    (void)state;
+    assert_int_equal(feed(0, 10, 0), 10);
+    assert_int_equal(feed(10, 20, 3600000000LL), 20 - (FILTER_NODE_RESYNC_MESSAGES - 1));
+    assert_int_equal(node.counts.clock_jumps, FILTER_NODE_RESYNC_MESSAGES - 1);
+    assert_int_equal(node.counts.clock_resyncs, 1);
+    assert_int_equal(node.counts.out_of_order, 0);
+}
+
+/* A corrupt first stamp is followed once three good ones agree. */
+static void test_clock_corrupt_first_stamp(void **state)
+{
+    hkf_head_pose_measurement_t m = measurement(INT64_MAX, 1, 0, 10, 0);
+    hkf_head_pose_t pose;
+    (void)state;
+    assert_int_equal(filter_node_receive(&node, &m, T0 - FRAME_US, &pose), 1);
+    assert_int_equal(feed(0, 20, 0), 20 - (FILTER_NODE_RESYNC_MESSAGES - 1));
+    assert_int_equal(node.counts.clock_resyncs, 1);
+    assert_true(node.last_utime == T0 + 19 * FRAME_US);
+}
+
+/* What is not a jump: a replay at 2x speed with a 3 s gap (capture steps twice
+ * the arrival steps), and a one-frame reorder (still out of order). */
+static void test_clock_not_a_jump(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    (void)state;
+    for (i = 0; i < 40; ++i) {
+        const int64_t stamp = T0 + i * FRAME_US + (i >= 20 ? 3000000 : 0);
+        m = measurement(stamp, 1, 0, 10, 0);
+        published += filter_node_receive(&node, &m, T0 + (stamp - T0) / 2, &pose);
+    }
+    assert_int_equal(published, 40);
+    assert_int_equal(node.counts.clock_jumps, 0);
+    m = measurement(node.last_utime - FRAME_US, 1, 0, 10, 0);
+    assert_int_equal(filter_node_receive(&node, &m, T0 + 3000000, &pose), 0);
+    assert_int_equal(node.counts.out_of_order, 1);
+    assert_int_equal(node.counts.clock_jumps, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -275,6 +370,11 @@ int main(void)
         cmocka_unit_test_setup(test_model_table, setup),
         cmocka_unit_test_setup(test_commands, setup),
         cmocka_unit_test_setup(test_extrapolation, setup),
+        cmocka_unit_test_setup(test_clock_corrupt_stamp, setup),
+        cmocka_unit_test_setup(test_clock_jump_backward, setup),
+        cmocka_unit_test_setup(test_clock_jump_forward, setup),
+        cmocka_unit_test_setup(test_clock_corrupt_first_stamp, setup),
+        cmocka_unit_test_setup(test_clock_not_a_jump, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

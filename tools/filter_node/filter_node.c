@@ -130,6 +130,50 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
     return 1;
 }
 
+/* Capture-clock step minus arrival-clock step, in double: stamps may be anything. */
+static double clock_skew_us(int64_t utime, int64_t arrival, int64_t ref_utime, int64_t ref_arrival)
+{
+    return ((double)utime - (double)ref_utime) - ((double)arrival - (double)ref_arrival);
+}
+
+int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
+                        hkf_head_pose_t *pose)
+{
+    const double limit = (double)FILTER_NODE_CLOCK_JUMP_US;
+    const int64_t previous_utime = node->last_utime;
+    const int had_time = node->have_time;
+    int publish;
+    if (node->have_time &&
+        fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) > limit) {
+        /* the stamp disagrees with the arrival: agrees it with the previous such one? */
+        const int consistent = node->jump_count > 0 && m->utime > node->jump_utime &&
+                               fabs(clock_skew_us(m->utime, arrival_utime, node->jump_utime,
+                                                  node->jump_arrival_utime)) <= limit;
+        node->jump_count = consistent ? node->jump_count + 1 : 1;
+        node->jump_utime = m->utime;
+        node->jump_arrival_utime = arrival_utime;
+        if (node->jump_count < FILTER_NODE_RESYNC_MESSAGES) {
+            ++node->counts.received;
+            ++node->counts.clock_jumps;
+            return 0;
+        }
+        /* the capture clock has moved: follow it; the track restarts as after a gap */
+        ++node->counts.clock_resyncs;
+        node->have_time = 0;
+        if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
+            hkf_reset(&node->filter);
+            ++node->counts.restarts;
+        }
+    }
+    publish = filter_node_measurement(node, m, pose);
+    if (node->have_time && (!had_time || node->last_utime != previous_utime)) {
+        /* taken: the new time reference */
+        node->last_arrival_utime = arrival_utime;
+        node->jump_count = 0;
+    }
+    return publish;
+}
+
 int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
 {
     hkf_output_t out;

@@ -9,6 +9,13 @@
  * - utime older than the last one -> rejected (out of order); equal -> rejected (duplicate);
  * - non-finite or absurd angles -> rejected and counted, never published;
  * - a gap longer than max_dt -> the track restarts from this measurement;
+ * - clock rule (filter_node_receive): a measurement whose capture-time step
+ *   disagrees with its arrival-time step by more than FILTER_NODE_CLOCK_JUMP_US
+ *   is a corrupt stamp or a clock jump: rejected and counted, so one bad stamp
+ *   (e.g. INT64_MAX) cannot freeze the node. FILTER_NODE_RESYNC_MESSAGES such
+ *   measurements in a row that agree with each other mean the capture clock
+ *   really moved (either way): the last of them is taken and the track restarts
+ *   on the new clock, as after a gap;
  * - the measurement's `model` picks its noise curves from the model table;
  *   a change of model restarts the track with the new curves.
  */
@@ -33,6 +40,8 @@ typedef struct {
     unsigned long bad_values;      /* rejected: non-finite or out-of-range angles */
     unsigned long decode_errors;   /* messages that did not decode */
     unsigned long restarts;        /* tracks restarted after a gap or a model change */
+    unsigned long clock_jumps;     /* rejected: capture time disagrees with arrival time */
+    unsigned long clock_resyncs;   /* the capture clock moved and the node followed it */
     unsigned long unknown_models;  /* measurements whose model is not in the table */
     unsigned long commands;        /* commands applied */
 } filter_node_counts_t;
@@ -44,6 +53,9 @@ typedef struct {
     int have_time;                    /* a measurement has been seen */
     int64_t last_utime;               /* its capture time */
     int64_t last_measurement_utime;   /* capture time of the last valid measurement used */
+    int64_t last_arrival_utime;       /* arrival time of the measurement at last_utime */
+    int jump_count;                   /* clock rule: consistent rejected stamps in a row */
+    int64_t jump_utime, jump_arrival_utime; /* the last of them */
     int64_t seq;
     filter_node_counts_t counts;
 } filter_node_t;
@@ -51,7 +63,16 @@ typedef struct {
 /* 0, or a hkf_result_t when the base settings are invalid. */
 int filter_node_init(filter_node_t *node, const node_config_t *config);
 
-/* Handles one measurement; returns 1 when *pose is to be published. */
+#define FILTER_NODE_CLOCK_JUMP_US 5000000LL /* 5 s: more than any gap a replay's pacing hides */
+#define FILTER_NODE_RESYNC_MESSAGES 3
+
+/* Handles one measurement that arrived at arrival_utime (the receive clock:
+ * wall time live, the log's event timestamp offline): the clock rule, then
+ * filter_node_measurement. Returns 1 when *pose is to be published. */
+int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
+                        hkf_head_pose_t *pose);
+
+/* Handles one measurement by its capture time alone; returns 1 when *pose is to be published. */
 int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose);
 
 /* The pose at capture-clock time utime (>= the last measurement's), for

@@ -188,9 +188,10 @@ static void print_summary(const filter_node_t *node, FILE *to)
     fprintf(to,
             "hkf-filter: %lu measurements (%lu without a face), %lu poses published (%lu extrapolated); "
             "rejected: %lu out of order, %lu duplicates, %lu bad values, %lu undecodable; "
-            "%lu track restarts, %lu with an unknown model, %lu commands\n",
+            "%lu clock jumps (%lu followed); %lu track restarts, %lu with an unknown model, %lu commands\n",
             c->received, c->without_face, c->published, c->extrapolated, c->out_of_order, c->duplicates,
-            c->bad_values, c->decode_errors, c->restarts, c->unknown_models, c->commands);
+            c->bad_values, c->decode_errors, c->clock_jumps, c->clock_resyncs, c->restarts, c->unknown_models,
+            c->commands);
 }
 
 static void report_decode_error(node_run_t *run, const char *channel)
@@ -223,10 +224,10 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void
         report_decode_error(run, channel);
         return;
     }
-    if (filter_node_measurement(&run->node, &m, &pose)) {
+    run->last_arrival_us = wall_utime();
+    if (filter_node_receive(&run->node, &m, run->last_arrival_us, &pose)) {
         publish(run, &pose);
     }
-    run->last_arrival_us = wall_utime();
     hkf_head_pose_measurement_t_decode_cleanup(&m);
 }
 
@@ -359,7 +360,7 @@ static int run_offline(node_run_t *run)
                         }
                     }
                 }
-                if (filter_node_measurement(&run->node, &m, &pose)) {
+                if (filter_node_receive(&run->node, &m, event->timestamp, &pose)) {
                     status |= write_pose_event(out, o->output_channel, event->timestamp, written++, &pose);
                     if (run->csv != NULL) {
                         write_csv_pose(run->csv, &pose);
