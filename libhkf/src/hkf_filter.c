@@ -354,11 +354,12 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     for (a = 0; a < HKF_LANES; ++a) {
         const hkf_real_t k0 = f->p00[a] * inv_s[a];                   /* Eq. 6: K = P H' S^-1 */
         const hkf_real_t k1 = f->p01[a] * inv_s[a];
+        const hkf_real_t one_minus_k0 = r[a] * inv_s[a];              /* 1 - k0 = R / S, without cancellation */
         f->angle[a] += k0 * y[a];                                     /* Eq. 7: x = x + K y */
         f->rate[a] += k1 * y[a];
         f->p11[a] -= k1 * f->p01[a];                                  /* Eq. 7: P = (I - K H) P */
-        f->p01[a] -= k0 * f->p01[a];
-        f->p00[a] -= k0 * f->p00[a];
+        f->p01[a] *= one_minus_k0;
+        f->p00[a] *= one_minus_k0; /* stays > 0 in float even when P >> R (found by fuzz_libhkf) */
         f->r[a] = r[a];
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);

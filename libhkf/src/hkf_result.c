@@ -12,18 +12,19 @@ const char *hkf_result_string(int result)
     case HKF_ERROR_NOT_INITIALIZED: return "no measurement has started a track yet";
     case HKF_ERROR_SETTING_NON_FINITE: return "a setting is NaN or infinite";
     case HKF_ERROR_SETTING_NOISE_MODE: return "noise_mode is not a hkf_noise_mode_t";
-    case HKF_ERROR_SETTING_SIGMA: return "a noise curve's sigma is not > 0";
-    case HKF_ERROR_SETTING_R_RANGE: return "r_min and r_max do not satisfy 0 < r_min <= r_max";
-    case HKF_ERROR_SETTING_R_CONST: return "an r_const is not > 0";
-    case HKF_ERROR_SETTING_PROCESS_NOISE: return "a process_noise is negative";
+    case HKF_ERROR_SETTING_SIGMA: return "a noise curve's sigma is not in [HKF_MIN_SIGMA, HKF_MAX_SIGMA] deg";
+    case HKF_ERROR_SETTING_R_RANGE: return "r_min and r_max do not satisfy HKF_MIN_VARIANCE <= r_min <= r_max <= HKF_MAX_VARIANCE";
+    case HKF_ERROR_SETTING_R_CONST: return "an r_const is not in (0, HKF_MAX_VARIANCE]";
+    case HKF_ERROR_SETTING_PROCESS_NOISE: return "a process_noise is not in [0, HKF_MAX_PROCESS_NOISE]";
     case HKF_ERROR_SETTING_LOOP_CLOSURE: return "loop_closure is not a hkf_loop_closure_t";
     case HKF_ERROR_SETTING_LC_XI: return "lc_xi is not in [0, 1]";
-    case HKF_ERROR_SETTING_LC_THETA: return "lc_theta is negative";
-    case HKF_ERROR_SETTING_P0: return "p0_angle or p0_rate is not > 0";
+    case HKF_ERROR_SETTING_LC_THETA: return "lc_theta is not in [0, 360] deg";
+    case HKF_ERROR_SETTING_P0: return "p0_angle or p0_rate is not in (0, HKF_MAX_VARIANCE]";
     case HKF_ERROR_SETTING_GATE:
-        return "gate_sigma is negative, or the gate is on with max_gate_rejections 0";
-    case HKF_ERROR_SETTING_COAST_TIME: return "coast_time is not > 0";
-    case HKF_ERROR_SETTING_MAX_DT: return "max_dt is not > 0";
+        return "gate_sigma is not in [0, 1000], or the gate is on with max_gate_rejections 0";
+    case HKF_ERROR_SETTING_COAST_TIME: return "coast_time is not in (0, HKF_MAX_TIME] s";
+    case HKF_ERROR_SETTING_MAX_DT: return "max_dt is not in (0, HKF_MAX_TIME] s";
+    case HKF_ERROR_SETTING_CURVE: return "a noise curve's tau, lambda or mu is beyond its range";
     default: return "unknown hkf result code";
     }
 }

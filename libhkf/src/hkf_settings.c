@@ -93,18 +93,24 @@ int hkf_settings_check(const hkf_settings_t *s)
         return HKF_ERROR_SETTING_NOISE_MODE;
     }
     for (a = 0; a < HKF_AXES; ++a) {
-        if (!(s->noise[a].sigma > 0)) {
+        const hkf_noise_curve_t *c = &s->noise[a];
+        if (!(c->sigma >= (hkf_real_t)HKF_MIN_SIGMA && c->sigma <= (hkf_real_t)HKF_MAX_SIGMA)) {
             return HKF_ERROR_SETTING_SIGMA;
         }
+        if (!(hkf_abs(c->tau) <= (hkf_real_t)HKF_MAX_VARIANCE && hkf_abs(c->lambda) <= (hkf_real_t)HKF_MAX_VARIANCE &&
+              hkf_abs(c->mu) <= (hkf_real_t)HKF_MAX_ABS_ANGLE)) {
+            return HKF_ERROR_SETTING_CURVE;
+        }
     }
-    if (!(s->r_min > 0 && s->r_min <= s->r_max)) {
+    if (!(s->r_min >= (hkf_real_t)HKF_MIN_VARIANCE && s->r_min <= s->r_max &&
+          s->r_max <= (hkf_real_t)HKF_MAX_VARIANCE)) {
         return HKF_ERROR_SETTING_R_RANGE;
     }
     for (a = 0; a < HKF_AXES; ++a) {
-        if (!(s->r_const[a] > 0)) {
+        if (!(s->r_const[a] > 0 && s->r_const[a] <= (hkf_real_t)HKF_MAX_VARIANCE)) {
             return HKF_ERROR_SETTING_R_CONST;
         }
-        if (!(s->process_noise[a] >= 0)) {
+        if (!(s->process_noise[a] >= 0 && s->process_noise[a] <= (hkf_real_t)HKF_MAX_PROCESS_NOISE)) {
             return HKF_ERROR_SETTING_PROCESS_NOISE;
         }
     }
@@ -115,19 +121,20 @@ int hkf_settings_check(const hkf_settings_t *s)
     if (!(s->lc_xi >= 0 && s->lc_xi <= 1)) {
         return HKF_ERROR_SETTING_LC_XI;
     }
-    if (!(s->lc_theta >= 0)) {
+    if (!(s->lc_theta >= 0 && s->lc_theta <= 360)) {
         return HKF_ERROR_SETTING_LC_THETA;
     }
-    if (!(s->p0_angle > 0 && s->p0_rate > 0)) {
+    if (!(s->p0_angle > 0 && s->p0_rate > 0 && s->p0_angle <= (hkf_real_t)HKF_MAX_VARIANCE &&
+          s->p0_rate <= (hkf_real_t)HKF_MAX_VARIANCE)) {
         return HKF_ERROR_SETTING_P0;
     }
-    if (!(s->gate_sigma >= 0) || (s->gate_sigma > 0 && s->max_gate_rejections == 0u)) {
+    if (!(s->gate_sigma >= 0 && s->gate_sigma <= 1000) || (s->gate_sigma > 0 && s->max_gate_rejections == 0u)) {
         return HKF_ERROR_SETTING_GATE;
     }
-    if (!(s->coast_time > 0)) {
+    if (!(s->coast_time > 0 && s->coast_time <= HKF_MAX_TIME)) {
         return HKF_ERROR_SETTING_COAST_TIME;
     }
-    if (!(s->max_dt > 0)) {
+    if (!(s->max_dt > 0 && s->max_dt <= HKF_MAX_TIME)) {
         return HKF_ERROR_SETTING_MAX_DT;
     }
     return HKF_OK;

@@ -33,6 +33,20 @@ static void negative_gate(hkf_settings_t *s) { s->gate_sigma = -1; }
 static void gate_without_rejections(hkf_settings_t *s) { s->gate_sigma = 3; s->max_gate_rejections = 0; }
 static void zero_coast(hkf_settings_t *s) { s->coast_time = 0; }
 static void zero_max_dt(hkf_settings_t *s) { s->max_dt = 0; }
+/* beyond the ranges hkf.h states (found by tests/fuzz/fuzz_libhkf.c: p0_angle 2.7e36 was accepted) */
+static void huge_p0_angle(hkf_settings_t *s) { s->p0_angle = (hkf_real_t)2.7e36; }
+static void huge_p0_rate(hkf_settings_t *s) { s->p0_rate = (hkf_real_t)(2 * HKF_MAX_VARIANCE); }
+static void huge_q(hkf_settings_t *s) { s->process_noise[2] = (hkf_real_t)(2 * HKF_MAX_PROCESS_NOISE); }
+static void huge_r_max(hkf_settings_t *s) { s->r_max = (hkf_real_t)(2 * HKF_MAX_VARIANCE); }
+static void tiny_r_min(hkf_settings_t *s) { s->r_min = (hkf_real_t)1e-30; }
+static void huge_r_const(hkf_settings_t *s) { s->r_const[1] = (hkf_real_t)1e20; }
+static void tiny_sigma(hkf_settings_t *s) { s->noise[1].sigma = (hkf_real_t)1e-30; }
+static void huge_tau(hkf_settings_t *s) { s->noise[0].tau = (hkf_real_t)1e20; }
+static void huge_mu(hkf_settings_t *s) { s->noise[2].mu = (hkf_real_t)(2 * HKF_MAX_ABS_ANGLE); }
+static void huge_theta(hkf_settings_t *s) { s->lc_theta = 400; }
+static void huge_gate(hkf_settings_t *s) { s->gate_sigma = (hkf_real_t)1e10; }
+static void long_coast(hkf_settings_t *s) { s->coast_time = (hkf_real_t)(HKF_MAX_TIME + 1); }
+static void long_max_dt(hkf_settings_t *s) { s->max_dt = (hkf_real_t)1e30; }
 
 static void test_init_rejects_each_bad_setting(void **state)
 {
@@ -58,6 +72,19 @@ static void test_init_rejects_each_bad_setting(void **state)
         {"gate on, 0 rejections", gate_without_rejections, HKF_ERROR_SETTING_GATE},
         {"coast_time 0", zero_coast, HKF_ERROR_SETTING_COAST_TIME},
         {"max_dt 0", zero_max_dt, HKF_ERROR_SETTING_MAX_DT},
+        {"p0_angle 2.7e36", huge_p0_angle, HKF_ERROR_SETTING_P0},
+        {"p0_rate > max", huge_p0_rate, HKF_ERROR_SETTING_P0},
+        {"q > max", huge_q, HKF_ERROR_SETTING_PROCESS_NOISE},
+        {"r_max > max", huge_r_max, HKF_ERROR_SETTING_R_RANGE},
+        {"r_min 1e-30", tiny_r_min, HKF_ERROR_SETTING_R_RANGE},
+        {"r_const 1e20", huge_r_const, HKF_ERROR_SETTING_R_CONST},
+        {"sigma 1e-30", tiny_sigma, HKF_ERROR_SETTING_SIGMA},
+        {"tau 1e20", huge_tau, HKF_ERROR_SETTING_CURVE},
+        {"mu beyond the angle range", huge_mu, HKF_ERROR_SETTING_CURVE},
+        {"theta 400", huge_theta, HKF_ERROR_SETTING_LC_THETA},
+        {"gate 1e10", huge_gate, HKF_ERROR_SETTING_GATE},
+        {"coast_time > max", long_coast, HKF_ERROR_SETTING_COAST_TIME},
+        {"max_dt 1e30", long_max_dt, HKF_ERROR_SETTING_MAX_DT},
     };
     size_t i;
     (void)state;

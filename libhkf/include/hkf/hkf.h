@@ -41,21 +41,32 @@ typedef enum {
     /* hkf_init: settings that make no sense */
     HKF_ERROR_SETTING_NON_FINITE = -20,  /* a setting is NaN or infinite */
     HKF_ERROR_SETTING_NOISE_MODE = -21,  /* noise_mode is not a hkf_noise_mode_t */
-    HKF_ERROR_SETTING_SIGMA = -22,       /* a noise curve has sigma <= 0 */
-    HKF_ERROR_SETTING_R_RANGE = -23,     /* not 0 < r_min <= r_max */
-    HKF_ERROR_SETTING_R_CONST = -24,     /* an r_const <= 0 */
-    HKF_ERROR_SETTING_PROCESS_NOISE = -25, /* a process_noise < 0 */
+    HKF_ERROR_SETTING_SIGMA = -22,       /* a noise curve's sigma outside [HKF_MIN_SIGMA, HKF_MAX_SIGMA] */
+    HKF_ERROR_SETTING_R_RANGE = -23,     /* not HKF_MIN_VARIANCE <= r_min <= r_max <= HKF_MAX_VARIANCE */
+    HKF_ERROR_SETTING_R_CONST = -24,     /* an r_const outside (0, HKF_MAX_VARIANCE] */
+    HKF_ERROR_SETTING_PROCESS_NOISE = -25, /* a process_noise outside [0, HKF_MAX_PROCESS_NOISE] */
     HKF_ERROR_SETTING_LOOP_CLOSURE = -26,  /* loop_closure not a hkf_loop_closure_t */
     HKF_ERROR_SETTING_LC_XI = -27,       /* not 0 <= lc_xi <= 1 */
-    HKF_ERROR_SETTING_LC_THETA = -28,    /* lc_theta < 0 */
-    HKF_ERROR_SETTING_P0 = -29,          /* p0_angle or p0_rate <= 0 */
-    HKF_ERROR_SETTING_GATE = -30,        /* gate_sigma < 0, or gate on with max_gate_rejections 0 */
-    HKF_ERROR_SETTING_COAST_TIME = -31,  /* coast_time <= 0 */
-    HKF_ERROR_SETTING_MAX_DT = -32       /* max_dt <= 0 */
+    HKF_ERROR_SETTING_LC_THETA = -28,    /* lc_theta outside [0, 360] */
+    HKF_ERROR_SETTING_P0 = -29,          /* p0_angle or p0_rate outside (0, HKF_MAX_VARIANCE] */
+    HKF_ERROR_SETTING_GATE = -30,        /* gate_sigma outside [0, 1000], or gate on with max_gate_rejections 0 */
+    HKF_ERROR_SETTING_COAST_TIME = -31,  /* coast_time outside (0, HKF_MAX_TIME] */
+    HKF_ERROR_SETTING_MAX_DT = -32,      /* max_dt outside (0, HKF_MAX_TIME] */
+    HKF_ERROR_SETTING_CURVE = -33        /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
 } hkf_result_t;
 
 /* A short English description of a hkf_result_t, for logs. Never NULL. */
 const char *hkf_result_string(int result);
+
+/* The ranges hkf_init accepts. Beyond them no head tracker has a use for a
+ * setting, and within them every intermediate of the filter stays finite and
+ * every variance positive and below 1e12 (tests/fuzz/fuzz_libhkf.c checks it). */
+#define HKF_MIN_VARIANCE 1e-6    /* deg^2: r_min */
+#define HKF_MAX_VARIANCE 1e8     /* deg^2, (deg/s)^2: r_max, r_const, p0; deg: |tau|, |lambda| */
+#define HKF_MAX_PROCESS_NOISE 1e6 /* deg^2/s^3 */
+#define HKF_MIN_SIGMA 1e-3       /* deg */
+#define HKF_MAX_SIGMA 1e4        /* deg */
+#define HKF_MAX_TIME 10          /* s: max_dt, coast_time */
 
 /* Measurements beyond this magnitude are rejected (HKF_ERROR_ANGLE_RANGE):
  * no head pose is that large, and it keeps every value inside the range of

@@ -1,0 +1,182 @@
+/*
+ * fuzz_libhkf.c - libFuzzer target for libhkf's whole API: arbitrary settings,
+ * then an arbitrary sequence of init / update / predict / extrapolate /
+ * set_center / recenter / reset / get_output with arbitrary values (NaN,
+ * infinities, denormals, huge numbers included). It checks, after every call:
+ *   - a rejected call (negative result) left the filter bit-identical;
+ *   - an accepted call wrote only finite outputs, the yaw in [-180, 180),
+ *     variances positive and bounded, R within its clamp. (Pitch and roll are
+ *     not bounded: measurements of +-3600 deg a microsecond apart give rates,
+ *     and so predictions, far beyond any head; finite is what is promised.)
+ * A failed check aborts, which libFuzzer reports as a finding.
+ *
+ * Input: [edits count][edits: field byte, 4-byte float]...[ops: op byte, operands]...
+ */
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hkf/hkf.h"
+
+/* The largest angle variance any accepted call may report (deg^2). */
+#define VARIANCE_BOUND 1e12
+
+typedef struct {
+    const uint8_t *data;
+    size_t size;
+} input_t;
+
+static int take_byte(input_t *in, uint8_t *byte)
+{
+    if (in->size < 1) {
+        return 0;
+    }
+    *byte = in->data[0];
+    ++in->data;
+    --in->size;
+    return 1;
+}
+
+/* Any float bit pattern at all. */
+static hkf_real_t take_real(input_t *in)
+{
+    float value = 0.0f;
+    if (in->size >= sizeof value) {
+        memcpy(&value, in->data, sizeof value);
+        in->data += sizeof value;
+        in->size -= sizeof value;
+    }
+    return (hkf_real_t)value;
+}
+
+static void check(int condition, const char *what)
+{
+    if (!condition) {
+        fprintf(stderr, "fuzz_libhkf: %s\n", what);
+        abort();
+    }
+}
+
+/* One settings field by number, to an arbitrary value. */
+static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
+{
+    const hkf_real_t v = take_real(in);
+    const int axis = field % 3;
+    switch ((field / 3) % 16) {
+    case 0: s->process_noise[axis] = v; break;
+    case 1: s->r_const[axis] = v; break;
+    case 2: s->noise[axis].tau = v; break;
+    case 3: s->noise[axis].lambda = v; break;
+    case 4: s->noise[axis].mu = v; break;
+    case 5: s->noise[axis].sigma = v; break;
+    case 6: s->r_min = v; break;
+    case 7: s->r_max = v; break;
+    case 8: s->lc_xi = v; break;
+    case 9: s->lc_theta = v; break;
+    case 10: axis == 0 ? (void)(s->p0_angle = v) : (void)(s->p0_rate = v); break;
+    case 11: s->gate_sigma = v; break;
+    case 12: s->coast_time = v; break;
+    case 13: s->max_dt = v; break;
+    case 14: s->noise_mode = (hkf_noise_mode_t)(int)(field % 5) - 1; break;
+    default: s->loop_closure = (int)(field % 5) - 1; s->max_gate_rejections = field % 4u; break;
+    }
+}
+
+static void check_output(const hkf_filter_t *f, const hkf_output_t *out)
+{
+    int a;
+    for (a = 0; a < 3; ++a) {
+        check(isfinite(out->angle[a]) && isfinite(out->rate[a]), "non-finite angle or rate");
+        check(isfinite(out->variance[a]) && isfinite(out->r[a]), "non-finite variance or R");
+        if (!(out->variance[a] > 0 && out->variance[a] <= VARIANCE_BOUND)) {
+            fprintf(stderr, "fuzz_libhkf: axis %d variance %g, status %d\n", a, (double)out->variance[a], out->status);
+            check(0, "angle variance not in (0, bound]");
+        }
+        check(out->r[a] == 0 || (out->r[a] >= f->settings.r_min && out->r[a] <= f->settings.r_max),
+              "R outside [r_min, r_max]");
+    }
+    check(out->angle[HKF_AXIS_YAW] >= -180 && out->angle[HKF_AXIS_YAW] < 180, "yaw outside [-180, 180)");
+}
+
+/* A call on a mutable filter: rejected -> bit-identical; accepted -> sound outputs. */
+static void after_call(const hkf_filter_t *before, const hkf_filter_t *f, int result, const hkf_output_t *out)
+{
+    if (result < 0) {
+        check(memcmp(before, f, sizeof *f) == 0, "a rejected call changed the filter");
+    } else if (out != NULL) {
+        check(result == HKF_OK, "an unknown non-negative result");
+        check_output(f, out);
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static hkf_filter_t f, before;
+    input_t in = {data, size};
+    hkf_settings_t s = hkf_default_settings;
+    hkf_output_t out;
+    uint8_t count = 0, op, field;
+    int result, i;
+
+    memset(&f, 0, sizeof f);
+    if (take_byte(&in, &count)) {
+        for (i = 0; i < count % 8 && take_byte(&in, &field); ++i) {
+            edit_setting(&s, field, &in);
+        }
+    }
+    before = f;
+    result = hkf_init(&f, &s);
+    after_call(&before, &f, result, NULL);
+    if (result != HKF_OK) {
+        return 0; /* rejected settings: nothing more to run */
+    }
+    while (take_byte(&in, &op)) {
+        hkf_real_t v[3];
+        before = f;
+        memset(&out, 0, sizeof out);
+        switch (op % 8) {
+        case 0:
+            v[0] = take_real(&in), v[1] = take_real(&in), v[2] = take_real(&in);
+            result = hkf_update(&f, v, take_real(&in), &out);
+            after_call(&before, &f, result, &out);
+            break;
+        case 1:
+            result = hkf_predict(&f, take_real(&in), &out);
+            after_call(&before, &f, result, &out);
+            break;
+        case 2:
+            result = hkf_extrapolate(&f, take_real(&in), &out);
+            check(memcmp(&before, &f, sizeof f) == 0, "hkf_extrapolate changed the filter");
+            after_call(&before, &f, result, result == HKF_OK ? &out : NULL);
+            break;
+        case 3:
+            v[0] = take_real(&in), v[1] = take_real(&in), v[2] = take_real(&in);
+            result = hkf_set_center(&f, v);
+            after_call(&before, &f, result, NULL);
+            break;
+        case 4:
+            result = hkf_recenter(&f);
+            after_call(&before, &f, result, NULL);
+            break;
+        case 5:
+            hkf_reset(&f);
+            break;
+        case 6:
+            result = hkf_get_output(&f, &out);
+            check(memcmp(&before, &f, sizeof f) == 0, "hkf_get_output changed the filter");
+            after_call(&before, &f, result, result == HKF_OK ? &out : NULL);
+            break;
+        default:
+            result = hkf_init(&f, &s);
+            after_call(&before, &f, result, NULL);
+            break;
+        }
+    }
+    return 0;
+}
