@@ -359,6 +359,37 @@ static void test_clock_not_a_jump(void **state)
     assert_int_equal(node.counts.clock_jumps, 0);
 }
 
+/* filter_node_decode checks the layout before LCM's decoder allocates: a
+ * claimed 2 GB string, a string without its NUL, a short message and another
+ * type are refused with nothing allocated (LeakSanitizer watches in the
+ * sanitizer build); a good message decodes whole. */
+static void test_decode_checks_layout(void **state)
+{
+    hkf_head_pose_measurement_t m = measurement(T0, 1, 1, 2, 3), back;
+    unsigned char buffer[256], spoiled[256];
+    const int size = hkf_head_pose_measurement_t_encoded_size(&m);
+    const int length_at = 24; /* hash, utime, seq */
+    (void)state;
+    assert_true(size > 0 && size <= (int)sizeof buffer);
+    assert_int_equal(hkf_head_pose_measurement_t_encode(buffer, 0, size, &m), size);
+    assert_int_equal(filter_node_decode(buffer, size, &back), 0);
+    assert_string_equal(back.model, "fsanet");
+    assert_true(back.utime == T0 && back.yaw == 2.0f);
+    hkf_head_pose_measurement_t_decode_cleanup(&back);
+
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[length_at] = 0x7f, spoiled[length_at + 1] = spoiled[length_at + 2] = spoiled[length_at + 3] = 0xff;
+    assert_int_equal(filter_node_decode(spoiled, size, &back), -1);
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[length_at + 4 + 6] = 'x'; /* "fsanet" loses its NUL */
+    assert_int_equal(filter_node_decode(spoiled, size, &back), -1);
+    assert_int_equal(filter_node_decode(buffer, size - 1, &back), -1);
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[0] ^= 0x5a; /* another type's hash */
+    assert_int_equal(filter_node_decode(spoiled, size, &back), -1);
+    assert_int_equal(filter_node_decode(buffer, 3, &back), -1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -375,6 +406,7 @@ int main(void)
         cmocka_unit_test_setup(test_clock_jump_forward, setup),
         cmocka_unit_test_setup(test_clock_corrupt_first_stamp, setup),
         cmocka_unit_test_setup(test_clock_not_a_jump, setup),
+        cmocka_unit_test_setup(test_decode_checks_layout, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

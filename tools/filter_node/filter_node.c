@@ -15,6 +15,30 @@ static int setup_filter(filter_node_t *node, const char *model)
     return hkf_init(&node->filter, &s);
 }
 
+int filter_node_decode(const void *data, int size, hkf_head_pose_measurement_t *m)
+{
+    /* the wire layout: hash, utime, seq (8 bytes each), the model string as a
+     * big-endian int32 length with its NUL and the bytes, then valid (1),
+     * pitch, yaw, roll (4 each), face_box (16), detection_score (4), inference_us (8) */
+    enum { HEAD = 24, TAIL = 1 + 12 + 16 + 4 + 8 };
+    const unsigned char *bytes = data;
+    long length;
+    if (data == NULL || size < HEAD + 4 + 1 + TAIL) {
+        return -1;
+    }
+    length = ((long)bytes[HEAD] << 24) | ((long)bytes[HEAD + 1] << 16) | ((long)bytes[HEAD + 2] << 8) | bytes[HEAD + 3];
+    if (length < 1 || length > NODE_MODEL_NAME_MAX || HEAD + 4 + length + TAIL != size ||
+        bytes[HEAD + 4 + length - 1] != '\0') {
+        return -1;
+    }
+    memset(m, 0, sizeof *m); /* so that a cleanup after a failed decode frees nothing it did not allocate */
+    if (hkf_head_pose_measurement_t_decode(data, 0, size, m) != size) { /* e.g. another type's hash */
+        hkf_head_pose_measurement_t_decode_cleanup(m);
+        return -1;
+    }
+    return 0;
+}
+
 int filter_node_init(filter_node_t *node, const node_config_t *config)
 {
     memset(node, 0, sizeof *node);
@@ -79,7 +103,7 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
         return 0;
     }
     if (node->have_time) {
-        dt = (hkf_real_t)((double)(m->utime - node->last_utime) * 1e-6);
+        dt = (hkf_real_t)(((double)m->utime - (double)node->last_utime) * 1e-6);
     }
     node->have_time = 1;
     node->last_utime = m->utime;
@@ -177,7 +201,7 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
 int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
 {
     hkf_output_t out;
-    const double ahead = (double)(utime - node->last_utime) * 1e-6;
+    const double ahead = ((double)utime - (double)node->last_utime) * 1e-6; /* stamps may be anything */
     if (!node->have_time || ahead < 0.0 || ahead > (double)node->config->settings.coast_time) {
         return 0; /* nothing to extrapolate, or the estimator has gone quiet */
     }

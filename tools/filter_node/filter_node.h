@@ -60,6 +60,13 @@ typedef struct {
     filter_node_counts_t counts;
 } filter_node_t;
 
+/* Decodes a HEAD_POSE_RAW payload, checking its layout first: LCM 1.3.1's
+ * generated decoder mallocs a string of whatever length the message claims
+ * (up to 2 GB), leaks it when a later field is short, and does not require the
+ * terminating NUL. Returns 0 with *m decoded (free with
+ * hkf_head_pose_measurement_t_decode_cleanup), or -1 with nothing allocated. */
+int filter_node_decode(const void *data, int size, hkf_head_pose_measurement_t *m);
+
 /* 0, or a hkf_result_t when the base settings are invalid. */
 int filter_node_init(filter_node_t *node, const node_config_t *config);
 

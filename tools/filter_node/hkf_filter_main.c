@@ -8,6 +8,7 @@
 
 #include <errno.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -220,7 +221,7 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void
     node_run_t *run = user;
     hkf_head_pose_measurement_t m;
     hkf_head_pose_t pose;
-    if (hkf_head_pose_measurement_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0) {
+    if (filter_node_decode(rbuf->data, (int)rbuf->data_size, &m) != 0) {
         report_decode_error(run, channel);
         return;
     }
@@ -278,7 +279,7 @@ static int run_live(node_run_t *run)
             /* between measurements: the pose at the capture clock's "now" */
             hkf_head_pose_t pose;
             const int64_t since = wall_utime() - run->last_arrival_us;
-            if (run->node.have_time && since > 0 &&
+            if (run->node.have_time && since > 0 && run->node.last_utime <= INT64_MAX - since &&
                 filter_node_extrapolate(&run->node, run->node.last_utime + since, &pose)) {
                 publish(run, &pose);
             }
@@ -345,7 +346,7 @@ static int run_offline(node_run_t *run)
             }
         } else if (strcmp(event->channel, o->input_channel) == 0) {
             hkf_head_pose_measurement_t m;
-            if (hkf_head_pose_measurement_t_decode(event->data, 0, event->datalen, &m) < 0) {
+            if (filter_node_decode(event->data, event->datalen, &m) != 0) {
                 report_decode_error(run, event->channel);
             } else {
                 /* extrapolated poses at the --rate ticks before this measurement, in log time */
