@@ -15,6 +15,7 @@ packages=(
   iproute2 util-linux                           # private network namespaces for the LCM tests
   xvfb unzip file                               # hkf-spy test: lcm-spy on a virtual display; file(1)
   python3 python3-venv python3-pip              # Python tools (.venv, from tools/requirements.txt)
+  clang libclang-rt-14-dev                      # the fuzz targets (libFuzzer, tests/fuzz)
 )
 
 missing=()

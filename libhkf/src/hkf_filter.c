@@ -55,7 +55,7 @@ static int check_angles(const hkf_real_t v[3])
     const hkf_real_t limit = (hkf_real_t)HKF_MAX_ABS_ANGLE;
     int a;
     /* NaN fails every comparison, so this one test passes only good input */
-    if ((hkf_abs(v[0]) <= limit) & (hkf_abs(v[1]) <= limit) & (hkf_abs(v[2]) <= limit)) {
+    if ((int)(hkf_abs(v[0]) <= limit) & (int)(hkf_abs(v[1]) <= limit) & (int)(hkf_abs(v[2]) <= limit)) {
         return HKF_OK;
     }
     for (a = 0; a < HKF_AXES; ++a) {

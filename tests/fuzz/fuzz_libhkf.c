@@ -113,6 +113,13 @@ static void after_call(const hkf_filter_t *before, const hkf_filter_t *f, int re
     }
 }
 
+static unsigned long long steps; /* update and predict calls, for the run's summary */
+
+static void print_steps(void)
+{
+    fprintf(stderr, "fuzz_libhkf: %llu filter steps in total\n", steps);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -124,6 +131,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     uint8_t count = 0, op, field;
     int result, i;
 
+    static int registered;
+    if (!registered) {
+        registered = atexit(print_steps) == 0;
+    }
     memset(&f, 0, sizeof f);
     if (take_byte(&in, &count)) {
         for (i = 0; i < count % 8 && take_byte(&in, &field); ++i) {
@@ -144,10 +155,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 0:
             v[0] = take_real(&in), v[1] = take_real(&in), v[2] = take_real(&in);
             result = hkf_update(&f, v, take_real(&in), &out);
+            ++steps;
             after_call(&before, &f, result, &out);
             break;
         case 1:
             result = hkf_predict(&f, take_real(&in), &out);
+            ++steps;
             after_call(&before, &f, result, &out);
             break;
         case 2:

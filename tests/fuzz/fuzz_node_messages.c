@@ -37,6 +37,13 @@ static void check_pose(const hkf_head_pose_t *p)
     check(p->status >= HKF_HEAD_POSE_T_TRACKING && p->status <= HKF_HEAD_POSE_T_LOST, "unknown status");
 }
 
+static unsigned long long messages; /* payloads handed to the decoders, for the run's summary */
+
+static void print_messages(void)
+{
+    fprintf(stderr, "fuzz_node_messages: %llu messages in total\n", messages);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -44,6 +51,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static node_config_t config;
     static filter_node_t node;
     int64_t arrival = 1700000000000000LL;
+    static int registered;
+    if (!registered) {
+        registered = atexit(print_messages) == 0;
+    }
     node_config_defaults(&config);
     if (filter_node_init(&node, &config) != 0) {
         abort();
@@ -58,6 +69,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         data += 6;
         size -= 6;
         length = length < size ? length : size;
+        ++messages;
         if (kind % 4 == 3) {
             hkf_tracker_command_t command;
             if (hkf_tracker_command_t_decode(data, 0, (int)length, &command) >= 0) {
