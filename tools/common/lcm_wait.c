@@ -4,9 +4,32 @@
 #include "lcm_wait.h"
 
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/select.h>
+
+static volatile sig_atomic_t stop_flag = 0;
+
+static void on_stop_signal(int signal_number)
+{
+    (void)signal_number;
+    stop_flag = 1;
+}
+
+void lcm_wait_stop_on_signals(void)
+{
+    struct sigaction action;
+    memset(&action, 0, sizeof action);
+    action.sa_handler = on_stop_signal;
+    sigaction(SIGINT, &action, NULL);
+    sigaction(SIGTERM, &action, NULL);
+}
+
+int lcm_wait_stop_requested(void)
+{
+    return stop_flag != 0;
+}
 
 int64_t lcm_wait_time(int64_t next_tick_us, int64_t now_us)
 {

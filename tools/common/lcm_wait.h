@@ -10,6 +10,10 @@
 
 #include <lcm/lcm.h>
 
+/* SIGINT and SIGTERM only set a flag, which the loop polls to stop with a summary. */
+void lcm_wait_stop_on_signals(void);
+int lcm_wait_stop_requested(void);
+
 /* The longest wait, so that a stop request (a signal) is noticed promptly. */
 #define LCM_WAIT_MAX_US 100000
 

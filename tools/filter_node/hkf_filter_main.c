@@ -7,7 +7,6 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
-#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,14 +39,6 @@ typedef struct {
     int64_t last_arrival_us;   /* wall clock when the last measurement was handled */
     int reported_decode_errors;
 } node_run_t;
-
-static volatile sig_atomic_t stop_requested = 0;
-
-static void on_signal(int signal_number)
-{
-    (void)signal_number;
-    stop_requested = 1;
-}
 
 static int64_t wall_utime(void)
 {
@@ -251,7 +242,6 @@ static int run_live(node_run_t *run)
     lcm_t *in = lcm_create(o->input_url);
     const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     int64_t next_tick = wall_utime() + tick_us;
-    struct sigaction action;
     if (in == NULL) {
         fprintf(stderr, "hkf-filter: cannot open LCM provider '%s'\n", o->input_url);
         return 1;
@@ -264,14 +254,11 @@ static int run_live(node_run_t *run)
     }
     lcm_subscribe(in, o->input_channel, on_measurement, run);
     lcm_subscribe(in, o->command_channel, on_command, run);
-    memset(&action, 0, sizeof action);
-    action.sa_handler = on_signal;
-    sigaction(SIGINT, &action, NULL);
-    sigaction(SIGTERM, &action, NULL);
+    lcm_wait_stop_on_signals();
     fprintf(stderr, "hkf-filter: %s -> %s on %s%s%s\n", o->input_channel, o->output_channel, o->input_url,
             run->out_lcm != in ? " -> " : "", run->out_lcm != in ? o->output_url : "");
 
-    while (!stop_requested) {
+    while (!lcm_wait_stop_requested()) {
         if (lcm_wait_and_handle(in, lcm_wait_time(tick_us > 0 ? next_tick : 0, wall_utime()), "hkf-filter") < 0) {
             break;
         }

@@ -9,7 +9,6 @@
 #include <errno.h>
 #include <netdb.h>
 #include <netinet/in.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,14 +44,6 @@ typedef struct {
     int have_packet;
     bridge_counts_t counts;
 } bridge_t;
-
-static volatile sig_atomic_t stop_requested = 0;
-
-static void on_signal(int signal_number)
-{
-    (void)signal_number;
-    stop_requested = 1;
-}
 
 static void usage(FILE *to)
 {
@@ -337,19 +328,15 @@ static int run(bridge_t *bridge)
     lcm_t *lcm = lcm_create(o->lcm_url);
     const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     int64_t next_tick = monotonic_us() + tick_us;
-    struct sigaction action;
     int status = 0;
     if (lcm == NULL) {
         fprintf(stderr, "hkf-opentrack: cannot open LCM provider '%s'\n", o->lcm_url);
         return 1;
     }
     lcm_subscribe(lcm, o->channel, on_pose, bridge);
-    memset(&action, 0, sizeof action);
-    action.sa_handler = on_signal;
-    sigaction(SIGINT, &action, NULL);
-    sigaction(SIGTERM, &action, NULL);
+    lcm_wait_stop_on_signals();
     fprintf(stderr, "hkf-opentrack: %s on %s -> opentrack at %s port %s\n", o->channel, o->lcm_url, o->host, o->port);
-    while (!stop_requested) {
+    while (!lcm_wait_stop_requested()) {
         if (lcm_wait_and_handle(lcm, lcm_wait_time(tick_us > 0 ? next_tick : 0, monotonic_us()), "hkf-opentrack") < 0) {
             status = 1;
             break;
