@@ -74,6 +74,24 @@ grep -q "0 out of order" "$work/f.txt" || fail "good messages after the bad stam
 "$python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/w.lcmlog" "$work/f.lcmlog" \
   || fail "the poses around the bad stamp differ from those of the log without it"
 
+# a log cut off mid-event (a power loss): the whole events are filtered, the cut is reported
+size=$(stat -c %s "$work/raw.lcmlog")
+head -c $((size / 2 + 37)) "$work/raw.lcmlog" >"$work/cut.lcmlog"
+"$filter" --offline "$work/cut.lcmlog" "$work/cut_out.lcmlog" 2>"$work/cut.txt" || fail "exit status on a cut-off log"
+cat "$work/cut.txt"
+grep -q "is cut off: its last [1-9][0-9]* bytes are part of an event" "$work/cut.txt" || fail "the cut was not reported"
+"$python" - "$work/a.lcmlog" "$work/cut_out.lcmlog" "$build/lcmtypes/python" <<'PY' || fail "the poses before the cut differ"
+import sys
+import lcm
+sys.path.insert(0, sys.argv[3])
+from hkf import head_pose_t
+full = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[1], "r")]
+cut = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[2], "r")]
+assert 0 < len(cut) < len(full), (len(cut), len(full))
+assert all(c.encode() == f.encode() for c, f in zip(cut, full)), "a pose differs"
+print(f"cut-off log: {len(cut)} poses, identical to the first {len(cut)} of the whole log's {len(full)}")
+PY
+
 # bad input: a clear error and a non-zero exit
 if "$filter" --offline "$work/missing.lcmlog" "$work/x.lcmlog" 2>"$work/e.txt"; then fail "missing input accepted"; fi
 grep -q "missing.lcmlog" "$work/e.txt" || fail "error does not name the file"

@@ -8,6 +8,7 @@
 
 #include <errno.h>
 #include <stdint.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -285,6 +286,17 @@ static int run_live(node_run_t *run)
 
 /* ---- offline ---- */
 
+/* The bytes of the log after `whole_end`, the end of its last whole event (a
+ * log cut off by a power loss ends in part of an event). -1 if it cannot tell. */
+static long bytes_after(lcm_eventlog_t *log, long whole_end)
+{
+    struct stat st;
+    if (whole_end < 0 || fstat(fileno(log->f), &st) != 0) {
+        return -1;
+    }
+    return (long)st.st_size - whole_end;
+}
+
 static int write_pose_event(lcm_eventlog_t *log, const char *channel, int64_t timestamp, int64_t number,
                             const hkf_head_pose_t *pose)
 {
@@ -311,6 +323,7 @@ static int run_offline(node_run_t *run)
     lcm_eventlog_event_t *event;
     const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     int64_t written = 0;
+    long whole_end = 0, whole_events = 0;
     int status = 0;
     if (in == NULL) {
         fprintf(stderr, "hkf-filter: cannot read the LCM log '%s'\n", o->offline_in);
@@ -324,6 +337,8 @@ static int run_offline(node_run_t *run)
     }
     while ((event = lcm_eventlog_read_next_event(in)) != NULL) {
         hkf_head_pose_t pose;
+        whole_end = ftell(in->f);
+        ++whole_events;
         if (strcmp(event->channel, o->command_channel) == 0) {
             hkf_tracker_command_t command;
             if (hkf_tracker_command_t_decode(event->data, 0, event->datalen, &command) < 0) {
@@ -358,6 +373,13 @@ static int run_offline(node_run_t *run)
             }
         }
         lcm_eventlog_free_event(event);
+    }
+    {
+        const long unread = bytes_after(in, whole_end);
+        if (unread > 0) { /* the whole events were filtered; say where the log was cut */
+            fprintf(stderr, "hkf-filter: '%s' is cut off: its last %ld bytes are part of an event, ignored; "
+                            "its %ld whole events were filtered\n", o->offline_in, unread, whole_events);
+        }
     }
     lcm_eventlog_destroy(in);
     lcm_eventlog_destroy(out);
