@@ -74,6 +74,25 @@ grep -q "0 out of order" "$work/f.txt" || fail "good messages after the bad stam
 "$python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/w.lcmlog" "$work/f.lcmlog" \
   || fail "the poses around the bad stamp differ from those of the log without it"
 
+# two estimators on one channel (another drive, its own frame counter, 5 ms later): the node
+# follows the first and counts the other; the output equals the first's alone
+"$simlog" --out "$work/other.lcmlog" --seconds 30 --seed 9 --start-seq 100000 --start-utime 1700000000005000 >/dev/null 2>&1
+"$python" - "$work/raw.lcmlog" "$work/other.lcmlog" "$work/two.lcmlog" <<'PY'
+import sys
+import lcm
+events = sorted([(e.timestamp, i, e.channel, e.data) for i, e in enumerate(lcm.EventLog(sys.argv[1], "r"))] +
+                [(e.timestamp, i, e.channel, e.data) for i, e in enumerate(lcm.EventLog(sys.argv[2], "r"))])
+out = lcm.EventLog(sys.argv[3], "w", overwrite=True)
+for timestamp, _, channel, data in events:
+    out.write_event(timestamp, channel, data)
+out.close()
+PY
+"$filter" --offline "$work/two.lcmlog" "$work/two_out.lcmlog" 2>"$work/two.txt" || fail "exit status with two publishers"
+cat "$work/two.txt"
+grep -q "900 from another publisher" "$work/two.txt" || fail "the second publisher's 900 messages were not all rejected"
+"$python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/a.lcmlog" "$work/two_out.lcmlog" \
+  || fail "two publishers: the output is not the first publisher's alone"
+
 # a log cut off mid-event (a power loss): the whole events are filtered, the cut is reported
 size=$(stat -c %s "$work/raw.lcmlog")
 head -c $((size / 2 + 37)) "$work/raw.lcmlog" >"$work/cut.lcmlog"

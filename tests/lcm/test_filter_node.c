@@ -28,10 +28,13 @@ static int setup(void **state)
     return 0;
 }
 
+static int64_t next_seq; /* the estimator's frame counter: +1 per measurement made */
+
 static hkf_head_pose_measurement_t measurement(int64_t utime, int valid, double pitch, double yaw, double roll)
 {
     hkf_head_pose_measurement_t m;
     memset(&m, 0, sizeof m);
+    m.seq = next_seq++;
     m.utime = utime;
     m.model = "fsanet";
     m.valid = valid;
@@ -390,6 +393,55 @@ static void test_decode_checks_layout(void **state)
     assert_int_equal(filter_node_decode(buffer, 3, &back), -1);
 }
 
+/* One publisher: a second estimator on the same channel (its own frame
+ * counter, another face at yaw 40) is rejected and counted, never mixed in. */
+static void test_two_publishers_not_mixed(void **state)
+{
+    hkf_head_pose_measurement_t a, b;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    (void)state;
+    for (i = 0; i < 30; ++i) {
+        a = measurement(T0 + i * FRAME_US, 1, 0, 10, 0);
+        a.seq = 100 + i;
+        if (filter_node_receive(&node, &a, a.utime, &pose)) {
+            assert_true(fabsf(pose.yaw - 10.0f) < 0.5f);
+            ++published;
+        }
+        b = measurement(T0 + i * FRAME_US + 10000, 1, 0, 40, 0);
+        b.seq = 5000 + i;
+        assert_int_equal(filter_node_receive(&node, &b, b.utime, &pose), 0);
+    }
+    assert_int_equal(published, 30);
+    assert_int_equal(node.counts.other_publisher, 30);
+}
+
+/* The followed estimator restarts (its counter starts again at 0): after 1 s
+ * of silence the node follows the new one; sooner, it does not. */
+static void test_publisher_restart_followed(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    (void)state;
+    for (i = 0; i < 20; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0, 10, 0);
+        m.seq = 100 + i;
+        published += filter_node_receive(&node, &m, m.utime, &pose);
+    }
+    m = measurement(T0 + 20 * FRAME_US, 1, 0, 10, 0);
+    m.seq = 0; /* restarted, but only 33 ms later: not yet */
+    assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 0);
+    for (i = 0; i < 20; ++i) {
+        m = measurement(T0 + 2000000 + i * FRAME_US, 1, 0, 12, 0);
+        m.seq = i;
+        published += filter_node_receive(&node, &m, m.utime, &pose);
+    }
+    assert_int_equal(published, 40);
+    assert_int_equal(node.counts.other_publisher, 1);
+    assert_int_equal(node.counts.restarts, 1); /* 2 s > max_dt: a new track */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -407,6 +459,8 @@ int main(void)
         cmocka_unit_test_setup(test_clock_corrupt_first_stamp, setup),
         cmocka_unit_test_setup(test_clock_not_a_jump, setup),
         cmocka_unit_test_setup(test_decode_checks_layout, setup),
+        cmocka_unit_test_setup(test_two_publishers_not_mixed, setup),
+        cmocka_unit_test_setup(test_publisher_restart_followed, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

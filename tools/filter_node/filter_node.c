@@ -167,6 +167,20 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
     const int64_t previous_utime = node->last_utime;
     const int had_time = node->have_time;
     int publish;
+    if (node->have_stream) { /* one publisher: its frame counter must go on */
+        const double step = (double)m->seq - (double)node->stream_seq;
+        const int continues = step >= 1 && step <= (double)FILTER_NODE_MAX_SEQ_STEP;
+        const int silent =
+            (double)arrival_utime - (double)node->stream_arrival_utime > (double)FILTER_NODE_STREAM_TIMEOUT_US;
+        if (!continues && !silent) {
+            ++node->counts.received;
+            ++node->counts.other_publisher;
+            return 0;
+        }
+    }
+    node->have_stream = 1;
+    node->stream_seq = m->seq;
+    node->stream_arrival_utime = arrival_utime;
     if (node->have_time &&
         fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) > limit) {
         /* the stamp disagrees with the arrival: agrees it with the previous such one? */

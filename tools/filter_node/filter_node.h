@@ -9,6 +9,12 @@
  * - utime older than the last one -> rejected (out of order); equal -> rejected (duplicate);
  * - non-finite or absurd angles -> rejected and counted, never published;
  * - a gap longer than max_dt -> the track restarts from this measurement;
+ * - one publisher (filter_node_receive): the node follows one estimator's frame
+ *   counter. A measurement whose seq does not continue it (1 to
+ *   FILTER_NODE_MAX_SEQ_STEP frames on) is from another publisher on the same
+ *   channel and is rejected and counted, unless the followed one has been
+ *   silent for FILTER_NODE_STREAM_TIMEOUT_US (it stopped or restarted): then
+ *   the node follows the new one. Two estimators are never mixed;
  * - clock rule (filter_node_receive): a measurement whose capture-time step
  *   disagrees with its arrival-time step by more than FILTER_NODE_CLOCK_JUMP_US
  *   is a corrupt stamp or a clock jump: rejected and counted, so one bad stamp
@@ -42,6 +48,7 @@ typedef struct {
     unsigned long restarts;        /* tracks restarted after a gap or a model change */
     unsigned long clock_jumps;     /* rejected: capture time disagrees with arrival time */
     unsigned long clock_resyncs;   /* the capture clock moved and the node followed it */
+    unsigned long other_publisher; /* rejected: seq does not continue the followed estimator's */
     unsigned long unknown_models;  /* measurements whose model is not in the table */
     unsigned long commands;        /* commands applied */
 } filter_node_counts_t;
@@ -54,6 +61,9 @@ typedef struct {
     int64_t last_utime;               /* its capture time */
     int64_t last_measurement_utime;   /* capture time of the last valid measurement used */
     int64_t last_arrival_utime;       /* arrival time of the measurement at last_utime */
+    int have_stream;                  /* a publisher is followed: */
+    int64_t stream_seq;               /* its last seq */
+    int64_t stream_arrival_utime;     /* when that arrived */
     int jump_count;                   /* clock rule: consistent rejected stamps in a row */
     int64_t jump_utime, jump_arrival_utime; /* the last of them */
     int64_t seq;
@@ -72,6 +82,8 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
 
 #define FILTER_NODE_CLOCK_JUMP_US 5000000LL /* 5 s: more than any gap a replay's pacing hides */
 #define FILTER_NODE_RESYNC_MESSAGES 3
+#define FILTER_NODE_MAX_SEQ_STEP 300              /* frames: 10 s at 30 fps of dropped frames */
+#define FILTER_NODE_STREAM_TIMEOUT_US 1000000LL   /* 1 s without the followed publisher */
 
 /* Handles one measurement that arrived at arrival_utime (the receive clock:
  * wall time live, the log's event timestamp offline): the clock rule, then

@@ -19,7 +19,7 @@ static void usage(FILE *to)
 {
     fprintf(to,
             "usage: hkf-simlog --out FILE [--seconds S] [--seed N] [--fps F] [--model NAME]\n"
-            "                  [--start-utime US] [--channel C] [--truth CSV]\n"
+            "                  [--start-utime US] [--start-seq N] [--channel C] [--truth CSV]\n"
             "Writes an LCM log of hkf.head_pose_measurement_t from the simulated drive.\n"
             "  --out FILE        the LCM log to write\n"
             "  --seconds S       length, 0.1..36000 s (default 20)\n"
@@ -27,6 +27,7 @@ static void usage(FILE *to)
             "  --fps F           camera rate, 1..1000 (default 30)\n"
             "  --model NAME      the measurements' model id (default fsanet)\n"
             "  --start-utime US  capture time of the first frame, us (default 1700000000000000)\n"
+            "  --start-seq N     frame counter of the first frame (default 0)\n"
             "  --channel C       channel (default HEAD_POSE_RAW)\n"
             "  --truth CSV       also write the true pose of every frame\n"
             "  --help            this text\n");
@@ -48,7 +49,7 @@ int main(int argc, char **argv)
 {
     const char *out_path = NULL, *truth_path = NULL, *channel = "HEAD_POSE_RAW";
     char *model = "fsanet";
-    double seconds = 20.0, seed = 1.0, fps = 30.0, start = 1700000000000000.0;
+    double seconds = 20.0, seed = 1.0, fps = 30.0, start = 1700000000000000.0, start_seq = 0.0;
     sim_config_t config = sim_default_config();
     sim_t sim;
     lcm_eventlog_t *log;
@@ -84,6 +85,8 @@ int main(int argc, char **argv)
             if (!number_arg(arg, value, 1.0, 1000.0, &fps)) return 2;
         } else if (strcmp(arg, "--start-utime") == 0) {
             if (!number_arg(arg, value, 0.0, 4e18, &start)) return 2;
+        } else if (strcmp(arg, "--start-seq") == 0) {
+            if (!number_arg(arg, value, 0.0, 1e15, &start_seq) || start_seq != floor(start_seq)) return 2;
         } else {
             fprintf(stderr, "hkf-simlog: unknown argument '%s' (see --help)\n", arg);
             return 2;
@@ -120,7 +123,7 @@ int main(int argc, char **argv)
         sim_next(&sim, &frame);
         memset(&m, 0, sizeof m);
         m.utime = (int64_t)start + (int64_t)llround(frame.time * 1e6);
-        m.seq = i;
+        m.seq = (int64_t)start_seq + i;
         m.model = model;
         m.valid = frame.valid;
         if (frame.valid) {
