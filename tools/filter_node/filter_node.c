@@ -160,48 +160,69 @@ static double clock_skew_us(int64_t utime, int64_t arrival, int64_t ref_utime, i
     return ((double)utime - (double)ref_utime) - ((double)arrival - (double)ref_arrival);
 }
 
-int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
-                        hkf_head_pose_t *pose)
+/* One publisher: 1 when m continues the followed estimator's frame counter, or
+ * when that one has gone silent (then m's publisher is followed); else 0. */
+static int from_followed_publisher(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
 {
-    const double limit = (double)FILTER_NODE_CLOCK_JUMP_US;
-    const int64_t previous_utime = node->last_utime;
-    const int had_time = node->have_time;
-    int publish;
-    if (node->have_stream) { /* one publisher: its frame counter must go on */
+    if (node->have_stream) {
         const double step = (double)m->seq - (double)node->stream_seq;
         const int continues = step >= 1 && step <= (double)FILTER_NODE_MAX_SEQ_STEP;
         const int silent =
             (double)arrival_utime - (double)node->stream_arrival_utime > (double)FILTER_NODE_STREAM_TIMEOUT_US;
         if (!continues && !silent) {
-            ++node->counts.received;
-            ++node->counts.other_publisher;
             return 0;
         }
     }
     node->have_stream = 1;
     node->stream_seq = m->seq;
     node->stream_arrival_utime = arrival_utime;
-    if (node->have_time &&
-        fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) > limit) {
-        /* the stamp disagrees with the arrival: agrees it with the previous such one? */
-        const int consistent = node->jump_count > 0 && m->utime > node->jump_utime &&
-                               fabs(clock_skew_us(m->utime, arrival_utime, node->jump_utime,
-                                                  node->jump_arrival_utime)) <= limit;
-        node->jump_count = consistent ? node->jump_count + 1 : 1;
-        node->jump_utime = m->utime;
-        node->jump_arrival_utime = arrival_utime;
-        if (node->jump_count < FILTER_NODE_RESYNC_MESSAGES) {
-            ++node->counts.received;
-            ++node->counts.clock_jumps;
-            return 0;
-        }
-        /* the capture clock has moved: follow it; the track restarts as after a gap */
-        ++node->counts.clock_resyncs;
-        node->have_time = 0;
-        if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
-            hkf_reset(&node->filter);
-            ++node->counts.restarts;
-        }
+    return 1;
+}
+
+/* The clock rule: 0 when m's stamp disagrees with its arrival (a corrupt stamp,
+ * or the first messages after a clock jump); 1 to go on. On the last of
+ * FILTER_NODE_RESYNC_MESSAGES consistent ones the node follows the new clock. */
+static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
+{
+    const double limit = (double)FILTER_NODE_CLOCK_JUMP_US;
+    int consistent;
+    if (!node->have_time ||
+        fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) <= limit) {
+        return 1;
+    }
+    consistent = node->jump_count > 0 && m->utime > node->jump_utime &&
+                 fabs(clock_skew_us(m->utime, arrival_utime, node->jump_utime, node->jump_arrival_utime)) <= limit;
+    node->jump_count = consistent ? node->jump_count + 1 : 1;
+    node->jump_utime = m->utime;
+    node->jump_arrival_utime = arrival_utime;
+    if (node->jump_count < FILTER_NODE_RESYNC_MESSAGES) {
+        return 0;
+    }
+    /* the capture clock has moved: follow it; the track restarts as after a gap */
+    ++node->counts.clock_resyncs;
+    node->have_time = 0;
+    if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
+        hkf_reset(&node->filter);
+        ++node->counts.restarts;
+    }
+    return 1;
+}
+
+int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
+                        hkf_head_pose_t *pose)
+{
+    const int64_t previous_utime = node->last_utime;
+    const int had_time = node->have_time;
+    int publish;
+    if (!from_followed_publisher(node, m, arrival_utime)) {
+        ++node->counts.received;
+        ++node->counts.other_publisher;
+        return 0;
+    }
+    if (!clock_agrees(node, m, arrival_utime)) {
+        ++node->counts.received;
+        ++node->counts.clock_jumps;
+        return 0;
     }
     publish = filter_node_measurement(node, m, pose);
     if (node->have_time && (!had_time || node->last_utime != previous_utime)) {
