@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Seed corpora for the fuzzers from real data: fuzz_node_messages gets runs of
 the raw poses (and a RECENTER) of an LCM log, in its input format
-[kind][length][arrival step, 4 bytes LE][payload]; fuzz_node_config gets the
-shipped config file. usage: make_seeds.py RAW.lcmlog CONFIG OUT_DIR"""
+[kind][length][arrival step, 4 bytes LE][payload]; fuzz_node_log gets pieces of
+the log itself (whole, with a RECENTER, cut off), after its [rate] byte;
+fuzz_node_config gets the shipped config file.
+usage: make_seeds.py RAW.lcmlog CONFIG OUT_DIR"""
 import os
 import shutil
 import struct
@@ -29,7 +31,23 @@ def main():
         seed += bytes([3, len(recenter)]) + struct.pack("<I", 34333) + recenter
         with open(os.path.join(messages, f"log_{start:04d}"), "wb") as f:
             f.write(seed)
-    print(f"make_seeds: {len(os.listdir(messages))} message seeds, 1 config seed in {out}")
+    logs = os.path.join(out, "fuzz_node_log")
+    os.makedirs(logs, exist_ok=True)
+    for start in range(0, min(len(events), 300), 60):
+        piece = [log_event(i, e.timestamp, e.channel, e.data) for i, e in enumerate(events[start:start + 20])]
+        piece.insert(10, log_event(10, events[start + 9].timestamp + 1, "HEAD_TRACKER_CMD", recenter))
+        whole = b"".join(piece)
+        for name, rate, body in (("whole", 0, whole), ("rate", 15, whole), ("cut", 0, whole[:len(whole) - 40])):
+            with open(os.path.join(logs, f"{name}_{start:04d}"), "wb") as f:
+                f.write(bytes([rate]) + body)
+    print(f"make_seeds: {len(os.listdir(messages))} message seeds, {len(os.listdir(logs))} log seeds, "
+          f"1 config seed in {out}")
+
+
+def log_event(number, timestamp, channel, data):
+    """One event as an LCM log holds it (big-endian): sync word, number, time, lengths, channel, data."""
+    channel = channel.encode()
+    return struct.pack(">IqqII", 0xEDA1DA01, number, timestamp, len(channel), len(data)) + channel + data
 
 
 if __name__ == "__main__":

@@ -111,6 +111,34 @@ assert all(c.encode() == f.encode() for c, f in zip(cut, full)), "a pose differs
 print(f"cut-off log: {len(cut)} poses, identical to the first {len(cut)} of the whole log's {len(full)}")
 PY
 
+# damage inside a log: 100 stray bytes between two events, and an event whose
+# data length claims 2 GB; the rest is filtered, the damage reported
+"$python" - "$work/raw.lcmlog" "$work/damaged.lcmlog" "$work/lost_one.lcmlog" <<'PY'
+import struct
+import sys
+data = open(sys.argv[1], "rb").read()
+starts = []
+i = data.find(b"\xed\xa1\xda\x01")
+while i >= 0:
+    starts.append(i)
+    i = data.find(b"\xed\xa1\xda\x01", i + 28)
+middle = starts[len(starts) // 2]
+open(sys.argv[2], "wb").write(data[:middle] + bytes(range(100)) + data[middle:])
+# the same log without one event, and the log with that event's data length made 0x7ffffff0
+after = starts[len(starts) // 2 + 1]
+open(sys.argv[3], "wb").write(data[:middle] + data[after:])
+open(sys.argv[3] + ".huge", "wb").write(data[:middle + 24] + struct.pack(">I", 0x7FFFFFF0) + data[middle + 28:])
+PY
+"$filter" --offline "$work/damaged.lcmlog" "$work/damaged_out.lcmlog" 2>"$work/damaged.txt" || fail "exit status on a damaged log"
+cat "$work/damaged.txt"
+grep -q "is damaged: 100 bytes between its events are no event, skipped" "$work/damaged.txt" || fail "stray bytes not reported"
+cmp -s "$work/damaged_out.lcmlog" "$work/a.lcmlog" || fail "stray bytes changed the output"
+"$filter" --offline "$work/lost_one.lcmlog" "$work/lost_one_out.lcmlog" 2>/dev/null
+"$filter" --offline "$work/lost_one.lcmlog.huge" "$work/huge_out.lcmlog" 2>"$work/huge.txt" || fail "exit status on a 2 GB length"
+cat "$work/huge.txt"
+grep -q "is damaged: [1-9][0-9]* bytes" "$work/huge.txt" || fail "the bad length was not reported"
+cmp -s "$work/huge_out.lcmlog" "$work/lost_one_out.lcmlog" || fail "a bad length lost more than its own event"
+
 # bad input: a clear error and a non-zero exit
 if "$filter" --offline "$work/missing.lcmlog" "$work/x.lcmlog" 2>"$work/e.txt"; then fail "missing input accepted"; fi
 grep -q "missing.lcmlog" "$work/e.txt" || fail "error does not name the file"

@@ -8,7 +8,6 @@
 
 #include <errno.h>
 #include <stdint.h>
-#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,8 +16,10 @@
 #include <lcm/lcm.h>
 
 #include "filter_node.h"
+#include "filter_node_offline.h"
 #include "lcm_wait.h"
 #include "node_config.h"
+#include "pose_csv.h"
 
 #define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
 
@@ -160,21 +161,6 @@ static int validate_config(const node_config_t *config)
     return 0;
 }
 
-static void write_csv_header(FILE *csv)
-{
-    fprintf(csv, "utime,measurement_utime,seq,status,pitch,yaw,roll,pitch_rate,yaw_rate,roll_rate,"
-                 "var_pitch,var_yaw,var_roll,r_pitch,r_yaw,r_roll,loop_closure_active,extrapolated,latency_us\n");
-}
-
-static void write_csv_pose(FILE *csv, const hkf_head_pose_t *p)
-{
-    fprintf(csv, "%lld,%lld,%lld,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld\n",
-            (long long)p->utime, (long long)p->measurement_utime, (long long)p->seq, p->status, (double)p->pitch,
-            (double)p->yaw, (double)p->roll, (double)p->pitch_rate, (double)p->yaw_rate, (double)p->roll_rate,
-            (double)p->variance[0], (double)p->variance[1], (double)p->variance[2], (double)p->r[0], (double)p->r[1],
-            (double)p->r[2], p->loop_closure_active, p->extrapolated, (long long)p->latency_us);
-}
-
 static void print_summary(const filter_node_t *node, FILE *to)
 {
     const filter_node_counts_t *c = &node->counts;
@@ -205,7 +191,7 @@ static void publish(node_run_t *run, hkf_head_pose_t *pose)
         fprintf(stderr, "hkf-filter: publishing on %s failed\n", run->options->output_channel);
     }
     if (run->csv != NULL) {
-        write_csv_pose(run->csv, pose);
+        pose_csv_write(run->csv, pose);
     }
 }
 
@@ -287,108 +273,55 @@ static int run_live(node_run_t *run)
 
 /* ---- offline ---- */
 
-/* The bytes of the log after `whole_end`, the end of its last whole event (a
- * log cut off by a power loss ends in part of an event). -1 if it cannot tell. */
-static long bytes_after(lcm_eventlog_t *log, long whole_end)
-{
-    struct stat st;
-    if (whole_end < 0 || fstat(fileno(log->f), &st) != 0) {
-        return -1;
-    }
-    return (long)st.st_size - whole_end;
-}
-
-static int write_pose_event(lcm_eventlog_t *log, const char *channel, int64_t timestamp, int64_t number,
-                            const hkf_head_pose_t *pose)
-{
-    unsigned char buffer[512];
-    lcm_eventlog_event_t event;
-    const int size = hkf_head_pose_t_encoded_size(pose);
-    if (size > (int)sizeof buffer || hkf_head_pose_t_encode(buffer, 0, size, pose) < 0) {
-        return -1;
-    }
-    event.eventnum = number;
-    event.timestamp = timestamp;
-    event.channellen = (int32_t)strlen(channel);
-    event.datalen = size;
-    event.channel = (char *)channel;
-    event.data = buffer;
-    return lcm_eventlog_write_event(log, &event);
-}
-
 static int run_offline(node_run_t *run)
 {
     const options_t *o = run->options;
-    lcm_eventlog_t *in = lcm_eventlog_create(o->offline_in, "r");
+    filter_node_offline_t offline;
+    filter_node_offline_report_t report;
+    FILE *in = fopen(o->offline_in, "rb");
     lcm_eventlog_t *out;
-    lcm_eventlog_event_t *event;
-    const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
-    int64_t written = 0;
-    long whole_end = 0, whole_events = 0;
-    int status = 0;
+    int status;
     if (in == NULL) {
-        fprintf(stderr, "hkf-filter: cannot read the LCM log '%s'\n", o->offline_in);
+        fprintf(stderr, "hkf-filter: cannot read the LCM log '%s': %s\n", o->offline_in, strerror(errno));
         return 1;
     }
     out = lcm_eventlog_create(o->offline_out, "w");
     if (out == NULL) {
         fprintf(stderr, "hkf-filter: cannot write the LCM log '%s'\n", o->offline_out);
-        lcm_eventlog_destroy(in);
+        fclose(in);
         return 1;
     }
-    while ((event = lcm_eventlog_read_next_event(in)) != NULL) {
-        hkf_head_pose_t pose;
-        whole_end = ftell(in->f);
-        ++whole_events;
-        if (strcmp(event->channel, o->command_channel) == 0) {
-            hkf_tracker_command_t command;
-            if (hkf_tracker_command_t_decode(event->data, 0, event->datalen, &command) < 0) {
-                report_decode_error(run, event->channel);
-            } else if (filter_node_command(&run->node, &command) != 0) {
-                fprintf(stderr, "hkf-filter: unknown command %d ignored\n", command.command);
-            }
-        } else if (strcmp(event->channel, o->input_channel) == 0) {
-            hkf_head_pose_measurement_t m;
-            if (filter_node_decode(event->data, event->datalen, &m) != 0) {
-                report_decode_error(run, event->channel);
-            } else {
-                /* extrapolated poses at the --rate ticks before this measurement, in log time */
-                if (tick_us > 0 && run->node.have_time) {
-                    int64_t t = (run->node.last_utime / tick_us + 1) * tick_us;
-                    for (; t < m.utime; t += tick_us) {
-                        if (filter_node_extrapolate(&run->node, t, &pose)) {
-                            status |= write_pose_event(out, o->output_channel, event->timestamp, written++, &pose);
-                            if (run->csv != NULL) {
-                                write_csv_pose(run->csv, &pose);
-                            }
-                        }
-                    }
-                }
-                if (filter_node_receive(&run->node, &m, event->timestamp, &pose)) {
-                    status |= write_pose_event(out, o->output_channel, event->timestamp, written++, &pose);
-                    if (run->csv != NULL) {
-                        write_csv_pose(run->csv, &pose);
-                    }
-                }
-                hkf_head_pose_measurement_t_decode_cleanup(&m);
-            }
-        }
-        lcm_eventlog_free_event(event);
+    offline.input_channel = o->input_channel;
+    offline.output_channel = o->output_channel;
+    offline.command_channel = o->command_channel;
+    offline.tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
+    offline.csv = run->csv;
+    status = filter_node_offline(&run->node, &offline, in, out, &report);
+    if (status != 0 && !report.write_failed) {
+        fprintf(stderr, "hkf-filter: '%s' is not a file that can be read from any position\n", o->offline_in);
     }
-    {
-        const long unread = bytes_after(in, whole_end);
-        if (unread > 0) { /* the whole events were filtered; say where the log was cut */
-            fprintf(stderr, "hkf-filter: '%s' is cut off: its last %ld bytes are part of an event, ignored; "
-                            "its %ld whole events were filtered\n", o->offline_in, unread, whole_events);
-        }
+    if (report.skipped_bytes > 0) { /* damage inside the log: what was around it was filtered */
+        fprintf(stderr, "hkf-filter: '%s' is damaged: %ld bytes between its events are no event, skipped\n",
+                o->offline_in, report.skipped_bytes);
     }
-    lcm_eventlog_destroy(in);
+    if (report.cut_bytes > 0) { /* the whole events were filtered; say where the log was cut */
+        fprintf(stderr, "hkf-filter: '%s' is cut off: its last %ld bytes are part of an event, ignored; "
+                        "its %lu whole events were filtered\n", o->offline_in, report.cut_bytes, report.events);
+    }
+    if (run->node.counts.decode_errors > 0) {
+        fprintf(stderr, "hkf-filter: %lu messages did not decode; counted and skipped\n",
+                run->node.counts.decode_errors);
+    }
+    if (report.unknown_commands > 0) {
+        fprintf(stderr, "hkf-filter: %lu unknown commands ignored\n", report.unknown_commands);
+    }
+    fclose(in);
     lcm_eventlog_destroy(out);
-    if (status != 0) {
+    if (report.write_failed) {
         fprintf(stderr, "hkf-filter: error writing '%s'\n", o->offline_out);
         return 1;
     }
-    return 0;
+    return status != 0 ? 1 : 0;
 }
 
 int main(int argc, char **argv)
@@ -416,7 +349,7 @@ int main(int argc, char **argv)
             fprintf(stderr, "hkf-filter: cannot write '%s': %s\n", options.csv_path, strerror(errno));
             return 1;
         }
-        write_csv_header(run.csv);
+        pose_csv_write_header(run.csv);
     }
     status = options.offline_in != NULL ? run_offline(&run) : run_live(&run);
     if (run.csv != NULL && fclose(run.csv) != 0) {

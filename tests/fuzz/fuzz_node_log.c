@@ -1,0 +1,116 @@
+/*
+ * fuzz_node_log.c - libFuzzer target for hkf-filter --offline: arbitrary bytes
+ * as the input LCM log, read by lcm_log_reader and filtered by
+ * filter_node_offline (the code the program runs), into a log in memory.
+ * Checks that the run ends, that every pose written reads back (so the output
+ * log is whole) and is finite, and that the reader's account adds up: whole
+ * events + skipped + cut bytes never exceed the input.
+ *
+ * Input: [rate byte][the log's bytes]; an odd rate byte adds --rate ticks.
+ */
+#define _GNU_SOURCE /* fmemopen, open_memstream */
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "filter_node_offline.h"
+#include "lcm_log_reader.h"
+
+static void check(int condition, const char *what)
+{
+    if (!condition) {
+        fprintf(stderr, "fuzz_node_log: %s\n", what);
+        abort();
+    }
+}
+
+static void check_pose(const hkf_head_pose_t *p)
+{
+    int a;
+    check(isfinite(p->pitch) && isfinite(p->yaw) && isfinite(p->roll), "non-finite angle written");
+    check(isfinite(p->pitch_rate) && isfinite(p->yaw_rate) && isfinite(p->roll_rate), "non-finite rate written");
+    for (a = 0; a < 3; ++a) {
+        check(isfinite(p->variance[a]) && p->variance[a] > 0, "variance not finite and positive");
+        check(isfinite(p->r[a]) && isfinite(p->center[a]), "non-finite R or centre written");
+    }
+}
+
+static unsigned long long logs, events; /* for the run's summary */
+
+static void print_totals(void)
+{
+    fprintf(stderr, "fuzz_node_log: %llu logs, %llu events in total\n", logs, events);
+}
+
+/* Reads the output log back: every pose whole and finite; returns how many. */
+static unsigned long read_back(const char *bytes, size_t size)
+{
+    static unsigned char data[512];
+    lcm_log_reader_t reader;
+    lcm_log_event_t event;
+    unsigned long poses = 0;
+    FILE *f;
+    if (size == 0) {
+        return 0;
+    }
+    f = fmemopen((void *)bytes, size, "rb");
+    check(f != NULL && lcm_log_reader_open(&reader, f) == 0, "cannot read the output back");
+    while (lcm_log_reader_next(&reader, &event, data, (int)sizeof data)) {
+        hkf_head_pose_t pose;
+        check(event.data_read && strcmp(event.channel, "HEAD_POSE") == 0, "a stray event in the output");
+        check(hkf_head_pose_t_decode(data, 0, event.datalen, &pose) == event.datalen, "an output pose does not decode");
+        check_pose(&pose);
+        hkf_head_pose_t_decode_cleanup(&pose);
+        ++poses;
+    }
+    check(reader.skipped == 0 && lcm_log_reader_cut(&reader) == 0, "the output log is damaged");
+    fclose(f);
+    return poses;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static node_config_t config;
+    static filter_node_t node;
+    static int registered;
+    filter_node_offline_t options;
+    filter_node_offline_report_t report;
+    lcm_eventlog_t out;
+    char *written = NULL;
+    size_t written_size = 0;
+    FILE *in;
+    if (!registered) {
+        registered = atexit(print_totals) == 0;
+    }
+    if (size < 1) {
+        return 0;
+    }
+    node_config_defaults(&config);
+    check(filter_node_init(&node, &config) == 0, "filter_node_init failed on the defaults");
+    options.input_channel = "HEAD_POSE_RAW";
+    options.output_channel = "HEAD_POSE";
+    options.command_channel = "HEAD_TRACKER_CMD";
+    options.tick_us = (data[0] & 1) ? 1000 + 1000 * (int64_t)(data[0] >> 1) : 0;
+    options.csv = NULL;
+    in = size > 1 ? fmemopen((void *)(data + 1), size - 1, "rb") : fopen("/dev/null", "rb");
+    out.f = open_memstream(&written, &written_size);
+    out.eventcount = 0;
+    check(in != NULL && out.f != NULL, "cannot open the in-memory files");
+
+    check(filter_node_offline(&node, &options, in, &out, &report) == 0, "filter_node_offline failed");
+    check(report.skipped_bytes >= 0 && report.cut_bytes >= 0 &&
+              report.skipped_bytes + report.cut_bytes + (long)report.events * 29 <= (long)size - 1,
+          "the reader's account exceeds the input");
+    fclose(in);
+    fclose(out.f);
+    check(read_back(written, written_size) == report.poses_written, "poses written and read back differ");
+    free(written);
+    ++logs;
+    events += report.events;
+    return 0;
+}

@@ -1,0 +1,110 @@
+/*
+ * filter_node_offline.c - hkf-filter --offline (see filter_node_offline.h).
+ */
+#include "filter_node_offline.h"
+
+#include <string.h>
+
+#include "lcm_log_reader.h"
+#include "pose_csv.h"
+
+#define MESSAGE_MAX 65536 /* bytes; hkf's messages take under 200 */
+
+typedef struct {
+    const filter_node_offline_t *options;
+    lcm_eventlog_t *out;
+    filter_node_offline_report_t *report;
+} output_t;
+
+static void write_pose(output_t *output, int64_t timestamp, const hkf_head_pose_t *pose)
+{
+    unsigned char buffer[512];
+    lcm_eventlog_event_t event;
+    const int size = hkf_head_pose_t_encoded_size(pose);
+    if (output->options->csv != NULL) {
+        pose_csv_write(output->options->csv, pose);
+    }
+    ++output->report->poses_written;
+    if (output->out == NULL) {
+        return;
+    }
+    if (size > (int)sizeof buffer || hkf_head_pose_t_encode(buffer, 0, size, pose) < 0) {
+        output->report->write_failed = 1;
+        return;
+    }
+    event.eventnum = (int64_t)output->report->poses_written - 1;
+    event.timestamp = timestamp;
+    event.channellen = (int32_t)strlen(output->options->output_channel);
+    event.datalen = size;
+    event.channel = (char *)output->options->output_channel;
+    event.data = buffer;
+    if (lcm_eventlog_write_event(output->out, &event) != 0) {
+        output->report->write_failed = 1;
+    }
+}
+
+static void handle_command(filter_node_t *node, output_t *output, const void *data, int size)
+{
+    hkf_tracker_command_t command;
+    if (hkf_tracker_command_t_decode(data, 0, size, &command) < 0) {
+        ++node->counts.decode_errors;
+    } else if (filter_node_command(node, &command) != 0) {
+        ++output->report->unknown_commands;
+    }
+}
+
+static void handle_measurement(filter_node_t *node, output_t *output, const void *data, int size, int64_t timestamp)
+{
+    const int64_t tick_us = output->options->tick_us;
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    if (filter_node_decode(data, size, &m) != 0) {
+        ++node->counts.decode_errors;
+        return;
+    }
+    /* extrapolated poses at the --rate ticks before this measurement, in capture time */
+    if (tick_us > 0 && node->have_time && m.utime > node->last_utime) {
+        int64_t t = (node->last_utime / tick_us + 1) * tick_us;
+        for (; t < m.utime && t <= INT64_MAX - tick_us; t += tick_us) {
+            if (!filter_node_extrapolate(node, t, &pose)) {
+                break;
+            }
+            write_pose(output, timestamp, &pose);
+        }
+    }
+    if (filter_node_receive(node, &m, timestamp, &pose)) {
+        write_pose(output, timestamp, &pose);
+    }
+    hkf_head_pose_measurement_t_decode_cleanup(&m);
+}
+
+int filter_node_offline(filter_node_t *node, const filter_node_offline_t *options, FILE *in, lcm_eventlog_t *out,
+                        filter_node_offline_report_t *report)
+{
+    static unsigned char data[MESSAGE_MAX];
+    lcm_log_reader_t reader;
+    lcm_log_event_t event;
+    output_t output;
+    memset(report, 0, sizeof *report);
+    output.options = options;
+    output.out = out;
+    output.report = report;
+    if (lcm_log_reader_open(&reader, in) != 0) {
+        return -1;
+    }
+    while (lcm_log_reader_next(&reader, &event, data, (int)sizeof data)) {
+        const int ours = strcmp(event.channel, options->input_channel) == 0 ||
+                         strcmp(event.channel, options->command_channel) == 0;
+        if (ours && !event.data_read) {
+            ++node->counts.decode_errors; /* far too large to be one of hkf's messages */
+        } else if (strcmp(event.channel, options->command_channel) == 0) {
+            handle_command(node, &output, data, event.datalen);
+        } else if (strcmp(event.channel, options->input_channel) == 0) {
+            handle_measurement(node, &output, data, event.datalen, event.timestamp);
+        }
+    }
+    report->events = reader.events;
+    report->skipped_bytes = reader.skipped;
+    report->cut_bytes = lcm_log_reader_cut(&reader);
+    return report->write_failed ? -1 : 0;
+}

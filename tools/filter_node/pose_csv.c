@@ -1,0 +1,19 @@
+/*
+ * pose_csv.c - hkf-filter's --csv output (see pose_csv.h).
+ */
+#include "pose_csv.h"
+
+void pose_csv_write_header(FILE *csv)
+{
+    fprintf(csv, "utime,measurement_utime,seq,status,pitch,yaw,roll,pitch_rate,yaw_rate,roll_rate,"
+                 "var_pitch,var_yaw,var_roll,r_pitch,r_yaw,r_roll,loop_closure_active,extrapolated,latency_us\n");
+}
+
+void pose_csv_write(FILE *csv, const hkf_head_pose_t *p)
+{
+    fprintf(csv, "%lld,%lld,%lld,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld\n",
+            (long long)p->utime, (long long)p->measurement_utime, (long long)p->seq, p->status, (double)p->pitch,
+            (double)p->yaw, (double)p->roll, (double)p->pitch_rate, (double)p->yaw_rate, (double)p->roll_rate,
+            (double)p->variance[0], (double)p->variance[1], (double)p->variance[2], (double)p->r[0], (double)p->r[1],
+            (double)p->r[2], p->loop_closure_active, p->extrapolated, (long long)p->latency_us);
+}

@@ -1,0 +1,14 @@
+/*
+ * pose_csv.h - hkf-filter's --csv output: one line per published pose.
+ */
+#ifndef POSE_CSV_H
+#define POSE_CSV_H
+
+#include <stdio.h>
+
+#include "hkf_head_pose_t.h"
+
+void pose_csv_write_header(FILE *csv);
+void pose_csv_write(FILE *csv, const hkf_head_pose_t *pose);
+
+#endif /* POSE_CSV_H */
