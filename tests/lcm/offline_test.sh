@@ -139,6 +139,26 @@ cat "$work/huge.txt"
 grep -q "is damaged: [1-9][0-9]* bytes" "$work/huge.txt" || fail "the bad length was not reported"
 cmp -s "$work/huge_out.lcmlog" "$work/lost_one_out.lcmlog" || fail "a bad length lost more than its own event"
 
+# a measurement stamped INT64_MAX with --rate: ends (it used to extrapolate towards it for ever)
+"$python" - "$work/raw.lcmlog" "$work/future.lcmlog" "$build/lcmtypes/python" <<'PY'
+import sys
+import lcm
+sys.path.insert(0, sys.argv[3])
+from hkf import head_pose_measurement_t
+out = lcm.EventLog(sys.argv[2], "w", overwrite=True)
+for i, e in enumerate(list(lcm.EventLog(sys.argv[1], "r"))[:20]):
+    data = e.data
+    if i == 10:
+        m = head_pose_measurement_t.decode(data)
+        m.utime = 2**63 - 1
+        data = m.encode()
+    out.write_event(e.timestamp, e.channel, data)
+out.close()
+PY
+timeout 20 "$filter" --offline "$work/future.lcmlog" "$work/future_out.lcmlog" --rate 100 2>"$work/future.txt" \
+  || fail "a far-future stamp with --rate: no clean end (exit $?)"
+grep -q "1 clock jumps" "$work/future.txt" || fail "the far-future stamp was not rejected as a clock jump"
+
 # bad input: a clear error and a non-zero exit
 if "$filter" --offline "$work/missing.lcmlog" "$work/x.lcmlog" 2>"$work/e.txt"; then fail "missing input accepted"; fi
 grep -q "missing.lcmlog" "$work/e.txt" || fail "error does not name the file"
