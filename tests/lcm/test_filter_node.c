@@ -442,6 +442,47 @@ static void test_publisher_restart_followed(void **state)
     assert_int_equal(node.counts.restarts, 1); /* 2 s > max_dt: a new track */
 }
 
+/* An estimator that falls silent: LOST after coast_time (angles held, rates
+ * zero), stamped on the capture clock, repeated each second, never before a
+ * track, and over as soon as a measurement arrives. */
+static void test_silence_reported_lost(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose, last;
+    const int64_t shift = 5000; /* arrival = capture + 5 ms */
+    const int64_t coast_us = (int64_t)(1e6 * (double)config.settings.coast_time);
+    int64_t arrival;
+    int i;
+    (void)state;
+    assert_int_equal(filter_node_silence_due(&node), 0); /* no track: nothing to report */
+    assert_int_equal(filter_node_silence(&node, T0 + 10000000, &pose), 0);
+    for (i = 0; i < 30; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 2.0 + 0.1 * i, 10.0 + i, -3.0);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + shift, &last), 1);
+    }
+    arrival = T0 + 29 * FRAME_US + shift;
+    assert_true(filter_node_silence_due(&node) == arrival + coast_us);
+    assert_int_equal(filter_node_silence(&node, arrival + coast_us - 1, &pose), 0); /* still coasting */
+    assert_int_equal(filter_node_silence(&node, arrival + coast_us, &pose), 1);
+    assert_int_equal(pose.status, HKF_HEAD_POSE_T_LOST);
+    assert_true(pose.extrapolated);
+    assert_true(pose.utime == m.utime + coast_us);
+    assert_true(pose.measurement_utime == m.utime);
+    assert_float_equal(pose.yaw, last.yaw, 0.0);
+    assert_float_equal(pose.pitch, last.pitch, 0.0);
+    assert_float_equal(pose.yaw_rate, 0.0, 0.0);
+    assert_int_equal(filter_node_silence(&node, arrival + coast_us + 500000, &pose), 0); /* said already */
+    assert_int_equal(filter_node_silence(&node, arrival + coast_us + FILTER_NODE_LOST_REPEAT_US, &pose), 1);
+    assert_true(pose.utime == m.utime + coast_us + FILTER_NODE_LOST_REPEAT_US);
+    assert_int_equal(node.counts.silences, 1);
+    /* the estimator comes back within max_dt: filtered as usual, the silence is over */
+    m = measurement(T0 + 29 * FRAME_US + 900000, 1, 2.0, 12.0, -3.0);
+    assert_int_equal(filter_node_receive(&node, &m, m.utime + shift, &pose), 1);
+    assert_int_equal(pose.status, HKF_HEAD_POSE_T_TRACKING);
+    assert_true(filter_node_silence_due(&node) == m.utime + shift + coast_us);
+    assert_int_equal(node.counts.restarts, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -461,6 +502,7 @@ int main(void)
         cmocka_unit_test_setup(test_decode_checks_layout, setup),
         cmocka_unit_test_setup(test_two_publishers_not_mixed, setup),
         cmocka_unit_test_setup(test_publisher_restart_followed, setup),
+        cmocka_unit_test_setup(test_silence_reported_lost, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

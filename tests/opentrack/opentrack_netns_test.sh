@@ -108,8 +108,9 @@ before, after = poses[changes[0] - 1], poses[changes[0]]
 assert list(after.center) == [before.pitch, before.yaw, before.roll], (after.center, before)
 print(f"recenter: the centre moved at pose {changes[0]} onto {[round(c, 2) for c in after.center]}")
 PY
-grep -q "301 poses received" "$work/defaults.txt" || fail "the bridge did not receive the 300 poses and the NaN one"
-grep -q "2 repeats of the last pose while LOST" "$work/defaults.txt" || fail "expected 2 LOST poses held"
+grep -q "302 poses received" "$work/defaults.txt" || fail "the bridge did not receive the 300 poses, the NaN one and the LOST one after the replay"
+# 2 LOST poses in the drive, and 1 when the replay ended (the estimator fell silent)
+grep -q "3 repeats of the last pose while LOST" "$work/defaults.txt" || fail "expected 3 LOST poses held"
 grep -q "1 non-finite" "$work/defaults.txt" || fail "the NaN pose was not counted as dropped"
 grep -q "Connection refused" "$work/nobody.txt" || fail "no clear message for a destination nobody listens on"
 grep -Eq "[1-9][0-9]* send errors" "$work/nobody.txt" || fail "refused sends not counted"

@@ -229,6 +229,7 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
         /* taken: the new time reference */
         node->last_arrival_utime = arrival_utime;
         node->jump_count = 0;
+        node->lost_published = 0; /* the estimator speaks: no silence */
     }
     return publish;
 }
@@ -245,6 +246,44 @@ int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t 
     }
     fill_pose(node, &out, utime, pose);
     ++node->counts.extrapolated;
+    return 1;
+}
+
+/* The silence's length (us) at which the next LOST pose is due: coast_time,
+ * then every FILTER_NODE_LOST_REPEAT_US. */
+static int64_t next_lost_after_us(const filter_node_t *node)
+{
+    return (int64_t)ceil(1e6 * (double)node->config->settings.coast_time) +
+           node->lost_published * FILTER_NODE_LOST_REPEAT_US;
+}
+
+int64_t filter_node_silence_due(const filter_node_t *node)
+{
+    const int64_t after = next_lost_after_us(node);
+    if (!node->have_time || node->filter.status == HKF_STATUS_UNINITIALIZED ||
+        node->last_arrival_utime > INT64_MAX - after) {
+        return 0;
+    }
+    return node->last_arrival_utime + after;
+}
+
+int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pose_t *pose)
+{
+    hkf_output_t out;
+    const int64_t due = filter_node_silence_due(node), after = next_lost_after_us(node);
+    if (due == 0 || arrival_utime < due || node->last_utime > INT64_MAX - after ||
+        hkf_get_output(&node->filter, &out) != HKF_OK) {
+        return 0; /* no track, not silent long enough, or a clock at its end */
+    }
+    if (node->lost_published == 0) {
+        ++node->counts.silences;
+    }
+    ++node->lost_published;
+    out.status = HKF_STATUS_LOST; /* as the filter itself does after coast_time: angle held, rate zero */
+    out.rate[0] = out.rate[1] = out.rate[2] = 0;
+    out.flags |= HKF_FLAG_EXTRAPOLATED; /* not a posterior */
+    /* stamped when it became due on the capture clock, so live and offline agree */
+    fill_pose(node, &out, node->last_utime + after, pose);
     return 1;
 }
 

@@ -22,6 +22,9 @@
  *   measurements in a row that agree with each other mean the capture clock
  *   really moved (either way): the last of them is taken and the track restarts
  *   on the new clock, as after a gap;
+ * - silence (filter_node_silence, live only): an estimator that stops sending
+ *   is reported as LOST after coast_time, so a simulator never shows a frozen
+ *   pose as if it were tracked;
  * - the measurement's `model` picks its noise curves from the model table;
  *   a change of model restarts the track with the new curves.
  */
@@ -50,6 +53,7 @@ typedef struct {
     unsigned long clock_resyncs;   /* the capture clock moved and the node followed it */
     unsigned long other_publisher; /* rejected: seq does not continue the followed estimator's */
     unsigned long unknown_models;  /* measurements whose model is not in the table */
+    unsigned long silences;        /* the estimator fell silent for coast_time: LOST published */
     unsigned long commands;        /* commands applied */
 } filter_node_counts_t;
 
@@ -66,6 +70,7 @@ typedef struct {
     int64_t stream_arrival_utime;     /* when that arrived */
     int jump_count;                   /* clock rule: consistent rejected stamps in a row */
     int64_t jump_utime, jump_arrival_utime; /* the last of them */
+    int64_t lost_published;           /* LOST poses published in the current silence */
     int64_t seq;
     filter_node_counts_t counts;
 } filter_node_t;
@@ -97,6 +102,22 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
 /* The pose at capture-clock time utime (>= the last measurement's), for
  * publishing between measurements; returns 1 when *pose is to be published. */
 int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose);
+
+#define FILTER_NODE_LOST_REPEAT_US 1000000LL /* while silent, LOST again every second for late subscribers */
+
+/* The live node's watchdog, called whenever no message came for a while: the
+ * followed estimator has sent nothing since its last measurement arrived (it
+ * died, hung, or its camera stopped). After coast_time of silence, a LOST pose
+ * (the last angles held, rates zero, flagged extrapolated), then again every
+ * FILTER_NODE_LOST_REPEAT_US while the silence lasts. The filter is not
+ * changed: a late frame is still filtered as usual, and after max_dt the
+ * next measurement restarts the track. Returns 1 when *pose is to be published. */
+int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pose_t *pose);
+
+/* When (arrival clock) the next LOST pose of a silence is due, or 0 (no track):
+ * the live loop wakes then. The pose is stamped that long after the last
+ * measurement's capture time, so the live node and --offline agree. */
+int64_t filter_node_silence_due(const filter_node_t *node);
 
 /* RECENTER or RESET; returns 0, or -1 for an unknown command. */
 int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command);

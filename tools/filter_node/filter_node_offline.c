@@ -53,6 +53,18 @@ static void handle_command(filter_node_t *node, output_t *output, const void *da
     }
 }
 
+/* The live node's watchdog, in log time: an estimator silent for coast_time
+ * before `timestamp` (or at the end of the log) gives one LOST pose. The live
+ * node repeats it every second for late subscribers; a log has none. */
+static void silence_before(filter_node_t *node, output_t *output, int64_t timestamp)
+{
+    hkf_head_pose_t pose;
+    const int64_t due = filter_node_silence_due(node);
+    if (node->lost_published == 0 && due != 0 && due <= timestamp && filter_node_silence(node, due, &pose)) {
+        write_pose(output, due, &pose);
+    }
+}
+
 static void handle_measurement(filter_node_t *node, output_t *output, const void *data, int size, int64_t timestamp)
 {
     const int64_t tick_us = output->options->tick_us;
@@ -72,6 +84,7 @@ static void handle_measurement(filter_node_t *node, output_t *output, const void
             write_pose(output, timestamp, &pose);
         }
     }
+    silence_before(node, output, timestamp);
     if (filter_node_receive(node, &m, timestamp, &pose)) {
         write_pose(output, timestamp, &pose);
     }
@@ -103,6 +116,7 @@ int filter_node_offline(filter_node_t *node, const filter_node_offline_t *option
             handle_measurement(node, &output, data, event.datalen, event.timestamp);
         }
     }
+    silence_before(node, &output, INT64_MAX); /* the log ends: the estimator is silent from here on */
     report->events = reader.events;
     report->skipped_bytes = reader.skipped;
     report->cut_bytes = lcm_log_reader_cut(&reader);

@@ -168,10 +168,10 @@ static void print_summary(const filter_node_t *node, FILE *to)
             "hkf-filter: %lu measurements (%lu without a face), %lu poses published (%lu extrapolated); "
             "rejected: %lu out of order, %lu duplicates, %lu bad values, %lu undecodable; "
             "%lu clock jumps (%lu followed), %lu from another publisher; %lu track restarts, "
-            "%lu with an unknown model, %lu commands\n",
+            "%lu with an unknown model, %lu commands; the estimator fell silent %lu times (LOST published)\n",
             c->received, c->without_face, c->published, c->extrapolated, c->out_of_order, c->duplicates,
             c->bad_values, c->decode_errors, c->clock_jumps, c->clock_resyncs, c->other_publisher, c->restarts,
-            c->unknown_models, c->commands);
+            c->unknown_models, c->commands, c->silences);
 }
 
 static void report_decode_error(node_run_t *run, const char *channel)
@@ -247,8 +247,16 @@ static int run_live(node_run_t *run)
             run->out_lcm != in ? " -> " : "", run->out_lcm != in ? o->output_url : "");
 
     while (!lcm_wait_stop_requested()) {
-        if (lcm_wait_and_handle(in, lcm_wait_time(tick_us > 0 ? next_tick : 0, wall_utime()), "hkf-filter") < 0) {
+        const int64_t silence_due = filter_node_silence_due(&run->node);
+        const int64_t wake = tick_us > 0 && (silence_due == 0 || next_tick < silence_due) ? next_tick : silence_due;
+        if (lcm_wait_and_handle(in, lcm_wait_time(wake, wall_utime()), "hkf-filter") < 0) {
             break;
+        }
+        {
+            hkf_head_pose_t pose;
+            if (filter_node_silence(&run->node, wall_utime(), &pose)) { /* the estimator has gone quiet */
+                publish(run, &pose);
+            }
         }
         if (tick_us > 0 && wall_utime() >= next_tick) {
             /* between measurements: the pose at the capture clock's "now" */
