@@ -37,12 +37,21 @@ FrameSource::FrameSource(const std::string &spec, double fps_for_images) : fps_(
         std::sort(images_.begin(), images_.end());
         if (images_.empty()) throw EstimatorError("no images (.jpg .jpeg .png .bmp) in " + spec);
         description_ = "folder " + spec + " (" + std::to_string(images_.size()) + " images)";
+    } else if (fs::is_fifo(spec) || fs::is_character_file(spec)) {  // a stream arriving in real time
+        live_ = true;
+        if (!capture_.open(spec, cv::CAP_FFMPEG) || !capture_.isOpened())
+            throw EstimatorError("cannot read the stream " + spec + " (not a video OpenCV can decode)");
+        const double stream_fps = capture_.get(cv::CAP_PROP_FPS);
+        if (stream_fps > 0 && stream_fps < 1000) fps_ = stream_fps;
+        description_ = "stream " + spec;
     } else {
         if (!fs::exists(spec)) throw EstimatorError("no such file or camera: " + spec);
         if (!capture_.open(spec, cv::CAP_FFMPEG) || !capture_.isOpened())
             throw EstimatorError("cannot read video " + spec + " (not a video OpenCV can decode)");
         const double file_fps = capture_.get(cv::CAP_PROP_FPS);
         if (file_fps > 0 && file_fps < 1000) fps_ = file_fps;
+        const double count = capture_.get(cv::CAP_PROP_FRAME_COUNT);
+        if (count > 0 && count < 1e9) expected_frames_ = static_cast<int64_t>(count);
         description_ = "video " + spec;
     }
     start_utime_ = wall_utime();

@@ -21,13 +21,18 @@ int64_t wall_utime();
 
 class FrameSource {
 public:
-    // "0" or "/dev/video0": a camera; a folder: its images in name order; else a
-    // video file. fps paces image folders (and files without a frame rate).
+    // "0" or "/dev/video0": a camera; a named pipe or character device: a live
+    // stream (e.g. a camera's video piped in); a folder: its images in name
+    // order; else a video file. fps paces image folders (and files without a frame rate).
     // Throws EstimatorError when it cannot be opened.
     FrameSource(const std::string &spec, double fps_for_images);
 
-    bool live() const { return live_; }  // a camera: frames arrive in real time
+    bool live() const { return live_; }  // a camera or stream: frames arrive in real time
     double fps() const { return fps_; }
+    // A video file's frame count from its container (0: unknown), and how many
+    // frames have been read: a file that ends well short of its count is damaged.
+    int64_t expected_frames() const { return expected_frames_; }
+    int64_t frames_read() const { return next_index_; }
     const std::string &description() const { return description_; }
 
     // The next frame; false at the end of a file or folder. Camera frames are
@@ -39,7 +44,7 @@ private:
     std::vector<std::string> images_;
     bool live_ = false;
     double fps_ = 30.0;
-    int64_t start_utime_ = 0, next_index_ = 0;
+    int64_t start_utime_ = 0, next_index_ = 0, expected_frames_ = 0;
     std::string description_;
 };
 

@@ -43,11 +43,13 @@ public:
         full_ = true;
         arrived_.notify_one();
     }
-    // The newest frame; nullopt once the source has ended and the slot is empty.
-    std::optional<Frame> take()
+    // The newest frame, waiting up to `timeout`; nullopt when none came in that
+    // time, or (ended = true) once the source has ended and the slot is empty.
+    std::optional<Frame> take(std::chrono::milliseconds timeout, bool &ended)
     {
         std::unique_lock<std::mutex> lock(mutex_);
-        arrived_.wait(lock, [&] { return full_ || closed_; });
+        arrived_.wait_for(lock, timeout, [&] { return full_ || closed_; });
+        ended = !full_ && closed_;
         if (!full_) return std::nullopt;
         full_ = false;
         taken_.notify_one();
@@ -115,7 +117,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
 
     const bool drop_old = source.live() || options.realtime;
     LatestFrame slot;
-    std::atomic<bool> capture_failed{false};
+    std::atomic<bool> capture_failed{false}, capture_done{false};
     std::string capture_error;
     std::thread capture([&] {
         try {
@@ -135,6 +137,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
             capture_failed = true;
         }
         slot.close();
+        capture_done = true;
     });
 
     std::fprintf(stderr, "hkf-estimator: %s -> %s on %s (model %s)\n", source.description().c_str(), options.channel.c_str(),
@@ -143,7 +146,33 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
     std::vector<double> latency_ms, inference_ms;
     const auto started = std::chrono::steady_clock::now();
     int64_t seq = 0;
-    while (auto frame = slot.take()) {
+    // A source that stops delivering frames (a camera unplugged or hung, a
+    // stream stalled) is reported after kStallWarning; the loop keeps waiting
+    // for it and still stops promptly on SIGINT / SIGTERM.
+    constexpr auto kStallWarning = std::chrono::seconds(2);
+    auto last_frame_time = std::chrono::steady_clock::now();
+    bool stalled = false;
+    long stalls = 0;
+    for (;;) {
+        bool ended = false;
+        auto frame = slot.take(std::chrono::milliseconds(100), ended);
+        if (ended || stop_requested) break;
+        const auto now = std::chrono::steady_clock::now();
+        if (!frame) {
+            if (!stalled && now - last_frame_time >= kStallWarning) {
+                stalled = true;
+                ++stalls;
+                std::fprintf(stderr, "hkf-estimator: no frame from %s for %.1f s (camera unplugged or stalled?); waiting\n",
+                             source.description().c_str(), std::chrono::duration<double>(now - last_frame_time).count());
+            }
+            continue;
+        }
+        if (stalled) {
+            std::fprintf(stderr, "hkf-estimator: frames again after %.1f s\n",
+                         std::chrono::duration<double>(now - last_frame_time).count());
+            stalled = false;
+        }
+        last_frame_time = now;
         const int64_t taken = wall_utime();
         const auto t0 = std::chrono::steady_clock::now();
         std::optional<Face> face = tracker.track(frame->image, frame->utime);
@@ -210,17 +239,48 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
         if (frames % 100 == 0)
             std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", frames, with_face);
     }
-    capture.join();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (writer.isOpened()) writer.release();  // the annotated video is whole, however the run ends
+    // A capture thread blocked inside the source (a hung camera or stream) cannot
+    // be interrupted: give it a moment, then leave without it (see below).
+    slot.close();  // a capture waiting to hand over a frame gives up
+    const auto stop_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+    while (!capture_done && std::chrono::steady_clock::now() < stop_deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const bool capture_hung = !capture_done;
+    if (!capture_hung) capture.join();
     if (capture_failed) {
         std::fprintf(stderr, "hkf-estimator: %s\n", capture_error.c_str());
         return 1;
     }
     std::printf("hkf-estimator: %ld frames, %ld with a face, %.1f fps; capture->publish ms p50 %.1f p99 %.1f; "
-                "inference ms p50 %.1f; %ld dropped; %ld full-frame face searches\n",
+                "inference ms p50 %.1f; %ld dropped; %ld full-frame face searches; %ld stalls of the source\n",
                 frames, with_face, seconds > 0 ? static_cast<double>(frames) / seconds : 0.0, percentile(latency_ms, 0.5),
-                percentile(latency_ms, 0.99), percentile(inference_ms, 0.5), slot.dropped(), tracker.full_frame_searches());
-    return frames > 0 ? 0 : 1;
+                percentile(latency_ms, 0.99), percentile(inference_ms, 0.5), slot.dropped(), tracker.full_frame_searches(),
+                stalls);
+    int status = frames > 0 ? 0 : 1;
+    if (!stop_requested && source.live()) {  // a camera or stream that ends by itself has failed
+        std::fprintf(stderr, "hkf-estimator: %s stopped delivering frames (unplugged?) after %ld frames\n",
+                     source.description().c_str(), frames);
+        status = 3;
+    }
+    // a file that ends well short of its container's frame count: the decoder
+    // gave up on damage (the count can be approximate, hence the margin)
+    const int64_t expected = source.expected_frames(), read = source.frames_read();
+    if (!stop_requested && !source.live() && options.max_frames == 0 && expected > 0 &&
+        read < expected - std::max<int64_t>(5, expected / 50)) {
+        std::fprintf(stderr, "hkf-estimator: %s ended after %lld of its %lld frames: the rest could not be decoded "
+                     "(a damaged file?)\n", source.description().c_str(), static_cast<long long>(read),
+                     static_cast<long long>(expected));
+        status = 4;
+    }
+    if (capture_hung) {
+        std::fprintf(stderr, "hkf-estimator: %s is not responding; leaving it\n", source.description().c_str());
+        std::fflush(stdout);
+        std::fflush(stderr);
+        std::_Exit(status);  // the summary is out and the video closed; the hung thread cannot be joined
+    }
+    return status;
 }
 
 }  // namespace hkf_estimator

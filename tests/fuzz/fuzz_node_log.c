@@ -97,6 +97,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     options.command_channel = "HEAD_TRACKER_CMD";
     options.tick_us = (data[0] & 1) ? 1000 + 1000 * (int64_t)(data[0] >> 1) : 0;
     options.csv = NULL;
+    options.stop_requested = NULL;
     in = size > 1 ? fmemopen((void *)(data + 1), size - 1, "rb") : fopen("/dev/null", "rb");
     out.f = open_memstream(&written, &written_size);
     out.eventcount = 0;

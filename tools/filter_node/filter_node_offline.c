@@ -106,6 +106,10 @@ int filter_node_offline(filter_node_t *node, const filter_node_offline_t *option
         return -1;
     }
     while (lcm_log_reader_next(&reader, &event, data, (int)sizeof data)) {
+        if (options->stop_requested != NULL && options->stop_requested()) {
+            report->stopped = 1;
+            break;
+        }
         const int ours = strcmp(event.channel, options->input_channel) == 0 ||
                          strcmp(event.channel, options->command_channel) == 0;
         if (ours && !event.data_read) {
@@ -116,9 +120,11 @@ int filter_node_offline(filter_node_t *node, const filter_node_offline_t *option
             handle_measurement(node, &output, data, event.datalen, event.timestamp);
         }
     }
-    silence_before(node, &output, INT64_MAX); /* the log ends: the estimator is silent from here on */
+    if (!report->stopped) {
+        silence_before(node, &output, INT64_MAX); /* the log ends: the estimator is silent from here on */
+    }
     report->events = reader.events;
     report->skipped_bytes = reader.skipped;
-    report->cut_bytes = lcm_log_reader_cut(&reader);
+    report->cut_bytes = report->stopped ? 0 : lcm_log_reader_cut(&reader);
     return report->write_failed ? -1 : 0;
 }

@@ -19,6 +19,7 @@ typedef struct {
     const char *input_channel, *output_channel, *command_channel;
     int64_t tick_us; /* > 0: also poses extrapolated every tick_us of capture time (--rate) */
     FILE *csv;       /* NULL, or every pose written as CSV too */
+    int (*stop_requested)(void); /* NULL, or polled between events: nonzero stops (a signal) */
 } filter_node_offline_t;
 
 typedef struct {
@@ -28,6 +29,7 @@ typedef struct {
     unsigned long unknown_commands; /* commands with an unknown code, ignored */
     unsigned long poses_written;
     int write_failed;               /* writing the output log failed */
+    int stopped;                    /* stopped early by stop_requested; the output is whole so far */
 } filter_node_offline_report_t;
 
 /* Filters the log `in` (a seekable file) into `out` (NULL: poses not written,

@@ -304,8 +304,15 @@ static int run_offline(node_run_t *run)
     offline.command_channel = o->command_channel;
     offline.tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     offline.csv = run->csv;
+    offline.stop_requested = lcm_wait_stop_requested;
+    lcm_wait_stop_on_signals(); /* SIGINT / SIGTERM: stop between events, close the output whole */
     status = filter_node_offline(&run->node, &offline, in, out, &report);
-    if (status != 0 && !report.write_failed) {
+    if (report.stopped) {
+        fprintf(stderr, "hkf-filter: stopped by a signal after %lu events of '%s'; '%s' is whole up to there\n",
+                report.events, o->offline_in, o->offline_out);
+        status = -1;
+    }
+    if (status != 0 && !report.write_failed && !report.stopped) {
         fprintf(stderr, "hkf-filter: '%s' is not a file that can be read from any position\n", o->offline_in);
     }
     if (report.skipped_bytes > 0) { /* damage inside the log: what was around it was filtered */
