@@ -1,0 +1,30 @@
+#!/usr/bin/env python3
+"""An LCM log of raw head poses (HEAD_POSE_RAW) as the CSV make_mcu_sequence
+reads: dt_s,valid,pitch,yaw,roll per frame (the first frame's dt is 1/30 s).
+usage: raw_log_to_csv.py RAW.lcmlog TYPES_DIR OUT.csv"""
+import sys
+
+import lcm
+
+
+def main():
+    log, types, out = sys.argv[1:4]
+    sys.path.insert(0, types)
+    from hkf import head_pose_measurement_t
+    rows, previous = [], None
+    for e in lcm.EventLog(log, "r"):
+        if e.channel != "HEAD_POSE_RAW":
+            continue
+        m = head_pose_measurement_t.decode(e.data)
+        dt = (m.utime - previous) / 1e6 if previous is not None else 1 / 30
+        previous = m.utime
+        rows.append(f"{dt:.9g},{int(m.valid)},{m.pitch:.9g},{m.yaw:.9g},{m.roll:.9g}")
+    if not rows:
+        sys.exit(f"raw_log_to_csv: no HEAD_POSE_RAW in {log}")
+    with open(out, "w") as f:
+        f.write("\n".join(rows) + "\n")
+    print(f"raw_log_to_csv: {len(rows)} frames -> {out}")
+
+
+if __name__ == "__main__":
+    main()

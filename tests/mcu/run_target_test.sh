@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# libhkf on a Cortex-M, in an emulator: hkf-estimator's raw poses of a shared
+# clip -> the x86 double build's output (make_mcu_sequence) -> libhkf and
+# target_test.c cross-compiled for CPU with REAL -> qemu-system-arm with
+# semihosting. Passes when the target's angles are within the tolerance of
+# the double build's. Exit 77 (skipped) without the toolchain or qemu.
+# usage: run_target_test.sh BUILD_DIR SOURCE_DIR CPU REAL TOLERANCE_DEG
+set -euo pipefail
+build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) cpu=$3 real=$4 tolerance=$5
+for tool in arm-none-eabi-gcc qemu-system-arm; do
+  command -v "$tool" >/dev/null || { echo "SKIP: $tool is not installed (scripts/setup.sh installs it)"; exit 77; }
+done
+clip=$source/../shared/data/videos/d10.mp4
+work=$build/mcu/$cpu-$real
+mkdir -p "$work"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+if [ ! -s "$build/mcu/sequence.csv" ]; then  # made once, shared by the targets
+  "$build/estimator/hkf-estimator" --source "$clip" --lcm-url "file://$work/raw.lcmlog?mode=w" >/dev/null 2>&1 \
+    || fail "hkf-estimator on $clip"
+  "$source/.venv/bin/python" "$source/tests/mcu/raw_log_to_csv.py" "$work/raw.lcmlog" "$build/lcmtypes/python" \
+    "$work/sequence.csv"
+  mv "$work/sequence.csv" "$build/mcu/sequence.csv"
+fi
+"$build/tests/make_mcu_sequence" "$build/mcu/sequence.csv" "d10.mp4" "$tolerance" "$work/sequence.h"
+cmake -S "$source" -B "$work/build" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$source/cmake/arm-none-eabi.cmake" \
+  -DHKF_CPU="$cpu" -DHKF_REAL="$real" -DCMAKE_BUILD_TYPE=Release -DHKF_MCU_SEQUENCE="$work/sequence.h" >/dev/null \
+  || fail "configuring the $cpu build"
+cmake --build "$work/build" >"$work/build.log" 2>&1 || { cat "$work/build.log" >&2; fail "building for $cpu"; }
+board=$(cat "$work/build/tests/mcu/board.txt")
+echo "running on qemu-system-arm -M $board ($cpu, $real)"
+status=0
+timeout 300 qemu-system-arm -M "$board" -nographic -monitor none -serial none -semihosting-config enable=on,target=native \
+  -icount shift=6 -kernel "$work/build/tests/mcu/hkf_target_test.elf" >"$work/output.txt" 2>&1 || status=$?
+cat "$work/output.txt"
+[ "$status" = 0 ] || fail "the target test on $cpu ($real) exited $status"
+grep -q "largest error against the x86 double build" "$work/output.txt" || fail "no result from the target"

@@ -1,0 +1,12 @@
+/*
+ * semihosting.h - the target tests' only I/O: ARM semihosting calls, which an
+ * emulator (qemu-system-arm -semihosting) or a debug probe serves.
+ */
+#ifndef SEMIHOSTING_H
+#define SEMIHOSTING_H
+
+void semihosting_write(const char *text);          /* SYS_WRITE0 */
+void semihosting_write_int(long value);
+void semihosting_exit(int success);                /* SYS_EXIT: the emulator exits 0 or 1 */
+
+#endif /* SEMIHOSTING_H */
