@@ -16,6 +16,8 @@ packages=(
   xvfb unzip file                               # hkf-spy test: lcm-spy on a virtual display; file(1)
   python3 python3-venv python3-pip              # Python tools (.venv, from tools/requirements.txt)
   clang libclang-rt-14-dev                      # the fuzz targets (libFuzzer, tests/fuzz)
+  gcc-arm-none-eabi libnewlib-arm-none-eabi     # libhkf for Cortex-M (cmake/arm-none-eabi.cmake)
+  qemu-system-arm                               # ... and its target tests in an emulator (tests/mcu)
 )
 
 missing=()
