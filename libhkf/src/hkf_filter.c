@@ -73,16 +73,23 @@ static int check_angles(const hkf_real_t v[3])
  *   x = F x                   angle += rate dt
  *   P = F P F' + Q            Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]]
  * (Q: continuous white-noise acceleration of density q.) */
+/* The angle variance's growth over dt: (F P F' + Q)_00 - p00. */
+static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, hkf_real_t q, hkf_real_t dt,
+                                               hkf_real_t dt2)
+{
+    return dt * (HKF_REAL(2.0) * p01 + dt * p11) + q * dt2 * dt * HKF_REAL(0.33333333333333333);
+}
+
 static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
 {
     const hkf_real_t dt2 = dt * dt;
     int a;
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         const hkf_real_t q = f->q[a];
         const hkf_real_t p01 = f->p01[a];
         const hkf_real_t p11 = f->p11[a];
         f->angle[a] += f->rate[a] * dt;
-        f->p00[a] += dt * (HKF_REAL(2.0) * p01 + dt * p11) + q * dt2 * dt * HKF_REAL(0.33333333333333333);
+        f->p00[a] += angle_variance_growth(p01, p11, q, dt, dt2);
         f->p01[a] = p01 + dt * p11 + q * dt2 * HKF_REAL(0.5);
         f->p11[a] = p11 + q * dt;
     }
@@ -107,7 +114,7 @@ static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restr
     if (s->loop_closure == HKF_LOOP_CLOSURE_OFF || f->center_source == CENTER_NONE) {
         return 0;
     }
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         d[a] = zc[a] - f->center[a];
     }
     d[HKF_AXIS_YAW] = hkf_wrap180(d[HKF_AXIS_YAW]);
@@ -115,7 +122,7 @@ static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restr
         const hkf_real_t norm2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         closed = norm2 <= theta2;
         if (closed) {
-            for (a = 0; a < HKF_LANES; ++a) {
+            for (a = 0; a < HKF_LOOP_LANES; ++a) {
                 zc[a] = f->center[a] + s->lc_xi * d[a];
             }
         }
@@ -159,20 +166,20 @@ static void observation_noise_lanes(const hkf_filter_t *restrict f, const hkf_re
     const hkf_real_t low = f->settings.r_min, high = f->settings.r_max;
     int a;
     if (f->settings.noise_mode == HKF_NOISE_CONSTANT) {
-        for (a = 0; a < HKF_LANES; ++a) {
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
             r[a] = clamp(f->r_const[a], low, high);
         }
         return;
     }
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         r[a] = noise_curve(f, a, x[a]);
     }
     if (f->settings.noise_mode == HKF_NOISE_ADAPTIVE_SQUARED) {
-        for (a = 0; a < HKF_LANES; ++a) {
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
             r[a] = r[a] > 0 ? r[a] * r[a] : 0;
         }
     }
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         r[a] = clamp(r[a], low, high);
     }
 }
@@ -181,7 +188,7 @@ static hkf_real_t observation_noise(const hkf_filter_t *restrict f, int lane, hk
 {
     hkf_real_t lanes[HKF_LANES], r[HKF_LANES];
     int a;
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         lanes[a] = x;
     }
     observation_noise_lanes(f, lanes, r);
@@ -201,7 +208,7 @@ hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
 static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
 {
     int a;
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         f->angle[a] = a < HKF_AXES ? z[a] : 0;
         f->rate[a] = 0;
         f->p00[a] = f->settings.p0_angle;
@@ -229,7 +236,7 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
     f->time_since_measurement += dt;
     f->status = HKF_STATUS_COASTING;
     if (f->time_since_measurement >= f->settings.coast_time) {
-        for (a = 0; a < HKF_LANES; ++a) {
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
             f->rate[a] = 0;
             f->p01[a] = 0;
             f->p11[a] = 0;
@@ -249,7 +256,7 @@ int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
         return result;
     }
     f->settings = *s;
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         if (a < HKF_AXES) {
             const hkf_noise_curve_t *c = &s->noise[a];
             f->q[a] = s->process_noise[a];
@@ -279,7 +286,7 @@ void hkf_reset(hkf_filter_t *f)
     if (f == 0) {
         return;
     }
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         f->angle[a] = 0;
         f->rate[a] = 0;
         f->p00[a] = f->settings.p0_angle;
@@ -327,11 +334,11 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
         flags |= HKF_FLAG_LOOP_CLOSURE;
     }
     observation_noise_lanes(f, zc, r);                                /* Eq. 8 */
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         y[a] = zc[a] - f->angle[a];                                   /* Eq. 4: y = z - H x */
     }
     y[HKF_AXIS_YAW] = hkf_wrap180(y[HKF_AXIS_YAW]);
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         inv_s[a] = hkf_div(HKF_REAL(1.0), f->p00[a] + r[a]);          /* Eq. 5: S = H P H' + R */
     }
 
@@ -351,7 +358,7 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
         return HKF_OK;
     }
 
-    for (a = 0; a < HKF_LANES; ++a) {
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         const hkf_real_t k0 = f->p00[a] * inv_s[a];                   /* Eq. 6: K = P H' S^-1 */
         const hkf_real_t k1 = f->p01[a] * inv_s[a];
         const hkf_real_t one_minus_k0 = r[a] * inv_s[a];              /* 1 - k0 = R / S, without cancellation */
@@ -393,7 +400,8 @@ int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out)
 
 int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *out)
 {
-    hkf_filter_t ahead;
+    hkf_real_t dt2;
+    int a;
     if (f == 0 || out == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
@@ -406,9 +414,14 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
     if (!(dt_ahead >= 0 && dt_ahead <= f->settings.max_dt)) {
         return HKF_ERROR_DT_RANGE;
     }
-    ahead = *f;
-    predict_axes(&ahead, dt_ahead);
-    write_output(&ahead, HKF_FLAG_EXTRAPOLATED, out);
+    /* Eq. 1-2 for the output alone: the filter is not copied (a small stack) */
+    write_output(f, HKF_FLAG_EXTRAPOLATED, out);
+    dt2 = dt_ahead * dt_ahead;
+    for (a = 0; a < HKF_AXES; ++a) {
+        out->angle[a] += f->rate[a] * dt_ahead;
+        out->variance[a] += angle_variance_growth(f->p01[a], f->p11[a], f->q[a], dt_ahead, dt2);
+    }
+    out->angle[HKF_AXIS_YAW] = hkf_wrap180(out->angle[HKF_AXIS_YAW]);
     return HKF_OK;
 }
 

@@ -105,7 +105,9 @@ int main(void)
     semihosting_write_int((long)ticks);
     semihosting_write(" ticks; ");
     semihosting_write_int((long)calibration_ticks);
-    semihosting_write(" for 200000 instructions)\n");
+    semihosting_write(" for 200000 instructions); sizeof(hkf_filter_t) ");
+    semihosting_write_int((long)sizeof(hkf_filter_t));
+    semihosting_write(" B\n");
     for (a = 0; a < 3; ++a) {
         failures += !(worst[a] <= SEQ_TOLERANCE_DEG);
     }
