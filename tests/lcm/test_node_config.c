@@ -12,6 +12,7 @@
 
 #include <cmocka.h>
 
+#include "model_curves.h"
 #include "node_config.h"
 
 #ifndef SHIPPED_CONFIG
@@ -48,9 +49,15 @@ static void test_shipped_file_equals_defaults(void **state)
     from_file.model_count = 0; /* the file must bring the models itself */
     assert_int_equal(node_config_read_file(&from_file, SHIPPED_CONFIG, error, sizeof error), 0);
     assert_true(same_settings(&from_file.settings, &defaults.settings));
-    assert_int_equal(from_file.model_count, 2);
+    assert_int_equal(from_file.model_count, 4);
     assert_string_equal(from_file.models[1].name, "hopenet");
     assert_memory_equal(from_file.models[1].noise, hkf_noise_hopenet, sizeof from_file.models[1].noise);
+    /* our estimators' fitted curves (tools/fit): the file and the built-in table agree */
+    assert_string_equal(from_file.models[2].name, "mesh_pnp");
+    assert_memory_equal(from_file.models[2].noise, model_curves_mesh_pnp, sizeof from_file.models[2].noise);
+    assert_string_equal(from_file.models[3].name, "whenet");
+    assert_memory_equal(from_file.models[3].noise, model_curves_whenet, sizeof from_file.models[3].noise);
+    assert_memory_equal(from_file.models, defaults.models, sizeof defaults.models[0] * 4);
 }
 
 static void test_overrides(void **state)
@@ -74,7 +81,8 @@ static void test_overrides(void **state)
     s = node_config_for_model(&c, "whenet", &known);
     assert_true(known);
     assert_true(s.noise[1].mu == 0.5f && s.noise[1].sigma == 30.0f);
-    assert_true(s.noise[0].tau == hkf_default_settings.noise[0].tau); /* the rest from the base */
+    assert_true(s.noise[0].tau == model_curves_whenet[0].tau); /* the rest from its built-in curves */
+    assert_true(s.process_noise[0] == 1.0f);                    /* and the base settings */
     assert_true(s.lc_theta == 3.5f);
     s = node_config_for_model(&c, "nobody", &known);
     assert_false(known);
@@ -122,8 +130,8 @@ static void test_print_reads_back(void **state)
     back.settings = hkf_default_settings;
     assert_int_equal(node_config_read_file(&back, path, error, sizeof error), 0);
     assert_true(same_settings(&c.settings, &back.settings));
-    assert_int_equal(back.model_count, 3);
-    assert_memory_equal(back.models, c.models, sizeof c.models[0] * 3);
+    assert_int_equal(back.model_count, 4);
+    assert_memory_equal(back.models, c.models, sizeof c.models[0] * 4);
     remove(path);
 }
 

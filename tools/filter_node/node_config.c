@@ -1,6 +1,8 @@
 /* node_config.c - see node_config.h. */
 #include "node_config.h"
 
+#include "model_curves.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <stddef.h>
@@ -42,7 +44,7 @@ static const config_key_t keys[] = {
 static const char *const noise_mode_names[] = {"constant", "adaptive", "adaptive_squared"};
 static const char *const loop_closure_names[] = {"off", "norm", "per_axis"};
 
-/* The paper's two estimators are in the table from the start. */
+/* The paper's two estimators and ours are in the table from the start. */
 static void add_builtin_model(node_config_t *config, const char *name, const hkf_noise_curve_t noise[3])
 {
     node_model_t *m = &config->models[config->model_count++];
@@ -59,6 +61,8 @@ void node_config_defaults(node_config_t *config)
     config->settings = hkf_default_settings;
     add_builtin_model(config, "fsanet", hkf_noise_fsanet);
     add_builtin_model(config, "hopenet", hkf_noise_hopenet);
+    add_builtin_model(config, "mesh_pnp", model_curves_mesh_pnp); /* fitted by tools/fit */
+    add_builtin_model(config, "whenet", model_curves_whenet);
 }
 
 static const config_key_t *find_key(const char *name)
