@@ -17,26 +17,10 @@
 #include <string.h>
 
 #include "filter_node_offline.h"
+#include "fuzz_checks.h"
+
+#define CHECK(condition, what) fuzz_check((condition), "fuzz_node_log", (what))
 #include "lcm_log_reader.h"
-
-static void check(int condition, const char *what)
-{
-    if (!condition) {
-        fprintf(stderr, "fuzz_node_log: %s\n", what);
-        abort();
-    }
-}
-
-static void check_pose(const hkf_head_pose_t *p)
-{
-    int a;
-    check(isfinite(p->pitch) && isfinite(p->yaw) && isfinite(p->roll), "non-finite angle written");
-    check(isfinite(p->pitch_rate) && isfinite(p->yaw_rate) && isfinite(p->roll_rate), "non-finite rate written");
-    for (a = 0; a < 3; ++a) {
-        check(isfinite(p->variance[a]) && p->variance[a] > 0, "variance not finite and positive");
-        check(isfinite(p->r[a]) && isfinite(p->center[a]), "non-finite R or centre written");
-    }
-}
 
 static unsigned long long logs, events; /* for the run's summary */
 
@@ -57,16 +41,16 @@ static unsigned long read_back(const char *bytes, size_t size)
         return 0;
     }
     f = fmemopen((void *)bytes, size, "rb");
-    check(f != NULL && lcm_log_reader_open(&reader, f) == 0, "cannot read the output back");
+    CHECK(f != NULL && lcm_log_reader_open(&reader, f) == 0, "cannot read the output back");
     while (lcm_log_reader_next(&reader, &event, data, (int)sizeof data)) {
         hkf_head_pose_t pose;
-        check(event.data_read && strcmp(event.channel, "HEAD_POSE") == 0, "a stray event in the output");
-        check(hkf_head_pose_t_decode(data, 0, event.datalen, &pose) == event.datalen, "an output pose does not decode");
-        check_pose(&pose);
+        CHECK(event.data_read && strcmp(event.channel, "HEAD_POSE") == 0, "a stray event in the output");
+        CHECK(hkf_head_pose_t_decode(data, 0, event.datalen, &pose) == event.datalen, "an output pose does not decode");
+        fuzz_check_pose(&pose, "fuzz_node_log");
         hkf_head_pose_t_decode_cleanup(&pose);
         ++poses;
     }
-    check(reader.skipped == 0 && lcm_log_reader_cut(&reader) == 0, "the output log is damaged");
+    CHECK(reader.skipped == 0 && lcm_log_reader_cut(&reader) == 0, "the output log is damaged");
     fclose(f);
     return poses;
 }
@@ -91,7 +75,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     node_config_defaults(&config);
-    check(filter_node_init(&node, &config) == 0, "filter_node_init failed on the defaults");
+    CHECK(filter_node_init(&node, &config) == 0, "filter_node_init failed on the defaults");
     options.input_channel = "HEAD_POSE_RAW";
     options.output_channel = "HEAD_POSE";
     options.command_channel = "HEAD_TRACKER_CMD";
@@ -101,15 +85,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     in = size > 1 ? fmemopen((void *)(data + 1), size - 1, "rb") : fopen("/dev/null", "rb");
     out.f = open_memstream(&written, &written_size);
     out.eventcount = 0;
-    check(in != NULL && out.f != NULL, "cannot open the in-memory files");
+    CHECK(in != NULL && out.f != NULL, "cannot open the in-memory files");
 
-    check(filter_node_offline(&node, &options, in, &out, &report) == 0, "filter_node_offline failed");
-    check(report.skipped_bytes >= 0 && report.cut_bytes >= 0 &&
+    CHECK(filter_node_offline(&node, &options, in, &out, &report) == 0, "filter_node_offline failed");
+    CHECK(report.skipped_bytes >= 0 && report.cut_bytes >= 0 &&
               report.skipped_bytes + report.cut_bytes + (long)report.events * 29 <= (long)size - 1,
           "the reader's account exceeds the input");
     fclose(in);
     fclose(out.f);
-    check(read_back(written, written_size) == report.poses_written, "poses written and read back differ");
+    CHECK(read_back(written, written_size) == report.poses_written, "poses written and read back differ");
     free(written);
     ++logs;
     events += report.events;

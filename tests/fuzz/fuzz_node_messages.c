@@ -16,26 +16,9 @@
 #include <string.h>
 
 #include "filter_node.h"
+#include "fuzz_checks.h"
 
-static void check(int condition, const char *what)
-{
-    if (!condition) {
-        fprintf(stderr, "fuzz_node_messages: %s\n", what);
-        abort();
-    }
-}
-
-static void check_pose(const hkf_head_pose_t *p)
-{
-    int a;
-    check(isfinite(p->pitch) && isfinite(p->yaw) && isfinite(p->roll), "non-finite angle published");
-    check(isfinite(p->pitch_rate) && isfinite(p->yaw_rate) && isfinite(p->roll_rate), "non-finite rate published");
-    for (a = 0; a < 3; ++a) {
-        check(isfinite(p->variance[a]) && p->variance[a] > 0, "variance not finite and positive");
-        check(isfinite(p->r[a]) && isfinite(p->center[a]), "non-finite R or centre published");
-    }
-    check(p->status >= HKF_HEAD_POSE_T_TRACKING && p->status <= HKF_HEAD_POSE_T_LOST, "unknown status");
-}
+#define CHECK(condition, what) fuzz_check((condition), "fuzz_node_messages", (what))
 
 static unsigned long long messages; /* payloads handed to the decoders, for the run's summary */
 
@@ -78,18 +61,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         } else {
             hkf_head_pose_measurement_t m;
             if (filter_node_decode(data, (int)length, &m) == 0) {
-                check(m.model != NULL && memchr(m.model, '\0', NODE_MODEL_NAME_MAX + 1) != NULL, "unterminated model");
+                CHECK(m.model != NULL && memchr(m.model, '\0', NODE_MODEL_NAME_MAX + 1) != NULL, "unterminated model");
                 const unsigned long jumps = node.counts.clock_jumps;
                 const int64_t reference = node.last_utime;
                 if (filter_node_receive(&node, &m, arrival, &pose)) {
-                    check_pose(&pose);
-                    check(pose.utime == m.utime, "a pose published for another capture time");
+                    fuzz_check_pose(&pose, "fuzz_node_messages");
+                    CHECK(pose.utime == m.utime, "a pose published for another capture time");
                 }
-                check(node.counts.clock_jumps == jumps || node.last_utime == reference,
+                CHECK(node.counts.clock_jumps == jumps || node.last_utime == reference,
                       "a stamp rejected as a clock jump became the time reference");
                 if (kind % 4 == 2 && m.utime < INT64_MAX - 300000 &&
                     filter_node_extrapolate(&node, m.utime + (int64_t)(kind * 997), &pose)) {
-                    check_pose(&pose);
+                    fuzz_check_pose(&pose, "fuzz_node_messages");
                 }
                 hkf_head_pose_measurement_t_decode_cleanup(&m);
             }

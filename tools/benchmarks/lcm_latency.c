@@ -13,11 +13,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/select.h>
-#include <time.h>
 
 #include <lcm/lcm.h>
 
+#include "bench_clock.h"
 #include "head_motion_sim.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "hkf_head_pose_t.h"
@@ -29,17 +28,10 @@ typedef struct {
     long answered, duplicates, unexpected;
 } bench_t;
 
-static int64_t wall_utime(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-}
-
 static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, const hkf_head_pose_t *pose, void *user)
 {
     bench_t *b = user;
-    const int64_t now = wall_utime();
+    const int64_t now = bench_wall_utime();
     /* raw message i is stamped published_us[i] (strictly increasing): find it */
     long low = 0, high = b->sent - 1, i = -1;
     (void)rbuf;
@@ -75,26 +67,6 @@ static int compare_doubles(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
-}
-
-static void wait_and_handle(lcm_t *lcm, int64_t until)
-{
-    for (;;) {
-        const int64_t left = until - wall_utime();
-        fd_set readable;
-        struct timeval timeout;
-        const int fd = lcm_get_fileno(lcm);
-        if (left <= 0) {
-            return;
-        }
-        FD_ZERO(&readable);
-        FD_SET(fd, &readable);
-        timeout.tv_sec = (time_t)(left / 1000000);
-        timeout.tv_usec = (suseconds_t)(left % 1000000);
-        if (select(fd + 1, &readable, NULL, NULL, &timeout) > 0) {
-            lcm_handle(lcm);
-        }
-    }
 }
 
 int main(int argc, char **argv)
@@ -155,12 +127,12 @@ int main(int argc, char **argv)
 
     {
         const int64_t period = (int64_t)llround(1e6 / rate);
-        const int64_t start = wall_utime() + 200000;
+        const int64_t start = bench_wall_utime() + 200000;
         for (i = 0; i < b.count; ++i) {
             sim_frame_t frame;
             hkf_head_pose_measurement_t m;
             int64_t now;
-            wait_and_handle(lcm, start + i * period);
+            bench_handle_until(lcm, start + i * period);
             sim_next(&sim, &frame);
             memset(&m, 0, sizeof m);
             m.model = "fsanet";
@@ -169,7 +141,7 @@ int main(int argc, char **argv)
             m.pitch = (float)frame.measured[0];
             m.yaw = (float)frame.measured[1];
             m.roll = (float)frame.measured[2];
-            now = wall_utime();
+            now = bench_wall_utime();
             if (i > 0 && now <= b.published_us[i - 1]) {
                 now = b.published_us[i - 1] + 1;
             }
@@ -178,7 +150,7 @@ int main(int argc, char **argv)
             b.sent = i + 1;
             hkf_head_pose_measurement_t_publish(lcm, "HEAD_POSE_RAW", &m);
         }
-        wait_and_handle(lcm, wall_utime() + 500000); /* late answers */
+        bench_handle_until(lcm, bench_wall_utime() + 500000); /* late answers */
     }
 
     for (i = 0; i < b.count; ++i) {

@@ -5,19 +5,13 @@
 set -euo pipefail
 build=$(cd "$1" && pwd)
 seconds=${2:-10}
-if [ "${HKF_IN_NETNS:-}" != 1 ]; then
-  HKF_IN_NETNS=1 exec "$(dirname "$0")/../lcm-netns" "$0" "$@"
-fi
-url="udpm://239.255.76.67:7667?ttl=0"
-log=$(mktemp)
-"$build/tools/hkf-filter" --lcm-url "$url" 2>"$log" &
-filter=$!
-trap 'kill $filter 2>/dev/null || true; rm -f "$log"' EXIT
-sleep 0.5
+source "$(dirname "$0")/live_filter.sh"
+start_live_filter "$build"
 echo "raw -> filtered latency through hkf-filter over LCM (udpm on loopback, $(nproc) cores), $seconds s per rate:"
 for rate in 30 1000; do
   "$build/tools/benchmarks/hkf-bench-latency" --rate "$rate" --seconds "$seconds" --lcm-url "$url"
+  sleep 1.2  # each run is a new publisher (its seq starts at 0): hkf-filter follows it after 1 s of silence
 done
 kill -INT $filter
 wait $filter || true
-cat "$log"
+cat "$filter_log"

@@ -15,11 +15,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/select.h>
-#include <time.h>
 
 #include <lcm/lcm.h>
 
+#include "bench_clock.h"
 #include "head_motion_sim.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "hkf_head_pose_t.h"
@@ -41,13 +40,6 @@ typedef struct {
     long head, tail;
     unsigned long sent_valid_count, answered, dropped, non_finite, unexpected;
 } soak_t;
-
-static int64_t wall_utime(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-}
 
 static void histogram_add(histogram_t *h, double us)
 {
@@ -84,7 +76,7 @@ static int pose_is_finite(const hkf_head_pose_t *p)
 static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, const hkf_head_pose_t *pose, void *user)
 {
     soak_t *s = user;
-    const double latency = (double)(wall_utime() - pose->utime);
+    const double latency = (double)(bench_wall_utime() - pose->utime);
     (void)rbuf;
     (void)channel;
     if (!pose_is_finite(pose)) {
@@ -127,26 +119,6 @@ static long rss_kib(long pid)
     }
     fclose(f);
     return kib;
-}
-
-static void wait_and_handle(lcm_t *lcm, int64_t until)
-{
-    for (;;) {
-        const int64_t left = until - wall_utime();
-        fd_set readable;
-        struct timeval timeout;
-        const int fd = lcm_get_fileno(lcm);
-        if (left <= 0) {
-            return;
-        }
-        FD_ZERO(&readable);
-        FD_SET(fd, &readable);
-        timeout.tv_sec = (time_t)(left / 1000000);
-        timeout.tv_usec = (suseconds_t)(left % 1000000);
-        if (select(fd + 1, &readable, NULL, NULL, &timeout) > 0) {
-            lcm_handle(lcm);
-        }
-    }
 }
 
 static int parse_number(const char *text, double low, double high, double *value)
@@ -228,14 +200,14 @@ int main(int argc, char **argv)
     fflush(stdout);
     {
         const int64_t period = (int64_t)llround(1e6 / rate);
-        const int64_t start = wall_utime() + 200000, end = start + (int64_t)(seconds * 1e6);
+        const int64_t start = bench_wall_utime() + 200000, end = start + (int64_t)(seconds * 1e6);
         const int64_t step = (int64_t)(interval_s * 1e6);
         int64_t next_report = start + step, last_stamp = 0;
         unsigned long i;
         for (i = 0;; ++i) {
             const int64_t due = start + (int64_t)i * period;
             if (due >= next_report || due >= end) {
-                wait_and_handle(lcm, wall_utime() + 20000); /* the answers still in flight */
+                bench_handle_until(lcm, bench_wall_utime() + 20000); /* the answers still in flight */
                 last_rss = pid > 0 ? rss_kib((long)pid) : -1;
                 first_rss = first_rss < 0 ? last_rss : first_rss;
                 peak_rss = last_rss > peak_rss ? last_rss : peak_rss;
@@ -256,11 +228,11 @@ int main(int argc, char **argv)
                     break;
                 }
             }
-            wait_and_handle(lcm, due);
+            bench_handle_until(lcm, due);
             {
                 sim_frame_t frame;
                 hkf_head_pose_measurement_t m;
-                int64_t now = wall_utime();
+                int64_t now = bench_wall_utime();
                 sim_next(&sim, &frame);
                 memset(&m, 0, sizeof m);
                 m.model = "fsanet";

@@ -8,15 +8,8 @@
 set -euo pipefail
 build=$(cd "$1" && pwd)
 seconds=$2 interval=${3:-60} out=${4:-}
-if [ "${HKF_IN_NETNS:-}" != 1 ]; then
-  HKF_IN_NETNS=1 exec "$(dirname "$0")/../lcm-netns" "$0" "$@"
-fi
-url="udpm://239.255.76.67:7667?ttl=0"
-log=$(mktemp)
-"$build/tools/hkf-filter" --lcm-url "$url" 2>"$log" &
-filter=$!
-trap 'kill $filter 2>/dev/null || true; rm -f "$log"' EXIT
-sleep 0.5
+source "$(dirname "$0")/live_filter.sh"
+start_live_filter "$build"
 csv=()
 if [ -n "$out" ]; then
   mkdir -p "$out"
@@ -27,7 +20,7 @@ status=0
   --lcm-url "$url" "${csv[@]}" || status=$?
 kill -TERM $filter
 wait $filter || { echo "soak: hkf-filter did not stop cleanly" >&2; status=1; }
-cat "$log"
+cat "$filter_log"
 if [ -n "$out" ]; then
   "$(dirname "$0")/../../.venv/bin/python" "$(dirname "$0")/../plots/plot_soak.py" "$out/soak.csv" "$out/soak.png"
 fi
