@@ -121,6 +121,7 @@ int main(int argc, char **argv)
         b.latency_us[i] = -1.0;
     }
     sub = hkf_head_pose_t_subscribe(lcm, "HEAD_POSE", on_pose, &b);
+    hkf_head_pose_t_subscription_set_queue_capacity(sub, 100000); /* the measuring side must not drop */
     config.fps = rate;
     config.dropout_rate = 0.0; /* every raw pose should come back filtered */
     sim_init(&sim, &config, 1u);

@@ -191,6 +191,7 @@ int main(int argc, char **argv)
         fprintf(csv, "elapsed_s,sent,answered,dropped,p50_us,p99_us,max_us,rss_kib,non_finite\n");
     }
     sub = hkf_head_pose_t_subscribe(lcm, "HEAD_POSE", on_pose, &soak);
+    hkf_head_pose_t_subscription_set_queue_capacity(sub, 100000); /* the measuring side must not drop */
     config.fps = rate;
     config.dropout_rate *= 30.0 / rate; /* the drive's face-less bursts as often per second as at 30 fps */
     sim_init(&sim, &config, 11u);

@@ -64,3 +64,15 @@ int lcm_wait_and_handle(lcm_t *lcm, int64_t wait_us, const char *program)
     }
     return ready > 0;
 }
+
+lcm_subscription_t *lcm_wait_subscribe(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user,
+                                       const char *program)
+{
+    lcm_subscription_t *subscription = lcm_subscribe(lcm, channel, handler, user);
+    if (subscription == NULL) {
+        fprintf(stderr, "%s: cannot subscribe to %s\n", program, channel);
+        return NULL;
+    }
+    (void)lcm_subscription_set_queue_capacity(subscription, LCM_WAIT_QUEUE_CAPACITY);
+    return subscription;
+}

@@ -10,6 +10,17 @@
 
 #include <lcm/lcm.h>
 
+/* How many received messages a subscription may hold before LCM drops new
+ * ones: 1 s at 1 kHz. LCM's default, 30, is 30 ms at 1 kHz, and a node that
+ * the scheduler starves that long (a busy machine) silently lost messages in
+ * the soak. Each message takes microseconds, so a backlog clears at once. */
+#define LCM_WAIT_QUEUE_CAPACITY 1000
+
+/* lcm_subscribe with LCM_WAIT_QUEUE_CAPACITY; NULL (reported on stderr,
+ * prefixed by `program`) when LCM refuses. */
+lcm_subscription_t *lcm_wait_subscribe(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user,
+                                       const char *program);
+
 /* SIGINT and SIGTERM only set a flag, which the loop polls to stop with a summary. */
 void lcm_wait_stop_on_signals(void);
 int lcm_wait_stop_requested(void);

@@ -240,8 +240,14 @@ static int run_live(node_run_t *run)
         lcm_destroy(in);
         return 1;
     }
-    lcm_subscribe(in, o->input_channel, on_measurement, run);
-    lcm_subscribe(in, o->command_channel, on_command, run);
+    if (lcm_wait_subscribe(in, o->input_channel, on_measurement, run, "hkf-filter") == NULL ||
+        lcm_wait_subscribe(in, o->command_channel, on_command, run, "hkf-filter") == NULL) {
+        if (run->out_lcm != in) {
+            lcm_destroy(run->out_lcm);
+        }
+        lcm_destroy(in);
+        return 1;
+    }
     lcm_wait_stop_on_signals();
     fprintf(stderr, "hkf-filter: %s -> %s on %s%s%s\n", o->input_channel, o->output_channel, o->input_url,
             run->out_lcm != in ? " -> " : "", run->out_lcm != in ? o->output_url : "");

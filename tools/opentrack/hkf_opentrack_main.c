@@ -333,7 +333,10 @@ static int run(bridge_t *bridge)
         fprintf(stderr, "hkf-opentrack: cannot open LCM provider '%s'\n", o->lcm_url);
         return 1;
     }
-    lcm_subscribe(lcm, o->channel, on_pose, bridge);
+    if (lcm_wait_subscribe(lcm, o->channel, on_pose, bridge, "hkf-opentrack") == NULL) {
+        lcm_destroy(lcm);
+        return 1;
+    }
     lcm_wait_stop_on_signals();
     fprintf(stderr, "hkf-opentrack: %s on %s -> opentrack at %s port %s\n", o->channel, o->lcm_url, o->host, o->port);
     while (!lcm_wait_stop_requested()) {
