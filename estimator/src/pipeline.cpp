@@ -80,13 +80,19 @@ struct FilteredPose {
     std::mutex mutex;
     bool have = false;
     HeadPose pose;
-    void on_message(const lcm::ReceiveBuffer *, const std::string &, const hkf::head_pose_t *msg)
-    {
-        std::lock_guard<std::mutex> lock(mutex);
-        pose = HeadPose{msg->pitch, msg->yaw, msg->roll};
-        have = true;
-    }
 };
+
+// HEAD_POSE through LCM's C API: the C++ API's member-function subscription
+// (LCMMHSubscription in LCM 1.3.1's header) fails UBSan's vptr check.
+extern "C" void on_filtered_pose(const lcm_recv_buf_t *rbuf, const char *, void *user)
+{
+    hkf::head_pose_t msg;
+    if (msg.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) return;  // not a pose: ignored
+    FilteredPose *filtered = static_cast<FilteredPose *>(user);
+    std::lock_guard<std::mutex> lock(filtered->mutex);
+    filtered->pose = HeadPose{msg.pitch, msg.yaw, msg.roll};
+    filtered->have = true;
+}
 
 double percentile(std::vector<double> v, double q)
 {
@@ -104,7 +110,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
     if (!lcm.good()) throw EstimatorError("cannot open LCM provider " + options.lcm_url);
     FilteredPose filtered;
     if (!options.annotate_path.empty() || options.show)
-        lcm.subscribe(options.filtered_channel, &FilteredPose::on_message, &filtered);
+        lcm_subscribe(lcm.getUnderlyingLCM(), options.filtered_channel.c_str(), on_filtered_pose, &filtered);
     FaceTracker tracker(detector, options.tracker);
     cv::VideoWriter writer;
     bool show = options.show;
