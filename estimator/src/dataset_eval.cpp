@@ -104,26 +104,38 @@ EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, co
             std::cerr << "hkf-estimator: cannot read " << dir << "/images/" << row.image << " or its face box; skipped\n";
             continue;
         }
+        const bool in_protocol = std::fabs(row.yaw) <= 99.f && std::fabs(row.pitch) <= 99.f && std::fabs(row.roll) <= 99.f;
+        int bin = 0;
+        while (bin < EvalResult::kYawBins - 1 && std::fabs(row.yaw) >= EvalResult::kYawBinEdges[bin + 1]) ++bin;
+        if (in_protocol) ++result.bin_images[bin];
         const auto start = std::chrono::steady_clock::now();
         std::optional<Face> face = labelled_face(model, detector, image, row.box);
         const std::optional<HeadPose> estimate = face ? model.estimate(image, *face) : std::nullopt;
         result.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (!estimate) {
             ++result.no_face;
+            if (in_protocol) ++result.bin_no_face[bin];
             continue;
         }
         const HeadPose pose = *estimate;
         predictions << row.image << ',' << pose.pitch << ',' << pose.yaw << ',' << pose.roll << '\n';
-        if (std::fabs(row.yaw) <= 99.f && std::fabs(row.pitch) <= 99.f && std::fabs(row.roll) <= 99.f) {
+        if (in_protocol) {
             const HeadPose truth = label_in_hkf_convention(row);
-            sum[0] += std::fabs(pose.pitch - truth.pitch);
-            sum[1] += std::fabs(pose.yaw - truth.yaw);
-            sum[2] += std::fabs(pose.roll - truth.roll);
+            const double error[3] = {std::fabs(pose.pitch - truth.pitch), std::fabs(pose.yaw - truth.yaw),
+                                     std::fabs(pose.roll - truth.roll)};
+            for (int a = 0; a < 3; ++a) {
+                sum[a] += error[a];
+                result.bin_mae[bin][a] += error[a];
+            }
             ++result.evaluated;
         }
         progress(i + 1, total);
     }
     for (int a = 0; a < 3; ++a) result.mae[a] = result.evaluated > 0 ? sum[a] / static_cast<double>(result.evaluated) : 0.0;
+    for (int b = 0; b < EvalResult::kYawBins; ++b) {
+        const long found = result.bin_images[b] - result.bin_no_face[b];
+        for (int a = 0; a < 3; ++a) result.bin_mae[b][a] = found > 0 ? result.bin_mae[b][a] / static_cast<double>(found) : 0.0;
+    }
     return result;
 }
 

@@ -172,6 +172,15 @@ int main(int argc, char **argv)
                     r.mae[0], r.mae[1], r.mae[2], (r.mae[0] + r.mae[1] + r.mae[2]) / 3.0,
                     r.images > r.unreadable ? 1000.0 * r.seconds / static_cast<double>(r.images - r.unreadable) : 0.0,
                     cv::getNumThreads());
+        for (int b = 0; b < EvalResult::kYawBins; ++b) {
+            const long found = r.bin_images[b] - r.bin_no_face[b];
+            std::printf("labelled |yaw| %2.0f-%2.0f deg: %4ld images, %4ld faces found (%5.1f %%), MAE deg: pitch %.2f, yaw %.2f, "
+                        "roll %.2f, mean %.2f\n",
+                        EvalResult::kYawBinEdges[b], EvalResult::kYawBinEdges[b + 1], r.bin_images[b], found,
+                        r.bin_images[b] > 0 ? 100.0 * static_cast<double>(found) / static_cast<double>(r.bin_images[b]) : 0.0,
+                        r.bin_mae[b][0], r.bin_mae[b][1], r.bin_mae[b][2],
+                        (r.bin_mae[b][0] + r.bin_mae[b][1] + r.bin_mae[b][2]) / 3.0);
+        }
         return r.evaluated > 0 ? 0 : 1;
     } catch (const EstimatorError &e) {
         std::cerr << "hkf-estimator: " << e.what() << "\n";

@@ -23,6 +23,11 @@ read -r pitch yaw roll < <(sed -n 's/MAE deg: pitch \([0-9.]*\), yaw \([0-9.]*\)
 awk -v p="$pitch" -v y="$yaw" -v r="$roll" 'BEGIN { exit !(p < 7 && y < 7 && r < 7) }' || fail "mesh_pnp MAE $pitch/$yaw/$roll deg"
 missed=$(sed -n 's/.*, \([0-9]*\) without a face found.*/\1/p' "$work/mesh.txt")
 [ "$missed" -le 15 ] || fail "mesh_pnp found no face in $missed of 150 images"
+# by labelled yaw: three bins whose found faces add up to the images evaluated
+[ "$(grep -c '^labelled |yaw| .* faces found' "$work/mesh.txt")" = 3 ] || fail "no per-yaw-bin lines"
+found=$(sed -n 's/^labelled |yaw| .* images, *\([0-9]*\) faces found.*/\1/p' "$work/mesh.txt" | awk '{ s += $1 } END { print s }')
+evaluated=$(sed -n 's/.* \([0-9]*\) within +-99 deg$/\1/p' "$work/mesh.txt")
+[ "$found" = "$evaluated" ] || fail "the yaw bins hold $found faces, $evaluated were evaluated"
 
 expect_error() { # expect_error PATTERN COMMAND...: non-zero exit, PATTERN in stderr
   local pattern=$1
