@@ -25,7 +25,12 @@ int main(int argc, char **argv)
     double stall_seconds = 0;
     for (int i = 3; i + 1 < argc; i += 2) {
         const std::string option = argv[i];
-        const double value = std::atof(argv[i + 1]);
+        char *end = nullptr;
+        const double value = std::strtod(argv[i + 1], &end);
+        if (end == argv[i + 1] || *end != '\0' || !(value >= 0 && value <= 1e6)) {
+            std::fprintf(stderr, "stream_video: %s wants a number from 0 to 1e6, not '%s'\n", option.c_str(), argv[i + 1]);
+            return 2;
+        }
         if (option == "--frames") frames = static_cast<long>(value);
         else if (option == "--stall-after") stall_after = static_cast<long>(value);
         else if (option == "--stall-seconds") stall_seconds = value;

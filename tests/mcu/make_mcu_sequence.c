@@ -7,6 +7,7 @@
  */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "hkf/hkf.h"
 
@@ -19,8 +20,14 @@ int main(int argc, char **argv)
     hkf_filter_t filter;
     FILE *in, *out;
     int n = 0, i;
+    if (argc == 2 && strcmp(argv[1], "--help") == 0) {
+        printf("usage: make_mcu_sequence IN.csv NAME TOLERANCE_DEG OUT.h\n"
+               "Filters IN.csv (dt_s,valid,pitch,yaw,roll per frame) with libhkf in double and writes\n"
+               "sequence.h (the input and the expected angles) for tests/mcu/target_test.c.\n");
+        return 0;
+    }
     if (argc != 5) {
-        fprintf(stderr, "usage: make_mcu_sequence IN.csv NAME TOLERANCE_DEG OUT.h\n");
+        fprintf(stderr, "usage: make_mcu_sequence IN.csv NAME TOLERANCE_DEG OUT.h (see --help)\n");
         return 2;
     }
     in = fopen(argv[1], "r");

@@ -8,6 +8,9 @@ import lcm
 
 
 def main():
+    if len(sys.argv) != 4 or sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(sys.argv) == 2 else 2)
     log, types, out = sys.argv[1:4]
     sys.path.insert(0, types)
     from hkf import head_pose_measurement_t

@@ -56,6 +56,9 @@ def runtime_routines(elf):
 
 
 def main():
+    if len(sys.argv) != 2 or sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if len(sys.argv) == 2 else 2)
     build = sys.argv[1]
     rows = []
     for cpu, real in TARGETS:
