@@ -52,7 +52,7 @@ static int check_dt(const hkf_filter_t *f, hkf_real_t dt)
 
 static int check_angles(const hkf_real_t v[3])
 {
-    const hkf_real_t limit = (hkf_real_t)HKF_MAX_ABS_ANGLE;
+    const hkf_real_t limit = HKF_REAL_FROM(HKF_MAX_ABS_ANGLE);
     int a;
     /* NaN fails every comparison, so this one test passes only good input */
     if ((int)(hkf_abs(v[0]) <= limit) & (int)(hkf_abs(v[1]) <= limit) & (int)(hkf_abs(v[2]) <= limit)) {
@@ -62,7 +62,7 @@ static int check_angles(const hkf_real_t v[3])
         if (!hkf_is_finite(v[a])) {
             return HKF_ERROR_NON_FINITE;
         }
-        if (hkf_abs(v[a]) > (hkf_real_t)HKF_MAX_ABS_ANGLE) {
+        if (hkf_abs(v[a]) > limit) {
             return HKF_ERROR_ANGLE_RANGE;
         }
     }
@@ -72,26 +72,26 @@ static int check_angles(const hkf_real_t v[3])
 /* Paper Eq. 1-3, per axis:
  *   x = F x                   angle += rate dt
  *   P = F P F' + Q            Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]]
- * (Q: continuous white-noise acceleration of density q.) */
-/* The angle variance's growth over dt: (F P F' + Q)_00 - p00. */
-static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, hkf_real_t q, hkf_real_t dt,
-                                               hkf_real_t dt2)
+ * (Q: continuous white-noise acceleration of density q.) The terms of Q are
+ * formed as ((q dt) dt) dt so each product keeps its digits in fixed point. */
+/* The angle variance's growth over dt: (F P F' + Q)_00 - p00, with qdt = q dt. */
+static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, hkf_real_t qdt, hkf_real_t dt)
 {
-    return dt * (HKF_REAL(2.0) * p01 + dt * p11) + q * dt2 * dt * HKF_REAL(0.33333333333333333);
+    const hkf_real_t cross = hkf_mul(dt, hkf_add(hkf_add(p01, p01), hkf_mul(dt, p11)));
+    return hkf_add(cross, hkf_mul(hkf_mul(qdt, dt), hkf_mul(dt, HKF_REAL(0.33333333333333333))));
 }
 
 static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
 {
-    const hkf_real_t dt2 = dt * dt;
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t q = f->q[a];
+        const hkf_real_t qdt = hkf_mul(f->q[a], dt);
         const hkf_real_t p01 = f->p01[a];
         const hkf_real_t p11 = f->p11[a];
-        f->angle[a] += f->rate[a] * dt;
-        f->p00[a] += angle_variance_growth(p01, p11, q, dt, dt2);
-        f->p01[a] = p01 + dt * p11 + q * dt2 * HKF_REAL(0.5);
-        f->p11[a] = p11 + q * dt;
+        f->angle[a] = hkf_add(f->angle[a], hkf_mul(f->rate[a], dt));
+        f->p00[a] = hkf_add(f->p00[a], angle_variance_growth(p01, p11, qdt, dt));
+        f->p01[a] = hkf_add(hkf_add(p01, hkf_mul(dt, p11)), hkf_mul(hkf_mul(qdt, dt), HKF_REAL(0.5)));
+        f->p11[a] = hkf_add(p11, qdt);
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
 }
@@ -104,32 +104,34 @@ static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restr
                         hkf_real_t zc[restrict HKF_LANES])
 {
     const hkf_settings_t *s = &f->settings;
-    const hkf_real_t theta2 = s->lc_theta * s->lc_theta;
+    const hkf_real_t theta2 = hkf_mul(s->lc_theta, s->lc_theta);
     hkf_real_t d[HKF_LANES];
     int a, closed = 0;
     zc[0] = z[0];
     zc[1] = z[1];
     zc[2] = z[2];
+#if HKF_LANES > 3 /* (HKF_AXES is an enum, unseen by the preprocessor) */
     zc[3] = 0;
+#endif
     if (s->loop_closure == HKF_LOOP_CLOSURE_OFF || f->center_source == CENTER_NONE) {
         return 0;
     }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        d[a] = zc[a] - f->center[a];
+        d[a] = hkf_sub(zc[a], f->center[a]);
     }
     d[HKF_AXIS_YAW] = hkf_wrap180(d[HKF_AXIS_YAW]);
     if (s->loop_closure == HKF_LOOP_CLOSURE_NORM) {
-        const hkf_real_t norm2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        const hkf_real_t norm2 = hkf_add(hkf_add(hkf_mul(d[0], d[0]), hkf_mul(d[1], d[1])), hkf_mul(d[2], d[2]));
         closed = norm2 <= theta2;
         if (closed) {
             for (a = 0; a < HKF_LOOP_LANES; ++a) {
-                zc[a] = f->center[a] + s->lc_xi * d[a];
+                zc[a] = hkf_add(f->center[a], hkf_mul(s->lc_xi, d[a]));
             }
         }
     } else {
         for (a = 0; a < HKF_AXES; ++a) {
-            if (d[a] * d[a] <= theta2) {
-                zc[a] = f->center[a] + s->lc_xi * d[a];
+            if (hkf_mul(d[a], d[a]) <= theta2) {
+                zc[a] = hkf_add(f->center[a], hkf_mul(s->lc_xi, d[a]));
                 closed = 1;
             }
         }
@@ -145,11 +147,11 @@ static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restr
  * but its Table I only makes sense without it (FSA-Net yaw: 7.64 - 4.11 =
  * 3.53 deg at the centre, ~7.6 deg at +-90 deg; normalised, pitch R would be a
  * near-constant 315). Written as (tau - lambda) + lambda (1 - exp(.)) so the
- * roll curves (tau, lambda ~ 1e5) do not cancel catastrophically in float. */
+ * roll curves (tau, lambda ~ 1e5) do not cancel catastrophically in float;
+ * the rise lambda (1 - exp(.)) is the math layer's (hkf_math.h). */
 static inline hkf_real_t noise_curve(const hkf_filter_t *restrict f, int lane, hkf_real_t x)
 {
-    const hkf_real_t u = x - f->mu[lane];
-    return f->noise_floor[lane] + f->lambda[lane] * hkf_one_minus_exp_neg(u * u * f->gauss_scale[lane]);
+    return hkf_add(f->noise_floor[lane], hkf_curve_rise(f, lane, hkf_sub(x, f->mu[lane])));
 }
 
 static inline hkf_real_t clamp(hkf_real_t x, hkf_real_t low, hkf_real_t high)
@@ -176,7 +178,7 @@ static void observation_noise_lanes(const hkf_filter_t *restrict f, const hkf_re
     }
     if (f->settings.noise_mode == HKF_NOISE_ADAPTIVE_SQUARED) {
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            r[a] = r[a] > 0 ? r[a] * r[a] : 0;
+            r[a] = r[a] > 0 ? hkf_mul(r[a], r[a]) : 0;
         }
     }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
@@ -209,7 +211,7 @@ static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
 {
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        f->angle[a] = a < HKF_AXES ? z[a] : 0;
+        f->angle[a] = a < HKF_AXES ? z[a] : 0; /* (lane 3 exists only where HKF_LOOP_LANES is 4) */
         f->rate[a] = 0;
         f->p00[a] = f->settings.p0_angle;
         f->p01[a] = 0;
@@ -233,7 +235,7 @@ static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
 static void count_missing(hkf_filter_t *f, hkf_real_t dt)
 {
     int a;
-    f->time_since_measurement += dt;
+    f->time_since_measurement = hkf_add(f->time_since_measurement, dt);
     f->status = HKF_STATUS_COASTING;
     if (f->time_since_measurement >= f->settings.coast_time) {
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
@@ -258,20 +260,13 @@ int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
     f->settings = *s;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         if (a < HKF_AXES) {
-            const hkf_noise_curve_t *c = &s->noise[a];
             f->q[a] = s->process_noise[a];
             f->r_const[a] = s->r_const[a];
-            f->mu[a] = c->mu;
-            f->lambda[a] = c->lambda;
-            f->gauss_scale[a] = hkf_div(HKF_REAL(1.0), HKF_REAL(2.0) * c->sigma * c->sigma);
-            f->noise_floor[a] = c->tau - c->lambda;
+            hkf_curve_prepare(f, a, &s->noise[a]);
         } else { /* the idle lane: a still, perfectly observed axis */
             f->q[a] = 0;
             f->r_const[a] = s->r_min;
-            f->mu[a] = 0;
-            f->lambda[a] = 0;
-            f->gauss_scale[a] = 0;
-            f->noise_floor[a] = s->r_min;
+            hkf_curve_flat(f, a, s->r_min);
         }
         f->center[a] = 0;
     }
@@ -304,7 +299,8 @@ void hkf_reset(hkf_filter_t *f)
 
 int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
 {
-    hkf_real_t zc[HKF_LANES], y[HKF_LANES], r[HKF_LANES], inv_s[HKF_LANES];
+    hkf_real_t zc[HKF_LANES], y[HKF_LANES], r[HKF_LANES];
+    hkf_divisor_t inv_s[HKF_LANES];
     hkf_real_t gate;
     unsigned flags = 0;
     int a, result;
@@ -335,18 +331,18 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     }
     observation_noise_lanes(f, zc, r);                                /* Eq. 8 */
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        y[a] = zc[a] - f->angle[a];                                   /* Eq. 4: y = z - H x */
+        y[a] = hkf_sub(zc[a], f->angle[a]);                           /* Eq. 4: y = z - H x */
     }
     y[HKF_AXIS_YAW] = hkf_wrap180(y[HKF_AXIS_YAW]);
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        inv_s[a] = hkf_div(HKF_REAL(1.0), f->p00[a] + r[a]);          /* Eq. 5: S = H P H' + R */
+        inv_s[a] = hkf_divisor(hkf_add(f->p00[a], r[a]));             /* Eq. 5: S = H P H' + R */
     }
 
     /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
      * exceeds gate_sigma; after max_gate_rejections in a row, believe it. */
     gate = f->settings.gate_sigma;
-    if (gate > 0 &&
-        y[0] * y[0] * inv_s[0] + y[1] * y[1] * inv_s[1] + y[2] * y[2] * inv_s[2] > gate * gate) {
+    if (gate > 0 && hkf_add(hkf_add(hkf_divide(hkf_mul(y[0], y[0]), inv_s[0]), hkf_divide(hkf_mul(y[1], y[1]), inv_s[1])),
+                            hkf_divide(hkf_mul(y[2], y[2]), inv_s[2])) > hkf_mul(gate, gate)) {
         if (f->gate_rejections >= f->settings.max_gate_rejections) {
             start_track(f, z);
             write_output(f, HKF_FLAG_GATED | HKF_FLAG_REACQUIRED, out);
@@ -359,14 +355,14 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     }
 
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t k0 = f->p00[a] * inv_s[a];                   /* Eq. 6: K = P H' S^-1 */
-        const hkf_real_t k1 = f->p01[a] * inv_s[a];
-        const hkf_real_t one_minus_k0 = r[a] * inv_s[a];              /* 1 - k0 = R / S, without cancellation */
-        f->angle[a] += k0 * y[a];                                     /* Eq. 7: x = x + K y */
-        f->rate[a] += k1 * y[a];
-        f->p11[a] -= k1 * f->p01[a];                                  /* Eq. 7: P = (I - K H) P */
-        f->p01[a] *= one_minus_k0;
-        f->p00[a] *= one_minus_k0; /* stays > 0 in float even when P >> R (found by fuzz_libhkf) */
+        const hkf_real_t k0 = hkf_divide(f->p00[a], inv_s[a]);        /* Eq. 6: K = P H' S^-1 */
+        const hkf_real_t k1 = hkf_divide(f->p01[a], inv_s[a]);
+        const hkf_real_t one_minus_k0 = hkf_divide(r[a], inv_s[a]);   /* 1 - k0 = R / S, without cancellation */
+        f->angle[a] = hkf_add(f->angle[a], hkf_mul(k0, y[a]));        /* Eq. 7: x = x + K y */
+        f->rate[a] = hkf_add(f->rate[a], hkf_mul(k1, y[a]));
+        f->p11[a] = hkf_sub(f->p11[a], hkf_mul(k1, f->p01[a]));       /* Eq. 7: P = (I - K H) P */
+        f->p01[a] = hkf_mul(f->p01[a], one_minus_k0);
+        f->p00[a] = hkf_mul(f->p00[a], one_minus_k0); /* stays > 0 in float even when P >> R (found by fuzz_libhkf) */
         f->r[a] = r[a];
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
@@ -400,7 +396,6 @@ int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out)
 
 int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *out)
 {
-    hkf_real_t dt2;
     int a;
     if (f == 0 || out == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
@@ -416,10 +411,10 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
     }
     /* Eq. 1-2 for the output alone: the filter is not copied (a small stack) */
     write_output(f, HKF_FLAG_EXTRAPOLATED, out);
-    dt2 = dt_ahead * dt_ahead;
     for (a = 0; a < HKF_AXES; ++a) {
-        out->angle[a] += f->rate[a] * dt_ahead;
-        out->variance[a] += angle_variance_growth(f->p01[a], f->p11[a], f->q[a], dt_ahead, dt2);
+        out->angle[a] = hkf_add(out->angle[a], hkf_mul(f->rate[a], dt_ahead));
+        out->variance[a] = hkf_add(out->variance[a],
+                                   angle_variance_growth(f->p01[a], f->p11[a], hkf_mul(f->q[a], dt_ahead), dt_ahead));
     }
     out->angle[HKF_AXIS_YAW] = hkf_wrap180(out->angle[HKF_AXIS_YAW]);
     return HKF_OK;

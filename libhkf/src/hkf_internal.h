@@ -11,7 +11,7 @@ int hkf_settings_check(const hkf_settings_t *s);
  * SIMD (the idle fourth lane fills a vector), and over the 3 axes alone on
  * scalar cores (Cortex-M), where the idle lane would only cost time. The
  * idle lane is then never read. */
-#if defined(__SSE2__) || defined(__ARM_NEON) || defined(__AVX__) || defined(__ALTIVEC__)
+#if (defined(__SSE2__) || defined(__ARM_NEON) || defined(__AVX__) || defined(__ALTIVEC__)) && HKF_LANES == 4
 #define HKF_LOOP_LANES HKF_LANES
 #else
 #define HKF_LOOP_LANES HKF_AXES

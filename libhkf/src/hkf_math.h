@@ -1,16 +1,33 @@
 /*
  * hkf_math.h - the small math layer under the filter (private).
  *
- * The filter code uses only these and + - * on hkf_real_t, so a fixed-point
- * build replaces this file's bodies, not the filter. libm is used only for
- * exp in the double build.
+ * The filter does all its arithmetic through these: hkf_add, hkf_sub,
+ * hkf_mul, a divisor prepared once and used for several quotients, the
+ * wrap of an angle, and the rise of a noise curve above its floor (Eq. 8).
+ * Comparisons and negation are plain C on hkf_real_t. Each numeric build
+ * (float, double, Q16.16 fixed point) is one branch of this file; the filter
+ * is one source for all three.
  */
 #ifndef HKF_MATH_H
 #define HKF_MATH_H
 
-#include <math.h>
 #include <stdint.h>
-#include "hkf/hkf_real.h"
+#include "hkf/hkf.h"
+
+#if !defined(HKF_REAL_FIXED)
+#include <math.h>
+
+static inline hkf_real_t hkf_add(hkf_real_t a, hkf_real_t b) { return a + b; }
+static inline hkf_real_t hkf_sub(hkf_real_t a, hkf_real_t b) { return a - b; }
+static inline hkf_real_t hkf_mul(hkf_real_t a, hkf_real_t b) { return a * b; }
+
+/* a / s for several a: the reciprocal, then one multiply per quotient. */
+typedef hkf_real_t hkf_divisor_t;
+static inline hkf_divisor_t hkf_divisor(hkf_real_t s) { return HKF_REAL(1.0) / s; }
+static inline hkf_real_t hkf_divide(hkf_real_t a, hkf_divisor_t d) { return a * d; }
+
+static inline int hkf_is_finite(hkf_real_t x) { return isfinite(x) != 0; }
+#endif
 
 #if defined(HKF_REAL_DOUBLE)
 /* 1 - exp(-u) for u >= 0. For small u, exp(-u) is too close to 1 for the
@@ -23,7 +40,9 @@ static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
     }
     return 1.0 - exp(-u);
 }
-#else
+
+static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabs(x); }  /* a bit mask, no call */
+#elif !defined(HKF_REAL_FIXED)
 /* 1 - exp(-u) for u >= 0, inline, without libm and without a branch:
  * exp(-u) = 2^n e^g with n = round(-u log2 e) and |g| <= ln2 / 2, and
  * e^g = 1 + q(g), q a degree-6 Taylor polynomial (truncation < 1.2e-7
@@ -41,17 +60,35 @@ static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
     two_n.i = (n + 127) * 8388608;       /* << 23 */
     return (1.0f - two_n.x) - two_n.x * q;
 }
-#endif
 
-static inline hkf_real_t hkf_div(hkf_real_t a, hkf_real_t b) { return a / b; }
-
-static inline int hkf_is_finite(hkf_real_t x) { return isfinite(x) != 0; }
-
-#if defined(HKF_REAL_DOUBLE)
-static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabs(x); }  /* a bit mask, no call */
-#else
 static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabsf(x); }
 #endif
+
+#if !defined(HKF_REAL_FIXED)
+/* The curve's constants for the axis loops: floor tau - lambda, lambda, mu
+ * and 1 / (2 sigma^2). */
+static inline void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c)
+{
+    f->mu[lane] = c->mu;
+    f->lambda[lane] = c->lambda;
+    f->gauss_scale[lane] = HKF_REAL(1.0) / (HKF_REAL(2.0) * c->sigma * c->sigma);
+    f->noise_floor[lane] = c->tau - c->lambda;
+}
+
+/* The idle lane's flat curve at `level`. */
+static inline void hkf_curve_flat(hkf_filter_t *f, int lane, hkf_real_t level)
+{
+    f->mu[lane] = 0;
+    f->lambda[lane] = 0;
+    f->gauss_scale[lane] = 0;
+    f->noise_floor[lane] = level;
+}
+
+/* Eq. 8 above its floor, u = x - mu:  lambda (1 - exp(-u^2 / (2 sigma^2))). */
+static inline hkf_real_t hkf_curve_rise(const hkf_filter_t *restrict f, int lane, hkf_real_t u)
+{
+    return f->lambda[lane] * hkf_one_minus_exp_neg(u * u * f->gauss_scale[lane]);
+}
 
 /* Wraps an angle to [-180, 180). Callers keep |x| below a few times
  * HKF_MAX_ABS_ANGLE, so an int holds the number of turns. Most angles are
@@ -72,5 +109,177 @@ static inline hkf_real_t hkf_wrap180(hkf_real_t x)
     }
     return w;
 }
+
+#else /* HKF_REAL_FIXED */
+/*
+ * Q16.16 fixed point, integers only: no libm, no floating point, no division
+ * instruction or routine (Cortex-M0 has none). Products are formed in 64 bits
+ * and rounded to nearest; every result saturates at +-(2^31 - 1) units
+ * (+-32768) instead of wrapping. Right shifts of negative values are
+ * arithmetic (GCC and Clang define them so).
+ *
+ * Range analysis (limits from hkf.h, which hkf_init enforces):
+ *   angles      |z| <= 3600; yaw wrapped to +-180; centre and mu likewise.
+ *               Differences |z - x| <= 7200 fit, and squares of them
+ *               saturate only beyond 181 deg (loop closure and the gate
+ *               compare squares against theta^2 <= 180^2 = 32400 and gate^2).
+ *   variances   R is clamped to r_max <= 16384 deg^2. p00, p11 start at
+ *               p0 <= 16384 and grow while coasting by at most q coast_time
+ *               and p11 dt^2 per step; beyond 32768 they saturate, which
+ *               only makes the next gain 1 (the measurement is believed).
+ *   rates       deg/s; a head turns at < 1000, Q16.16 holds 32767.
+ *   dt          (0, 10] s at a resolution of 15 us (0.05 % of a 30 Hz
+ *               frame). Process noise is formed as ((q dt) dt) dt / 3 so
+ *               each intermediate keeps its digits: at 30 Hz and q = 500,
+ *               q dt^3 / 3 = 0.0062 deg^2 is 405 units.
+ *   gains       k0 = p00 / S, k1 = p01 / S, 1 - k0 = R / S: quotients
+ *               correctly rounded (a shift-and-subtract division), since
+ *               1 / S alone would keep only ~4 digits for S ~ 10^4.
+ *   Eq. 8       in floor / curvature form (hkf.h; curvature in Q8.24): the rise above the floor
+ *               is curvature u^2 g(v) with v = u^2 / (2 sigma^2) and
+ *               g(v) = (1 - e^-v) / v for v < 1 (a polynomial in Q2.30, so
+ *               the small rises near the centre keep their digits), and
+ *               lambda (1 - e^-v) for v >= 1 (e^-v from a table of e^-k and
+ *               the same polynomial for the fraction). A rise that saturates
+ *               (|rise| >= 32768 > 16384 + |floor|) is beyond r_max either way.
+ */
+#define HKF_FIXED_MAX INT32_MAX
+
+static inline hkf_real_t hkf_saturate(int64_t x)
+{
+    return x > HKF_FIXED_MAX ? HKF_FIXED_MAX : x < -HKF_FIXED_MAX ? -HKF_FIXED_MAX : (hkf_real_t)x;
+}
+
+static inline hkf_real_t hkf_add(hkf_real_t a, hkf_real_t b) { return hkf_saturate((int64_t)a + b); }
+static inline hkf_real_t hkf_sub(hkf_real_t a, hkf_real_t b) { return hkf_saturate((int64_t)a - b); }
+static inline hkf_real_t hkf_mul(hkf_real_t a, hkf_real_t b)
+{
+    return hkf_saturate(((int64_t)a * b + 32768) >> 16);
+}
+
+static inline hkf_real_t hkf_abs(hkf_real_t x) { return x >= 0 ? x : x == INT32_MIN ? HKF_FIXED_MAX : -x; }
+static inline int hkf_is_finite(hkf_real_t x) { (void)x; return 1; }
+
+/* round(n / d) for n < d 2^31 and 0 < d < 2^31 (so the quotient is < 2^31):
+ * restoring division, one quotient bit per turn, in 32-bit registers. */
+static inline uint32_t hkf_udiv_round(uint64_t n, uint32_t d)
+{
+    uint32_t r = (uint32_t)(n >> 31), low = (uint32_t)n & 0x7FFFFFFFu, q = 0;
+    int i;
+    for (i = 30; i >= 0; --i) {
+        r = (r << 1) | ((low >> i) & 1u); /* r < 2d < 2^32 */
+        q <<= 1;
+        if (r >= d) {
+            r -= d;
+            q |= 1u;
+        }
+    }
+    return q + (r >= d - r ? 1u : 0u); /* round half up: 2r >= d */
+}
+
+/* a / s, correctly rounded; s > 0 (S = P + R >= r_min). */
+typedef hkf_real_t hkf_divisor_t;
+static inline hkf_divisor_t hkf_divisor(hkf_real_t s) { return s > 0 ? s : 1; }
+static inline hkf_real_t hkf_divide(hkf_real_t a, hkf_divisor_t d)
+{
+    const uint64_t n = (uint64_t)hkf_abs(a) << 16;
+    const uint32_t q = (n >> 31) >= (uint64_t)d ? (uint32_t)HKF_FIXED_MAX : hkf_udiv_round(n, (uint32_t)d);
+    const hkf_real_t m = q > (uint32_t)HKF_FIXED_MAX ? HKF_FIXED_MAX : (hkf_real_t)q;
+    return a < 0 ? -m : m;
+}
+
+/* Wraps an angle to [-180, 180): the number of turns from a multiply by
+ * 2^40 / (360 * 2^16) (off by at most one), then one correction. */
+static inline hkf_real_t hkf_wrap180(hkf_real_t x)
+{
+    const int64_t half = (int64_t)180 << 16, full = (int64_t)360 << 16;
+    int64_t w;
+    if (x >= -half && x < half) {
+        return x;
+    }
+    w = x - full * ((((int64_t)x + half) * 46603) >> 40);
+    if (w < -half) {
+        w += full;
+    } else if (w >= half) {
+        w -= full;
+    }
+    return (hkf_real_t)w;
+}
+
+/* g(v) = (1 - e^-v) / v = sum_k (-v)^k / (k+1)! for 0 <= v <= 1, Q2.30 in
+ * and out; the series to v^8 is within 2.8e-7 (2^-21.8). */
+static inline uint32_t hkf_g30(uint32_t v)
+{
+    static const uint32_t c[9] = {1073741824u, 536870912u, 178956971u, 44739243u, 8947849u,
+                                  1491308u,    213044u,    26631u,     2959u}; /* 2^30 / (k+1)! */
+    uint32_t acc = c[8];
+    int k;
+    for (k = 7; k >= 0; --k) {
+        acc = c[k] - (uint32_t)(((uint64_t)acc * v) >> 30);
+    }
+    return acc;
+}
+
+/* The curve's constants: floor, curvature, mu; lambda = curvature 2 sigma^2
+ * (saturated: beyond 32768 it only ever meets the r_max clamp) and
+ * 1 / (sqrt(2) sigma) in unsigned Q0.32 (sigma >= 1). */
+static inline void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c)
+{
+    const uint64_t k = 199032864766430u; /* round(2^48 / sqrt(2)) */
+    const int64_t s2 = ((int64_t)c->sigma * c->sigma) >> 16; /* sigma^2, Q16.16, < 2^44 */
+    const int64_t c24 = c->curvature_q24;
+    uint64_t r = 0, q = 0;
+    int i;
+    f->mu[lane] = c->mu;
+    f->noise_floor[lane] = c->floor;
+    f->curvature[lane] = c->curvature_q24;
+    /* lambda = 2 curvature sigma^2 = 2 c24 s2 / 2^24, with s2 split at bit 20 so no product exceeds 2^55 */
+    f->lambda[lane] = hkf_saturate(((c24 * (s2 >> 20)) >> 3) + ((c24 * (s2 & 0xFFFFF)) >> 23));
+    for (i = 63; i >= 0; --i) { /* q = k / sigma, once at init */
+        r = (r << 1) | ((k >> i) & 1u);
+        q <<= 1;
+        if (r >= (uint64_t)c->sigma) {
+            r -= (uint64_t)c->sigma;
+            q |= 1u;
+        }
+    }
+    f->inv_width[lane] = (uint32_t)q;
+}
+
+static inline void hkf_curve_flat(hkf_filter_t *f, int lane, hkf_real_t level)
+{
+    f->mu[lane] = 0;
+    f->noise_floor[lane] = level;
+    f->curvature[lane] = 0;
+    f->lambda[lane] = 0;
+    f->inv_width[lane] = 0;
+}
+
+/* Eq. 8 above its floor, u = x - mu: lambda (1 - e^-v), v = u^2 / (2 sigma^2). */
+static inline hkf_real_t hkf_curve_rise(const hkf_filter_t *restrict f, int lane, hkf_real_t u)
+{
+    static const uint32_t exp_neg[24] = { /* e^-k, k = 1..24, unsigned Q0.32 */
+        1580030169u, 581260615u, 213833830u, 78665070u, 28939262u, 10646160u, 3916503u, 1440801u,
+        530041u,     194991u,    71733u,     26389u,    9708u,     3571u,     1314u,     483u,
+        178u,        65u,        24u,        9u,        3u,        1u,        0u,        0u};
+    const uint64_t au = (uint64_t)hkf_abs(u);
+    const uint64_t w = (au * f->inv_width[lane]) >> 18; /* |u| / (sqrt(2) sigma), Q.30 */
+    if (w < ((uint64_t)1 << 30)) { /* v < 1: curvature u^2 g(v) */
+        const int64_t cu = hkf_saturate(((int64_t)f->curvature[lane] * (int64_t)au + (1 << 23)) >> 24);
+        const int64_t cu2 = hkf_saturate((cu * (int64_t)au) >> 16);
+        return hkf_saturate((cu2 * hkf_g30((uint32_t)((w * w) >> 30))) >> 30);
+    } else {
+        const uint64_t w16 = w >> 14;
+        uint32_t e30 = 0; /* e^-v, Q2.30 */
+        if (w16 < ((uint64_t)5 << 16)) { /* v < 25; beyond, e^-v < 2^-36 */
+            const uint32_t v = (uint32_t)((w16 * w16) >> 16);
+            const uint32_t frac = (v & 0xFFFFu) << 14; /* Q2.30 */
+            const uint32_t e_frac = (1u << 30) - (uint32_t)(((uint64_t)frac * hkf_g30(frac)) >> 30);
+            e30 = (uint32_t)(((uint64_t)exp_neg[(v >> 16) - 1u] * e_frac) >> 32);
+        }
+        return hkf_saturate(((int64_t)f->lambda[lane] * (int64_t)(((1u << 30) - e30 + 8192u) >> 14) + 32768) >> 16);
+    }
+}
+#endif /* HKF_REAL_FIXED */
 
 #endif /* HKF_MATH_H */

@@ -10,16 +10,16 @@
  * Roll: Table I gives tau and lambda as 3.29e5 (FSA-Net) and 9.35e4
  * (Hopenet) to three digits, so tau - lambda is lost; lambda is set so that
  * tau - lambda equals the same model's pitch centre error. */
-#define HKF_FSANET_PITCH {HKF_REAL(315.43), HKF_REAL(312.07), HKF_REAL(-5.19), HKF_REAL(132.41)}
-#define HKF_FSANET_YAW   {HKF_REAL(7.64), HKF_REAL(4.11), HKF_REAL(-0.35), HKF_REAL(30.87)}
-#define HKF_FSANET_ROLL  {HKF_REAL(329000.0), HKF_REAL(328996.64), HKF_REAL(-0.562), HKF_REAL(4440.0)}
+#define HKF_FSANET_PITCH HKF_NOISE_CURVE(315.43, 312.07, -5.19, 132.41)
+#define HKF_FSANET_YAW   HKF_NOISE_CURVE(7.64, 4.11, -0.35, 30.87)
+#define HKF_FSANET_ROLL  HKF_NOISE_CURVE(329000.0, 328996.64, -0.562, 4440.0)
 
 const hkf_noise_curve_t hkf_noise_fsanet[3] = {HKF_FSANET_PITCH, HKF_FSANET_YAW, HKF_FSANET_ROLL};
 
 const hkf_noise_curve_t hkf_noise_hopenet[3] = {
-    {HKF_REAL(232.88), HKF_REAL(229.18), HKF_REAL(-8.30), HKF_REAL(101.37)},
-    {HKF_REAL(10.74), HKF_REAL(7.017), HKF_REAL(-5.57), HKF_REAL(48.28)},
-    {HKF_REAL(93500.0), HKF_REAL(93496.30), HKF_REAL(0.0476), HKF_REAL(2219.0)},
+    HKF_NOISE_CURVE(232.88, 229.18, -8.30, 101.37),
+    HKF_NOISE_CURVE(10.74, 7.017, -5.57, 48.28),
+    HKF_NOISE_CURVE(93500.0, 93496.30, 0.0476, 2219.0),
 };
 
 /* Defaults chosen by reasoning, to be tuned on data:
@@ -73,8 +73,12 @@ static int settings_finite(const hkf_settings_t *s)
     int a;
     for (a = 0; a < HKF_AXES; ++a) {
         const hkf_noise_curve_t *c = &s->noise[a];
+#if defined(HKF_REAL_FIXED)
+        const hkf_real_t curve[] = {c->floor, c->mu, c->sigma};
+#else
         const hkf_real_t curve[] = {c->tau, c->lambda, c->mu, c->sigma};
-        if (!all_finite(curve, 4)) {
+#endif
+        if (!all_finite(curve, (int)(sizeof curve / sizeof curve[0]))) {
             return 0;
         }
     }
@@ -94,23 +98,31 @@ int hkf_settings_check(const hkf_settings_t *s)
     }
     for (a = 0; a < HKF_AXES; ++a) {
         const hkf_noise_curve_t *c = &s->noise[a];
-        if (!(c->sigma >= (hkf_real_t)HKF_MIN_SIGMA && c->sigma <= (hkf_real_t)HKF_MAX_SIGMA)) {
+        if (!(c->sigma >= HKF_REAL_FROM(HKF_MIN_SIGMA) && c->sigma <= HKF_REAL_FROM(HKF_MAX_SIGMA))) {
             return HKF_ERROR_SETTING_SIGMA;
         }
-        if (!(hkf_abs(c->tau) <= (hkf_real_t)HKF_MAX_VARIANCE && hkf_abs(c->lambda) <= (hkf_real_t)HKF_MAX_VARIANCE &&
-              hkf_abs(c->mu) <= (hkf_real_t)HKF_MAX_ABS_ANGLE)) {
+#if defined(HKF_REAL_FIXED)
+        if (!(hkf_abs(c->floor) <= HKF_REAL_FROM(HKF_MAX_CURVE_FLOOR) &&
+              c->curvature_q24 >= -HKF_MAX_CURVATURE * 16777216 && c->curvature_q24 <= HKF_MAX_CURVATURE * 16777216 &&
+              hkf_abs(c->mu) <= HKF_REAL_FROM(HKF_MAX_ABS_ANGLE))) {
             return HKF_ERROR_SETTING_CURVE;
         }
+#else
+        if (!(hkf_abs(c->tau) <= HKF_REAL_FROM(HKF_MAX_VARIANCE) && hkf_abs(c->lambda) <= HKF_REAL_FROM(HKF_MAX_VARIANCE) &&
+              hkf_abs(c->mu) <= HKF_REAL_FROM(HKF_MAX_ABS_ANGLE))) {
+            return HKF_ERROR_SETTING_CURVE;
+        }
+#endif
     }
-    if (!(s->r_min >= (hkf_real_t)HKF_MIN_VARIANCE && s->r_min <= s->r_max &&
-          s->r_max <= (hkf_real_t)HKF_MAX_VARIANCE)) {
+    if (!(s->r_min >= HKF_REAL_FROM(HKF_MIN_VARIANCE) && s->r_min <= s->r_max &&
+          s->r_max <= HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
         return HKF_ERROR_SETTING_R_RANGE;
     }
     for (a = 0; a < HKF_AXES; ++a) {
-        if (!(s->r_const[a] > 0 && s->r_const[a] <= (hkf_real_t)HKF_MAX_VARIANCE)) {
+        if (!(s->r_const[a] > 0 && s->r_const[a] <= HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
             return HKF_ERROR_SETTING_R_CONST;
         }
-        if (!(s->process_noise[a] >= 0 && s->process_noise[a] <= (hkf_real_t)HKF_MAX_PROCESS_NOISE)) {
+        if (!(s->process_noise[a] >= 0 && s->process_noise[a] <= HKF_REAL_FROM(HKF_MAX_PROCESS_NOISE))) {
             return HKF_ERROR_SETTING_PROCESS_NOISE;
         }
     }
@@ -118,23 +130,24 @@ int hkf_settings_check(const hkf_settings_t *s)
         s->loop_closure != HKF_LOOP_CLOSURE_PER_AXIS) {
         return HKF_ERROR_SETTING_LOOP_CLOSURE;
     }
-    if (!(s->lc_xi >= 0 && s->lc_xi <= 1)) {
+    if (!(s->lc_xi >= 0 && s->lc_xi <= HKF_REAL(1.0))) {
         return HKF_ERROR_SETTING_LC_XI;
     }
-    if (!(s->lc_theta >= 0 && s->lc_theta <= 360)) {
+    if (!(s->lc_theta >= 0 && s->lc_theta <= HKF_REAL_FROM(HKF_MAX_LC_THETA))) {
         return HKF_ERROR_SETTING_LC_THETA;
     }
-    if (!(s->p0_angle > 0 && s->p0_rate > 0 && s->p0_angle <= (hkf_real_t)HKF_MAX_VARIANCE &&
-          s->p0_rate <= (hkf_real_t)HKF_MAX_VARIANCE)) {
+    if (!(s->p0_angle > 0 && s->p0_rate > 0 && s->p0_angle <= HKF_REAL_FROM(HKF_MAX_VARIANCE) &&
+          s->p0_rate <= HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
         return HKF_ERROR_SETTING_P0;
     }
-    if (!(s->gate_sigma >= 0 && s->gate_sigma <= 1000) || (s->gate_sigma > 0 && s->max_gate_rejections == 0u)) {
+    if (!(s->gate_sigma >= 0 && s->gate_sigma <= HKF_REAL_FROM(HKF_MAX_GATE_SIGMA)) ||
+        (s->gate_sigma > 0 && s->max_gate_rejections == 0u)) {
         return HKF_ERROR_SETTING_GATE;
     }
-    if (!(s->coast_time > 0 && s->coast_time <= HKF_MAX_TIME)) {
+    if (!(s->coast_time > 0 && s->coast_time <= HKF_REAL_FROM(HKF_MAX_TIME))) {
         return HKF_ERROR_SETTING_COAST_TIME;
     }
-    if (!(s->max_dt > 0 && s->max_dt <= HKF_MAX_TIME)) {
+    if (!(s->max_dt > 0 && s->max_dt <= HKF_REAL_FROM(HKF_MAX_TIME))) {
         return HKF_ERROR_SETTING_MAX_DT;
     }
     return HKF_OK;

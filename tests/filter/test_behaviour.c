@@ -7,7 +7,7 @@
 
 #include "head_motion_sim.h"
 
-static const hkf_real_t frame_dt = (hkf_real_t)(1.0 / 30.0);
+static const hkf_real_t frame_dt = HKF_REAL_FROM(1.0 / 30.0);
 
 /* Starts a filter on a head turning at `rate` deg/s in yaw (perfect measurements). */
 static void track_turning_head(hkf_filter_t *f, const hkf_settings_t *s, double rate, int frames)
@@ -16,7 +16,7 @@ static void track_turning_head(hkf_filter_t *f, const hkf_settings_t *s, double 
     int i;
     assert_int_equal(hkf_init(f, s), HKF_OK);
     for (i = 0; i < frames; ++i) {
-        set3(z, 0, rate * (double)frame_dt * i, 0);
+        set3(z, 0, rate * D(frame_dt) * i, 0);
         assert_int_equal(hkf_update(f, z, frame_dt, NULL), HKF_OK);
     }
 }
@@ -31,8 +31,8 @@ static void test_coast_then_lost(void **state)
     double held;
     int i;
     (void)state;
-    s.coast_time = (hkf_real_t)0.19;
-    s.r_const[1] = (hkf_real_t)0.1;
+    s.coast_time = R(0.19);
+    s.r_const[1] = R(0.1);
     track_turning_head(&f, &s, 30.0, 60);
     assert_int_equal(hkf_get_output(&f, &before), HKF_OK);
     assert_near(before.rate[1], 30, 0.5);
@@ -40,13 +40,13 @@ static void test_coast_then_lost(void **state)
     for (i = 1; i <= 5; ++i) { /* 5 frames = 0.167 s < 0.19 s */
         assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_OK);
         assert_int_equal(out.status, HKF_STATUS_COASTING);
-        assert_near(out.angle[1], before.angle[1] + before.rate[1] * frame_dt * i, 1e-3);
+        assert_near(out.angle[1], D(before.angle[1]) + D(before.rate[1]) * D(frame_dt) * i, 1e-3);
         assert_true(out.variance[1] > before.variance[1]);
     }
     assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_OK); /* 0.2 s */
     assert_int_equal(out.status, HKF_STATUS_LOST);
     assert_near(out.rate[1], 0, 0);
-    held = out.angle[1];
+    held = D(out.angle[1]);
     for (i = 0; i < 100; ++i) {
         assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_OK);
     }
@@ -63,7 +63,7 @@ static void test_reacquire_after_lost(void **state)
     hkf_real_t z[3], centre[3];
     int i;
     (void)state;
-    s.coast_time = (hkf_real_t)0.1;
+    s.coast_time = R(0.1);
     track_turning_head(&f, &s, 10.0, 30);
     for (i = 0; i < 10; ++i) {
         assert_int_equal(hkf_predict(&f, frame_dt, &out), HKF_OK);
@@ -75,7 +75,7 @@ static void test_reacquire_after_lost(void **state)
     assert_true(out.flags & HKF_FLAG_REACQUIRED);
     assert_near(out.angle[1], -40, TEST_TOL);
     assert_near(out.rate[1], 0, 0);
-    assert_near(out.variance[1], s.p0_angle, TEST_TOL);
+    assert_near(out.variance[1], D(s.p0_angle), TEST_TOL);
     assert_int_equal(hkf_get_center(&f, centre), HKF_OK);
     assert_near(centre[1], 0, TEST_TOL); /* still the first measurement's */
 }
@@ -90,7 +90,7 @@ static void test_gate_rejects_outlier_then_reacquires(void **state)
     int i;
     (void)state;
     assert_true(hkf_default_settings.gate_sigma == 0);
-    s.gate_sigma = (hkf_real_t)4;
+    s.gate_sigma = R(4);
     s.max_gate_rejections = 3u;
     track_turning_head(&f, &s, 0.0, 30);
     set3(z, 0, 45, 0); /* far beyond 4 sigma */
@@ -100,8 +100,8 @@ static void test_gate_rejects_outlier_then_reacquires(void **state)
         assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
         assert_true(out.flags & HKF_FLAG_GATED);
         assert_false(out.flags & HKF_FLAG_REACQUIRED);
-        assert_near(out.angle[1], expected.angle[1], 0);
-        assert_near(out.variance[1], expected.variance[1], 0);
+        assert_near(out.angle[1], D(expected.angle[1]), 0);
+        assert_near(out.variance[1], D(expected.variance[1]), 0);
     }
     /* the fourth in a row is believed: the head really moved */
     assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
@@ -121,17 +121,17 @@ static void test_extrapolate_is_pure(void **state)
     hkf_filter_t f, copy;
     hkf_output_t now, ahead;
     (void)state;
-    s.r_const[1] = (hkf_real_t)0.1;
+    s.r_const[1] = R(0.1);
     track_turning_head(&f, &s, 60.0, 60);
     copy = f;
     assert_int_equal(hkf_get_output(&f, &now), HKF_OK);
-    assert_int_equal(hkf_extrapolate(&f, (hkf_real_t)0.01, &ahead), HKF_OK);
+    assert_int_equal(hkf_extrapolate(&f, R(0.01), &ahead), HKF_OK);
     assert_memory_equal(&f, &copy, sizeof f);
-    assert_near(ahead.angle[1], now.angle[1] + now.rate[1] * 0.01, 1e-3);
+    assert_near(ahead.angle[1], D(now.angle[1]) + D(now.rate[1]) * 0.01, 1e-3);
     assert_true(ahead.flags & HKF_FLAG_EXTRAPOLATED);
     assert_true(ahead.variance[1] > now.variance[1]);
-    assert_int_equal(hkf_extrapolate(&f, (hkf_real_t)0, &ahead), HKF_OK);
-    assert_near(ahead.angle[1], now.angle[1], 0);
+    assert_int_equal(hkf_extrapolate(&f, R(0), &ahead), HKF_OK);
+    assert_near(ahead.angle[1], D(now.angle[1]), 0);
 }
 
 /* Recentre: to an explicit pose (kept across reset) or to the current estimate. */
@@ -151,7 +151,7 @@ static void test_recenter_and_reset(void **state)
     assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
     assert_int_equal(hkf_recenter(&f), HKF_OK);
     assert_int_equal(hkf_get_center(&f, c), HKF_OK);
-    assert_near(c[1], out.angle[1], 0);
+    assert_near(c[1], D(out.angle[1]), 0);
 
     /* an automatic centre is forgotten by reset; an explicit one is not */
     set3(c, 0, 190, 0); /* wraps to -170 */
@@ -192,7 +192,7 @@ static void test_state_carried_across_chunks(void **state)
     assert_int_equal(hkf_init(&first, &hkf_default_settings), HKF_OK);
     for (i = 0; i < FRAMES; ++i) {
         hkf_filter_t *chunked = i < FRAMES / 2 ? &first : &second;
-        const hkf_real_t dt = (hkf_real_t)(frames[i].time - previous);
+        const hkf_real_t dt = R(frames[i].time - previous);
         hkf_real_t z[3];
         int ra, rb;
         if (i == FRAMES / 2) {
@@ -205,8 +205,8 @@ static void test_state_carried_across_chunks(void **state)
         assert_int_equal(ra, rb);
         if (ra == HKF_OK) {
             for (k = 0; k < 3; ++k) {
-                assert_near(a.angle[k], b.angle[k], 0);
-                assert_near(a.variance[k], b.variance[k], 0);
+                assert_near(a.angle[k], D(b.angle[k]), 0);
+                assert_near(a.variance[k], D(b.variance[k]), 0);
             }
         }
         previous = frames[i].time;
@@ -237,19 +237,19 @@ static void test_constant_vs_adaptive_r(void **state)
         assert_int_equal(hkf_update(&fc, z, frame_dt, &oc), HKF_OK);
         assert_int_equal(hkf_update(&fa, z, frame_dt, &oa), HKF_OK);
         if (i > 30) {
-            step_c += (oc.angle[1] - prev_c) * (oc.angle[1] - prev_c);
-            step_a += (oa.angle[1] - prev_a) * (oa.angle[1] - prev_a);
+            step_c += (D(oc.angle[1]) - prev_c) * (D(oc.angle[1]) - prev_c);
+            step_a += (D(oa.angle[1]) - prev_a) * (D(oa.angle[1]) - prev_a);
         }
-        prev_c = oc.angle[1];
-        prev_a = oa.angle[1];
+        prev_c = D(oc.angle[1]);
+        prev_a = D(oa.angle[1]);
     }
     assert_near(oc.r[1], 3.53, 1e-4);
     assert_near(oa.r[1], 7.03197, 0.05); /* Eq. 8 at the noisy measured yaw */
     assert_true(oa.r[1] > 6.5);
     assert_true(step_a < 0.85 * step_c);
     /* at the centre the curve gives the constant's value */
-    assert_near(hkf_observation_noise(&fa, HKF_AXIS_YAW, (hkf_real_t)-0.35),
-                hkf_observation_noise(&fc, HKF_AXIS_YAW, (hkf_real_t)-0.35), 1e-4);
+    assert_near(hkf_observation_noise(&fa, HKF_AXIS_YAW, R(-0.35)),
+                D(hkf_observation_noise(&fc, HKF_AXIS_YAW, R(-0.35))), 1e-4);
 }
 
 int main(void)

@@ -15,7 +15,7 @@ static void test_first_measurement_starts_track(void **state)
     (void)state;
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
     set3(z, 5, -30, 2);
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0, &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
     assert_near(out.angle[0], 5, TEST_TOL);
     assert_near(out.angle[1], -30, TEST_TOL);
     assert_near(out.angle[2], 2, TEST_TOL);
@@ -45,8 +45,8 @@ static void test_predict_eq1_to_3(void **state)
     (void)state;
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
     set3(z, 1, 2, 3);
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0, &out), HKF_OK);
-    assert_int_equal(hkf_predict(&f, (hkf_real_t)0.5, &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+    assert_int_equal(hkf_predict(&f, R(0.5), &out), HKF_OK);
     assert_near(out.variance[0], 6.5, TEST_TOL);
     assert_near(out.variance[1], 6.5, TEST_TOL);
     assert_near(out.angle[2], 3, TEST_TOL); /* rate 0: the angle stays */
@@ -65,9 +65,9 @@ static void test_update_eq4_to_7(void **state)
     (void)state;
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
     set3(z, 1, 2, 3);
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0, &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
     set3(z, 4, 5, 6);
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0.5, &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(0.5), &out), HKF_OK);
     for (a = 0; a < 3; ++a) {
         assert_near(out.angle[a], (a + 1) + 3.0 * k0, TEST_TOL);
         assert_near(out.rate[a], 3.0 * k1, TEST_TOL);
@@ -78,7 +78,7 @@ static void test_update_eq4_to_7(void **state)
     assert_int_equal(out.flags, 0u);
     /* p01 and p11 show through a prediction 1 s ahead (Eq. 1-3 once more):
      * p00 + 2 p01 + p11 + q / 3 */
-    assert_int_equal(hkf_extrapolate(&f, (hkf_real_t)1, &ahead), HKF_OK);
+    assert_int_equal(hkf_extrapolate(&f, R(1), &ahead), HKF_OK);
     assert_near(ahead.variance[0], p00 + 2.0 * p01 + p11 + 4.0, TEST_TOL);
     assert_near(ahead.angle[0], 1 + 3.0 * k0 + 3.0 * k1, TEST_TOL);
 }
@@ -93,34 +93,34 @@ static void test_observation_noise_eq8(void **state)
     hkf_filter_t f;
     (void)state;
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)-0.35), 3.53, 1e-4);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)90), 7.58328, 1e-4);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)-45), 6.19602, 1e-4);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_PITCH, (hkf_real_t)0), 3.59963, 1e-3);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_PITCH, (hkf_real_t)30), 14.18861, 2e-3);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_ROLL, (hkf_real_t)-0.562), 3.36, 0.02);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_ROLL, (hkf_real_t)20), 6.88796, 0.02);
-    assert_near(hkf_observation_noise(&f, 3, (hkf_real_t)0), 0, 0);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(-0.35)), 3.53, 1e-4);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(90)), 7.58328, 1e-4);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(-45)), 6.19602, 1e-4);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_PITCH, R(0)), 3.59963, 1e-3);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_PITCH, R(30)), 14.18861, 2e-3);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_ROLL, R(-0.562)), 3.36, 0.02);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_ROLL, R(20)), 6.88796, 0.02);
+    assert_near(hkf_observation_noise(&f, 3, R(0)), 0, 0);
 
     /* e read as a standard deviation: R = e^2 */
     s.noise_mode = HKF_NOISE_ADAPTIVE_SQUARED;
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)90), 7.58328 * 7.58328, 2e-3);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(90)), 7.58328 * 7.58328, 2e-3);
 
     /* the clamp applies in every mode */
-    s.r_max = (hkf_real_t)5;
+    s.r_max = R(5);
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)90), 5, 0);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(90)), 5, 0);
     s.noise_mode = HKF_NOISE_CONSTANT;
-    s.r_min = (hkf_real_t)4;
+    s.r_min = R(4);
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)90), 4, 0); /* r_const 3.53 */
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(90)), 4, 0); /* r_const 3.53 */
 
     /* a curve deeper than its plateau (e < 0) is clamped, never negative */
     s = hkf_default_settings;
-    s.noise[1].lambda = (hkf_real_t)20;
+    s.noise[1] = table_curve(7.64, 20, -0.35, 30.87); /* FSA-Net yaw, lambda 4.11 -> 20 */
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)0), s.r_min, 0);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(0)), D(s.r_min), 0);
 }
 
 /* The R an update uses is Eq. 8 at the (loop-closed) measured angle. */
@@ -134,9 +134,9 @@ static void test_update_uses_adaptive_r(void **state)
     s.loop_closure = HKF_LOOP_CLOSURE_OFF;
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
     set3(z, 0, 88, 0);
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)0, &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
     set3(z, 0, 90, 20);
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)(1.0 / 30.0), &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(1.0 / 30.0), &out), HKF_OK);
     assert_near(out.r[HKF_AXIS_YAW], 7.58328, 1e-4);
     assert_near(out.r[HKF_AXIS_ROLL], 6.88796, 0.02);
 }
@@ -147,8 +147,8 @@ static hkf_output_t two_steps(const hkf_settings_t *s, const hkf_real_t start[3]
     hkf_filter_t f;
     hkf_output_t out;
     assert_int_equal(hkf_init(&f, s), HKF_OK);
-    assert_int_equal(hkf_update(&f, start, (hkf_real_t)0, &out), HKF_OK);
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)(1.0 / 30.0), &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, start, R(0), &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(1.0 / 30.0), &out), HKF_OK);
     return out;
 }
 
@@ -163,8 +163,8 @@ static void test_loop_closure_eq9(void **state)
     int k;
     (void)state;
     on.loop_closure = HKF_LOOP_CLOSURE_NORM;
-    on.lc_xi = (hkf_real_t)0.618;
-    on.lc_theta = (hkf_real_t)2;
+    on.lc_xi = R(0.618);
+    on.lc_theta = R(2);
     off = on;
     off.loop_closure = HKF_LOOP_CLOSURE_OFF;
 
@@ -175,8 +175,8 @@ static void test_loop_closure_eq9(void **state)
     b = two_steps(&off, start, fused);
     assert_true(a.flags & HKF_FLAG_LOOP_CLOSURE);
     for (k = 0; k < 3; ++k) {
-        assert_near(a.angle[k], b.angle[k], TEST_TOL);
-        assert_near(a.rate[k], b.rate[k], 10 * TEST_TOL);
+        assert_near(a.angle[k], D(b.angle[k]), TEST_TOL);
+        assert_near(a.rate[k], D(b.rate[k]), 10 * TEST_TOL);
     }
 
     /* further than theta_lc: untouched */
@@ -184,7 +184,7 @@ static void test_loop_closure_eq9(void **state)
     a = two_steps(&on, start, z);
     b = two_steps(&off, start, z);
     assert_false(a.flags & HKF_FLAG_LOOP_CLOSURE);
-    assert_near(a.angle[1], b.angle[1], 0);
+    assert_near(a.angle[1], D(b.angle[1]), 0);
 }
 
 /* The boundary: |d| exactly theta_lc closes; just beyond does not.
@@ -196,7 +196,7 @@ static void test_loop_closure_boundary(void **state)
     hkf_output_t out;
     (void)state;
     s.loop_closure = HKF_LOOP_CLOSURE_NORM;
-    s.lc_theta = (hkf_real_t)5;
+    s.lc_theta = R(5);
     set3(start, 0, 0, 0);
     set3(z, 3, 4, 0);
     out = two_steps(&s, start, z);
@@ -208,7 +208,7 @@ static void test_loop_closure_boundary(void **state)
     /* per-axis mode: each axis against theta alone, so (3, 4, 0) with
      * theta 3.5 closes pitch and roll, not yaw */
     s.loop_closure = HKF_LOOP_CLOSURE_PER_AXIS;
-    s.lc_theta = (hkf_real_t)3.5;
+    s.lc_theta = R(3.5);
     set3(z, 3, 4, 0);
     out = two_steps(&s, start, z);
     assert_true(out.flags & HKF_FLAG_LOOP_CLOSURE);
@@ -219,8 +219,8 @@ static void test_loop_closure_boundary(void **state)
         off.loop_closure = HKF_LOOP_CLOSURE_OFF;
         set3(fused, 3 * 0.618, 4, 0);
         ref = two_steps(&off, start, fused);
-        assert_near(out.angle[0], ref.angle[0], TEST_TOL);
-        assert_near(out.angle[1], ref.angle[1], TEST_TOL);
+        assert_near(out.angle[0], D(ref.angle[0]), TEST_TOL);
+        assert_near(out.angle[1], D(ref.angle[1]), TEST_TOL);
     }
 }
 
@@ -232,7 +232,7 @@ static void test_loop_closure_across_yaw_seam(void **state)
     hkf_output_t a, b;
     (void)state;
     s.loop_closure = HKF_LOOP_CLOSURE_NORM;
-    s.lc_theta = (hkf_real_t)2.5;
+    s.lc_theta = R(2.5);
     off = s;
     off.loop_closure = HKF_LOOP_CLOSURE_OFF;
     set3(start, 0, 179, 0);
@@ -241,7 +241,7 @@ static void test_loop_closure_across_yaw_seam(void **state)
     a = two_steps(&s, start, z);
     b = two_steps(&off, start, fused);
     assert_true(a.flags & HKF_FLAG_LOOP_CLOSURE);
-    assert_near(a.angle[1], b.angle[1], TEST_TOL);
+    assert_near(a.angle[1], D(b.angle[1]), TEST_TOL);
 }
 
 /* Yaw through +-180: a head turning steadily at 40 deg/s from 100 deg, with
@@ -257,18 +257,18 @@ static void test_yaw_crosses_180(void **state)
     double truth = 100.0, previous = 100.0;
     int i;
     (void)state;
-    s.r_const[1] = (hkf_real_t)0.5;
+    s.r_const[1] = R(0.5);
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
     for (i = 0; i < 240; ++i) {
         const double rate = i < 120 ? 40.0 : -40.0; /* turns back after 4 s */
         truth = yaw_diff(truth + (i > 0 ? rate * dt : 0.0), 0.0);
         set3(z, 0, truth, 0);
-        assert_int_equal(hkf_update(&f, z, (hkf_real_t)dt, &out), HKF_OK);
-        assert_true(out.angle[1] >= -180 && out.angle[1] < 180);
-        assert_true(fabs(yaw_diff(out.angle[1], previous)) < 3.0); /* no jump */
-        previous = out.angle[1];
+        assert_int_equal(hkf_update(&f, z, R(dt), &out), HKF_OK);
+        assert_true(D(out.angle[1]) >= -180 && D(out.angle[1]) < 180);
+        assert_true(fabs(yaw_diff(D(out.angle[1]), previous)) < 3.0); /* no jump */
+        previous = D(out.angle[1]);
         if ((i >= 50 && i < 120) || i >= 200) { /* once the rate has settled */
-            assert_near(yaw_diff(out.angle[1], truth), 0, 0.05);
+            assert_near(yaw_diff(D(out.angle[1]), truth), 0, 0.05);
             assert_near(out.rate[1], rate, 0.5);
         }
     }

@@ -4,7 +4,7 @@
  */
 #include "test_support.h"
 
-static const hkf_real_t frame_dt = (hkf_real_t)(1.0 / 30.0);
+static const hkf_real_t frame_dt = HKF_REAL_FROM(1.0 / 30.0);
 
 typedef struct {
     const char *what;
@@ -12,49 +12,60 @@ typedef struct {
     int expected;
 } bad_setting_t;
 
-static void nan_q(hkf_settings_t *s) { s->process_noise[1] = (hkf_real_t)NAN; }
-static void inf_tau(hkf_settings_t *s) { s->noise[2].tau = (hkf_real_t)INFINITY; }
-static void nan_r_max(hkf_settings_t *s) { s->r_max = (hkf_real_t)NAN; }
-static void nan_max_dt(hkf_settings_t *s) { s->max_dt = (hkf_real_t)NAN; }
+#if TEST_HAS_NON_FINITE
+static void nan_q(hkf_settings_t *s) { s->process_noise[1] = R(NAN); }
+static void inf_tau(hkf_settings_t *s) { s->noise[2] = table_curve(INFINITY, 1, 0, 10); }
+static void nan_r_max(hkf_settings_t *s) { s->r_max = R(NAN); }
+static void nan_max_dt(hkf_settings_t *s) { s->max_dt = R(NAN); }
+#endif
 static void bad_mode(hkf_settings_t *s) { s->noise_mode = (hkf_noise_mode_t)7; }
 static void zero_sigma(hkf_settings_t *s) { s->noise[0].sigma = 0; }
-static void negative_sigma(hkf_settings_t *s) { s->noise[2].sigma = -1; }
+static void negative_sigma(hkf_settings_t *s) { s->noise[2].sigma = R(-1); }
 static void zero_r_min(hkf_settings_t *s) { s->r_min = 0; }
-static void r_min_above_max(hkf_settings_t *s) { s->r_min = 10; s->r_max = 5; }
+static void r_min_above_max(hkf_settings_t *s) { s->r_min = R(10); s->r_max = R(5); }
 static void zero_r_const(hkf_settings_t *s) { s->r_const[2] = 0; }
-static void negative_q(hkf_settings_t *s) { s->process_noise[0] = -1; }
+static void negative_q(hkf_settings_t *s) { s->process_noise[0] = R(-1); }
 static void bad_loop_closure(hkf_settings_t *s) { s->loop_closure = 3; }
-static void negative_xi(hkf_settings_t *s) { s->lc_xi = (hkf_real_t)-0.1; }
-static void xi_above_one(hkf_settings_t *s) { s->lc_xi = (hkf_real_t)1.01; }
-static void negative_theta(hkf_settings_t *s) { s->lc_theta = -1; }
+static void negative_xi(hkf_settings_t *s) { s->lc_xi = R(-0.1); }
+static void xi_above_one(hkf_settings_t *s) { s->lc_xi = R(1.01); }
+static void negative_theta(hkf_settings_t *s) { s->lc_theta = R(-1); }
 static void zero_p0_angle(hkf_settings_t *s) { s->p0_angle = 0; }
 static void zero_p0_rate(hkf_settings_t *s) { s->p0_rate = 0; }
-static void negative_gate(hkf_settings_t *s) { s->gate_sigma = -1; }
-static void gate_without_rejections(hkf_settings_t *s) { s->gate_sigma = 3; s->max_gate_rejections = 0; }
+static void negative_gate(hkf_settings_t *s) { s->gate_sigma = R(-1); }
+static void gate_without_rejections(hkf_settings_t *s) { s->gate_sigma = R(3); s->max_gate_rejections = 0; }
 static void zero_coast(hkf_settings_t *s) { s->coast_time = 0; }
 static void zero_max_dt(hkf_settings_t *s) { s->max_dt = 0; }
 /* beyond the ranges hkf.h states (found by tests/fuzz/fuzz_libhkf.c: p0_angle 2.7e36 was accepted) */
-static void huge_p0_angle(hkf_settings_t *s) { s->p0_angle = (hkf_real_t)2.7e36; }
-static void huge_p0_rate(hkf_settings_t *s) { s->p0_rate = (hkf_real_t)(2 * HKF_MAX_VARIANCE); }
-static void huge_q(hkf_settings_t *s) { s->process_noise[2] = (hkf_real_t)(2 * HKF_MAX_PROCESS_NOISE); }
-static void huge_r_max(hkf_settings_t *s) { s->r_max = (hkf_real_t)(2 * HKF_MAX_VARIANCE); }
-static void tiny_r_min(hkf_settings_t *s) { s->r_min = (hkf_real_t)1e-30; }
-static void huge_r_const(hkf_settings_t *s) { s->r_const[1] = (hkf_real_t)1e20; }
-static void tiny_sigma(hkf_settings_t *s) { s->noise[1].sigma = (hkf_real_t)1e-30; }
-static void huge_tau(hkf_settings_t *s) { s->noise[0].tau = (hkf_real_t)1e20; }
-static void huge_mu(hkf_settings_t *s) { s->noise[2].mu = (hkf_real_t)(2 * HKF_MAX_ABS_ANGLE); }
-static void huge_theta(hkf_settings_t *s) { s->lc_theta = 400; }
-static void huge_gate(hkf_settings_t *s) { s->gate_sigma = (hkf_real_t)1e10; }
-static void long_coast(hkf_settings_t *s) { s->coast_time = (hkf_real_t)(HKF_MAX_TIME + 1); }
-static void long_max_dt(hkf_settings_t *s) { s->max_dt = (hkf_real_t)1e30; }
+static void huge_p0_angle(hkf_settings_t *s) { s->p0_angle = R(2.7e36); }
+static void huge_p0_rate(hkf_settings_t *s) { s->p0_rate = R(2 * HKF_MAX_VARIANCE); }
+static void huge_q(hkf_settings_t *s) { s->process_noise[2] = R(2 * HKF_MAX_PROCESS_NOISE); }
+static void huge_r_max(hkf_settings_t *s) { s->r_max = R(2 * HKF_MAX_VARIANCE); }
+static void tiny_r_min(hkf_settings_t *s) { s->r_min = R(1e-30); }
+static void huge_r_const(hkf_settings_t *s) { s->r_const[1] = R(1e20); }
+static void tiny_sigma(hkf_settings_t *s) { s->noise[1].sigma = R(1e-30); }
+static void huge_tau(hkf_settings_t *s) { s->noise[0] = table_curve(1e20, 1, 0, 10); }
+static void huge_mu(hkf_settings_t *s) { s->noise[2].mu = R(2 * HKF_MAX_ABS_ANGLE); }
+static void huge_theta(hkf_settings_t *s) { s->lc_theta = R(HKF_MAX_LC_THETA + 40); }
+static void huge_gate(hkf_settings_t *s) { s->gate_sigma = R(1e10); }
+static void long_coast(hkf_settings_t *s) { s->coast_time = R(HKF_MAX_TIME + 1); }
+static void long_max_dt(hkf_settings_t *s) { s->max_dt = R(1e30); }
+#if defined(HKF_REAL_FIXED)
+/* the fixed-point build's own limits (hkf.h) */
+static void narrow_sigma(hkf_settings_t *s) { s->noise[1] = table_curve(7.64, 4.11, -0.35, 0.5); }
+static void curvature_100(hkf_settings_t *s) { s->noise[1] = table_curve(300, 200, 0, 1); }
+static void curvature_200(hkf_settings_t *s) { s->noise[1] = table_curve(500, 400, 0, 1); }
+static void deep_floor(hkf_settings_t *s) { s->noise[1] = table_curve(10, 2000, 0, 100); }
+#endif
 
 static void test_init_rejects_each_bad_setting(void **state)
 {
     static const bad_setting_t table[] = {
+#if TEST_HAS_NON_FINITE
         {"NaN q", nan_q, HKF_ERROR_SETTING_NON_FINITE},
         {"infinite tau", inf_tau, HKF_ERROR_SETTING_NON_FINITE},
         {"NaN r_max", nan_r_max, HKF_ERROR_SETTING_NON_FINITE},
         {"NaN max_dt", nan_max_dt, HKF_ERROR_SETTING_NON_FINITE},
+#endif
         {"noise mode 7", bad_mode, HKF_ERROR_SETTING_NOISE_MODE},
         {"sigma 0", zero_sigma, HKF_ERROR_SETTING_SIGMA},
         {"sigma -1", negative_sigma, HKF_ERROR_SETTING_SIGMA},
@@ -81,10 +92,16 @@ static void test_init_rejects_each_bad_setting(void **state)
         {"sigma 1e-30", tiny_sigma, HKF_ERROR_SETTING_SIGMA},
         {"tau 1e20", huge_tau, HKF_ERROR_SETTING_CURVE},
         {"mu beyond the angle range", huge_mu, HKF_ERROR_SETTING_CURVE},
-        {"theta 400", huge_theta, HKF_ERROR_SETTING_LC_THETA},
+        {"theta beyond the maximum", huge_theta, HKF_ERROR_SETTING_LC_THETA},
         {"gate 1e10", huge_gate, HKF_ERROR_SETTING_GATE},
         {"coast_time > max", long_coast, HKF_ERROR_SETTING_COAST_TIME},
         {"max_dt 1e30", long_max_dt, HKF_ERROR_SETTING_MAX_DT},
+#if defined(HKF_REAL_FIXED)
+        {"sigma 0.5 (fixed point: >= 1)", narrow_sigma, HKF_ERROR_SETTING_SIGMA},
+        {"curvature 100 (fixed point: <= 127)", curvature_100, HKF_OK},
+        {"curvature 200 (fixed point: <= 127)", curvature_200, HKF_ERROR_SETTING_CURVE},
+        {"floor -1990 (fixed point: |floor| <= 1024)", deep_floor, HKF_ERROR_SETTING_CURVE},
+#endif
     };
     size_t i;
     (void)state;
@@ -112,7 +129,7 @@ static void test_defaults_and_presets_are_valid(void **state)
     memcpy(s.noise, hkf_noise_hopenet, sizeof s.noise);
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
     /* Hopenet yaw at its centre: 10.74 - 7.017 */
-    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, (hkf_real_t)-5.57), 3.723, 1e-3);
+    assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(-5.57)), 3.723, 1e-3);
     assert_string_equal(hkf_result_string(12345), "unknown hkf result code");
 }
 
@@ -174,24 +191,31 @@ static void test_bad_input_leaves_state_untouched(void **state)
 
     for (i = 0; i < 3; ++i) {
         memcpy(bad, z, sizeof bad);
-        bad[i] = (hkf_real_t)NAN;
+#if TEST_HAS_NON_FINITE
+        bad[i] = R(NAN);
         assert_int_equal(hkf_update(&f, bad, dt, &out), HKF_ERROR_NON_FINITE);
-        bad[i] = (hkf_real_t)-INFINITY;
+        bad[i] = R(-INFINITY);
         assert_int_equal(hkf_update(&f, bad, dt, &out), HKF_ERROR_NON_FINITE);
-        bad[i] = (hkf_real_t)(HKF_MAX_ABS_ANGLE + 1);
+#else
+        bad[i] = INT32_MIN; /* fixed point's most negative value: beyond every limit, and |x| overflows */
+        assert_int_equal(hkf_update(&f, bad, dt, &out), HKF_ERROR_ANGLE_RANGE);
+#endif
+        bad[i] = R(HKF_MAX_ABS_ANGLE + 1);
         assert_int_equal(hkf_update(&f, bad, dt, &out), HKF_ERROR_ANGLE_RANGE);
         assert_int_equal(hkf_set_center(&f, bad), HKF_ERROR_ANGLE_RANGE);
     }
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)NAN, &out), HKF_ERROR_NON_FINITE);
-    assert_int_equal(hkf_update(&f, z, (hkf_real_t)INFINITY, &out), HKF_ERROR_NON_FINITE);
+#if TEST_HAS_NON_FINITE
+    assert_int_equal(hkf_update(&f, z, R(NAN), &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_update(&f, z, R(INFINITY), &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_predict(&f, R(NAN), &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_extrapolate(&f, R(NAN), &out), HKF_ERROR_NON_FINITE);
+#endif
     assert_int_equal(hkf_update(&f, z, 0, &out), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_update(&f, z, -dt, &out), HKF_ERROR_DT_RANGE);
-    assert_int_equal(hkf_update(&f, z, max_dt * (hkf_real_t)1.001, &out), HKF_ERROR_DT_RANGE);
-    assert_int_equal(hkf_predict(&f, (hkf_real_t)NAN, &out), HKF_ERROR_NON_FINITE);
+    assert_int_equal(hkf_update(&f, z, R(D(max_dt) * 1.001), &out), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_predict(&f, 0, &out), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_predict(&f, -dt, &out), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_predict(&f, max_dt * 2, &out), HKF_ERROR_DT_RANGE);
-    assert_int_equal(hkf_extrapolate(&f, (hkf_real_t)NAN, &out), HKF_ERROR_NON_FINITE);
     assert_int_equal(hkf_extrapolate(&f, -dt, &out), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_extrapolate(&f, max_dt * 2, &out), HKF_ERROR_DT_RANGE);
     assert_memory_equal(&f, &copy, sizeof f);
@@ -200,8 +224,8 @@ static void test_bad_input_leaves_state_untouched(void **state)
     assert_int_equal(hkf_predict(&f, max_dt, &out), HKF_OK);
     /* and a bad first measurement does not start a track */
     assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
-    bad[0] = (hkf_real_t)NAN;
-    assert_int_equal(hkf_update(&f, bad, 0, &out), HKF_ERROR_NON_FINITE);
+    bad[0] = R(HKF_MAX_ABS_ANGLE + 1);
+    assert_int_equal(hkf_update(&f, bad, 0, &out), HKF_ERROR_ANGLE_RANGE);
     assert_int_equal(hkf_predict(&f, dt, &out), HKF_ERROR_NOT_INITIALIZED);
 }
 

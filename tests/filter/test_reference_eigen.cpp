@@ -26,6 +26,15 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Mat36 = Eigen::Matrix<double, 3, 6>;
 
+/* hkf_real_t <-> double: the identity in float and double, Q16.16 in fixed point. */
+#if defined(HKF_REAL_FIXED)
+double D(hkf_real_t x) { return static_cast<double>(x) / 65536.0; }
+hkf_real_t R(double x) { return static_cast<hkf_real_t>(std::lround(x * 65536.0)); }
+#else
+double D(hkf_real_t x) { return static_cast<double>(x); }
+hkf_real_t R(double x) { return static_cast<hkf_real_t>(x); }
+#endif
+
 double wrap180(double x)
 {
     double w = std::fmod(x + 180.0, 360.0);
@@ -62,7 +71,7 @@ public:
         y(1) = wrap180(y(1));
         const Eigen::Matrix3d S = H * P_ * H.transpose() + R;
         const Eigen::Matrix3d Sinv = S.inverse();
-        const double g = static_cast<double>(s_.gate_sigma);
+        const double g = D(s_.gate_sigma);
         if (g > 0 && y.dot(Sinv * y) > g * g) {
             if (rejections_ >= s_.max_gate_rejections) {
                 start(z);
@@ -99,8 +108,8 @@ private:
         x_(1) = wrap180(z(1));
         P_.setZero();
         for (int a = 0; a < 3; ++a) {
-            P_(a, a) = s_.p0_angle;
-            P_(a + 3, a + 3) = s_.p0_rate;
+            P_(a, a) = D(s_.p0_angle);
+            P_(a + 3, a + 3) = D(s_.p0_rate);
             r_(a) = noise(a, z(a));
         }
         if (!centred_) {
@@ -119,7 +128,7 @@ private:
         F.topRightCorner<3, 3>() = dt * Eigen::Matrix3d::Identity();
         Mat6 Q = Mat6::Zero();
         for (int a = 0; a < 3; ++a) {
-            const double q = s_.process_noise[a];
+            const double q = D(s_.process_noise[a]);
             Q(a, a) = q * dt * dt * dt / 3.0;
             Q(a, a + 3) = Q(a + 3, a) = q * dt * dt / 2.0;
             Q(a + 3, a + 3) = q * dt;
@@ -133,7 +142,7 @@ private:
     {
         sinceMeasurement_ += dt;
         status_ = HKF_STATUS_COASTING;
-        if (sinceMeasurement_ >= s_.coast_time) {
+        if (sinceMeasurement_ >= D(s_.coast_time)) {
             x_.tail<3>().setZero();
             P_.bottomRows<3>().setZero();
             P_.rightCols<3>().setZero();
@@ -146,7 +155,7 @@ private:
         Vec3 d = z - centre_;
         d(1) = wrap180(d(1));
         Vec3 zc = z;
-        const double theta = s_.lc_theta, xi = s_.lc_xi;
+        const double theta = D(s_.lc_theta), xi = D(s_.lc_xi);
         for (int a = 0; a < 3; ++a) {
             const bool inside = s_.loop_closure == HKF_LOOP_CLOSURE_NORM ? d.norm() <= theta
                               : s_.loop_closure == HKF_LOOP_CLOSURE_PER_AXIS ? std::fabs(d(a)) <= theta
@@ -163,15 +172,19 @@ private:
     {
         double r;
         if (s_.noise_mode == HKF_NOISE_CONSTANT) {
-            r = s_.r_const[a];
+            r = D(s_.r_const[a]);
         } else {
             const hkf_noise_curve_t &c = s_.noise[a];
-            const double sigma = c.sigma, mu = c.mu;
-            const double e = static_cast<double>(c.tau) - static_cast<double>(c.lambda) *
-                                 std::exp(-(x - mu) * (x - mu) / (2.0 * sigma * sigma)); /* Eq. 8 */
+            const double sigma = D(c.sigma), mu = D(c.mu);
+#if defined(HKF_REAL_FIXED)
+            const double lambda = c.curvature_q24 / 16777216.0 * 2.0 * sigma * sigma, tau = D(c.floor) + lambda;
+#else
+            const double lambda = D(c.lambda), tau = D(c.tau);
+#endif
+            const double e = tau - lambda * std::exp(-(x - mu) * (x - mu) / (2.0 * sigma * sigma)); /* Eq. 8 */
             r = s_.noise_mode == HKF_NOISE_ADAPTIVE ? e : (e > 0 ? e * e : 0.0);
         }
-        return std::min<double>(std::max<double>(r, s_.r_min), s_.r_max);
+        return std::min<double>(std::max<double>(r, D(s_.r_min)), D(s_.r_max));
     }
 
     hkf_settings_t s_;
@@ -226,21 +239,21 @@ bool compare(const char *name, const hkf_settings_t &s, std::uint64_t seed, long
         hkf_real_t z[3];
         Vec3 zd;
         for (int a = 0; a < 3; ++a) {
-            z[a] = static_cast<hkf_real_t>(truth[a] + spread * sim_rng_gaussian(&rng));
-            zd(a) = static_cast<double>(z[a]); /* both filters see the same numbers */
+            z[a] = R(truth[a] + spread * sim_rng_gaussian(&rng));
+            zd(a) = D(z[a]); /* both filters see the same numbers */
         }
-        z[1] = static_cast<hkf_real_t>(wrap180(z[1]));
-        zd(1) = static_cast<double>(z[1]);
-        const hkf_real_t dtr = static_cast<hkf_real_t>(dt);
+        z[1] = R(wrap180(D(z[1])));
+        zd(1) = D(z[1]);
+        const hkf_real_t dtr = R(dt);
         hkf_output_t out;
         int result;
         if (valid) {
             result = hkf_update(&f, z, dtr, &out);
-            ref.update(zd, static_cast<double>(dtr));
+            ref.update(zd, D(dtr));
         } else {
             result = hkf_predict(&f, dtr, &out);
             if (ref.started()) {
-                ref.coast(static_cast<double>(dtr));
+                ref.coast(D(dtr));
             }
         }
         if (!ref.started()) {
@@ -258,18 +271,18 @@ bool compare(const char *name, const hkf_settings_t &s, std::uint64_t seed, long
         worst.closures += (out.flags & HKF_FLAG_LOOP_CLOSURE) != 0;
         worst.gated += (out.flags & HKF_FLAG_GATED) != 0;
         worst.lost += out.status == HKF_STATUS_LOST;
-        worst.seam_crossings += std::fabs(out.angle[1] - previous_yaw) > 180.0;
-        previous_yaw = out.angle[1];
+        worst.seam_crossings += std::fabs(D(out.angle[1]) - previous_yaw) > 180.0;
+        previous_yaw = D(out.angle[1]);
         for (int a = 0; a < 3; ++a) {
-            double da = std::fabs(out.angle[a] - ref.x()(a));
+            double da = std::fabs(D(out.angle[a]) - ref.x()(a));
             if (a == 1) {
-                da = std::fabs(wrap180(out.angle[a] - ref.x()(a)));
+                da = std::fabs(wrap180(D(out.angle[a]) - ref.x()(a)));
             }
             const double v = ref.P()(a, a);
             worst.angle = std::max(worst.angle, da);
-            worst.rate = std::max(worst.rate, std::fabs(out.rate[a] - ref.x()(a + 3)) / std::max(1.0, std::fabs(ref.x()(a + 3))));
-            worst.variance = std::max(worst.variance, std::fabs(out.variance[a] - v) / std::max(1e-3, v));
-            worst.r = std::max(worst.r, std::fabs(out.r[a] - ref.r()(a)) / ref.r()(a));
+            worst.rate = std::max(worst.rate, std::fabs(D(out.rate[a]) - ref.x()(a + 3)) / std::max(1.0, std::fabs(ref.x()(a + 3))));
+            worst.variance = std::max(worst.variance, std::fabs(D(out.variance[a]) - v) / std::max(1e-3, v));
+            worst.r = std::max(worst.r, std::fabs(D(out.r[a]) - ref.r()(a)) / ref.r()(a));
         }
     }
     return true;
@@ -296,7 +309,7 @@ int main()
         {"squared+lc_norm+gate", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true},
         {"constant+gate", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 3.0f, 2.0f, false},
         {"paper defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure,
-         static_cast<float>(hkf_default_settings.gate_sigma), static_cast<float>(hkf_default_settings.lc_theta), false},
+         static_cast<float>(D(hkf_default_settings.gate_sigma)), static_cast<float>(D(hkf_default_settings.lc_theta)), false},
     };
     const long steps = 20000;
     int failures = 0, passed = 0;
@@ -305,9 +318,9 @@ int main()
             hkf_settings_t s = hkf_default_settings;
             s.noise_mode = m.noise;
             s.loop_closure = m.loop_closure;
-            s.gate_sigma = static_cast<hkf_real_t>(m.gate);
-            s.lc_theta = static_cast<hkf_real_t>(m.lc_theta); /* wide, so closure happens often */
-            s.coast_time = static_cast<hkf_real_t>(0.15);
+            s.gate_sigma = R(m.gate);
+            s.lc_theta = R(m.lc_theta); /* wide, so closure happens often */
+            s.coast_time = R(0.15);
             Worst w;
             const bool ran = compare(m.name, s, seed, steps, w);
             /* the sequence must have exercised what the mode has */

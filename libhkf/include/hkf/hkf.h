@@ -60,12 +60,29 @@ const char *hkf_result_string(int result);
 
 /* The ranges hkf_init accepts. Beyond them no head tracker has a use for a
  * setting, and within them every intermediate of the filter stays finite and
- * every variance positive and below 1e12 (tests/fuzz/fuzz_libhkf.c checks it). */
+ * every variance positive and below 1e12 (tests/fuzz/fuzz_libhkf.c checks it).
+ * The fixed-point build accepts narrower ranges, inside Q16.16 (+-32768):
+ * variances up to 16384 deg^2 (a 128 deg standard deviation), curves at
+ * least 1 deg wide, the loop-closure threshold and the gate up to 180. */
+#if defined(HKF_REAL_FIXED)
+#define HKF_MIN_VARIANCE 1e-4    /* deg^2: r_min (6.5 units of Q16.16) */
+#define HKF_MAX_VARIANCE 16384   /* deg^2, (deg/s)^2: r_max, r_const, p0 */
+#define HKF_MAX_PROCESS_NOISE 16384 /* deg^2/s^3 */
+#define HKF_MIN_SIGMA 1          /* deg */
+#define HKF_MAX_SIGMA 16384      /* deg */
+#define HKF_MAX_CURVE_FLOOR 1024 /* deg: |floor| of a noise curve */
+#define HKF_MAX_CURVATURE 127    /* deg/deg^2: |curvature| of a noise curve (Q8.24) */
+#define HKF_MAX_LC_THETA 180     /* deg */
+#define HKF_MAX_GATE_SIGMA 180
+#else
 #define HKF_MIN_VARIANCE 1e-6    /* deg^2: r_min */
 #define HKF_MAX_VARIANCE 1e8     /* deg^2, (deg/s)^2: r_max, r_const, p0; deg: |tau|, |lambda| */
 #define HKF_MAX_PROCESS_NOISE 1e6 /* deg^2/s^3 */
 #define HKF_MIN_SIGMA 1e-3       /* deg */
 #define HKF_MAX_SIGMA 1e4        /* deg */
+#define HKF_MAX_LC_THETA 360     /* deg */
+#define HKF_MAX_GATE_SIGMA 1000
+#endif
 #define HKF_MAX_TIME 10          /* s: max_dt, coast_time */
 
 /* Measurements beyond this magnitude are rejected (HKF_ERROR_ANGLE_RANGE):
@@ -73,13 +90,33 @@ const char *hkf_result_string(int result);
  * a Q16.16 fixed-point build. */
 #define HKF_MAX_ABS_ANGLE 3600
 
-/* Paper Eq. 8, amplitude form: e(x) = tau - lambda * exp(-(x - mu)^2 / (2 sigma^2)). */
+/* Paper Eq. 8, amplitude form: e(x) = tau - lambda * exp(-(x - mu)^2 / (2 sigma^2)).
+ * Write curves with HKF_NOISE_CURVE(tau, lambda, mu, sigma), which suits
+ * every build. */
+#if defined(HKF_REAL_FIXED)
+/* Fixed point: Table I's roll curves have tau and lambda ~ 1e5, beyond
+ * Q16.16, so a curve is held as its floor and curvature, which fit:
+ *   e(x) = floor + curvature 2 sigma^2 (1 - exp(-(x - mu)^2 / (2 sigma^2)))
+ * i.e. floor = tau - lambda, curvature = lambda / (2 sigma^2): the same curve.
+ * The curvature (FSA-Net yaw: 0.0022) is held in Q8.24 so it keeps 5 digits. */
+typedef struct {
+    hkf_real_t floor;      /* deg: the error at mu (tau - lambda) */
+    int32_t curvature_q24; /* deg/deg^2 in Q8.24: e(mu + u) ~ floor + curvature u^2 near mu */
+    hkf_real_t mu;         /* deg: the angle of least error */
+    hkf_real_t sigma;      /* deg: the width of the dip, > 0 */
+} hkf_noise_curve_t;
+#define HKF_NOISE_CURVE(tau, lambda, mu, sigma)                                                         \
+    {HKF_REAL_FROM((tau) - (lambda)), (int32_t)((lambda) / (2.0 * (sigma) * (sigma)) * 16777216.0 + 0.5), \
+     HKF_REAL(mu), HKF_REAL(sigma)}
+#else
 typedef struct {
     hkf_real_t tau;     /* deg: the error far from mu */
     hkf_real_t lambda;  /* deg: the depth of the dip; tau - lambda is the error at mu */
     hkf_real_t mu;      /* deg: the angle of least error */
     hkf_real_t sigma;   /* deg: the width of the dip, > 0 */
 } hkf_noise_curve_t;
+#define HKF_NOISE_CURVE(tau, lambda, mu, sigma) {HKF_REAL(tau), HKF_REAL(lambda), HKF_REAL(mu), HKF_REAL(sigma)}
+#endif
 
 typedef enum {
     HKF_NOISE_CONSTANT = 0,        /* R = r_const: the paper's "standard KF" baseline */
@@ -144,15 +181,25 @@ typedef struct {
 
 /* Private: members may change between versions. Sized statically so callers
  * can place it anywhere (stack, static storage, a controller's RAM).
- * Per-axis arrays have a fourth, idle lane so the axis loops vectorize. */
+ * Per-axis arrays of the float and double builds have a fourth, idle lane
+ * so the axis loops vectorize; the fixed-point build (scalar cores) has none. */
+#if defined(HKF_REAL_FIXED)
+#define HKF_LANES 3
+#else
 #define HKF_LANES 4
+#endif
 typedef struct {
     hkf_settings_t settings;
-    /* per-lane copies of the settings the axis loops read (lane 3 idle) */
+    /* per-lane copies of the settings the axis loops read */
     hkf_real_t q[HKF_LANES], r_const[HKF_LANES];
     hkf_real_t mu[HKF_LANES], lambda[HKF_LANES];
-    hkf_real_t gauss_scale[HKF_LANES];  /* 1 / (2 sigma^2) */
     hkf_real_t noise_floor[HKF_LANES];  /* tau - lambda */
+#if defined(HKF_REAL_FIXED)
+    int32_t curvature[HKF_LANES];       /* lambda / (2 sigma^2), Q8.24 */
+    uint32_t inv_width[HKF_LANES];      /* 1 / (sqrt(2) sigma), unsigned Q0.32 */
+#else
+    hkf_real_t gauss_scale[HKF_LANES];  /* 1 / (2 sigma^2) */
+#endif
     hkf_real_t angle[HKF_LANES], rate[HKF_LANES];
     hkf_real_t p00[HKF_LANES], p01[HKF_LANES], p11[HKF_LANES];
     hkf_real_t r[HKF_LANES];
