@@ -44,7 +44,7 @@ static void write_output(const hkf_filter_t *restrict f, unsigned flags, hkf_out
 static int check_dt(const hkf_filter_t *f, hkf_real_t dt)
 {
     /* NaN fails the range test too; the finite test only names the error */
-    if (!(dt > 0 && dt <= f->settings.max_dt)) {
+    if (!(dt > 0 && dt <= HKF_SETTINGS(f)->max_dt)) {
         return hkf_is_finite(dt) ? HKF_ERROR_DT_RANGE : HKF_ERROR_NON_FINITE;
     }
     return HKF_OK;
@@ -85,7 +85,7 @@ static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
 {
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t qdt = hkf_mul(f->q[a], dt);
+        const hkf_real_t qdt = hkf_mul(HKF_Q(f, a), dt);
         const hkf_real_t p01 = f->p01[a];
         const hkf_real_t p11 = f->p11[a];
         f->angle[a] = hkf_add(f->angle[a], hkf_mul(f->rate[a], dt));
@@ -100,19 +100,24 @@ static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
  * z = kappa + xi d  (= xi z + (1 - xi) kappa). |d| is the Euclidean norm over
  * the three axes (compared squared), or each axis alone in PER_AXIS mode.
  * Returns whether it moved the measurement. */
+static void load_lanes(hkf_real_t lanes[restrict HKF_LANES], const hkf_real_t z[restrict 3])
+{
+    lanes[0] = z[0];
+    lanes[1] = z[1];
+    lanes[2] = z[2];
+#if HKF_LANES > 3 /* (HKF_AXES is an enum, unseen by the preprocessor) */
+    lanes[3] = 0;
+#endif
+}
+
 static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restrict 3],
                         hkf_real_t zc[restrict HKF_LANES])
 {
-    const hkf_settings_t *s = &f->settings;
+    const hkf_settings_t *s = HKF_SETTINGS(f);
     const hkf_real_t theta2 = hkf_mul(s->lc_theta, s->lc_theta);
     hkf_real_t d[HKF_LANES];
     int a, closed = 0;
-    zc[0] = z[0];
-    zc[1] = z[1];
-    zc[2] = z[2];
-#if HKF_LANES > 3 /* (HKF_AXES is an enum, unseen by the preprocessor) */
-    zc[3] = 0;
-#endif
+    load_lanes(zc, z);
     if (s->loop_closure == HKF_LOOP_CLOSURE_OFF || f->center_source == CENTER_NONE) {
         return 0;
     }
@@ -151,7 +156,7 @@ static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restr
  * the rise lambda (1 - exp(.)) is the math layer's (hkf_math.h). */
 static inline hkf_real_t noise_curve(const hkf_filter_t *restrict f, int lane, hkf_real_t x)
 {
-    return hkf_add(f->noise_floor[lane], hkf_curve_rise(f, lane, hkf_sub(x, f->mu[lane])));
+    return hkf_add(HKF_NOISE_FLOOR(f, lane), hkf_curve_rise(f, lane, hkf_sub(x, HKF_MU(f, lane))));
 }
 
 static inline hkf_real_t clamp(hkf_real_t x, hkf_real_t low, hkf_real_t high)
@@ -165,18 +170,18 @@ static inline hkf_real_t clamp(hkf_real_t x, hkf_real_t low, hkf_real_t high)
 static void observation_noise_lanes(const hkf_filter_t *restrict f, const hkf_real_t x[restrict HKF_LANES],
                                     hkf_real_t r[restrict HKF_LANES])
 {
-    const hkf_real_t low = f->settings.r_min, high = f->settings.r_max;
+    const hkf_real_t low = HKF_SETTINGS(f)->r_min, high = HKF_SETTINGS(f)->r_max;
     int a;
-    if (f->settings.noise_mode == HKF_NOISE_CONSTANT) {
+    if (HKF_SETTINGS(f)->noise_mode == HKF_NOISE_CONSTANT) {
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            r[a] = clamp(f->r_const[a], low, high);
+            r[a] = clamp(HKF_R_CONST(f, a), low, high);
         }
         return;
     }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         r[a] = noise_curve(f, a, x[a]);
     }
-    if (f->settings.noise_mode == HKF_NOISE_ADAPTIVE_SQUARED) {
+    if (HKF_SETTINGS(f)->noise_mode == HKF_NOISE_ADAPTIVE_SQUARED) {
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
             r[a] = r[a] > 0 ? hkf_mul(r[a], r[a]) : 0;
         }
@@ -206,18 +211,19 @@ hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
 }
 
 /* Step 5: the first measurement (or the first after LOST, or after too many
- * gated ones) starts the track: angle = z, rate = 0, P = diag(p0). */
+ * gated ones) starts the track: angle = z, rate = 0, P = diag(p0). The
+ * caller has put R at z (Eq. 8) in f->r: computed there, not in here, the
+ * curve's stack frame does not stack on this one (Cortex-M0's budget). */
 static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
 {
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         f->angle[a] = a < HKF_AXES ? z[a] : 0; /* (lane 3 exists only where HKF_LOOP_LANES is 4) */
         f->rate[a] = 0;
-        f->p00[a] = f->settings.p0_angle;
+        f->p00[a] = HKF_SETTINGS(f)->p0_angle;
         f->p01[a] = 0;
-        f->p11[a] = f->settings.p0_rate;
+        f->p11[a] = HKF_SETTINGS(f)->p0_rate;
     }
-    observation_noise_lanes(f, f->angle, f->r);
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(z[HKF_AXIS_YAW]);
     if (f->center_source == CENTER_NONE) {
         for (a = 0; a < HKF_AXES; ++a) {
@@ -237,7 +243,7 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
     int a;
     f->time_since_measurement = hkf_add(f->time_since_measurement, dt);
     f->status = HKF_STATUS_COASTING;
-    if (f->time_since_measurement >= f->settings.coast_time) {
+    if (f->time_since_measurement >= HKF_SETTINGS(f)->coast_time) {
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
             f->rate[a] = 0;
             f->p01[a] = 0;
@@ -257,17 +263,21 @@ int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
     if (result != HKF_OK) {
         return result;
     }
-    f->settings = *s;
+    HKF_KEEP_SETTINGS(f, s);
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        if (a < HKF_AXES) {
+            hkf_curve_prepare(f, a, &s->noise[a]);
+        }
+#if !defined(HKF_REAL_FIXED)
         if (a < HKF_AXES) {
             f->q[a] = s->process_noise[a];
             f->r_const[a] = s->r_const[a];
-            hkf_curve_prepare(f, a, &s->noise[a]);
         } else { /* the idle lane: a still, perfectly observed axis */
             f->q[a] = 0;
             f->r_const[a] = s->r_min;
             hkf_curve_flat(f, a, s->r_min);
         }
+#endif
         f->center[a] = 0;
     }
     f->center_source = CENTER_NONE;
@@ -284,9 +294,9 @@ void hkf_reset(hkf_filter_t *f)
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         f->angle[a] = 0;
         f->rate[a] = 0;
-        f->p00[a] = f->settings.p0_angle;
+        f->p00[a] = HKF_SETTINGS(f)->p0_angle;
         f->p01[a] = 0;
-        f->p11[a] = f->settings.p0_rate;
+        f->p11[a] = HKF_SETTINGS(f)->p0_rate;
         f->r[a] = 0;
     }
     if (f->center_source != CENTER_EXPLICIT) {
@@ -299,7 +309,7 @@ void hkf_reset(hkf_filter_t *f)
 
 int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
 {
-    hkf_real_t zc[HKF_LANES], y[HKF_LANES], r[HKF_LANES];
+    hkf_real_t y[HKF_LANES], r[HKF_LANES]; /* y holds the loop-closed measurement, then the innovation */
     hkf_divisor_t inv_s[HKF_LANES];
     hkf_real_t gate;
     unsigned flags = 0;
@@ -316,6 +326,8 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
         if (f->status == HKF_STATUS_LOST && (result = check_dt(f, dt)) != HKF_OK) {
             return result;
         }
+        load_lanes(y, z);
+        observation_noise_lanes(f, y, f->r);
         start_track(f, z);
         write_output(f, HKF_FLAG_REACQUIRED, out);
         return HKF_OK;
@@ -326,12 +338,12 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     }
 
     predict_axes(f, dt);
-    if (loop_closure(f, z, zc)) {
+    if (loop_closure(f, z, y)) {
         flags |= HKF_FLAG_LOOP_CLOSURE;
     }
-    observation_noise_lanes(f, zc, r);                                /* Eq. 8 */
+    observation_noise_lanes(f, y, r);                                 /* Eq. 8 */
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        y[a] = hkf_sub(zc[a], f->angle[a]);                           /* Eq. 4: y = z - H x */
+        y[a] = hkf_sub(y[a], f->angle[a]);                            /* Eq. 4: y = z - H x */
     }
     y[HKF_AXIS_YAW] = hkf_wrap180(y[HKF_AXIS_YAW]);
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
@@ -340,10 +352,12 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
 
     /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
      * exceeds gate_sigma; after max_gate_rejections in a row, believe it. */
-    gate = f->settings.gate_sigma;
+    gate = HKF_SETTINGS(f)->gate_sigma;
     if (gate > 0 && hkf_add(hkf_add(hkf_divide(hkf_mul(y[0], y[0]), inv_s[0]), hkf_divide(hkf_mul(y[1], y[1]), inv_s[1])),
                             hkf_divide(hkf_mul(y[2], y[2]), inv_s[2])) > hkf_mul(gate, gate)) {
-        if (f->gate_rejections >= f->settings.max_gate_rejections) {
+        if (f->gate_rejections >= HKF_SETTINGS(f)->max_gate_rejections) {
+            load_lanes(y, z);
+            observation_noise_lanes(f, y, f->r);
             start_track(f, z);
             write_output(f, HKF_FLAG_GATED | HKF_FLAG_REACQUIRED, out);
         } else {
@@ -406,7 +420,7 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
     if (!hkf_is_finite(dt_ahead)) {
         return HKF_ERROR_NON_FINITE;
     }
-    if (!(dt_ahead >= 0 && dt_ahead <= f->settings.max_dt)) {
+    if (!(dt_ahead >= 0 && dt_ahead <= HKF_SETTINGS(f)->max_dt)) {
         return HKF_ERROR_DT_RANGE;
     }
     /* Eq. 1-2 for the output alone: the filter is not copied (a small stack) */
@@ -414,7 +428,7 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
     for (a = 0; a < HKF_AXES; ++a) {
         out->angle[a] = hkf_add(out->angle[a], hkf_mul(f->rate[a], dt_ahead));
         out->variance[a] = hkf_add(out->variance[a],
-                                   angle_variance_growth(f->p01[a], f->p11[a], hkf_mul(f->q[a], dt_ahead), dt_ahead));
+                                   angle_variance_growth(f->p01[a], f->p11[a], hkf_mul(HKF_Q(f, a), dt_ahead), dt_ahead));
     }
     out->angle[HKF_AXIS_YAW] = hkf_wrap180(out->angle[HKF_AXIS_YAW]);
     return HKF_OK;

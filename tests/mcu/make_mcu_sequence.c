@@ -2,9 +2,13 @@
  * make_mcu_sequence - the target tests' input and expected output: reads a raw
  * pose sequence as CSV (dt_s,valid,pitch,yaw,roll per frame; made from an LCM
  * log by raw_log_to_csv.py), runs it through libhkf built for double on this
- * machine with the default settings, and writes sequence.h for target_test.c.
+ * machine with the default settings, and writes sequence.h for target_test.c:
+ * the input as float and as Q16.16, and the double build's angles for each
+ * (a fixed-point target is compared with the double build fed the same
+ * Q16.16-rounded numbers it sees).
  * usage: make_mcu_sequence IN.csv NAME TOLERANCE_DEG OUT.h
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,9 +17,44 @@
 
 #define MAX_FRAMES 4096
 
+/* x as Q16.16, rounded to nearest */
+static long q16(double x) { return lround(x * 65536.0); }
+
+/* How the target sees a number: as a float, or as Q16.16. */
+static double to_float(double x) { return (double)(float)x; }
+static double to_q16(double x) { return (double)q16(x) / 65536.0; }
+
+/* The sequence through the double build, fed the numbers as `seen` makes them;
+ * the angles after each frame (0 before the first measurement). */
+static int filter_sequence(int n, const double *dt, const int *valid, double (*z)[3], double (*seen)(double),
+                           double (*expected)[3])
+{
+    hkf_filter_t filter;
+    int i;
+    if (hkf_init(&filter, &hkf_default_settings) != HKF_OK) {
+        fprintf(stderr, "make_mcu_sequence: hkf_init failed\n");
+        return 1;
+    }
+    for (i = 0; i < n; ++i) {
+        hkf_output_t o;
+        const hkf_real_t zi[3] = {seen(z[i][0]), seen(z[i][1]), seen(z[i][2])};
+        const int result = valid[i] ? hkf_update(&filter, zi, seen(dt[i]), &o) : hkf_predict(&filter, seen(dt[i]), &o);
+        expected[i][0] = expected[i][1] = expected[i][2] = 0.0;
+        if (result == HKF_OK) {
+            expected[i][0] = o.angle[0];
+            expected[i][1] = o.angle[1];
+            expected[i][2] = o.angle[2];
+        } else if (!(result == HKF_ERROR_NOT_INITIALIZED && !valid[i])) {
+            fprintf(stderr, "make_mcu_sequence: frame %d: %s\n", i, hkf_result_string(result));
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    static double dt[MAX_FRAMES], z[MAX_FRAMES][3], expected[MAX_FRAMES][3];
+    static double dt[MAX_FRAMES], z[MAX_FRAMES][3], expected[MAX_FRAMES][3], expected_q16[MAX_FRAMES][3];
     static int valid[MAX_FRAMES];
     hkf_filter_t filter;
     FILE *in, *out;
@@ -23,7 +62,7 @@ int main(int argc, char **argv)
     if (argc == 2 && strcmp(argv[1], "--help") == 0) {
         printf("usage: make_mcu_sequence IN.csv NAME TOLERANCE_DEG OUT.h\n"
                "Filters IN.csv (dt_s,valid,pitch,yaw,roll per frame) with libhkf in double and writes\n"
-               "sequence.h (the input and the expected angles) for tests/mcu/target_test.c.\n");
+               "sequence.h (the input and the expected angles, in float and in Q16.16) for tests/mcu/target_test.c.\n");
         return 0;
     }
     if (argc != 5) {
@@ -40,24 +79,13 @@ int main(int argc, char **argv)
         ++n;
     }
     fclose(in);
-    if (n == 0 || hkf_init(&filter, &hkf_default_settings) != HKF_OK) {
-        fprintf(stderr, "make_mcu_sequence: no frames in %s, or hkf_init failed\n", argv[1]);
+    if (n == 0) {
+        fprintf(stderr, "make_mcu_sequence: no frames in %s\n", argv[1]);
         return 1;
     }
-    for (i = 0; i < n; ++i) {
-        hkf_output_t o;
-        /* the target sees the sequence in float: filter exactly those values */
-        const hkf_real_t zi[3] = {(float)z[i][0], (float)z[i][1], (float)z[i][2]};
-        const int result = valid[i] ? hkf_update(&filter, zi, (float)dt[i], &o) : hkf_predict(&filter, (float)dt[i], &o);
-        expected[i][0] = expected[i][1] = expected[i][2] = 0.0;
-        if (result == HKF_OK) {
-            expected[i][0] = o.angle[0];
-            expected[i][1] = o.angle[1];
-            expected[i][2] = o.angle[2];
-        } else if (!(result == HKF_ERROR_NOT_INITIALIZED && !valid[i])) {
-            fprintf(stderr, "make_mcu_sequence: frame %d: %s\n", i, hkf_result_string(result));
-            return 1;
-        }
+    if (filter_sequence(n, dt, valid, z, to_float, expected) != 0 ||
+        filter_sequence(n, dt, valid, z, to_q16, expected_q16) != 0) {
+        return 1;
     }
     out = fopen(argv[4], "w");
     if (out == NULL) {
@@ -66,13 +94,13 @@ int main(int argc, char **argv)
     }
     fprintf(out, "/* Written by make_mcu_sequence from %s: do not edit. */\n", argv[1]);
     fprintf(out, "#define SEQ_NAME \"%s\"\n#define SEQ_FRAMES %d\n#define SEQ_TOLERANCE_DEG %sf\n", argv[2], n, argv[3]);
-    fprintf(out, "static const float seq_dt[SEQ_FRAMES] = {\n");
-    for (i = 0; i < n; ++i) {
-        fprintf(out, "%.9gf,%s", dt[i], i % 8 == 7 ? "\n" : " ");
-    }
-    fprintf(out, "};\nstatic const unsigned char seq_valid[SEQ_FRAMES] = {\n");
+    fprintf(out, "static const unsigned char seq_valid[SEQ_FRAMES] = {\n");
     for (i = 0; i < n; ++i) {
         fprintf(out, "%d,%s", valid[i], i % 32 == 31 ? "\n" : "");
+    }
+    fprintf(out, "};\n#if !defined(HKF_REAL_FIXED)\nstatic const float seq_dt[SEQ_FRAMES] = {\n");
+    for (i = 0; i < n; ++i) {
+        fprintf(out, "%.9gf,%s", dt[i], i % 8 == 7 ? "\n" : " ");
     }
     fprintf(out, "};\nstatic const float seq_z[SEQ_FRAMES][3] = {\n");
     for (i = 0; i < n; ++i) {
@@ -82,7 +110,20 @@ int main(int argc, char **argv)
     for (i = 0; i < n; ++i) {
         fprintf(out, "{%.9gf, %.9gf, %.9gf},\n", expected[i][0], expected[i][1], expected[i][2]);
     }
-    fprintf(out, "};\n");
+    fprintf(out, "};\n#else\n/* Q16.16 (value * 65536): the input and the double build's angles for that input */\n");
+    fprintf(out, "static const int32_t seq_dt_q16[SEQ_FRAMES] = {\n");
+    for (i = 0; i < n; ++i) {
+        fprintf(out, "%ld,%s", q16(dt[i]), i % 8 == 7 ? "\n" : " ");
+    }
+    fprintf(out, "};\nstatic const int32_t seq_z_q16[SEQ_FRAMES][3] = {\n");
+    for (i = 0; i < n; ++i) {
+        fprintf(out, "{%ld, %ld, %ld},\n", q16(z[i][0]), q16(z[i][1]), q16(z[i][2]));
+    }
+    fprintf(out, "};\nstatic const int32_t seq_expected_q16[SEQ_FRAMES][3] = {\n");
+    for (i = 0; i < n; ++i) {
+        fprintf(out, "{%ld, %ld, %ld},\n", q16(expected_q16[i][0]), q16(expected_q16[i][1]), q16(expected_q16[i][2]));
+    }
+    fprintf(out, "};\n#define SEQ_TOLERANCE_Q16 %ld\n#endif\n", q16(atof(argv[3])));
     if (fclose(out) != 0) {
         fprintf(stderr, "make_mcu_sequence: error writing %s\n", argv[4]);
         return 1;

@@ -4,7 +4,9 @@
  * filtered with the default settings, against the x86 double build's output
  * of the same sequence (sequence.h, written by make_mcu_sequence). Prints the
  * largest angle error per axis and exits 0 when all are within
- * SEQ_TOLERANCE_DEG. Also counts hkf_update's instructions: under
+ * SEQ_TOLERANCE_DEG. In the fixed-point build everything here is integer
+ * (Q16.16 input, errors in Q16.16, printed as micro-degrees), so the
+ * program links no floating-point routine at all. Also counts hkf_update's instructions: under
  * qemu -icount every instruction advances the clock by the same time, so
  * SysTick ticks per instruction are calibrated on a loop of known length.
  */
@@ -18,10 +20,39 @@
 #define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
 #define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
 
+#if defined(HKF_REAL_FIXED)
+typedef int32_t error_t; /* Q16.16 degrees */
+#define SEQ_Z(i, a) seq_z_q16[i][a]
+#define SEQ_DT(i) seq_dt_q16[i]
+#define SEQ_EXPECTED(i, a) seq_expected_q16[i][a]
+#define TOLERANCE SEQ_TOLERANCE_Q16
+#define HALF_TURN ((int32_t)180 << 16)
+
+/* The angle difference on the circle (yaw wraps at +-180). */
+static error_t angle_error(int32_t a, int32_t b)
+{
+    int64_t d = (int64_t)a - b;
+    while (d >= HALF_TURN) {
+        d -= 2 * (int64_t)HALF_TURN;
+    }
+    while (d < -HALF_TURN) {
+        d += 2 * (int64_t)HALF_TURN;
+    }
+    return (error_t)(d < 0 ? -d : d);
+}
+
+static long micro_degrees(error_t e) { return (long)(((int64_t)e * 15625 + 512) >> 10); } /* e 10^6 / 2^16 */
+#else
+typedef float error_t;
+#define SEQ_Z(i, a) (hkf_real_t)seq_z[i][a]
+#define SEQ_DT(i) (hkf_real_t)seq_dt[i]
+#define SEQ_EXPECTED(i, a) seq_expected[i][a]
+#define TOLERANCE SEQ_TOLERANCE_DEG
+
 static float absolute(float x) { return x < 0.0f ? -x : x; }
 
 /* The angle difference on the circle (yaw wraps at +-180). */
-static float angle_error(float a, float b)
+static error_t angle_error(float a, float b)
 {
     float d = a - b;
     while (d >= 180.0f) {
@@ -33,17 +64,42 @@ static float angle_error(float a, float b)
     return absolute(d);
 }
 
-static void write_micro_degrees(const char *name, float degrees)
+static long micro_degrees(error_t degrees) { return (long)(degrees * 1e6f + 0.5f); }
+#endif
+
+static void write_micro_degrees(const char *name, error_t e)
 {
     semihosting_write(name);
-    semihosting_write_int((long)(degrees * 1e6f + 0.5f));
+    semihosting_write_int(micro_degrees(e));
     semihosting_write(" udeg");
+}
+
+/* ticks / calibration_ticks * 200000 / updates, rounded, in integers */
+static long instructions_per_update(uint32_t ticks, uint32_t calibration_ticks, uint32_t updates)
+{
+    const uint64_t numerator = (uint64_t)ticks * 200000u, denominator = (uint64_t)calibration_ticks * updates;
+    uint64_t quotient = 0, bit = 1;
+    uint64_t d = denominator, n = numerator + denominator / 2u;
+    if (denominator == 0u) {
+        return 0;
+    }
+    while (d <= n / 2u) { /* shift-and-subtract division: no division routine linked in */
+        d <<= 1;
+        bit <<= 1;
+    }
+    for (; bit != 0u; d >>= 1, bit >>= 1) {
+        if (n >= d) {
+            n -= d;
+            quotient |= bit;
+        }
+    }
+    return (long)quotient;
 }
 
 int main(void)
 {
     static hkf_filter_t filter; /* static: the stack holds only the call frames */
-    float worst[3] = {0.0f, 0.0f, 0.0f};
+    error_t worst[3] = {0, 0, 0};
     uint32_t ticks = 0, updates = 0, calibration_ticks;
     int i, a, failures = 0;
     if (hkf_init(&filter, &hkf_default_settings) != HKF_OK) {
@@ -64,13 +120,13 @@ int main(void)
         hkf_output_t out;
         int result;
         if (seq_valid[i]) {
-            const hkf_real_t z[3] = {(hkf_real_t)seq_z[i][0], (hkf_real_t)seq_z[i][1], (hkf_real_t)seq_z[i][2]};
+            const hkf_real_t z[3] = {SEQ_Z(i, 0), SEQ_Z(i, 1), SEQ_Z(i, 2)};
             const uint32_t start = SYST_CVR;
-            result = hkf_update(&filter, z, (hkf_real_t)seq_dt[i], &out);
+            result = hkf_update(&filter, z, SEQ_DT(i), &out);
             ticks += (start - SYST_CVR) & 0x00FFFFFFu; /* counts down */
             ++updates;
         } else {
-            result = hkf_predict(&filter, (hkf_real_t)seq_dt[i], &out);
+            result = hkf_predict(&filter, SEQ_DT(i), &out);
         }
         if (result != HKF_OK && !(result == HKF_ERROR_NOT_INITIALIZED && !seq_valid[i])) {
             semihosting_write("target: frame ");
@@ -85,7 +141,7 @@ int main(void)
             continue; /* no track yet: nothing to compare */
         }
         for (a = 0; a < 3; ++a) {
-            const float e = angle_error((float)out.angle[a], seq_expected[i][a]);
+            const error_t e = angle_error(out.angle[a], SEQ_EXPECTED(i, a));
             worst[a] = e > worst[a] ? e : worst[a];
         }
     }
@@ -96,11 +152,11 @@ int main(void)
     write_micro_degrees(", yaw ", worst[1]);
     write_micro_degrees(", roll ", worst[2]);
     semihosting_write(" (tolerance ");
-    semihosting_write_int((long)(SEQ_TOLERANCE_DEG * 1e6f + 0.5f));
+    semihosting_write_int(micro_degrees(TOLERANCE));
     semihosting_write(" udeg); hkf_update: ");
     semihosting_write_int((long)updates);
     semihosting_write(" calls, ");
-    semihosting_write_int((long)((float)ticks / (float)calibration_ticks * 200000.0f / (float)updates + 0.5f));
+    semihosting_write_int(instructions_per_update(ticks, calibration_ticks, updates));
     semihosting_write(" instructions each (SysTick: ");
     semihosting_write_int((long)ticks);
     semihosting_write(" ticks; ");
@@ -109,7 +165,7 @@ int main(void)
     semihosting_write_int((long)sizeof(hkf_filter_t));
     semihosting_write(" B\n");
     for (a = 0; a < 3; ++a) {
-        failures += !(worst[a] <= SEQ_TOLERANCE_DEG);
+        failures += !(worst[a] <= TOLERANCE);
     }
     return failures == 0 ? 0 : 1;
 }

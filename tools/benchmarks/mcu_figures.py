@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""libhkf's figures on each Cortex-M target, as a Markdown table: flash (text),
-RAM (sizeof hkf_filter_t, data, bss), the worst stack of each public function
-(from GCC's -fcallgraph-info=su call graph), instructions per hkf_update and
-the error against the x86 double build (from the qemu run of the target test),
-and which runtime routines a firmware linking the test pulls in (libm,
-soft-float). Reads the trees the hkf.mcu.* tests leave in BUILD/mcu/.
+"""libhkf's figures on each Cortex-M target, as a Markdown table: flash (the
+whole library's text, and libhkf's share of the target test firmware as
+linked: text + rodata of what init/update/predict and the default settings
+need), RAM (sizeof hkf_filter_t, data, bss), the worst stack of each public
+function (from GCC's -fcallgraph-info=su call graph), instructions per
+hkf_update and the error against the x86 double build (from the qemu run of
+the target test), and the runtime routines the library itself calls (its
+undefined symbols: libm, soft-float, integer division, 64-bit multiply).
+Reads the trees the hkf.mcu.* tests leave in BUILD/mcu/.
 usage: mcu_figures.py BUILD_DIR"""
 import glob
 import os
@@ -12,7 +15,8 @@ import re
 import subprocess
 import sys
 
-TARGETS = [("cortex-m0", "float"), ("cortex-m4f", "float"), ("cortex-m7", "float"), ("cortex-m7", "double")]
+TARGETS = [("cortex-m0", "fixed"), ("cortex-m0", "float"), ("cortex-m4f", "fixed"), ("cortex-m4f", "float"),
+           ("cortex-m7", "fixed"), ("cortex-m7", "float"), ("cortex-m7", "double")]
 PUBLIC = ["hkf_init", "hkf_update", "hkf_predict", "hkf_extrapolate", "hkf_get_output", "hkf_reset",
           "hkf_set_center", "hkf_recenter", "hkf_get_center", "hkf_observation_noise"]
 
@@ -44,11 +48,24 @@ def size_of_archive(archive):
     return text, data, bss
 
 
-def runtime_routines(elf):
-    """Runtime routines linked into the test program: soft-float (__aeabi_f*, __aeabi_d*) and libm."""
-    out = subprocess.run(["arm-none-eabi-nm", elf], capture_output=True, text=True, check=True).stdout
-    names = {line.split()[-1] for line in out.splitlines() if len(line.split()) >= 2}
-    soft = sorted(n for n in names if re.match(r"__aeabi_(f|d|[ui]?[fd]2|l?div|uidiv|idiv|.*div)", n)
+def linked_share(map_file):
+    """Bytes of text and rodata the firmware took from libhkf.a (from the linker map)."""
+    text = open(map_file).read()
+    text = text[text.index("Linker script and memory map"):]
+    total = 0
+    for section, address, size, origin in re.findall(r"^ (\.[\w.]+)\s*\n?\s+0x([0-9a-f]+)\s+0x([0-9a-f]+)\s+(\S+)",
+                                                     text, re.M):
+        if "libhkf.a" in origin and int(address, 16) != 0 and section.split(".")[1] in ("text", "rodata"):
+            total += int(size, 16)
+    return total
+
+
+def runtime_routines(archive):
+    """Runtime routines the library calls (its undefined symbols): soft-float (__aeabi_f*, __aeabi_d*),
+    integer division, 64-bit multiply, and libm."""
+    out = subprocess.run(["arm-none-eabi-nm", "-u", archive], capture_output=True, text=True, check=True).stdout
+    names = {line.split()[-1] for line in out.splitlines() if line.strip().startswith("U ")}
+    soft = sorted(n for n in names if re.match(r"__aeabi_(f|d|[ui]?[fd]2|l?div|uidiv|idiv|.*div|lmul)", n)
                   or re.match(r"__(add|sub|mul|div)[sd]f3", n))
     libm = sorted(n for n in names if n in {"exp", "expf", "sqrt", "sqrtf", "fabs", "fabsf", "__ieee754_exp",
                                              "__ieee754_expf", "__kernel_standard"})
@@ -74,22 +91,26 @@ def main():
         text, data, bss = size_of_archive(lib)
         own, calls = call_graph(os.path.join(tree, "build", "libhkf", "CMakeFiles", "hkf.dir", "src"))
         stacks = {f: worst_stack(f, own, calls) for f in PUBLIC}
-        soft, libm = runtime_routines(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.elf"))
-        rows.append((cpu, real, text, data, bss, int(state.group(1)), max(stacks.values()),
+        soft, libm = runtime_routines(lib)
+        linked = linked_share(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.map"))
+        rows.append((cpu, real, text, linked, data, bss, int(state.group(1)), max(stacks.values()),
                      max(stacks, key=stacks.get), stacks["hkf_update"], int(instructions.group(1)),
                      max(int(e) for e in errors.groups()) / 1000.0, soft, libm))
-    print("| target | type | flash (text) | data + bss | hkf_filter_t | worst stack (function) | stack of hkf_update "
-          "| instructions per hkf_update | largest error vs x86 double | runtime routines pulled in |")
+    print("| target | type | flash: library (linked) | data + bss | hkf_filter_t | worst stack (function) "
+          "| stack of hkf_update | instructions per hkf_update | largest error vs x86 double | runtime routines called |")
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
-    for cpu, real, text, data, bss, state, worst, worst_fn, update_stack, insns, error, soft, libm in rows:
+    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, insns, error, soft, libm in rows:
         routines = ", ".join(libm + soft) if (soft or libm) else "none"
         if len(soft) > 6:
             routines = ", ".join(libm) + (", " if libm else "") + f"{len(soft)} soft-float routines ({', '.join(soft[:4])}, …)"
-        print(f"| {cpu} | {real} | {text:,} B | {data + bss} B | {state} B | {worst} B (`{worst_fn}`) | {update_stack} B "
+        print(f"| {cpu} | {real} | {text:,} B ({linked:,} B) | {data + bss} B | {state} B | {worst} B (`{worst_fn}`) | {update_stack} B "
               f"| {insns:,} | {error:.3f} mdeg | {routines} |")
-    print("\n(stack: own frame + deepest callee, from -fcallgraph-info=su; memcpy, which hkf_init's struct copy "
-          "calls, is the firmware's own and not counted. Instructions: qemu -icount, SysTick calibrated on a loop "
-          "of known length; not cycles. Error: the largest angle difference over the 448 frames of d10.mp4.)")
+    print("\n(Cortex-M0 built with -Os, the others with -O3. Flash: the whole libhkf.a, and in brackets what the "
+          "target test firmware (hkf_init, hkf_update, hkf_predict, the default settings; --gc-sections) took from "
+          "it; error strings and unused presets are dropped there. Stack: own frame + deepest callee, from "
+          "-fcallgraph-info=su; memcpy is the firmware's own and not counted. Instructions: qemu -icount, "
+          "SysTick calibrated on a loop of known length; not cycles. Error: the largest angle difference over "
+          "the 448 frames of d10.mp4; fixed point against the double build fed the same Q16.16 input.)")
 
 
 if __name__ == "__main__":

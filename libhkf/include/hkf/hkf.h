@@ -189,15 +189,17 @@ typedef struct {
 #define HKF_LANES 4
 #endif
 typedef struct {
+#if defined(HKF_REAL_FIXED)
+    const hkf_settings_t *settings;     /* the caller's, by reference (see hkf_init) */
+    /* what Eq. 8 derives from the curves */
+    hkf_real_t lambda[HKF_LANES];       /* curvature 2 sigma^2, saturated */
+    uint32_t inv_width[HKF_LANES];      /* 1 / (sqrt(2) sigma), unsigned Q0.32 */
+#else
     hkf_settings_t settings;
     /* per-lane copies of the settings the axis loops read */
     hkf_real_t q[HKF_LANES], r_const[HKF_LANES];
     hkf_real_t mu[HKF_LANES], lambda[HKF_LANES];
     hkf_real_t noise_floor[HKF_LANES];  /* tau - lambda */
-#if defined(HKF_REAL_FIXED)
-    int32_t curvature[HKF_LANES];       /* lambda / (2 sigma^2), Q8.24 */
-    uint32_t inv_width[HKF_LANES];      /* 1 / (sqrt(2) sigma), unsigned Q0.32 */
-#else
     hkf_real_t gauss_scale[HKF_LANES];  /* 1 / (2 sigma^2) */
 #endif
     hkf_real_t angle[HKF_LANES], rate[HKF_LANES];
@@ -210,7 +212,10 @@ typedef struct {
     hkf_status_t status;
 } hkf_filter_t;
 
-/* Validates the settings and starts an empty filter (no track yet). */
+/* Validates the settings and starts an empty filter (no track yet). The
+ * float and double builds copy *s. The fixed-point build keeps a pointer to
+ * it (128 B of RAM per filter instead of 248): there *s must stay valid and
+ * unchanged while the filter is used - in firmware, a const in flash. */
 int hkf_init(hkf_filter_t *f, const hkf_settings_t *s);
 
 /* Forgets the track (and a centre not set by hkf_set_center); keeps the settings. */
