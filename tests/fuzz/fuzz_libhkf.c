@@ -10,7 +10,11 @@
  *     and so predictions, far beyond any head; finite is what is promised.)
  * A failed check aborts, which libFuzzer reports as a finding.
  *
- * Input: [edits count][edits: field byte, 4-byte float]...[ops: op byte, operands]...
+ * Built once per numeric type: fuzz_libhkf (float) and fuzz_libhkf_fixed
+ * (Q16.16: every value is any int32 bit pattern, INT32_MIN included, so the
+ * saturating arithmetic and its range limits meet every extreme).
+ *
+ * Input: [edits count][edits: field byte, 4-byte value]...[ops: op byte, operands]...
  */
 #include <float.h>
 #include <math.h>
@@ -24,6 +28,16 @@
 
 /* The largest angle variance any accepted call may report (deg^2). */
 #define VARIANCE_BOUND 1e12
+
+#if defined(HKF_REAL_FIXED)
+#define FUZZ_NAME "fuzz_libhkf_fixed"
+#define SETTINGS_OF(f) ((f)->settings) /* the fixed-point filter keeps a pointer */
+#define MIN_VARIANCE 0                 /* Q16.16 may round a variance to 0 (q = 0) */
+#else
+#define FUZZ_NAME "fuzz_libhkf"
+#define SETTINGS_OF(f) (&(f)->settings)
+#define MIN_VARIANCE 0 + 1e-300        /* float and double: strictly positive */
+#endif
 
 typedef struct {
     const uint8_t *data;
@@ -41,10 +55,14 @@ static int take_byte(input_t *in, uint8_t *byte)
     return 1;
 }
 
-/* Any float bit pattern at all. */
+/* Any bit pattern at all: a float's, or a Q16.16 int32's. */
 static hkf_real_t take_real(input_t *in)
 {
+#if defined(HKF_REAL_FIXED)
+    int32_t value = 0;
+#else
     float value = 0.0f;
+#endif
     if (in->size >= sizeof value) {
         memcpy(&value, in->data, sizeof value);
         in->data += sizeof value;
@@ -56,7 +74,7 @@ static hkf_real_t take_real(input_t *in)
 static void check(int condition, const char *what)
 {
     if (!condition) {
-        fprintf(stderr, "fuzz_libhkf: %s\n", what);
+        fprintf(stderr, FUZZ_NAME ": %s\n", what);
         abort();
     }
 }
@@ -69,8 +87,13 @@ static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
     switch ((field / 3) % 16) {
     case 0: s->process_noise[axis] = v; break;
     case 1: s->r_const[axis] = v; break;
+#if defined(HKF_REAL_FIXED)
+    case 2: s->noise[axis].floor = v; break;
+    case 3: s->noise[axis].curvature_q24 = v; break;
+#else
     case 2: s->noise[axis].tau = v; break;
     case 3: s->noise[axis].lambda = v; break;
+#endif
     case 4: s->noise[axis].mu = v; break;
     case 5: s->noise[axis].sigma = v; break;
     case 6: s->r_min = v; break;
@@ -90,16 +113,17 @@ static void check_output(const hkf_filter_t *f, const hkf_output_t *out)
 {
     int a;
     for (a = 0; a < 3; ++a) {
-        check(isfinite(out->angle[a]) && isfinite(out->rate[a]), "non-finite angle or rate");
-        check(isfinite(out->variance[a]) && isfinite(out->r[a]), "non-finite variance or R");
-        if (!(out->variance[a] > 0 && out->variance[a] <= VARIANCE_BOUND)) {
-            fprintf(stderr, "fuzz_libhkf: axis %d variance %g, status %d\n", a, (double)out->variance[a], out->status);
+        check(isfinite((double)out->angle[a]) && isfinite((double)out->rate[a]), "non-finite angle or rate");
+        check(isfinite((double)out->variance[a]) && isfinite((double)out->r[a]), "non-finite variance or R");
+        if (!((double)out->variance[a] >= MIN_VARIANCE && (double)out->variance[a] <= VARIANCE_BOUND * HKF_REAL(1.0))) {
+            fprintf(stderr, FUZZ_NAME ": axis %d variance %g, status %d\n", a, (double)out->variance[a], out->status);
             check(0, "angle variance not in (0, bound]");
         }
-        check(out->r[a] == 0 || (out->r[a] >= f->settings.r_min && out->r[a] <= f->settings.r_max),
+        check(out->r[a] == 0 || (out->r[a] >= SETTINGS_OF(f)->r_min && out->r[a] <= SETTINGS_OF(f)->r_max),
               "R outside [r_min, r_max]");
     }
-    check(out->angle[HKF_AXIS_YAW] >= -180 && out->angle[HKF_AXIS_YAW] < 180, "yaw outside [-180, 180)");
+    check(out->angle[HKF_AXIS_YAW] >= HKF_REAL(-180.0) && out->angle[HKF_AXIS_YAW] < HKF_REAL(180.0),
+          "yaw outside [-180, 180)");
 }
 
 /* A call on a mutable filter: rejected -> bit-identical; accepted -> sound outputs. */
@@ -117,7 +141,7 @@ static unsigned long long steps; /* update and predict calls, for the run's summ
 
 static void print_steps(void)
 {
-    fprintf(stderr, "fuzz_libhkf: %llu filter steps in total\n", steps);
+    fprintf(stderr, FUZZ_NAME ": %llu filter steps in total\n", steps);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
