@@ -81,17 +81,40 @@ static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, h
     return hkf_add(cross, hkf_mul(hkf_mul(qdt, dt), hkf_mul(dt, HKF_REAL(0.33333333333333333))));
 }
 
-static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
+/* q per lane: the setting, or with q_boost on, q (1 + q_boost m) (hkf.h),
+ * at most HKF_MAX_PROCESS_NOISE: the range every setting of q is checked
+ * against, so the boost never takes the filter where no q could (found by
+ * fuzz_libhkf: an outlier's y^2 / S of ~1e13 made q, then P, infinite). */
+static inline void process_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t q[restrict HKF_LANES])
 {
+    const hkf_real_t boost = HKF_SETTINGS(f)->q_boost;
+    const hkf_real_t most = HKF_REAL_FROM(HKF_MAX_PROCESS_NOISE);
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t qdt = hkf_mul(HKF_Q(f, a), dt);
+        q[a] = HKF_Q(f, a);
+    }
+    if (boost > 0) {
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
+            const hkf_real_t boosted = hkf_add(q[a], hkf_mul(q[a], hkf_mul(boost, f->motion[a])));
+            q[a] = boosted > q[a] ? (boosted < most ? boosted : most) : q[a];
+        }
+    }
+}
+
+static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
+{
+    hkf_real_t q[HKF_LANES];
+    int a;
+    process_noise_lanes(f, q);
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        const hkf_real_t qdt = hkf_mul(q[a], dt);
         const hkf_real_t p01 = f->p01[a];
         const hkf_real_t p11 = f->p11[a];
         f->angle[a] = hkf_add(f->angle[a], hkf_mul(f->rate[a], dt));
         f->p00[a] = hkf_add(f->p00[a], angle_variance_growth(p01, p11, qdt, dt));
         f->p01[a] = hkf_add(hkf_add(p01, hkf_mul(dt, p11)), hkf_mul(hkf_mul(qdt, dt), HKF_REAL(0.5)));
         f->p11[a] = hkf_add(p11, qdt);
+        hkf_keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
 }
@@ -223,6 +246,7 @@ static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
         f->p00[a] = HKF_SETTINGS(f)->p0_angle;
         f->p01[a] = 0;
         f->p11[a] = HKF_SETTINGS(f)->p0_rate;
+        f->motion[a] = 0;
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(z[HKF_AXIS_YAW]);
     if (f->center_source == CENTER_NONE) {
@@ -248,6 +272,7 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
             f->rate[a] = 0;
             f->p01[a] = 0;
             f->p11[a] = 0;
+            f->motion[a] = 0;
         }
         f->status = HKF_STATUS_LOST;
     }
@@ -298,6 +323,7 @@ void hkf_reset(hkf_filter_t *f)
         f->p01[a] = 0;
         f->p11[a] = HKF_SETTINGS(f)->p0_rate;
         f->r[a] = 0;
+        f->motion[a] = 0;
     }
     if (f->center_source != CENTER_EXPLICIT) {
         f->center_source = CENTER_NONE;
@@ -368,6 +394,19 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
         return HKF_OK;
     }
 
+    if (HKF_SETTINGS(f)->q_boost > 0) {
+        /* m += alpha (e - m), alpha = dt / (dt + time) in [0, 1], e = y^2 / S - 1 within [0, 10^4]:
+         * m stays within [0, 10^4] whatever the input (fuzz_libhkf: a reciprocal of a denormal
+         * dt + time overflowed alpha, and m went to -inf) */
+        const hkf_real_t most = HKF_REAL(10000.0);
+        const hkf_real_t ratio = hkf_divide(dt, hkf_divisor(hkf_add(dt, HKF_SETTINGS(f)->q_boost_time)));
+        const hkf_real_t alpha = ratio < HKF_REAL(1.0) ? ratio : HKF_REAL(1.0);
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
+            const hkf_real_t e = hkf_sub(hkf_divide(hkf_mul(y[a], y[a]), inv_s[a]), HKF_REAL(1.0));
+            const hkf_real_t excess = e > 0 ? (e < most ? e : most) : 0;
+            f->motion[a] = hkf_add(f->motion[a], hkf_mul(alpha, hkf_sub(excess, f->motion[a])));
+        }
+    }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         const hkf_real_t k0 = hkf_divide(f->p00[a], inv_s[a]);        /* Eq. 6: K = P H' S^-1 */
         const hkf_real_t k1 = hkf_divide(f->p01[a], inv_s[a]);
@@ -377,6 +416,7 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
         f->p11[a] = hkf_sub(f->p11[a], hkf_mul(k1, f->p01[a]));       /* Eq. 7: P = (I - K H) P */
         f->p01[a] = hkf_mul(f->p01[a], one_minus_k0);
         f->p00[a] = hkf_mul(f->p00[a], one_minus_k0); /* stays > 0 in float even when P >> R (found by fuzz_libhkf) */
+        hkf_keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
         f->r[a] = r[a];
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
@@ -410,6 +450,7 @@ int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out)
 
 int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *out)
 {
+    hkf_real_t q[HKF_LANES];
     int a;
     if (f == 0 || out == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
@@ -425,10 +466,11 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
     }
     /* Eq. 1-2 for the output alone: the filter is not copied (a small stack) */
     write_output(f, HKF_FLAG_EXTRAPOLATED, out);
+    process_noise_lanes(f, q);
     for (a = 0; a < HKF_AXES; ++a) {
         out->angle[a] = hkf_add(out->angle[a], hkf_mul(f->rate[a], dt_ahead));
         out->variance[a] = hkf_add(out->variance[a],
-                                   angle_variance_growth(f->p01[a], f->p11[a], hkf_mul(HKF_Q(f, a), dt_ahead), dt_ahead));
+                                   angle_variance_growth(f->p01[a], f->p11[a], hkf_mul(q[a], dt_ahead), dt_ahead));
     }
     out->angle[HKF_AXIS_YAW] = hkf_wrap180(out->angle[HKF_AXIS_YAW]);
     return HKF_OK;

@@ -27,6 +27,13 @@ static inline hkf_divisor_t hkf_divisor(hkf_real_t s) { return HKF_REAL(1.0) / s
 static inline hkf_real_t hkf_divide(hkf_real_t a, hkf_divisor_t d) { return a * d; }
 
 static inline int hkf_is_finite(hkf_real_t x) { return isfinite(x) != 0; }
+
+/* A 2x2 covariance stays positive semi-definite in float and double (the
+ * ranges keep every term finite): nothing to do. */
+static inline void hkf_keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11)
+{
+    (void)p00, (void)p01, (void)p11;
+}
 #endif
 
 #if defined(HKF_REAL_DOUBLE)
@@ -186,6 +193,21 @@ static inline hkf_real_t hkf_divide(hkf_real_t a, hkf_divisor_t d)
     const uint32_t q = (n >> 31) >= (uint64_t)d ? (uint32_t)HKF_FIXED_MAX : hkf_udiv_round(n, (uint32_t)d);
     const hkf_real_t m = q > (uint32_t)HKF_FIXED_MAX ? HKF_FIXED_MAX : (hkf_real_t)q;
     return a < 0 ? -m : m;
+}
+
+/* Keeps [[p00, p01], [p01, p11]] a covariance when saturation (a variance
+ * stopped at 32768 while coasting at the largest q for up to max_dt) or
+ * rounding has broken it: variances >= 0 and p01^2 <= p00 p11, by shrinking
+ * the correlation to min(p00, p11), which keeps the inequality. Without it
+ * the next update made p11 negative (found by fuzz_libhkf_fixed). */
+static inline void hkf_keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11)
+{
+    *p00 = *p00 > 0 ? *p00 : 0;
+    *p11 = *p11 > 0 ? *p11 : 0;
+    if ((int64_t)*p01 * *p01 > (int64_t)*p00 * *p11) {
+        const hkf_real_t most = *p00 < *p11 ? *p00 : *p11;
+        *p01 = *p01 < 0 ? -most : most;
+    }
 }
 
 /* Wraps an angle to [-180, 180): the number of turns from a multiply by

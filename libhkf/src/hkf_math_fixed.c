@@ -21,19 +21,23 @@ static uint32_t g30(uint32_t v)
     return acc;
 }
 
-/* What Eq. 8 derives from a curve (floor, curvature and mu are read from the
- * settings): lambda = curvature 2 sigma^2
- * (saturated: beyond 32768 it only ever meets the r_max clamp) and
- * 1 / (sqrt(2) sigma) in unsigned Q0.32 (sigma >= 1). */
+/* lambda = 2 curvature sigma^2 (Q16.16, saturated: beyond 32768 it only ever
+ * meets the r_max clamp) = 2 c24 s2 / 2^24, with s2 = sigma^2 split at bit 20
+ * so no product exceeds 2^55. */
+static hkf_real_t curve_lambda(const hkf_noise_curve_t *c)
+{
+    const int64_t s2 = ((int64_t)c->sigma * c->sigma) >> 16; /* sigma^2, Q16.16, < 2^44 */
+    const int64_t c24 = c->curvature_q24;
+    return hkf_saturate(((c24 * (s2 >> 20)) >> 3) + ((c24 * (s2 & 0xFFFFF)) >> 23));
+}
+
+/* What Eq. 8 derives from a curve once (floor, curvature, mu and sigma are
+ * read from the settings): 1 / (sqrt(2) sigma) in unsigned Q0.32 (sigma >= 1). */
 void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c)
 {
     const uint64_t k = 199032864766430u; /* round(2^48 / sqrt(2)) */
-    const int64_t s2 = ((int64_t)c->sigma * c->sigma) >> 16; /* sigma^2, Q16.16, < 2^44 */
-    const int64_t c24 = c->curvature_q24;
     uint64_t r = 0, q = 0;
     int i;
-    /* lambda = 2 curvature sigma^2 = 2 c24 s2 / 2^24, with s2 split at bit 20 so no product exceeds 2^55 */
-    f->lambda[lane] = hkf_saturate(((c24 * (s2 >> 20)) >> 3) + ((c24 * (s2 & 0xFFFFF)) >> 23));
     for (i = 63; i >= 0; --i) { /* q = k / sigma, once at init */
         r = (r << 1) | ((k >> i) & 1u);
         q <<= 1;
@@ -44,7 +48,6 @@ void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c)
     }
     f->inv_width[lane] = (uint32_t)q;
 }
-
 
 /* Eq. 8 above its floor, u = x - mu: lambda (1 - e^-v), v = u^2 / (2 sigma^2). */
 hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
@@ -68,7 +71,8 @@ hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
             const uint32_t e_frac = (1u << 30) - (uint32_t)(((uint64_t)frac * g30(frac)) >> 30);
             e30 = (uint32_t)(((uint64_t)exp_neg[(v >> 16) - 1u] * e_frac) >> 32);
         }
-        return hkf_saturate(((int64_t)f->lambda[lane] * (int64_t)(((1u << 30) - e30 + 8192u) >> 14) + 32768) >> 16);
+        return hkf_saturate(((int64_t)curve_lambda(&f->settings->noise[lane]) * (int64_t)(((1u << 30) - e30 + 8192u) >> 14) +
+                             32768) >> 16);
     }
 }
 #else

@@ -53,6 +53,8 @@ const hkf_settings_t hkf_default_settings = {
     .max_gate_rejections = 5u,
     .coast_time = HKF_REAL(0.25),
     .max_dt = HKF_REAL(1.0),
+    .q_boost = HKF_REAL(0.0),
+    .q_boost_time = HKF_REAL(0.05),
 };
 
 static int all_finite(const hkf_real_t *v, int n)
@@ -68,8 +70,8 @@ static int all_finite(const hkf_real_t *v, int n)
 
 static int settings_finite(const hkf_settings_t *s)
 {
-    const hkf_real_t scalars[] = {s->r_min, s->r_max, s->lc_xi, s->lc_theta, s->p0_angle,
-                                  s->p0_rate, s->gate_sigma, s->coast_time, s->max_dt};
+    const hkf_real_t scalars[] = {s->r_min, s->r_max, s->lc_xi, s->lc_theta, s->p0_angle, s->p0_rate,
+                                  s->gate_sigma, s->coast_time, s->max_dt, s->q_boost, s->q_boost_time};
     int a;
     for (a = 0; a < HKF_AXES; ++a) {
         const hkf_noise_curve_t *c = &s->noise[a];
@@ -149,6 +151,10 @@ int hkf_settings_check(const hkf_settings_t *s)
     }
     if (!(s->max_dt > 0 && s->max_dt <= HKF_REAL_FROM(HKF_MAX_TIME))) {
         return HKF_ERROR_SETTING_MAX_DT;
+    }
+    if (!(s->q_boost >= 0 && s->q_boost <= HKF_REAL_FROM(HKF_MAX_Q_BOOST) && s->q_boost_time >= 0 &&
+          s->q_boost_time <= HKF_REAL_FROM(HKF_MAX_TIME))) {
+        return HKF_ERROR_SETTING_Q_BOOST;
     }
     return HKF_OK;
 }

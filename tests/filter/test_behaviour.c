@@ -252,6 +252,62 @@ static void test_constant_vs_adaptive_r(void **state)
                 D(hkf_observation_noise(&fc, HKF_AXIS_YAW, R(-0.35))), 1e-4);
 }
 
+/* Motion-driven process noise (q_boost): on a still, noisy head the output is
+ * as steady as with the small q alone (the innovations are what R predicts),
+ * and when the head turns at 90 deg/s it follows with far less lag. */
+static void test_q_boost_still_and_moving(void **state)
+{
+    hkf_settings_t plain = hkf_default_settings, boosted;
+    hkf_filter_t fp, fb;
+    hkf_output_t op, ob;
+    sim_rng_t rng;
+    double jitter_p = 0.0, jitter_b = 0.0, prev_p = 0.0, prev_b = 0.0, lag_p = 0.0, lag_b = 0.0;
+    int i;
+    (void)state;
+    plain.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    plain.noise_mode = HKF_NOISE_CONSTANT;
+    plain.process_noise[1] = R(10);
+    boosted = plain;
+    boosted.q_boost = R(100);
+    assert_int_equal(hkf_init(&fp, &plain), HKF_OK);
+    assert_int_equal(hkf_init(&fb, &boosted), HKF_OK);
+    sim_rng_seed(&rng, 5u);
+    for (i = 0; i < 450; ++i) {
+        /* still for 10 s, then a turn at 90 deg/s for 0.5 s, then still */
+        const double t = i / 30.0;
+        const double truth = t < 10.0 ? 0.0 : t < 10.5 ? 90.0 * (t - 10.0) : 45.0;
+        hkf_real_t z[3];
+        set3(z, 0, truth + 0.5 * sim_rng_gaussian(&rng), 0); /* frame noise well inside R, as on the real clips */
+        assert_int_equal(hkf_update(&fp, z, frame_dt, &op), HKF_OK);
+        assert_int_equal(hkf_update(&fb, z, frame_dt, &ob), HKF_OK);
+        if (i > 60 && t < 10.0) {
+            jitter_p += (D(op.angle[1]) - prev_p) * (D(op.angle[1]) - prev_p);
+            jitter_b += (D(ob.angle[1]) - prev_b) * (D(ob.angle[1]) - prev_b);
+        }
+        if (t >= 10.0 && t < 11.0) {
+            lag_p += fabs(truth - D(op.angle[1]));
+            lag_b += fabs(truth - D(ob.angle[1]));
+        }
+        prev_p = D(op.angle[1]);
+        prev_b = D(ob.angle[1]);
+    }
+    print_message("q_boost: still jitter %.4f vs %.4f deg^2 summed, turn error %.1f vs %.1f deg summed\n", jitter_b,
+                  jitter_p, lag_b, lag_p);
+    assert_true(jitter_b < 1.3 * jitter_p); /* about as still */
+    assert_true(lag_b < 0.6 * lag_p);       /* much closer during the turn */
+    /* and off (0), it is the paper's filter bit for bit */
+    boosted.q_boost = 0;
+    assert_int_equal(hkf_init(&fb, &boosted), HKF_OK);
+    assert_int_equal(hkf_init(&fp, &plain), HKF_OK);
+    for (i = 0; i < 30; ++i) {
+        hkf_real_t z[3];
+        set3(z, 0, 2.0 * i, 0);
+        assert_int_equal(hkf_update(&fp, z, frame_dt, &op), HKF_OK);
+        assert_int_equal(hkf_update(&fb, z, frame_dt, &ob), HKF_OK);
+        assert_memory_equal(op.angle, ob.angle, sizeof op.angle);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -262,6 +318,7 @@ int main(void)
         cmocka_unit_test(test_recenter_and_reset),
         cmocka_unit_test(test_state_carried_across_chunks),
         cmocka_unit_test(test_constant_vs_adaptive_r),
+        cmocka_unit_test(test_q_boost_still_and_moving),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -49,6 +49,9 @@ static void huge_theta(hkf_settings_t *s) { s->lc_theta = R(HKF_MAX_LC_THETA + 4
 static void huge_gate(hkf_settings_t *s) { s->gate_sigma = R(1e10); }
 static void long_coast(hkf_settings_t *s) { s->coast_time = R(HKF_MAX_TIME + 1); }
 static void long_max_dt(hkf_settings_t *s) { s->max_dt = R(1e30); }
+static void negative_boost(hkf_settings_t *s) { s->q_boost = R(-1); }
+static void huge_boost(hkf_settings_t *s) { s->q_boost = R(2 * HKF_MAX_Q_BOOST); }
+static void long_boost_time(hkf_settings_t *s) { s->q_boost_time = R(HKF_MAX_TIME + 1); }
 #if defined(HKF_REAL_FIXED)
 /* the fixed-point build's own limits (hkf.h) */
 static void narrow_sigma(hkf_settings_t *s) { s->noise[1] = table_curve(7.64, 4.11, -0.35, 0.5); }
@@ -96,6 +99,9 @@ static void test_init_rejects_each_bad_setting(void **state)
         {"gate 1e10", huge_gate, HKF_ERROR_SETTING_GATE},
         {"coast_time > max", long_coast, HKF_ERROR_SETTING_COAST_TIME},
         {"max_dt 1e30", long_max_dt, HKF_ERROR_SETTING_MAX_DT},
+        {"q_boost < 0", negative_boost, HKF_ERROR_SETTING_Q_BOOST},
+        {"q_boost > max", huge_boost, HKF_ERROR_SETTING_Q_BOOST},
+        {"q_boost_time > max", long_boost_time, HKF_ERROR_SETTING_Q_BOOST},
 #if defined(HKF_REAL_FIXED)
         {"sigma 0.5 (fixed point: >= 1)", narrow_sigma, HKF_ERROR_SETTING_SIGMA},
         {"curvature 100 (fixed point: <= 127)", curvature_100, HKF_OK},

@@ -38,6 +38,8 @@ static const config_key_t keys[] = {
     {"max_gate_rejections", KIND_UINT, FIELD(max_gate_rejections), "gated measurements in a row before restarting"},
     {"coast_time", KIND_REAL, FIELD(coast_time), "s without a face before the track is LOST"},
     {"max_dt", KIND_REAL, FIELD(max_dt), "s; a longer gap restarts the track"},
+    {"q_boost", KIND_REAL, FIELD(q_boost), "motion-driven q: q (1 + q_boost m), 0 = off (the paper)"},
+    {"q_boost_time", KIND_REAL, FIELD(q_boost_time), "s; time constant of m, the innovation's excess"},
 };
 #define KEY_COUNT (sizeof keys / sizeof keys[0])
 

@@ -52,7 +52,8 @@ typedef enum {
     HKF_ERROR_SETTING_GATE = -30,        /* gate_sigma outside [0, 1000], or gate on with max_gate_rejections 0 */
     HKF_ERROR_SETTING_COAST_TIME = -31,  /* coast_time outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_MAX_DT = -32,      /* max_dt outside (0, HKF_MAX_TIME] */
-    HKF_ERROR_SETTING_CURVE = -33        /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
+    HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
+    HKF_ERROR_SETTING_Q_BOOST = -34      /* q_boost outside [0, HKF_MAX_Q_BOOST] or q_boost_time outside [0, HKF_MAX_TIME] */
 } hkf_result_t;
 
 /* A short English description of a hkf_result_t, for logs. Never NULL. */
@@ -83,7 +84,8 @@ const char *hkf_result_string(int result);
 #define HKF_MAX_LC_THETA 360     /* deg */
 #define HKF_MAX_GATE_SIGMA 1000
 #endif
-#define HKF_MAX_TIME 10          /* s: max_dt, coast_time */
+#define HKF_MAX_TIME 10          /* s: max_dt, coast_time, q_boost_time */
+#define HKF_MAX_Q_BOOST 16384    /* q_boost */
 
 /* Measurements beyond this magnitude are rejected (HKF_ERROR_ANGLE_RANGE):
  * no head pose is that large, and it keeps every value inside the range of
@@ -144,6 +146,16 @@ typedef struct {
     unsigned max_gate_rejections;  /* gated measurements in a row; the next gated one restarts the track */
     hkf_real_t coast_time;         /* s without a measurement before the track is LOST */
     hkf_real_t max_dt;             /* s; a larger dt is rejected */
+    /* Motion-driven process noise (not in the paper; 0 = off, the paper's filter):
+     * q_eff = q (1 + q_boost m), where m is the excess of the normalised
+     * innovation y^2 / S over 1, low-passed with time constant q_boost_time.
+     * A still head (innovations as R predicts) keeps the small q, so a still
+     * output; a moving one (innovations beyond R) raises q, so little lag.
+     * m is updated after each accepted measurement, m += a (e - m) with
+     * a = dt / (dt + q_boost_time) and e = y^2 / S - 1 clamped to [0, 1e4];
+     * the boosted q is at most HKF_MAX_PROCESS_NOISE. */
+    hkf_real_t q_boost;
+    hkf_real_t q_boost_time;       /* s */
 } hkf_settings_t;
 
 /* The defaults: the paper's filter (adaptive R with the FSA-Net curves of
@@ -192,7 +204,6 @@ typedef struct {
 #if defined(HKF_REAL_FIXED)
     const hkf_settings_t *settings;     /* the caller's, by reference (see hkf_init) */
     /* what Eq. 8 derives from the curves */
-    hkf_real_t lambda[HKF_LANES];       /* curvature 2 sigma^2, saturated */
     uint32_t inv_width[HKF_LANES];      /* 1 / (sqrt(2) sigma), unsigned Q0.32 */
 #else
     hkf_settings_t settings;
@@ -206,6 +217,7 @@ typedef struct {
     hkf_real_t p00[HKF_LANES], p01[HKF_LANES], p11[HKF_LANES];
     hkf_real_t r[HKF_LANES];
     hkf_real_t center[HKF_LANES];
+    hkf_real_t motion[HKF_LANES];       /* m of q_boost: the low-passed innovation excess */
     hkf_real_t time_since_measurement;
     unsigned gate_rejections;
     int center_source;           /* none, from the first measurement, or explicit */
