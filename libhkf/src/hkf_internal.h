@@ -36,4 +36,9 @@ int hkf_settings_check(const hkf_settings_t *s);
 #define HKF_NOISE_FLOOR(f, a) ((f)->noise_floor[a])
 #endif
 
+/* hkf_motion.c: m of q_boost after an accepted measurement (innovations y, 1/S). */
+#include "hkf_math.h"
+void hkf_motion_update(hkf_filter_t *f, const hkf_real_t y[HKF_LANES], const hkf_divisor_t inv_s[HKF_LANES],
+                       hkf_real_t dt);
+
 #endif /* HKF_INTERNAL_H */

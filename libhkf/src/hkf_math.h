@@ -146,8 +146,8 @@ static inline hkf_real_t hkf_wrap180(hkf_real_t x)
  *               is curvature u^2 g(v) with v = u^2 / (2 sigma^2) and
  *               g(v) = (1 - e^-v) / v for v < 1 (a polynomial in Q2.30, so
  *               the small rises near the centre keep their digits), and
- *               lambda (1 - e^-v) for v >= 1 (e^-v from a table of e^-k and
- *               the same polynomial for the fraction). A rise that saturates
+ *               lambda (1 - e^-v) for v >= 1 (e^-v = (e^-(v/32))^32, the
+ *               same polynomial then five squarings). A rise that saturates
  *               (|rise| >= 32768 > 16384 + |floor|) is beyond r_max either way.
  */
 #define HKF_FIXED_MAX INT32_MAX
@@ -157,58 +157,23 @@ static inline hkf_real_t hkf_saturate(int64_t x)
     return x > HKF_FIXED_MAX ? HKF_FIXED_MAX : x < -HKF_FIXED_MAX ? -HKF_FIXED_MAX : (hkf_real_t)x;
 }
 
-static inline hkf_real_t hkf_add(hkf_real_t a, hkf_real_t b) { return hkf_saturate((int64_t)a + b); }
-static inline hkf_real_t hkf_sub(hkf_real_t a, hkf_real_t b) { return hkf_saturate((int64_t)a - b); }
-static inline hkf_real_t hkf_mul(hkf_real_t a, hkf_real_t b)
-{
-    return hkf_saturate(((int64_t)a * b + 32768) >> 16);
-}
+/* a + b, a - b, a b (rounded), saturated; out of line in hkf_math_fixed.c:
+ * inline, each is ~40 bytes of Thumb-1 code at every use (flash on an M0). */
+hkf_real_t hkf_add(hkf_real_t a, hkf_real_t b);
+hkf_real_t hkf_sub(hkf_real_t a, hkf_real_t b);
+hkf_real_t hkf_mul(hkf_real_t a, hkf_real_t b);
 
 static inline hkf_real_t hkf_abs(hkf_real_t x) { return x >= 0 ? x : x == INT32_MIN ? HKF_FIXED_MAX : -x; }
 static inline int hkf_is_finite(hkf_real_t x) { (void)x; return 1; }
 
-/* round(n / d) for n < d 2^31 and 0 < d < 2^31 (so the quotient is < 2^31):
- * restoring division, one quotient bit per turn, in 32-bit registers. */
-static inline uint32_t hkf_udiv_round(uint64_t n, uint32_t d)
-{
-    uint32_t r = (uint32_t)(n >> 31), low = (uint32_t)n & 0x7FFFFFFFu, q = 0;
-    int i;
-    for (i = 30; i >= 0; --i) {
-        r = (r << 1) | ((low >> i) & 1u); /* r < 2d < 2^32 */
-        q <<= 1;
-        if (r >= d) {
-            r -= d;
-            q |= 1u;
-        }
-    }
-    return q + (r >= d - r ? 1u : 0u); /* round half up: 2r >= d */
-}
-
-/* a / s, correctly rounded; s > 0 (S = P + R >= r_min). */
+/* a / s, correctly rounded (hkf_math_fixed.c); s > 0 (S = P + R >= r_min). */
 typedef hkf_real_t hkf_divisor_t;
 static inline hkf_divisor_t hkf_divisor(hkf_real_t s) { return s > 0 ? s : 1; }
-static inline hkf_real_t hkf_divide(hkf_real_t a, hkf_divisor_t d)
-{
-    const uint64_t n = (uint64_t)hkf_abs(a) << 16;
-    const uint32_t q = (n >> 31) >= (uint64_t)d ? (uint32_t)HKF_FIXED_MAX : hkf_udiv_round(n, (uint32_t)d);
-    const hkf_real_t m = q > (uint32_t)HKF_FIXED_MAX ? HKF_FIXED_MAX : (hkf_real_t)q;
-    return a < 0 ? -m : m;
-}
+hkf_real_t hkf_divide(hkf_real_t a, hkf_divisor_t d);
 
-/* Keeps [[p00, p01], [p01, p11]] a covariance when saturation (a variance
- * stopped at 32768 while coasting at the largest q for up to max_dt) or
- * rounding has broken it: variances >= 0 and p01^2 <= p00 p11, by shrinking
- * the correlation to min(p00, p11), which keeps the inequality. Without it
- * the next update made p11 negative (found by fuzz_libhkf_fixed). */
-static inline void hkf_keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11)
-{
-    *p00 = *p00 > 0 ? *p00 : 0;
-    *p11 = *p11 > 0 ? *p11 : 0;
-    if ((int64_t)*p01 * *p01 > (int64_t)*p00 * *p11) {
-        const hkf_real_t most = *p00 < *p11 ? *p00 : *p11;
-        *p01 = *p01 < 0 ? -most : most;
-    }
-}
+/* Keeps [[p00, p01], [p01, p11]] a covariance under saturation and rounding
+ * (hkf_math_fixed.c). */
+void hkf_keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11);
 
 /* Wraps an angle to [-180, 180): the number of turns from a multiply by
  * 2^40 / (360 * 2^16) (off by at most one), then one correction. */
@@ -232,6 +197,7 @@ static inline hkf_real_t hkf_wrap180(hkf_real_t x)
  * from a curve, and the rise above its floor, lambda (1 - e^-v) with
  * v = u^2 / (2 sigma^2), u = x - mu. */
 void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c);
+uint32_t hkf_g30(uint32_t v); /* (1 - e^-v) / v for 0 <= v <= 1, Q2.30 */
 hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u);
 #endif /* HKF_REAL_FIXED */
 
