@@ -226,7 +226,7 @@ typedef struct {
 
 /* Validates the settings and starts an empty filter (no track yet). The
  * float and double builds copy *s. The fixed-point build keeps a pointer to
- * it (128 B of RAM per filter instead of 248): there *s must stay valid and
+ * it (128 B of RAM per filter instead of 252): there *s must stay valid and
  * unchanged while the filter is used - in firmware, a const in flash. */
 int hkf_init(hkf_filter_t *f, const hkf_settings_t *s);
 
