@@ -123,7 +123,9 @@ stop_filter node2
 wait "$est" || fail "the estimator stopped when the node died: exit $?"
 stop_logger
 cat "$work/node2.txt"
-grep -q "^hkf-estimator: 354 frames" "$work/steady.txt" || fail "the estimator did not run the clip through"
+# every frame of the clip read: published or, on a loaded machine (ASan, a parallel build), dropped
+read_frames=$(sed -n 's/^hkf-estimator: \([0-9]*\) frames, .* \([0-9]*\) dropped;.*/\1 \2/p' "$work/steady.txt" | awk '{print $1 + $2}')
+[ "$read_frames" = 354 ] || fail "the estimator did not run the clip through (${read_frames:-no summary} of 354 frames)"
 "$python" - "$work/node_restart.lcmlog" "$types" "$restarted" "$stopped" <<'PY' || fail "the restarted node did not pick up the stream"
 import sys
 import lcm
