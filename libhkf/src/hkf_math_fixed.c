@@ -78,28 +78,18 @@ static hkf_real_t curve_lambda(const hkf_noise_curve_t *c)
 }
 
 /* What Eq. 8 derives from a curve once (floor, curvature, mu and sigma are
- * read from the settings): 1 / (sqrt(2) sigma) in unsigned Q0.32 (sigma >= 1). */
+ * read from the settings): 1 / (sqrt(2) sigma) in unsigned Q1.31 (sigma >= 1). */
 void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c)
 {
-    const uint64_t k = 199032864766430u; /* round(2^48 / sqrt(2)) */
-    uint64_t r = 0, q = 0;
-    int i;
-    for (i = 63; i >= 0; --i) { /* q = k / sigma, once at init */
-        r = (r << 1) | ((k >> i) & 1u);
-        q <<= 1;
-        if (r >= (uint64_t)c->sigma) {
-            r -= (uint64_t)c->sigma;
-            q |= 1u;
-        }
-    }
-    f->inv_width[lane] = (uint32_t)q;
+    /* round(2^47 / sqrt(2)) / sigma (Q16.16, >= 1): the division's domain (quotient < 2^31) */
+    f->inv_width[lane] = udiv_round(99516432383215u, (uint32_t)c->sigma);
 }
 
 /* Eq. 8 above its floor, u = x - mu: lambda (1 - e^-v), v = u^2 / (2 sigma^2). */
 hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
 {
     const uint64_t au = (uint64_t)hkf_abs(u);
-    const uint64_t w = (au * f->inv_width[lane]) >> 18; /* |u| / (sqrt(2) sigma), Q.30 */
+    const uint64_t w = (au * f->inv_width[lane]) >> 17; /* |u| / (sqrt(2) sigma), Q.30 */
     if (w < ((uint64_t)1 << 30)) { /* v < 1: curvature u^2 g(v) */
         const int64_t cu = hkf_saturate(((int64_t)f->settings->noise[lane].curvature_q24 * (int64_t)au + (1 << 23)) >> 24);
         const int64_t cu2 = hkf_saturate((cu * (int64_t)au) >> 16);

@@ -204,7 +204,7 @@ typedef struct {
 #if defined(HKF_REAL_FIXED)
     const hkf_settings_t *settings;     /* the caller's, by reference (see hkf_init) */
     /* what Eq. 8 derives from the curves */
-    uint32_t inv_width[HKF_LANES];      /* 1 / (sqrt(2) sigma), unsigned Q0.32 */
+    uint32_t inv_width[HKF_LANES];      /* 1 / (sqrt(2) sigma), Q1.31 */
 #else
     hkf_settings_t settings;
     /* per-lane copies of the settings the axis loops read */
