@@ -46,6 +46,8 @@ HKF_VARIANTS = {  # name -> hkf-filter --set options
 Q_BOOST_NAME = "hkf adaptive R + q_boost"
 Q_BOOST_SCALES = [0.0005, 0.001, 0.002, 0.005, 0.01, 0.02]
 Q_BOOST_VALUES = [30, 100, 300, 1000, 3000, 10000]
+# every filter compared, in the tables' order
+FILTER_NAMES = list(HKF_VARIANTS) + [Q_BOOST_NAME, "1 euro", "Accela", "EWMA"]
 # tune on these clips, report on the others (the README's split)
 TUNING_CLIPS = ["d0", "d3", "d9", "d11", "d14"]  # 274 still and 1,496 moving frames (mesh_pnp); the others 91 and 1,073
 ONE_EURO_MIN_CUTOFF = [0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
@@ -217,7 +219,6 @@ def lag_at(points, jitter):
 def report_split(rows, out):
     """Each filter's setting chosen on the tuning clips (the least lag at no more than the still jitter of
     the 1 euro filter at its recommended tuning), then measured on the other clips."""
-    names = list(HKF_VARIANTS) + [Q_BOOST_NAME, "1 euro", "Accela", "EWMA"]
     tune = pooled([r for r in rows if r["clip"] in TUNING_CLIPS])
     held_out = pooled([r for r in rows if r["clip"] not in TUNING_CLIPS])
     if not tune or not held_out:
@@ -232,7 +233,7 @@ def report_split(rows, out):
                      f"{ref['lag_ms']:.0f} ms\n")
         lines.append("| filter | setting (chosen on the tuning clips) | other clips: still jitter | other clips: lag |")
         lines.append("| --- | --- | ---: | ---: |")
-        for name in names:
+        for name in FILTER_NAMES:
             candidates = [c for c in tune if c["estimator"] == estimator and c["filter"] == name
                           and c["jitter"] <= level["jitter"]]
             if not candidates:
@@ -250,7 +251,6 @@ def report_split(rows, out):
 
 def report(curves, out):
     estimators = sorted({c["estimator"] for c in curves})
-    names = [n for n in list(HKF_VARIANTS) + [Q_BOOST_NAME, "1 euro", "Accela", "EWMA"]]
     lines = []
     for estimator in estimators:
         mine = [c for c in curves if c["estimator"] == estimator]
@@ -259,7 +259,7 @@ def report(curves, out):
                      f"({level['setting']}: {level['jitter']:.3f} deg per frame, lag {level['lag_ms']:.0f} ms)\n")
         lines.append("| filter | lag at equal jitter | nearest setting on its front | centre settle | centre offset |")
         lines.append("| --- | ---: | --- | ---: | ---: |")
-        for name in names:
+        for name in FILTER_NAMES:
             lag, nearest = lag_at([c for c in mine if c["filter"] == name], level["jitter"])
             if lag is None:
                 lines.append(f"| {name} | (its sweep does not reach this jitter) | | | |")

@@ -20,9 +20,7 @@ import math
 
 import numpy as np
 
-
-def wrap180(x):
-    return (x + 180.0) % 360.0 - 180.0
+from metrics import wrap180
 
 
 class OneEuro:

@@ -8,8 +8,9 @@
  * The definition is PUBLIC on the hkf::hkf target and written into hkf.pc, so
  * every user compiles against the same type as the library.
  *
- * Only src/hkf_math.h differs between the three: the filter itself is one
- * source (see that file for the fixed-point range analysis).
+ * Only the math layer (src/hkf_math.h, src/hkf_math_fixed.c) differs between
+ * the three: the filter itself is one source (see hkf_math.h for the
+ * fixed-point range analysis).
  */
 #ifndef HKF_REAL_H
 #define HKF_REAL_H
