@@ -47,4 +47,6 @@ fi
 
 # Third-party models, converted by our scripts into .models (shared by every build).
 "$root/tools/models/fetch_models.sh" "$root/.models"
+# CMSIS-DSP's sources from PyPI, for the Cortex-M4F cost comparison (tests/mcu).
+"$root/tools/mcu/fetch_cmsis_dsp.sh" "$root/.third_party/cmsis-dsp"
 echo "setup: all dependencies present"

@@ -4,12 +4,22 @@
 # target_test.c cross-compiled for CPU with REAL -> qemu-system-arm with
 # semihosting. Passes when the target's angles are within the tolerance of
 # the double build's. Exit 77 (skipped) without the toolchain or qemu.
+# REAL cmsis_dsp runs, instead of libhkf, the same filter written with
+# CMSIS-DSP's matrix functions (cmsis_dsp_filter.c; float, Cortex-M4F) against
+# the same double build; it needs tools/mcu/fetch_cmsis_dsp.sh's sources.
 # usage: run_target_test.sh BUILD_DIR SOURCE_DIR CPU REAL TOLERANCE_DEG
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) cpu=$3 real=$4 tolerance=$5
 for tool in arm-none-eabi-gcc qemu-system-arm; do
   command -v "$tool" >/dev/null || { echo "SKIP: $tool is not installed (scripts/setup.sh installs it)"; exit 77; }
 done
+program=hkf_target_test extra=()
+if [ "$real" = cmsis_dsp ]; then
+  cmsis=$source/.third_party/cmsis-dsp
+  [ -s "$cmsis/Include/arm_math.h" ] \
+    || { echo "SKIP: no CMSIS-DSP sources in $cmsis (tools/mcu/fetch_cmsis_dsp.sh, run by scripts/setup.sh)"; exit 77; }
+  program=hkf_cmsis_dsp_test extra=(-DHKF_CMSIS_DSP_DIR="$cmsis")
+fi
 clip=$source/../shared/data/videos/d10.mp4
 work=$build/mcu/$cpu-$real
 mkdir -p "$work"
@@ -27,14 +37,15 @@ fi
 build_type=Release
 [ "$cpu" = cortex-m0 ] && build_type=MinSizeRel
 cmake -S "$source" -B "$work/build" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$source/cmake/arm-none-eabi.cmake" \
-  -DHKF_CPU="$cpu" -DHKF_REAL="$real" -DCMAKE_BUILD_TYPE=$build_type -DHKF_MCU_SEQUENCE="$work/sequence.h" >/dev/null \
+  -DHKF_CPU="$cpu" -DHKF_REAL="${real/cmsis_dsp/float}" -DCMAKE_BUILD_TYPE=$build_type \
+  -DHKF_MCU_SEQUENCE="$work/sequence.h" "${extra[@]}" >/dev/null \
   || fail "configuring the $cpu build"
 cmake --build "$work/build" >"$work/build.log" 2>&1 || { cat "$work/build.log" >&2; fail "building for $cpu"; }
 board=$(cat "$work/build/tests/mcu/board.txt")
 echo "running on qemu-system-arm -M $board ($cpu, $real)"
 status=0
 timeout 300 qemu-system-arm -M "$board" -nographic -monitor none -serial none -semihosting-config enable=on,target=native \
-  -icount shift=6 -kernel "$work/build/tests/mcu/hkf_target_test.elf" >"$work/output.txt" 2>&1 || status=$?
+  -icount shift=6 -kernel "$work/build/tests/mcu/$program.elf" >"$work/output.txt" 2>&1 || status=$?
 cat "$work/output.txt"
 [ "$status" = 0 ] || fail "the target test on $cpu ($real) exited $status"
 grep -q "largest error against the x86 double build" "$work/output.txt" || fail "no result from the target"

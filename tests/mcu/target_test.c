@@ -6,19 +6,15 @@
  * largest angle error per axis and exits 0 when all are within
  * SEQ_TOLERANCE_DEG. In the fixed-point build everything here is integer
  * (Q16.16 input, errors in Q16.16, printed as micro-degrees), so the
- * program links no floating-point routine at all. Also counts hkf_update's instructions: under
- * qemu -icount every instruction advances the clock by the same time, so
- * SysTick ticks per instruction are calibrated on a loop of known length.
+ * program links no floating-point routine at all. Also counts hkf_update's
+ * instructions (instruction_counter.h).
  */
 #include <stdint.h>
 
 #include "hkf/hkf.h"
+#include "instruction_counter.h"
 #include "semihosting.h"
 #include "sequence.h"
-
-#define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
-#define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
-#define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
 
 #if defined(HKF_REAL_FIXED)
 typedef int32_t error_t; /* Q16.16 degrees */
@@ -74,56 +70,25 @@ static void write_micro_degrees(const char *name, error_t e)
     semihosting_write(" udeg");
 }
 
-/* ticks / calibration_ticks * 200000 / updates, rounded, in integers */
-static long instructions_per_update(uint32_t ticks, uint32_t calibration_ticks, uint32_t updates)
-{
-    const uint64_t numerator = (uint64_t)ticks * 200000u, denominator = (uint64_t)calibration_ticks * updates;
-    uint64_t quotient = 0, bit = 1;
-    uint64_t d = denominator, n = numerator + denominator / 2u;
-    if (denominator == 0u) {
-        return 0;
-    }
-    while (d <= n / 2u) { /* shift-and-subtract division: no division routine linked in */
-        d <<= 1;
-        bit <<= 1;
-    }
-    for (; bit != 0u; d >>= 1, bit >>= 1) {
-        if (n >= d) {
-            n -= d;
-            quotient |= bit;
-        }
-    }
-    return (long)quotient;
-}
-
 int main(void)
 {
     static hkf_filter_t filter; /* static: the stack holds only the call frames */
     error_t worst[3] = {0, 0, 0};
-    uint32_t ticks = 0, updates = 0, calibration_ticks;
+    uint32_t ticks = 0, updates = 0;
     int i, a, failures = 0;
     if (hkf_init(&filter, &hkf_default_settings) != HKF_OK) {
         semihosting_write("target: hkf_init failed\n");
         return 1;
     }
-    SYST_RVR = 0x00FFFFFFu;
-    SYST_CVR = 0u;
-    SYST_CSR = 0x5u; /* enabled, processor clock, no interrupt */
-    {
-        /* calibration: 2 instructions (subs, bne) per turn */
-        uint32_t turns = 100000u;
-        const uint32_t start = SYST_CVR;
-        __asm__ volatile(".syntax unified\n1: subs %0, %0, #1\n\tbne 1b" : "+l"(turns));
-        calibration_ticks = (start - SYST_CVR) & 0x00FFFFFFu;
-    }
+    counter_start();
     for (i = 0; i < SEQ_FRAMES; ++i) {
         hkf_output_t out;
         int result;
         if (seq_valid[i]) {
             const hkf_real_t z[3] = {SEQ_Z(i, 0), SEQ_Z(i, 1), SEQ_Z(i, 2)};
-            const uint32_t start = SYST_CVR;
+            const uint32_t start = counter_now();
             result = hkf_update(&filter, z, SEQ_DT(i), &out);
-            ticks += (start - SYST_CVR) & 0x00FFFFFFu; /* counts down */
+            ticks += counter_ticks(start, counter_now());
             ++updates;
         } else {
             result = hkf_predict(&filter, SEQ_DT(i), &out);
@@ -156,11 +121,11 @@ int main(void)
     semihosting_write(" udeg); hkf_update: ");
     semihosting_write_int((long)updates);
     semihosting_write(" calls, ");
-    semihosting_write_int(instructions_per_update(ticks, calibration_ticks, updates));
+    semihosting_write_int(counter_instructions_per_call(ticks, updates));
     semihosting_write(" instructions each (SysTick: ");
     semihosting_write_int((long)ticks);
     semihosting_write(" ticks; ");
-    semihosting_write_int((long)calibration_ticks);
+    semihosting_write_int((long)counter_calibration_ticks());
     semihosting_write(" for 200000 instructions); sizeof(hkf_filter_t) ");
     semihosting_write_int((long)sizeof(hkf_filter_t));
     semihosting_write(" B\n");

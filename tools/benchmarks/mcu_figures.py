@@ -7,6 +7,9 @@ function (from GCC's -fcallgraph-info=su call graph), instructions per
 hkf_update and the error against the x86 double build (from the qemu run of
 the target test), and the runtime routines the library itself calls (its
 undefined symbols: libm, soft-float, integer division, 64-bit multiply).
+On the Cortex-M4F also cycles per update (cortex_m4_cycles.py: the executed
+instructions priced by the Cortex-M4 manual), and a second table: libhkf
+against the same filter written with CMSIS-DSP's matrix functions.
 Reads the trees the hkf.mcu.* tests leave in BUILD/mcu/.
 usage: mcu_figures.py BUILD_DIR"""
 import glob
@@ -14,6 +17,8 @@ import os
 import re
 import subprocess
 import sys
+
+import cortex_m4_cycles
 
 TARGETS = [("cortex-m0", "fixed"), ("cortex-m0", "float"), ("cortex-m4f", "fixed"), ("cortex-m4f", "float"),
            ("cortex-m7", "fixed"), ("cortex-m7", "float"), ("cortex-m7", "double")]
@@ -93,24 +98,54 @@ def main():
         stacks = {f: worst_stack(f, own, calls) for f in PUBLIC}
         soft, libm = runtime_routines(lib)
         linked = linked_share(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.map"))
+        cycles = m4_cycles(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.elf"), "hkf_update") \
+            if cpu == "cortex-m4f" else None
         rows.append((cpu, real, text, linked, data, bss, int(state.group(1)), max(stacks.values()),
                      max(stacks, key=stacks.get), stacks["hkf_update"], int(instructions.group(1)),
-                     max(int(e) for e in errors.groups()) / 1000.0, soft, libm))
+                     max(int(e) for e in errors.groups()) / 1000.0, soft, libm, cycles))
     print("| target | type | flash: library (linked) | data + bss | hkf_filter_t | worst stack (function) "
-          "| stack of hkf_update | instructions per hkf_update | largest error vs x86 double | runtime routines called |")
-    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
-    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, insns, error, soft, libm in rows:
+          "| stack of hkf_update | instructions per hkf_update | cycles (M4 estimate) | largest error vs x86 double "
+          "| runtime routines called |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
+    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, insns, error, soft, libm, cycles in rows:
         routines = ", ".join(libm + soft) if (soft or libm) else "none"
         if len(soft) > 6:
             routines = ", ".join(libm) + (", " if libm else "") + f"{len(soft)} soft-float routines ({', '.join(soft[:4])}, …)"
         print(f"| {cpu} | {real} | {text:,} B ({linked:,} B) | {data + bss} B | {state} B | {worst} B (`{worst_fn}`) | {update_stack} B "
-              f"| {insns:,} | {error:.3f} mdeg | {routines} |")
+              f"| {insns:,} | {cycles or '–'} | {error:.3f} mdeg | {routines} |")
     print("\n(Cortex-M0 built with -Os, the others with -O3. Flash: the whole libhkf.a, and in brackets what the "
           "target test firmware (hkf_init, hkf_update, hkf_predict, the default settings; --gc-sections) took from "
           "it; error strings and unused presets are dropped there. Stack: own frame + deepest callee, from "
           "-fcallgraph-info=su; memcpy is the firmware's own and not counted. Instructions: qemu -icount, "
-          "SysTick calibrated on a loop of known length; not cycles. Error: the largest angle difference over "
-          "the 448 frames of d10.mp4; fixed point against the double build fed the same Q16.16 input.)")
+          "SysTick calibrated on a loop of known length. Cycles: Cortex-M4 only, the instructions hkf_update executes "
+          "(qemu, one at a time) priced by the Cortex-M4 TRM, low..high for what the pipeline decides (branch "
+          "refill 1-3, load/store pipelining). Error: the largest angle difference over the 448 frames of d10.mp4; "
+          "fixed point against the double build fed the same Q16.16 input.)")
+    cmsis_tree = os.path.join(build, "mcu", "cortex-m4f-cmsis_dsp")
+    if not os.path.exists(os.path.join(cmsis_tree, "output.txt")):
+        sys.exit(f"mcu_figures: no CMSIS-DSP comparison in {cmsis_tree}: run `ctest -R hkf.mcu.cortex-m4f.cmsis_dsp`")
+    cmsis_out = open(os.path.join(cmsis_tree, "output.txt")).read()
+    cmsis_errors = re.search(r"pitch (\d+) udeg, yaw (\d+) udeg, roll (\d+) udeg", cmsis_out)
+    cmsis_insns = int(re.search(r"(\d+) instructions each", cmsis_out).group(1))
+    cmsis_state = int(re.search(r"sizeof\(cmsis_filter_t\) (\d+) B", cmsis_out).group(1))
+    cmsis_work = int(re.search(r"work matrices (\d+) B", cmsis_out).group(1))
+    cmsis_cycles = m4_cycles(os.path.join(cmsis_tree, "build", "tests", "mcu", "hkf_cmsis_dsp_test.elf"),
+                             "cmsis_filter_update")
+    hkf_row = next(r for r in rows if r[0] == "cortex-m4f" and r[1] == "float")
+    print("\n| Cortex-M4F, float, default settings | instructions per update | cycles (M4 estimate) "
+          "| largest error vs x86 double | filter state |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+    print(f"| libhkf `hkf_update` | {hkf_row[10]:,} | {hkf_row[14]} | {hkf_row[11]:.3f} mdeg | {hkf_row[6]} B |")
+    print(f"| the same filter with CMSIS-DSP 1.10.3 (`arm_mat_*_f32`, 6x6) | {cmsis_insns:,} | {cmsis_cycles} "
+          f"| {max(int(e) for e in cmsis_errors.groups()) / 1000.0:.3f} mdeg | {cmsis_state} B + {cmsis_work:,} B of work matrices |")
+    print(f"\n(CMSIS-DSP / libhkf: {cmsis_insns / hkf_row[10]:.1f}x the instructions. CMSIS-DSP from PyPI's cmsisdsp "
+          "source distribution, -O3 with ARM_MATH_LOOPUNROLL; tests/mcu/cmsis_dsp_filter.c.)")
+
+
+def m4_cycles(elf, function):
+    """'low..high' cycles per call of FUNCTION (called from main) on a Cortex-M4."""
+    _, _, low, high, _ = cortex_m4_cycles.cycles_per_call(elf, "mps2-an386", function, "main")
+    return f"{low:,.0f}..{high:,.0f}"
 
 
 if __name__ == "__main__":
