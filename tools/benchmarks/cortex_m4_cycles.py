@@ -146,7 +146,9 @@ def main():
     if "-h" in sys.argv or "--help" in sys.argv or len(args) not in (4, 5):
         print(__doc__)
         sys.exit(0 if ("-h" in sys.argv or "--help" in sys.argv) else 2)
-    top = int(args[4]) if len(args) == 5 and "--top" in sys.argv else 0
+    top = int(args[4]) if len(args) == 5 and "--top" in sys.argv and args[4].isdigit() else 0
+    if not os.path.isfile(args[0]):
+        sys.exit(f"cortex_m4_cycles: no firmware {args[0]}")
     calls, instructions, low, high, kinds = cycles_per_call(*args[:4])
     print(f"{args[2]}: {calls} calls, {instructions:.1f} instructions, {low:.1f}..{high:.1f} cycles per call "
           f"(Cortex-M4 TRM timings)")
