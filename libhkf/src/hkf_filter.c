@@ -82,13 +82,14 @@ static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, h
 }
 
 /* q per lane: the setting, or with q_boost on, q (1 + q_boost m) (hkf.h),
- * at most HKF_MAX_PROCESS_NOISE: the range every setting of q is checked
- * against, so the boost never takes the filter where no q could (found by
- * fuzz_libhkf: an outlier's y^2 / S of ~1e13 made q, then P, infinite). */
+ * at most HKF_MAX_BOOSTED_PROCESS_NOISE (or q, where q is larger): within
+ * the range every setting of q is checked against, so the boost never takes
+ * the filter where no q could (found by fuzz_libhkf: an outlier's y^2 / S
+ * of ~1e13 made q, then P, infinite). */
 static inline void process_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t q[restrict HKF_LANES])
 {
     const hkf_real_t boost = HKF_SETTINGS(f)->q_boost;
-    const hkf_real_t most = HKF_REAL_FROM(HKF_MAX_PROCESS_NOISE);
+    const hkf_real_t most = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         q[a] = HKF_Q(f, a);
@@ -96,7 +97,7 @@ static inline void process_noise_lanes(const hkf_filter_t *restrict f, hkf_real_
     if (boost > 0) {
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
             const hkf_real_t boosted = hkf_add(q[a], hkf_mul(q[a], hkf_mul(boost, f->motion[a])));
-            q[a] = boosted > q[a] ? (boosted < most ? boosted : most) : q[a];
+            q[a] = boosted > q[a] ? (boosted < most ? boosted : most > q[a] ? most : q[a]) : q[a];
         }
     }
 }

@@ -267,6 +267,7 @@ static void test_q_boost_still_and_moving(void **state)
     plain.loop_closure = HKF_LOOP_CLOSURE_OFF;
     plain.noise_mode = HKF_NOISE_CONSTANT;
     plain.process_noise[1] = R(10);
+    plain.q_boost = 0;
     boosted = plain;
     boosted.q_boost = R(100);
     assert_int_equal(hkf_init(&fp, &plain), HKF_OK);

@@ -136,7 +136,7 @@ private:
         Mat6 Q = Mat6::Zero();
         for (int a = 0; a < 3; ++a) {
             const double q = std::min(D(s_.process_noise[a]) * (1.0 + D(s_.q_boost) * motion_(a)),
-                                      std::max(D(s_.process_noise[a]), static_cast<double>(HKF_MAX_PROCESS_NOISE)));
+                                      std::max(D(s_.process_noise[a]), static_cast<double>(HKF_MAX_BOOSTED_PROCESS_NOISE)));
             Q(a, a) = q * dt * dt * dt / 3.0;
             Q(a, a + 3) = Q(a + 3, a) = q * dt * dt / 2.0;
             Q(a + 3, a + 3) = q * dt;
@@ -318,6 +318,7 @@ int main()
         float lc_theta;
         bool expect_closures; /* the random walk rarely comes within 2 deg of the centre */
         float q_boost = 0.0f;
+        bool defaults = false; /* all of hkf_default_settings (its q and q_boost too) */
     };
     const Mode modes[] = {
         {"constant", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
@@ -329,14 +330,18 @@ int main()
         {"constant+gate", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 3.0f, 2.0f, false},
         {"adaptive+q_boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, BOOST},
         {"lc_norm+gate+q_boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true, 10.0f * BOOST},
-        {"paper defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure,
-         static_cast<float>(D(hkf_default_settings.gate_sigma)), static_cast<float>(D(hkf_default_settings.lc_theta)), false},
+        {"paper", hkf_paper_settings.noise_mode, hkf_paper_settings.loop_closure,
+         static_cast<float>(D(hkf_paper_settings.gate_sigma)), static_cast<float>(D(hkf_paper_settings.lc_theta)), false},
+        {"defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure,
+         static_cast<float>(D(hkf_default_settings.gate_sigma)), static_cast<float>(D(hkf_default_settings.lc_theta)), false,
+         static_cast<float>(D(hkf_default_settings.q_boost)), true},
     };
     const long steps = 20000;
     int failures = 0, passed = 0;
     for (const Mode &m : modes) {
         for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-            hkf_settings_t s = hkf_default_settings;
+            /* the paper's filter, with the mode's changes; or the defaults (small q, q_boost) */
+            hkf_settings_t s = m.defaults ? hkf_default_settings : hkf_paper_settings;
             s.noise_mode = m.noise;
             s.loop_closure = m.loop_closure;
             s.gate_sigma = R(m.gate);

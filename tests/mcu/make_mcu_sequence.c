@@ -2,11 +2,12 @@
  * make_mcu_sequence - the target tests' input and expected output: reads a raw
  * pose sequence as CSV (dt_s,valid,pitch,yaw,roll per frame; made from an LCM
  * log by raw_log_to_csv.py), runs it through libhkf built for double on this
- * machine with the default settings, and writes sequence.h for target_test.c:
- * the input as float and as Q16.16, and the double build's angles for each
- * (a fixed-point target is compared with the double build fed the same
- * Q16.16-rounded numbers it sees).
- * usage: make_mcu_sequence IN.csv NAME TOLERANCE_DEG OUT.h
+ * machine with the two setting sets the target test runs (the paper's filter,
+ * hkf_paper_settings; the defaults, hkf_default_settings), and writes
+ * sequence.h for target_test.c: the input as float and as Q16.16, and the
+ * double build's angles for each (a fixed-point target is compared with the
+ * double build fed the same Q16.16-rounded numbers it sees).
+ * usage: make_mcu_sequence IN.csv NAME PAPER_TOLERANCE_DEG DEFAULTS_TOLERANCE_DEG OUT.h
  */
 #include <math.h>
 #include <stdio.h>
@@ -26,12 +27,12 @@ static double to_q16(double x) { return (double)q16(x) / 65536.0; }
 
 /* The sequence through the double build, fed the numbers as `seen` makes them;
  * the angles after each frame (0 before the first measurement). */
-static int filter_sequence(int n, const double *dt, const int *valid, double (*z)[3], double (*seen)(double),
-                           double (*expected)[3])
+static int filter_sequence(const hkf_settings_t *settings, int n, const double *dt, const int *valid, double (*z)[3],
+                           double (*seen)(double), double (*expected)[3])
 {
     hkf_filter_t filter;
     int i;
-    if (hkf_init(&filter, &hkf_default_settings) != HKF_OK) {
+    if (hkf_init(&filter, settings) != HKF_OK) {
         fprintf(stderr, "make_mcu_sequence: hkf_init failed\n");
         return 1;
     }
@@ -54,19 +55,21 @@ static int filter_sequence(int n, const double *dt, const int *valid, double (*z
 
 int main(int argc, char **argv)
 {
-    static double dt[MAX_FRAMES], z[MAX_FRAMES][3], expected[MAX_FRAMES][3], expected_q16[MAX_FRAMES][3];
+    static double dt[MAX_FRAMES], z[MAX_FRAMES][3], expected[2][MAX_FRAMES][3], expected_q16[2][MAX_FRAMES][3];
     static int valid[MAX_FRAMES];
-    hkf_filter_t filter;
+    const hkf_settings_t *settings[2] = {&hkf_paper_settings, &hkf_default_settings};
     FILE *in, *out;
-    int n = 0, i;
+    int n = 0, i, k;
     if (argc == 2 && strcmp(argv[1], "--help") == 0) {
-        printf("usage: make_mcu_sequence IN.csv NAME TOLERANCE_DEG OUT.h\n"
-               "Filters IN.csv (dt_s,valid,pitch,yaw,roll per frame) with libhkf in double and writes\n"
-               "sequence.h (the input and the expected angles, in float and in Q16.16) for tests/mcu/target_test.c.\n");
+        printf("usage: make_mcu_sequence IN.csv NAME PAPER_TOLERANCE_DEG DEFAULTS_TOLERANCE_DEG OUT.h\n"
+               "Filters IN.csv (dt_s,valid,pitch,yaw,roll per frame) with libhkf in double, with the paper's\n"
+               "settings and with the defaults, and writes sequence.h (the input and the expected angles, in\n"
+               "float and in Q16.16) for tests/mcu/target_test.c.\n");
         return 0;
     }
-    if (argc != 5) {
-        fprintf(stderr, "usage: make_mcu_sequence IN.csv NAME TOLERANCE_DEG OUT.h (see --help)\n");
+    if (argc != 6) {
+        fprintf(stderr, "usage: make_mcu_sequence IN.csv NAME PAPER_TOLERANCE_DEG DEFAULTS_TOLERANCE_DEG OUT.h "
+                        "(see --help)\n");
         return 2;
     }
     in = fopen(argv[1], "r");
@@ -83,17 +86,21 @@ int main(int argc, char **argv)
         fprintf(stderr, "make_mcu_sequence: no frames in %s\n", argv[1]);
         return 1;
     }
-    if (filter_sequence(n, dt, valid, z, to_float, expected) != 0 ||
-        filter_sequence(n, dt, valid, z, to_q16, expected_q16) != 0) {
-        return 1;
+    for (k = 0; k < 2; ++k) {
+        if (filter_sequence(settings[k], n, dt, valid, z, to_float, expected[k]) != 0 ||
+            filter_sequence(settings[k], n, dt, valid, z, to_q16, expected_q16[k]) != 0) {
+            return 1;
+        }
     }
-    out = fopen(argv[4], "w");
+    out = fopen(argv[5], "w");
     if (out == NULL) {
-        fprintf(stderr, "make_mcu_sequence: cannot write %s\n", argv[4]);
+        fprintf(stderr, "make_mcu_sequence: cannot write %s\n", argv[5]);
         return 1;
     }
     fprintf(out, "/* Written by make_mcu_sequence from %s: do not edit. */\n", argv[1]);
-    fprintf(out, "#define SEQ_NAME \"%s\"\n#define SEQ_FRAMES %d\n#define SEQ_TOLERANCE_DEG %sf\n", argv[2], n, argv[3]);
+    fprintf(out, "#define SEQ_NAME \"%s\"\n#define SEQ_FRAMES %d\n", argv[2], n);
+    fprintf(out, "/* [0]: the paper's settings, [1]: the defaults */\n");
+    fprintf(out, "static const float seq_tolerance_deg[2] = {%sf, %sf};\n", argv[3], argv[4]);
     fprintf(out, "static const unsigned char seq_valid[SEQ_FRAMES] = {\n");
     for (i = 0; i < n; ++i) {
         fprintf(out, "%d,%s", valid[i], i % 32 == 31 ? "\n" : "");
@@ -106,9 +113,13 @@ int main(int argc, char **argv)
     for (i = 0; i < n; ++i) {
         fprintf(out, "{%.9gf, %.9gf, %.9gf},\n", (float)z[i][0], (float)z[i][1], (float)z[i][2]);
     }
-    fprintf(out, "};\n/* the x86 double build's angles */\nstatic const float seq_expected[SEQ_FRAMES][3] = {\n");
-    for (i = 0; i < n; ++i) {
-        fprintf(out, "{%.9gf, %.9gf, %.9gf},\n", expected[i][0], expected[i][1], expected[i][2]);
+    fprintf(out, "};\n/* the x86 double build's angles */\nstatic const float seq_expected[2][SEQ_FRAMES][3] = {\n");
+    for (k = 0; k < 2; ++k) {
+        fprintf(out, "{\n");
+        for (i = 0; i < n; ++i) {
+            fprintf(out, "{%.9gf, %.9gf, %.9gf},\n", expected[k][i][0], expected[k][i][1], expected[k][i][2]);
+        }
+        fprintf(out, "},\n");
     }
     fprintf(out, "};\n#else\n/* Q16.16 (value * 65536): the input and the double build's angles for that input */\n");
     fprintf(out, "static const int32_t seq_dt_q16[SEQ_FRAMES] = {\n");
@@ -119,15 +130,21 @@ int main(int argc, char **argv)
     for (i = 0; i < n; ++i) {
         fprintf(out, "{%ld, %ld, %ld},\n", q16(z[i][0]), q16(z[i][1]), q16(z[i][2]));
     }
-    fprintf(out, "};\nstatic const int32_t seq_expected_q16[SEQ_FRAMES][3] = {\n");
-    for (i = 0; i < n; ++i) {
-        fprintf(out, "{%ld, %ld, %ld},\n", q16(expected_q16[i][0]), q16(expected_q16[i][1]), q16(expected_q16[i][2]));
+    fprintf(out, "};\nstatic const int32_t seq_expected_q16[2][SEQ_FRAMES][3] = {\n");
+    for (k = 0; k < 2; ++k) {
+        fprintf(out, "{\n");
+        for (i = 0; i < n; ++i) {
+            fprintf(out, "{%ld, %ld, %ld},\n", q16(expected_q16[k][i][0]), q16(expected_q16[k][i][1]),
+                    q16(expected_q16[k][i][2]));
+        }
+        fprintf(out, "},\n");
     }
-    fprintf(out, "};\n#define SEQ_TOLERANCE_Q16 %ld\n#endif\n", q16(atof(argv[3])));
+    fprintf(out, "};\nstatic const int32_t seq_tolerance_q16[2] = {%ld, %ld};\n#endif\n", q16(atof(argv[3])),
+            q16(atof(argv[4])));
     if (fclose(out) != 0) {
-        fprintf(stderr, "make_mcu_sequence: error writing %s\n", argv[4]);
+        fprintf(stderr, "make_mcu_sequence: error writing %s\n", argv[5]);
         return 1;
     }
-    printf("make_mcu_sequence: %d frames (%s) -> %s\n", n, argv[2], argv[4]);
+    printf("make_mcu_sequence: %d frames (%s) -> %s\n", n, argv[2], argv[5]);
     return 0;
 }

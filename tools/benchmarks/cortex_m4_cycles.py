@@ -14,10 +14,11 @@ pipelines to 1 cycle (low) or takes its full 2 (high); IT folds to 0 (low)
 or 1 (high); SDIV/UDIV 2 (low) to 12 (high). Stalls for using an FPU result
 the next cycle are not modelled (the manual gives issue cycles).
 
-usage: cortex_m4_cycles.py ELF BOARD FUNCTION CALLER [--top N]
+usage: cortex_m4_cycles.py ELF BOARD FUNCTION CALLER [--first K] [--calls M] [--top N]
   Runs ELF on qemu-system-arm -M BOARD with semihosting and prints, per call
-  of FUNCTION from CALLER: instructions, and cycles low..high; --top N also
-  lists the N instruction kinds that cost the most cycles."""
+  of FUNCTION from CALLER: instructions, and cycles low..high; only calls
+  K..K+M-1 (counted from 0) with --first/--calls; --top N also lists the N
+  instruction kinds that cost the most cycles."""
 import collections
 import os
 import re
@@ -109,20 +110,22 @@ def trace(elf, board):
             return [int(m.group(1), 16) for m in map(pattern.search, lines) if m]
 
 
-def cycles_per_call(elf, board, function, caller):
+def cycles_per_call(elf, board, function, caller, first=0, count=None):
     code = disassembly(elf)
     ranges = function_ranges(elf)
     entry, (caller_start, caller_end) = ranges[function][0], ranges[caller]
     addresses = trace(elf, board)
-    calls, instructions, low, high = 0, 0, 0, 0
+    calls, seen, instructions, low, high = 0, 0, 0, 0, 0
     kinds = collections.Counter()
-    inside, previous_single_memory = False, False
+    inside, counted, previous_single_memory = False, False, False
     for pc, following in zip(addresses, addresses[1:] + [None]):
         if pc == entry and not inside:
-            inside, calls = True, calls + 1
+            inside, seen = True, seen + 1
+            counted = seen > first and (count is None or seen <= first + count)
+            calls += counted
         elif inside and caller_start <= pc < caller_end:
             inside = False
-        if not inside:
+        if not inside or not counted:
             continue
         mnemonic, operands, size = code.get(pc, ("?", "", 2))
         lo, hi = base_cost(mnemonic, operands)
@@ -142,14 +145,23 @@ def cycles_per_call(elf, board, function, caller):
 
 
 def main():
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
-    if "-h" in sys.argv or "--help" in sys.argv or len(args) not in (4, 5):
+    options, args, rest = {}, [], sys.argv[1:]
+    while rest:
+        word = rest.pop(0)
+        if word in ("--first", "--calls", "--top") and rest and rest[0].isdigit():
+            options[word] = int(rest.pop(0))
+        elif word.startswith("-"):
+            print(__doc__)
+            sys.exit(0 if word in ("-h", "--help") else 2)
+        else:
+            args.append(word)
+    if len(args) != 4:
         print(__doc__)
-        sys.exit(0 if ("-h" in sys.argv or "--help" in sys.argv) else 2)
-    top = int(args[4]) if len(args) == 5 and "--top" in sys.argv and args[4].isdigit() else 0
+        sys.exit(2)
+    top = options.get("--top", 0)
     if not os.path.isfile(args[0]):
         sys.exit(f"cortex_m4_cycles: no firmware {args[0]}")
-    calls, instructions, low, high, kinds = cycles_per_call(*args[:4])
+    calls, instructions, low, high, kinds = cycles_per_call(*args, options.get("--first", 0), options.get("--calls"))
     print(f"{args[2]}: {calls} calls, {instructions:.1f} instructions, {low:.1f}..{high:.1f} cycles per call "
           f"(Cortex-M4 TRM timings)")
     for kind, cycles in sorted(kinds.items(), key=lambda kv: -kv[1])[:top]:

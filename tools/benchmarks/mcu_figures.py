@@ -54,13 +54,15 @@ def size_of_archive(archive):
 
 
 def linked_share(map_file):
-    """Bytes of text and rodata the firmware took from libhkf.a (from the linker map)."""
+    """Bytes of text and rodata the firmware took from libhkf.a (from the linker map), less
+    hkf_paper_settings: the target test runs both setting sets, a firmware needs one."""
     text = open(map_file).read()
     text = text[text.index("Linker script and memory map"):]
     total = 0
     for section, address, size, origin in re.findall(r"^ (\.[\w.]+)\s*\n?\s+0x([0-9a-f]+)\s+0x([0-9a-f]+)\s+(\S+)",
                                                      text, re.M):
-        if "libhkf.a" in origin and int(address, 16) != 0 and section.split(".")[1] in ("text", "rodata"):
+        if "libhkf.a" in origin and int(address, 16) != 0 and section.split(".")[1] in ("text", "rodata") \
+                and section != ".rodata.hkf_paper_settings":
             total += int(size, 16)
     return total
 
@@ -89,8 +91,14 @@ def main():
         if not os.path.exists(output):
             sys.exit(f"mcu_figures: no {output}: run `ctest -R hkf.mcu` in {build} first")
         text_out = open(output).read()
-        errors = re.search(r"pitch (\d+) udeg, yaw (\d+) udeg, roll (\d+) udeg", text_out)
-        instructions = re.search(r"(\d+) instructions each", text_out)
+        runs = {}
+        for settings in ("paper", "defaults"):
+            line = re.search(rf"^target \({settings}\): .*$", text_out, re.M)
+            if line is None:
+                sys.exit(f"mcu_figures: no '{settings}' result in {output}: rerun `ctest -R hkf.mcu`")
+            errors = re.search(r"pitch (\d+) udeg, yaw (\d+) udeg, roll (\d+) udeg", line.group(0))
+            runs[settings] = (int(re.search(r"(\d+) instructions each", line.group(0)).group(1)),
+                              max(int(e) for e in errors.groups()) / 1000.0)
         state = re.search(r"sizeof\(hkf_filter_t\) (\d+) B", text_out)
         lib = os.path.join(tree, "build", "libhkf", "libhkf.a")
         text, data, bss = size_of_archive(lib)
@@ -98,26 +106,30 @@ def main():
         stacks = {f: worst_stack(f, own, calls) for f in PUBLIC}
         soft, libm = runtime_routines(lib)
         linked = linked_share(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.map"))
-        cycles = m4_cycles(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.elf"), "hkf_update") \
+        elf = os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.elf")
+        frames = len(re.findall(r"^\d", open(os.path.join(build, "mcu", "sequence.csv")).read(), re.M))
+        cycles = [m4_cycles(elf, "hkf_update", "run_sequence", first, frames) for first in (0, frames)] \
             if cpu == "cortex-m4f" else None
         rows.append((cpu, real, text, linked, data, bss, int(state.group(1)), max(stacks.values()),
-                     max(stacks, key=stacks.get), stacks["hkf_update"], int(instructions.group(1)),
-                     max(int(e) for e in errors.groups()) / 1000.0, soft, libm, cycles))
+                     max(stacks, key=stacks.get), stacks["hkf_update"], runs, soft, libm, cycles))
     print("| target | type | flash: library (linked) | data + bss | hkf_filter_t | worst stack (function) "
-          "| stack of hkf_update | instructions per hkf_update | cycles (M4 estimate) | largest error vs x86 double "
-          "| runtime routines called |")
+          "| stack of hkf_update | instructions per hkf_update: paper (defaults) | cycles (M4 estimate): paper "
+          "(defaults) | largest error vs x86 double: paper (defaults) | runtime routines called |")
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
-    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, insns, error, soft, libm, cycles in rows:
+    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, runs, soft, libm, cycles in rows:
         routines = ", ".join(libm + soft) if (soft or libm) else "none"
         if len(soft) > 6:
             routines = ", ".join(libm) + (", " if libm else "") + f"{len(soft)} soft-float routines ({', '.join(soft[:4])}, …)"
         print(f"| {cpu} | {real} | {text:,} B ({linked:,} B) | {data + bss} B | {state} B | {worst} B (`{worst_fn}`) | {update_stack} B "
-              f"| {insns:,} | {cycles or '–'} | {error:.3f} mdeg | {routines} |")
+              f"| {runs['paper'][0]:,} ({runs['defaults'][0]:,}) | {f'{cycles[0]} ({cycles[1]})' if cycles else '–'} "
+              f"| {runs['paper'][1]:.3f} ({runs['defaults'][1]:.3f}) mdeg | {routines} |")
     print("\n(Cortex-M0 built with -Os, the others with -O3. Flash: the whole libhkf.a, and in brackets what the "
           "target test firmware (hkf_init, hkf_update, hkf_predict, the default settings; --gc-sections) took from "
-          "it; error strings and unused presets are dropped there. Stack: own frame + deepest callee, from "
+          "it, less the second setting set the test also runs (hkf_paper_settings); error strings and unused "
+          "presets are dropped there. Stack: own frame + deepest callee, from "
           "-fcallgraph-info=su; memcpy is the firmware's own and not counted. Instructions: qemu -icount, "
-          "SysTick calibrated on a loop of known length. Cycles: Cortex-M4 only, the instructions hkf_update executes "
+          "SysTick calibrated on a loop of known length; with the paper's settings (hkf_paper_settings) and, in brackets, "
+          "the defaults (q_boost on). Cycles: Cortex-M4 only, the instructions hkf_update executes "
           "(qemu, one at a time) priced by the Cortex-M4 TRM, low..high for what the pipeline decides (branch "
           "refill 1-3, load/store pipelining). Error: the largest angle difference over the 448 frames of d10.mp4; "
           "fixed point against the double build fed the same Q16.16 input.)")
@@ -130,21 +142,22 @@ def main():
     cmsis_state = int(re.search(r"sizeof\(cmsis_filter_t\) (\d+) B", cmsis_out).group(1))
     cmsis_work = int(re.search(r"work matrices (\d+) B", cmsis_out).group(1))
     cmsis_cycles = m4_cycles(os.path.join(cmsis_tree, "build", "tests", "mcu", "hkf_cmsis_dsp_test.elf"),
-                             "cmsis_filter_update")
+                             "cmsis_filter_update", "main")
     hkf_row = next(r for r in rows if r[0] == "cortex-m4f" and r[1] == "float")
+    hkf_insns, hkf_error, hkf_cycles = hkf_row[10]["paper"][0], hkf_row[10]["paper"][1], hkf_row[13][0]
     print("\n| Cortex-M4F, float, default settings | instructions per update | cycles (M4 estimate) "
           "| largest error vs x86 double | filter state |")
     print("| --- | ---: | ---: | ---: | ---: |")
-    print(f"| libhkf `hkf_update` | {hkf_row[10]:,} | {hkf_row[14]} | {hkf_row[11]:.3f} mdeg | {hkf_row[6]} B |")
+    print(f"| libhkf `hkf_update` | {hkf_insns:,} | {hkf_cycles} | {hkf_error:.3f} mdeg | {hkf_row[6]} B |")
     print(f"| the same filter with CMSIS-DSP 1.10.3 (`arm_mat_*_f32`, 6x6) | {cmsis_insns:,} | {cmsis_cycles} "
           f"| {max(int(e) for e in cmsis_errors.groups()) / 1000.0:.3f} mdeg | {cmsis_state} B + {cmsis_work:,} B of work matrices |")
-    print(f"\n(CMSIS-DSP / libhkf: {cmsis_insns / hkf_row[10]:.1f}x the instructions. CMSIS-DSP from PyPI's cmsisdsp "
+    print(f"\n(The paper's settings, which both implement. CMSIS-DSP / libhkf: {cmsis_insns / hkf_insns:.1f}x the instructions. CMSIS-DSP from PyPI's cmsisdsp "
           "source distribution, -O3 with ARM_MATH_LOOPUNROLL; tests/mcu/cmsis_dsp_filter.c.)")
 
 
-def m4_cycles(elf, function):
-    """'low..high' cycles per call of FUNCTION (called from main) on a Cortex-M4."""
-    _, _, low, high, _ = cortex_m4_cycles.cycles_per_call(elf, "mps2-an386", function, "main")
+def m4_cycles(elf, function, caller, first=0, count=None):
+    """'low..high' cycles per call of FUNCTION (from CALLER; calls first..first+count-1) on a Cortex-M4."""
+    _, _, low, high, _ = cortex_m4_cycles.cycles_per_call(elf, "mps2-an386", function, caller, first, count)
     return f"{low:,.0f}..{high:,.0f}"
 
 

@@ -241,8 +241,8 @@ int main(int argc, char **argv)
         previous = frame.time;
     }
 
-    hkf_settings_t paper = hkf_default_settings;
-    hkf_settings_t constant = hkf_default_settings;
+    hkf_settings_t paper = hkf_paper_settings;
+    hkf_settings_t constant = paper;
     constant.noise_mode = HKF_NOISE_CONSTANT;
     constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
     paper.lc_theta = 6.0f; /* wider than the paper's 2 deg so this noisy drive closes the loop often */

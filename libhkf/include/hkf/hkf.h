@@ -86,6 +86,11 @@ const char *hkf_result_string(int result);
 #endif
 #define HKF_MAX_TIME 10          /* s: max_dt, coast_time, q_boost_time */
 #define HKF_MAX_Q_BOOST 16384    /* q_boost */
+/* q_boost raises q to at most this, or to q itself where q is larger: the
+ * same in every build (fixed point's whole range), so that a float, double
+ * and fixed-point filter give the same output. (On the real clips a cap of
+ * 1e6 instead changes the lag by 1-2 ms.) */
+#define HKF_MAX_BOOSTED_PROCESS_NOISE 16384 /* deg^2/s^3 */
 
 /* Measurements beyond this magnitude are rejected (HKF_ERROR_ANGLE_RANGE):
  * no head pose is that large, and it keeps every value inside the range of
@@ -153,14 +158,19 @@ typedef struct {
      * output; a moving one (innovations beyond R) raises q, so little lag.
      * m is updated after each accepted measurement, m += a (e - m) with
      * a = dt / (dt + q_boost_time) and e = y^2 / S - 1 clamped to [0, 1e4];
-     * the boosted q is at most HKF_MAX_PROCESS_NOISE. */
+     * the boosted q is at most HKF_MAX_BOOSTED_PROCESS_NOISE (or q). */
     hkf_real_t q_boost;
     hkf_real_t q_boost_time;       /* s */
 } hkf_settings_t;
 
 /* The defaults: the paper's filter (adaptive R with the FSA-Net curves of
- * Table I, loop closure xi = 0.618, theta = 2 deg), gate off. */
+ * Table I, loop closure xi = 0.618, theta = 2 deg), gate off, with a small
+ * q raised by motion (q 5 / 10 / 5, q_boost 3000), chosen on real head
+ * motion (README, "How it compares"). */
 extern const hkf_settings_t hkf_default_settings;
+/* The paper's filter alone: the same with q 500 / 1000 / 500 and q_boost 0
+ * (the defaults before the evaluation on real head motion). */
+extern const hkf_settings_t hkf_paper_settings;
 
 /* Noise curves of the paper's Table I, per axis (pitch, yaw, roll). Table I
  * prints roll to three significant digits, which loses tau - lambda (the
