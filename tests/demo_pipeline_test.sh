@@ -14,4 +14,13 @@ rows=$(($(wc -l <"$out/filtered.csv") - 1))
 grep -q " 0 with an unknown model" "$out/log.txt" || { echo "FAIL: measurements with an unknown model" >&2; exit 1; }
 for f in poses.png annotated.mp4; do [ -s "$out/$f" ] || { echo "FAIL: no $f" >&2; exit 1; }; done
 file "$out/poses.png" | grep -q "PNG image" || { echo "FAIL: poses.png is not a PNG" >&2; exit 1; }
-echo "demo_pipeline_test: passed ($rows filtered poses, plot and video written)"
+# hkf-annotate drew raw and filtered poses on every frame with a face
+read -r annotated with_raw with_filtered < <(sed -n 's/^hkf-annotate: .*: \([0-9]*\) frames, \([0-9]*\) with a raw pose, \([0-9]*\) with a filtered pose$/\1 \2 \3/p' "$out/log.txt")
+[ "${with_raw:-0}" -eq "$frames" ] && [ "${with_filtered:-0}" -ge "$frames" ] ||
+  { echo "FAIL: annotated ${annotated:-?} frames, ${with_raw:-?} with a raw pose, ${with_filtered:-?} filtered, for $frames with a face" >&2; exit 1; }
+"$build/estimator/hkf-annotate" "$source/.models/testdata/single_face.mp4" "$out/raw.lcmlog" "$out/filtered.lcmlog" \
+  "$out/again.mp4" --still 10 "$out/still.png" >/dev/null
+file "$out/still.png" | grep -q "PNG image" || { echo "FAIL: hkf-annotate --still wrote no PNG" >&2; exit 1; }
+if "$build/estimator/hkf-annotate" "$source/.models/testdata/single_face.mp4" "$out/none.lcmlog" "$out/filtered.lcmlog" \
+  "$out/bad.mp4" 2>/dev/null; then echo "FAIL: hkf-annotate accepted a missing log" >&2; exit 1; fi
+echo "demo_pipeline_test: passed ($rows filtered poses, plot and video written; $with_filtered annotated frames with both poses)"

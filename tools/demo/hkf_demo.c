@@ -229,7 +229,7 @@ static int write_csv(const char *path, const sim_frame_t *frames, long n, double
 
 int main(int argc, char **argv)
 {
-    enum { FILTERS = 3 };
+    enum { FILTERS = 4 };
     demo_options_t options;
     sim_config_t config = sim_default_config();
     sim_t sim;
@@ -251,7 +251,12 @@ int main(int argc, char **argv)
     for (k = 0; k < FILTERS; ++k) {
         filtered[k] = malloc((size_t)n * sizeof *filtered[k]);
     }
-    if (frames == NULL || filtered[0] == NULL || filtered[1] == NULL || filtered[2] == NULL) {
+    for (k = 0; k < FILTERS; ++k) {
+        if (filtered[k] == NULL) {
+            frames = NULL;
+        }
+    }
+    if (frames == NULL) {
         fprintf(stderr, "hkf-demo: out of memory\n");
         return 1;
     }
@@ -261,19 +266,22 @@ int main(int argc, char **argv)
         missing += !frames[i].valid;
     }
 
-    /* The paper's baseline, the paper's adaptive R, and the paper's full filter. */
+    /* The paper's baseline, the paper's adaptive R, the paper's full filter, and libhkf's
+     * defaults (the full filter with the motion-driven process noise). */
     for (k = 0; k < FILTERS; ++k) {
-        settings[k] = hkf_default_settings;
+        settings[k] = hkf_paper_settings;
     }
     settings[0].noise_mode = HKF_NOISE_CONSTANT;
     settings[0].loop_closure = HKF_LOOP_CLOSURE_OFF;
     settings[1].loop_closure = HKF_LOOP_CLOSURE_OFF;
+    settings[3] = hkf_default_settings;
     memset(&raw, 0, sizeof raw);
     memset(scores, 0, sizeof scores);
     raw.name = "raw measurements";
     scores[0].name = "standard KF (constant R)";
     scores[1].name = "adaptive KF (Eq. 8)";
     scores[2].name = "adaptive KF + loop closure";
+    scores[3].name = "hkf defaults (+ q_boost)";
 
     score_raw(frames, n, &raw);
     for (k = 0; k < FILTERS; ++k) {
