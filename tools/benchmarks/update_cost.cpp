@@ -4,6 +4,7 @@
  *
  *   step_libhkf_paper     hkf_update, adaptive R (Eq. 8) + loop closure (Eq. 9)
  *   step_libhkf_constant  hkf_update, constant R, no loop closure
+ *   step_libhkf_defaults  hkf_update with hkf_default_settings (the paper's + q_boost)
  *   step_opencv           cv::KalmanFilter(6, 3): predict + correct
  *   step_eigen            a fixed-size Eigen 6-state filter, generic matrix form
  *
@@ -106,6 +107,11 @@ NOINLINE int step_libhkf_paper(hkf_filter_t *f, const Input *in, hkf_output_t *o
 }
 
 NOINLINE int step_libhkf_constant(hkf_filter_t *f, const Input *in, hkf_output_t *out)
+{
+    return hkf_update(f, in->z, in->dt, out);
+}
+
+NOINLINE int step_libhkf_defaults(hkf_filter_t *f, const Input *in, hkf_output_t *out)
 {
     return hkf_update(f, in->z, in->dt, out);
 }
@@ -246,8 +252,9 @@ int main(int argc, char **argv)
     constant.noise_mode = HKF_NOISE_CONSTANT;
     constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
     paper.lc_theta = 6.0f; /* wider than the paper's 2 deg so this noisy drive closes the loop often */
-    hkf_filter_t f_paper, f_constant;
-    if (hkf_init(&f_paper, &paper) != HKF_OK || hkf_init(&f_constant, &constant) != HKF_OK) {
+    hkf_filter_t f_paper, f_constant, f_defaults;
+    if (hkf_init(&f_paper, &paper) != HKF_OK || hkf_init(&f_constant, &constant) != HKF_OK ||
+        hkf_init(&f_defaults, &hkf_default_settings) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: hkf_init failed\n");
         return 1;
     }
@@ -257,9 +264,10 @@ int main(int argc, char **argv)
     double worst_cv = 0.0, worst_eigen = 0.0;
     long closures = 0;
     for (const Input &in : inputs) {
-        hkf_output_t a, b;
+        hkf_output_t a, b, c;
         float yaw_cv, yaw_eigen;
-        if (step_libhkf_paper(&f_paper, &in, &a) != HKF_OK || step_libhkf_constant(&f_constant, &in, &b) != HKF_OK) {
+        if (step_libhkf_paper(&f_paper, &in, &a) != HKF_OK || step_libhkf_constant(&f_constant, &in, &b) != HKF_OK ||
+            step_libhkf_defaults(&f_defaults, &in, &c) != HKF_OK) {
             std::fprintf(stderr, "hkf-bench-update: hkf_update failed\n");
             return 1;
         }
