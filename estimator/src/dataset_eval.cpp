@@ -12,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "angle_bins_model.hpp"
+#include "face_tracker.hpp"
 
 namespace hkf_estimator {
 namespace {
@@ -85,10 +86,28 @@ std::optional<Face> labelled_face(const HeadPoseEstimator &model, FaceDetector &
     return best;
 }
 
+// The live path on one image: a fresh tracker's first frame (the whole image searched, the
+// largest face scoring at least the acquire score taken). `wrong` is set when that face is
+// not the labelled one (its centre more than half the labelled box's size from the box's).
+std::optional<Face> live_face(FaceDetector &detector, const cv::Mat &image, const cv::Rect2f &box, bool &wrong)
+{
+    FaceTracker tracker(detector, TrackerSettings{});
+    std::optional<Face> face = tracker.track(image, 0);
+    wrong = false;
+    if (!face) return face;
+    const cv::Point2f d = cv::Point2f(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2) -
+                          cv::Point2f(box.x + box.width / 2, box.y + box.height / 2);
+    if (std::hypot(d.x, d.y) > std::max(box.width, box.height) / 2) {
+        wrong = true;
+        return std::nullopt;
+    }
+    return face;
+}
+
 }  // namespace
 
-EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, const std::string &dir, long limit, std::ostream &predictions,
-                            const std::function<void(long, long)> &progress)
+EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, DatasetCrop crop, const std::string &dir, long limit,
+                            std::ostream &predictions, const std::function<void(long, long)> &progress)
 {
     const std::vector<LabelRow> rows = read_labels(dir + "/labels.csv");
     const long total = limit > 0 ? std::min<long>(limit, static_cast<long>(rows.size())) : static_cast<long>(rows.size());
@@ -109,7 +128,10 @@ EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, co
         while (bin < EvalResult::kYawBins - 1 && std::fabs(row.yaw) >= EvalResult::kYawBinEdges[bin + 1]) ++bin;
         if (in_protocol) ++result.bin_images[bin];
         const auto start = std::chrono::steady_clock::now();
-        std::optional<Face> face = labelled_face(model, detector, image, row.box);
+        bool wrong = false;
+        std::optional<Face> face = crop == DatasetCrop::Live ? live_face(detector, image, row.box, wrong)
+                                                             : labelled_face(model, detector, image, row.box);
+        result.wrong_face += wrong;
         const std::optional<HeadPose> estimate = face ? model.estimate(image, *face) : std::nullopt;
         result.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (!estimate) {

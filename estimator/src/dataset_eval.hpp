@@ -1,7 +1,10 @@
 // dataset_eval.hpp - a head-pose model on a labelled image set laid out like
 // ../shared/data/aflw2000: labels.csv (image,yaw_deg,pitch_deg,roll_deg,x_min,
-// y_min,x_max,y_max) and images/. Each face is cropped from its label's box
-// enlarged by the model's crop margin.
+// y_min,x_max,y_max) and images/. By default each image goes through the path
+// live video takes (the face tracker on the whole image, then the model), and a
+// face found away from the labelled one counts as not found; with
+// DatasetCrop::Labels the model gets the labelled box instead (a model that needs
+// keypoints: the detected face nearest it), as the paper's benchmark does.
 #pragma once
 
 #include <functional>
@@ -13,10 +16,16 @@
 
 namespace hkf_estimator {
 
+enum class DatasetCrop {
+    Live,    // the live path: FaceTracker on the whole image (its first frame), then the model
+    Labels,  // the labelled face box (or the detected face nearest it, for a model that needs keypoints)
+};
+
 struct EvalResult {
     long images = 0;        // rows handled
     long unreadable = 0;    // images that could not be read (reported, skipped)
-    long no_face = 0;       // the estimator (or, for keypoints, the detector) found no face: skipped
+    long no_face = 0;       // no face found (or, live, only a face other than the labelled one): skipped
+    long wrong_face = 0;    // of those: live, the tracker took a face other than the labelled one
     long evaluated = 0;     // rows whose three label angles are within +-99 deg (the standard protocol)
     double mae[3] = {0, 0, 0};  // pitch, yaw, roll, deg
     double seconds = 0;     // time spent in the model
@@ -29,12 +38,12 @@ struct EvalResult {
     double bin_mae[kYawBins][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 };
 
-// Runs the model over DIR's labels (at most limit rows when limit > 0); a model
-// that needs keypoints gets the detector's face nearest the labelled box. Writes
+// Runs the model over DIR's labels (at most limit rows when limit > 0), each face
+// found as `crop` says. Writes
 // "image,pitch_deg,yaw_deg,roll_deg" (hkf convention) to predictions, and
 // reports progress through progress(done, total). Throws EstimatorError on a
 // missing or malformed labels.csv.
-EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, const std::string &dir, long limit, std::ostream &predictions,
-                            const std::function<void(long, long)> &progress);
+EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, DatasetCrop crop, const std::string &dir, long limit,
+                            std::ostream &predictions, const std::function<void(long, long)> &progress);
 
 }  // namespace hkf_estimator

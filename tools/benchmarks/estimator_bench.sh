@@ -11,9 +11,11 @@ models=$root/.models
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-echo "## AFLW2000 (development split of $(($(wc -l <"$aflw/labels.csv") - 1)) images), faces cropped from the labels"
-for model in whenet mesh_pnp; do
-  "$build/estimator/hkf-estimator" --dataset "$aflw" --model "$model" --predictions "$work/$model.csv" 2>/dev/null
+echo "## AFLW2000 (development split of $(($(wc -l <"$aflw/labels.csv") - 1)) images): the live path, then the labels' face boxes"
+for crop in live labels; do
+  for model in whenet mesh_pnp; do
+    "$build/estimator/hkf-estimator" --dataset "$aflw" --crop "$crop" --model "$model" --predictions "$work/$model.csv" 2>/dev/null
+  done
 done
 echo
 echo "## Per-stage cost"
