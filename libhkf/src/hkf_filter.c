@@ -50,7 +50,7 @@ static int check_dt(const hkf_filter_t *f, hkf_real_t dt)
     return HKF_OK;
 }
 
-static int check_angles(const hkf_real_t v[3])
+static HKF_ALWAYS_INLINE int check_angles(const hkf_real_t v[3])
 {
     const hkf_real_t limit = HKF_REAL_FROM(HKF_MAX_ABS_ANGLE);
     int a;
@@ -134,7 +134,7 @@ static void load_lanes(hkf_real_t lanes[restrict HKF_LANES], const hkf_real_t z[
 #endif
 }
 
-static int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restrict 3],
+static HKF_ALWAYS_INLINE int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restrict 3],
                         hkf_real_t zc[restrict HKF_LANES])
 {
     const hkf_settings_t *s = HKF_SETTINGS(f);
@@ -334,11 +334,57 @@ void hkf_reset(hkf_filter_t *f)
     f->status = HKF_STATUS_UNINITIALIZED;
 }
 
+/* Eq. 4-5 for the loop-closed measurement y (replaced by the innovation) with R r. */
+static HKF_ALWAYS_INLINE void innovation(const hkf_filter_t *restrict f, hkf_real_t y[restrict HKF_LANES],
+                                         const hkf_real_t r[restrict HKF_LANES], hkf_divisor_t inv_s[restrict HKF_LANES])
+{
+    int a;
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        y[a] = hkf_sub(y[a], f->angle[a]);                            /* Eq. 4: y = z - H x */
+    }
+    y[HKF_AXIS_YAW] = hkf_wrap180(y[HKF_AXIS_YAW]);
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        inv_s[a] = hkf_divisor(hkf_add(f->p00[a], r[a]));             /* Eq. 5: S = H P H' + R */
+    }
+}
+
+/* The innovation gate's test: the normalised innovation sqrt(y' S^-1 y) beyond gate_sigma. */
+static HKF_ALWAYS_INLINE int gated(const hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
+                                   const hkf_divisor_t inv_s[restrict HKF_LANES])
+{
+    const hkf_real_t gate = HKF_SETTINGS(f)->gate_sigma;
+    return gate > 0 && hkf_add(hkf_add(hkf_divide(hkf_mul(y[0], y[0]), inv_s[0]), hkf_divide(hkf_mul(y[1], y[1]), inv_s[1])),
+                               hkf_divide(hkf_mul(y[2], y[2]), inv_s[2])) > hkf_mul(gate, gate);
+}
+
+/* Eq. 6-7 with the innovation y, R r and 1/S: the measurement is accepted. */
+static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
+                                           const hkf_real_t r[restrict HKF_LANES],
+                                           const hkf_divisor_t inv_s[restrict HKF_LANES])
+{
+    int a;
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        const hkf_real_t k0 = hkf_divide(f->p00[a], inv_s[a]);        /* Eq. 6: K = P H' S^-1 */
+        const hkf_real_t k1 = hkf_divide(f->p01[a], inv_s[a]);
+        const hkf_real_t one_minus_k0 = hkf_divide(r[a], inv_s[a]);   /* 1 - k0 = R / S, without cancellation */
+        f->angle[a] = hkf_add(f->angle[a], hkf_mul(k0, y[a]));        /* Eq. 7: x = x + K y */
+        f->rate[a] = hkf_add(f->rate[a], hkf_mul(k1, y[a]));
+        f->p11[a] = hkf_sub(f->p11[a], hkf_mul(k1, f->p01[a]));       /* Eq. 7: P = (I - K H) P */
+        f->p01[a] = hkf_mul(f->p01[a], one_minus_k0);
+        f->p00[a] = hkf_mul(f->p00[a], one_minus_k0); /* stays > 0 in float even when P >> R (found by fuzz_libhkf) */
+        hkf_keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
+        f->r[a] = r[a];
+    }
+    f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
+    f->time_since_measurement = 0;
+    f->gate_rejections = 0;
+    f->status = HKF_STATUS_TRACKING;
+}
+
 int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
 {
     hkf_real_t y[HKF_LANES], r[HKF_LANES]; /* y holds the loop-closed measurement, then the innovation */
     hkf_divisor_t inv_s[HKF_LANES];
-    hkf_real_t gate;
     unsigned flags = 0;
     int a, result;
     if (f == 0 || z == 0) {
@@ -369,19 +415,11 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
         flags |= HKF_FLAG_LOOP_CLOSURE;
     }
     observation_noise_lanes(f, y, r);                                 /* Eq. 8 */
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        y[a] = hkf_sub(y[a], f->angle[a]);                            /* Eq. 4: y = z - H x */
-    }
-    y[HKF_AXIS_YAW] = hkf_wrap180(y[HKF_AXIS_YAW]);
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        inv_s[a] = hkf_divisor(hkf_add(f->p00[a], r[a]));             /* Eq. 5: S = H P H' + R */
-    }
+    innovation(f, y, r, inv_s);
 
     /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
      * exceeds gate_sigma; after max_gate_rejections in a row, believe it. */
-    gate = HKF_SETTINGS(f)->gate_sigma;
-    if (gate > 0 && hkf_add(hkf_add(hkf_divide(hkf_mul(y[0], y[0]), inv_s[0]), hkf_divide(hkf_mul(y[1], y[1]), inv_s[1])),
-                            hkf_divide(hkf_mul(y[2], y[2]), inv_s[2])) > hkf_mul(gate, gate)) {
+    if (gated(f, y, inv_s)) {
         if (f->gate_rejections >= HKF_SETTINGS(f)->max_gate_rejections) {
             load_lanes(y, z);
             observation_noise_lanes(f, y, f->r);
@@ -408,23 +446,58 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
             f->motion[a] = hkf_add(f->motion[a], hkf_mul(alpha, hkf_sub(excess, f->motion[a])));
         }
     }
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t k0 = hkf_divide(f->p00[a], inv_s[a]);        /* Eq. 6: K = P H' S^-1 */
-        const hkf_real_t k1 = hkf_divide(f->p01[a], inv_s[a]);
-        const hkf_real_t one_minus_k0 = hkf_divide(r[a], inv_s[a]);   /* 1 - k0 = R / S, without cancellation */
-        f->angle[a] = hkf_add(f->angle[a], hkf_mul(k0, y[a]));        /* Eq. 7: x = x + K y */
-        f->rate[a] = hkf_add(f->rate[a], hkf_mul(k1, y[a]));
-        f->p11[a] = hkf_sub(f->p11[a], hkf_mul(k1, f->p01[a]));       /* Eq. 7: P = (I - K H) P */
-        f->p01[a] = hkf_mul(f->p01[a], one_minus_k0);
-        f->p00[a] = hkf_mul(f->p00[a], one_minus_k0); /* stays > 0 in float even when P >> R (found by fuzz_libhkf) */
-        hkf_keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
-        f->r[a] = r[a];
-    }
-    f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
-    f->time_since_measurement = 0;
-    f->gate_rejections = 0;
-    f->status = HKF_STATUS_TRACKING;
+    correct_axes(f, y, r, inv_s);
     write_output(f, flags, out);
+    return HKF_OK;
+}
+
+int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], const hkf_real_t z2[restrict 3],
+                    const hkf_settings_t *second, hkf_real_t dt, hkf_output_t *restrict out)
+{
+    hkf_filter_t noise2; /* the second model's Eq. 8 curves, prepared as hkf_init prepares a filter's */
+    hkf_real_t y[HKF_LANES], r[HKF_LANES], r1[HKF_LANES];
+    hkf_divisor_t inv_s[HKF_LANES];
+    hkf_output_t first;
+    int a, result;
+    if (f == 0 || z == 0 || z2 == 0 || second == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    /* everything about the second measurement is checked before the state changes */
+    result = check_angles(z2);
+    if (result == HKF_OK) {
+        result = hkf_init(&noise2, second);
+    }
+    if (result != HKF_OK) {
+        return result;
+    }
+    /* predict (Eq. 1-3) and the first measurement (Eq. 4-9), or the track's start from it */
+    result = hkf_update(f, z, dt, &first);
+    if (result != HKF_OK) {
+        return result;
+    }
+    /* the second as a sequential update: Eq. 9 against the same centre, Eq. 8 with its own curves */
+    if (loop_closure(f, z2, y)) {
+        first.flags |= HKF_FLAG_LOOP_CLOSURE;
+    }
+    observation_noise_lanes(&noise2, y, r);
+    innovation(f, y, r, inv_s);
+    if (gated(f, y, inv_s)) { /* the first's outcome stands */
+        write_output(f, first.flags | HKF_FLAG_GATED, out);
+        return HKF_OK;
+    }
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        r1[a] = f->r[a];
+    }
+    correct_axes(f, y, r, inv_s);
+    if (!(first.flags & HKF_FLAG_GATED)) {
+        /* R of both, 1 / (1/R1 + 1/R2), as low (high / (low + high)): the product stays within
+         * Q16.16 and the quotient, >= 1/2, keeps its digits */
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
+            const hkf_real_t low = r1[a] < r[a] ? r1[a] : r[a], high = r1[a] < r[a] ? r[a] : r1[a];
+            f->r[a] = hkf_mul(low, hkf_divide(high, hkf_divisor(hkf_add(low, high))));
+        }
+    }
+    write_output(f, first.flags, out);
     return HKF_OK;
 }
 

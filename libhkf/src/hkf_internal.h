@@ -17,6 +17,14 @@ int hkf_settings_check(const hkf_settings_t *s);
 #define HKF_LOOP_LANES HKF_AXES
 #endif
 
+/* Steps shared by hkf_update and hkf_update_pair, inlined into each so that
+ * hkf_update's code is what it would be on its own (a Cortex-M0's flash). */
+#if defined(__GNUC__)
+#define HKF_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define HKF_ALWAYS_INLINE inline
+#endif
+
 /* Where the filter finds its settings and the per-lane values the axis loops
  * read: the float and double builds keep a copy and lane arrays (contiguous,
  * for SIMD); the fixed-point build reads the caller's settings, to save RAM. */
@@ -35,10 +43,5 @@ int hkf_settings_check(const hkf_settings_t *s);
 #define HKF_MU(f, a) ((f)->mu[a])
 #define HKF_NOISE_FLOOR(f, a) ((f)->noise_floor[a])
 #endif
-
-/* hkf_motion.c: m of q_boost after an accepted measurement (innovations y, 1/S). */
-#include "hkf_math.h"
-void hkf_motion_update(hkf_filter_t *f, const hkf_real_t y[HKF_LANES], const hkf_divisor_t inv_s[HKF_LANES],
-                       hkf_real_t dt);
 
 #endif /* HKF_INTERNAL_H */

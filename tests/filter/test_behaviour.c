@@ -309,6 +309,91 @@ static void test_q_boost_still_and_moving(void **state)
     }
 }
 
+/* Two estimators in one step (hkf_update_pair): the track starts from the first
+ * measurement (P = p0), then the second updates it with its own R, by hand:
+ * angle = z1 + p0 / (p0 + R2) (z2 - z1), variance p0 R2 / (p0 + R2), and the
+ * reported R is that of both, R1 R2 / (R1 + R2). */
+static void test_pair_start_weighs_by_each_r(void **state)
+{
+    hkf_settings_t first = plain_settings(), second = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z1[3], z2[3];
+    const double p0 = 4, r1 = 2, r2 = 12, z2v[3] = {10, 20, -10};
+    int a;
+    (void)state;
+    for (a = 0; a < HKF_AXES; ++a) {
+        second.r_const[a] = R(r2);
+    }
+    assert_int_equal(hkf_init(&f, &first), HKF_OK);
+    set3(z1, 0, 0, 0);
+    set3(z2, z2v[0], z2v[1], z2v[2]);
+    assert_int_equal(hkf_update_pair(&f, z1, z2, &second, R(0.033), &out), HKF_OK);
+    assert_int_equal(out.status, HKF_STATUS_TRACKING);
+    assert_true(out.flags & HKF_FLAG_REACQUIRED);
+    for (a = 0; a < HKF_AXES; ++a) {
+        assert_near(out.angle[a], p0 / (p0 + r2) * z2v[a], TEST_TOL);
+        assert_near(out.variance[a], p0 * r2 / (p0 + r2), TEST_TOL);
+        assert_near(out.r[a], r1 * r2 / (r1 + r2), TEST_TOL);
+    }
+}
+
+/* Two measurements of the same value, each with R, are one measurement with
+ * R / 2 (independent noise): a pair filter and a single filter with half the R
+ * agree over a moving sequence, frame after frame. */
+static void test_pair_of_equals_is_half_r(void **state)
+{
+    hkf_settings_t s = plain_settings(), half = plain_settings();
+    hkf_filter_t fp, fh;
+    hkf_output_t op, oh;
+    int i, a;
+    (void)state;
+    for (a = 0; a < HKF_AXES; ++a) {
+        half.r_const[a] = R(D(s.r_const[a]) / 2);
+    }
+    assert_int_equal(hkf_init(&fp, &s), HKF_OK);
+    assert_int_equal(hkf_init(&fh, &half), HKF_OK);
+    for (i = 0; i < 60; ++i) {
+        hkf_real_t z[3];
+        set3(z, 10.0 * sin(0.1 * i), 3.0 * i - 90.0, (i % 7) - 3.0);
+        if (i == 0) { /* both tracks start at z with P = p0 (a pair would then update it with z again) */
+            assert_int_equal(hkf_update(&fh, z, R(0.033), &oh), HKF_OK);
+            assert_int_equal(hkf_update(&fp, z, R(0.033), &op), HKF_OK);
+            continue;
+        }
+        assert_int_equal(hkf_update(&fh, z, R(0.033), &oh), HKF_OK);
+        assert_int_equal(hkf_update_pair(&fp, z, z, &s, R(0.033), &op), HKF_OK);
+        for (a = 0; a < HKF_AXES; ++a) {
+            assert_near(op.angle[a], D(oh.angle[a]), TEST_TOL);
+            assert_near(op.rate[a], D(oh.rate[a]), 10 * TEST_TOL);
+            assert_near(op.r[a], D(oh.r[a]), TEST_TOL);
+        }
+    }
+}
+
+/* A bad second model or measurement is an error that leaves the filter as it was. */
+static void test_pair_bad_input_changes_nothing(void **state)
+{
+    hkf_settings_t s = plain_settings(), bad = plain_settings();
+    hkf_filter_t f, before;
+    hkf_output_t out;
+    hkf_real_t z[3], far[3];
+    (void)state;
+    bad.noise[1].sigma = 0;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 1, 2, 3);
+    assert_int_equal(hkf_update(&f, z, R(0.033), &out), HKF_OK);
+    memcpy(&before, &f, sizeof f);
+    set3(far, 0, 4000, 0);
+    assert_int_equal(hkf_update_pair(&f, z, z, &bad, R(0.033), &out), HKF_ERROR_SETTING_SIGMA);
+    assert_int_equal(hkf_update_pair(&f, z, far, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
+    assert_int_equal(hkf_update_pair(&f, far, z, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
+    assert_int_equal(hkf_update_pair(&f, z, z, &s, R(-1), &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_update_pair(&f, z, z, NULL, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_update_pair(&f, z, NULL, &s, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_memory_equal(&before, &f, sizeof f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -320,6 +405,9 @@ int main(void)
         cmocka_unit_test(test_state_carried_across_chunks),
         cmocka_unit_test(test_constant_vs_adaptive_r),
         cmocka_unit_test(test_q_boost_still_and_moving),
+        cmocka_unit_test(test_pair_start_weighs_by_each_r),
+        cmocka_unit_test(test_pair_of_equals_is_half_r),
+        cmocka_unit_test(test_pair_bad_input_changes_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -7,7 +7,10 @@
  * the same long random head-motion sequences (random dt, missing frames,
  * outliers, yaw through +-180) in every noise mode and loop-closure mode,
  * gate on and off, and must give the same posterior at every step:
- * angle within TEST_TOL degrees (1e-3 in float).
+ * angle within TEST_TOL degrees (1e-3 in float). Two estimators' measurements
+ * of each frame (hkf_update_pair, sequential scalar updates) are checked
+ * against one textbook update with both stacked: H = [I 0; I 0] (6x6),
+ * R = diag(R1, R2), each R from its own model's Eq. 8 curves.
  */
 #include <cmath>
 #include <cstdio>
@@ -97,6 +100,66 @@ public:
         status_ = HKF_STATUS_TRACKING;
     }
 
+    /* Two measurements of one frame, both stacked in one update (gate off): z1 with this
+     * filter's curves, z2 with `second`'s. */
+    void updatePair(const Vec3 &z1, const Vec3 &z2, double dt, const hkf_settings_t &second)
+    {
+        Vec3 r1;
+        if (!started_ || status_ == HKF_STATUS_LOST) { /* the track starts from z1, then z2 updates it */
+            start(z1);
+            r1 = r_;
+            const Vec3 zc2 = loopClosure(z2);
+            Eigen::Matrix3d R2 = Eigen::Matrix3d::Zero();
+            for (int a = 0; a < 3; ++a) {
+                R2(a, a) = noise(second, a, zc2(a));
+            }
+            Mat36 H = Mat36::Zero();
+            H.leftCols<3>().setIdentity();
+            Vec3 y = zc2 - H * x_;
+            y(1) = wrap180(y(1));
+            const Eigen::Matrix<double, 6, 3> K = P_ * H.transpose() * (H * P_ * H.transpose() + R2).inverse();
+            x_ += K * y;
+            x_(1) = wrap180(x_(1));
+            P_ = (Mat6::Identity() - K * H) * P_;
+            for (int a = 0; a < 3; ++a) {
+                r_(a) = r1(a) * R2(a, a) / (r1(a) + R2(a, a));
+            }
+            return;
+        }
+        predict(dt);
+        const Vec3 zc1 = loopClosure(z1), zc2 = loopClosure(z2);
+        Mat6 R = Mat6::Zero();
+        for (int a = 0; a < 3; ++a) {
+            R(a, a) = noise(a, zc1(a));
+            R(a + 3, a + 3) = noise(second, a, zc2(a));
+        }
+        Mat6 H = Mat6::Zero();
+        H.topLeftCorner<3, 3>().setIdentity();
+        H.bottomLeftCorner<3, 3>().setIdentity();
+        Vec6 y;
+        y.head<3>() = zc1 - x_.head<3>();
+        y.tail<3>() = zc2 - x_.head<3>();
+        y(1) = wrap180(y(1));
+        y(4) = wrap180(y(4));
+        if (D(s_.q_boost) > 0) { /* m follows the first measurement's innovation */
+            const double alpha = dt / (dt + D(s_.q_boost_time));
+            for (int a = 0; a < 3; ++a) {
+                const double e = y(a) * y(a) / (P_(a, a) + R(a, a)) - 1.0;
+                motion_(a) += alpha * (std::min(std::max(e, 0.0), 1e4) - motion_(a));
+            }
+        }
+        const Mat6 K = P_ * H.transpose() * (H * P_ * H.transpose() + R).inverse();
+        x_ += K * y;
+        x_(1) = wrap180(x_(1));
+        P_ = (Mat6::Identity() - K * H) * P_;
+        for (int a = 0; a < 3; ++a) {
+            r_(a) = R(a, a) * R(a + 3, a + 3) / (R(a, a) + R(a + 3, a + 3));
+        }
+        sinceMeasurement_ = 0.0;
+        rejections_ = 0;
+        status_ = HKF_STATUS_TRACKING;
+    }
+
     void coast(double dt)
     {
         if (status_ == HKF_STATUS_LOST) {
@@ -177,7 +240,9 @@ private:
         return zc;
     }
 
-    double noise(int a, double x) const
+    double noise(int a, double x) const { return noise(s_, a, x); }
+
+    static double noise(const hkf_settings_t &s_, int a, double x)
     {
         double r;
         if (s_.noise_mode == HKF_NOISE_CONSTANT) {
@@ -214,7 +279,8 @@ struct Worst {
 };
 
 /* One configuration, one long sequence: the largest differences seen. */
-bool compare(const char *name, const hkf_settings_t &s, std::uint64_t seed, long steps, Worst &worst)
+bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *second, std::uint64_t seed, long steps,
+             Worst &worst)
 {
     hkf_filter_t f;
     if (hkf_init(&f, &s) != HKF_OK) {
@@ -254,10 +320,19 @@ bool compare(const char *name, const hkf_settings_t &s, std::uint64_t seed, long
         }
         z[1] = R(wrap180(D(z[1])));
         zd(1) = D(z[1]);
+        hkf_real_t z2[3] = {0, 0, 0}; /* a second estimator's measurement of the frame, with its own errors */
+        Vec3 z2d = Vec3::Zero();
+        for (int a = 0; a < 3 && second != nullptr; ++a) { /* (single runs keep their sequences) */
+            z2[a] = R(a == 1 ? wrap180(truth[a] + 4.0 * sim_rng_gaussian(&rng)) : truth[a] + 4.0 * sim_rng_gaussian(&rng));
+            z2d(a) = D(z2[a]);
+        }
         const hkf_real_t dtr = R(dt);
         hkf_output_t out;
         int result;
-        if (valid) {
+        if (valid && second != nullptr) {
+            result = hkf_update_pair(&f, z, z2, second, dtr, &out);
+            ref.updatePair(zd, z2d, D(dtr), *second);
+        } else if (valid) {
             result = hkf_update(&f, z, dtr, &out);
             ref.update(zd, D(dtr));
         } else {
@@ -319,6 +394,7 @@ int main()
         bool expect_closures; /* the random walk rarely comes within 2 deg of the centre */
         float q_boost = 0.0f;
         bool defaults = false; /* all of hkf_default_settings (its q and q_boost too) */
+        bool pair = false;     /* hkf_update_pair, the second model with Hopenet's curves */
     };
     const Mode modes[] = {
         {"constant", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
@@ -335,6 +411,12 @@ int main()
         {"defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure,
          static_cast<float>(D(hkf_default_settings.gate_sigma)), static_cast<float>(D(hkf_default_settings.lc_theta)), false,
          static_cast<float>(D(hkf_default_settings.q_boost)), true},
+        {"pair:adaptive", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, 0.0f, false, true},
+        {"pair:squared+lc_norm", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true, 0.0f, false, true},
+        {"pair:lc_per_axis+boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_PER_AXIS, 0.0f, 20.0f, true, BOOST, false, true},
+        {"pair:defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure, 0.0f,
+         static_cast<float>(D(hkf_default_settings.lc_theta)), false, static_cast<float>(D(hkf_default_settings.q_boost)),
+         true, true},
     };
     const long steps = 20000;
     int failures = 0, passed = 0;
@@ -348,8 +430,13 @@ int main()
             s.lc_theta = R(m.lc_theta); /* wide, so closure happens often */
             s.coast_time = R(0.15);
             s.q_boost = R(m.q_boost);
+            hkf_settings_t second = s; /* another estimator: Hopenet's curves, its own constant R */
+            for (int a = 0; a < 3; ++a) {
+                second.noise[a] = hkf_noise_hopenet[a];
+                second.r_const[a] = R(2.0 * D(s.r_const[a]));
+            }
             Worst w;
-            const bool ran = compare(m.name, s, seed, steps, w);
+            const bool ran = compare(m.name, s, m.pair ? &second : nullptr, seed, steps, w);
             /* the sequence must have exercised what the mode has */
             const bool exercised = w.lost > 0 && w.seam_crossings > 0 &&
                                    (!m.expect_closures || w.closures > 0) &&
@@ -357,7 +444,7 @@ int main()
                                    (s.gate_sigma > 0) == (w.gated > 0);
             const bool ok = ran && exercised && w.angle <= TEST_TOL && w.rate <= TEST_RATE_TOL &&
                             w.variance <= TEST_REL_TOL && w.r <= TEST_REL_TOL;
-            std::printf("%-4s %-21s seed %llu: %ld steps, worst |angle| %.1e deg, rate %.1e, variance %.1e, "
+            std::printf("%-4s %-23s seed %llu: %ld steps, worst |angle| %.1e deg, rate %.1e, variance %.1e, "
                         "R %.1e (rel); %ld closures, %ld gated, %ld lost, %ld seam crossings\n",
                         ok ? "OK" : "FAIL", m.name, static_cast<unsigned long long>(seed), steps, w.angle, w.rate,
                         w.variance, w.r, w.closures, w.gated, w.lost, w.seam_crossings);

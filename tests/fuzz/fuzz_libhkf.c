@@ -1,6 +1,7 @@
 /*
  * fuzz_libhkf.c - libFuzzer target for libhkf's whole API: arbitrary settings,
- * then an arbitrary sequence of init / update / predict / extrapolate /
+ * then an arbitrary sequence of init / update / update_pair (with a second
+ * model's settings edited, perhaps to nonsense) / predict / extrapolate /
  * set_center / recenter / reset / get_output with arbitrary values (NaN,
  * infinities, denormals, huge numbers included). It checks, after every call:
  *   - a rejected call (negative result) left the filter bit-identical;
@@ -110,6 +111,16 @@ static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
     }
 }
 
+/* What R may be: [r_min, r_max] of the filter's settings, widened once hkf_update_pair has run
+ * to the second model's clamp and half the smaller r_min (R of both: R1 R2 / (R1 + R2)). */
+static hkf_real_t r_low, r_high;
+
+static void allow_r(hkf_real_t low, hkf_real_t high)
+{
+    r_low = low < r_low ? low : r_low;
+    r_high = high > r_high ? high : r_high;
+}
+
 static void check_output(const hkf_filter_t *f, const hkf_output_t *out)
 {
     int a;
@@ -120,7 +131,8 @@ static void check_output(const hkf_filter_t *f, const hkf_output_t *out)
             fprintf(stderr, FUZZ_NAME ": axis %d variance %g, status %d\n", a, (double)out->variance[a], out->status);
             check(0, "angle variance not in (0, bound]");
         }
-        check(out->r[a] == 0 || (out->r[a] >= SETTINGS_OF(f)->r_min && out->r[a] <= SETTINGS_OF(f)->r_max),
+        check(out->r[a] == 0 || (out->r[a] >= SETTINGS_OF(f)->r_min && out->r[a] <= SETTINGS_OF(f)->r_max) ||
+                  (out->r[a] >= r_low && out->r[a] <= r_high),
               "R outside [r_min, r_max]");
     }
     check(out->angle[HKF_AXIS_YAW] >= HKF_REAL(-180.0) && out->angle[HKF_AXIS_YAW] < HKF_REAL(180.0),
@@ -172,11 +184,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (result != HKF_OK) {
         return 0; /* rejected settings: nothing more to run */
     }
+    r_low = s.r_min;
+    r_high = s.r_max;
     while (take_byte(&in, &op)) {
         hkf_real_t v[3];
         before = f;
         memset(&out, 0, sizeof out);
-        switch (op % 8) {
+        switch (op % 9) {
         case 0:
             v[0] = take_real(&in), v[1] = take_real(&in), v[2] = take_real(&in);
             result = hkf_update(&f, v, take_real(&in), &out);
@@ -210,6 +224,28 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             check(memcmp(&before, &f, sizeof f) == 0, "hkf_get_output changed the filter");
             after_call(&before, &f, result, result == HKF_OK ? &out : NULL);
             break;
+        case 7: { /* two estimators' measurements, the second's settings edited once (maybe to nonsense) */
+            hkf_settings_t second = s;
+            hkf_real_t v2[3];
+            if (take_byte(&in, &field)) {
+                edit_setting(&second, field, &in);
+            }
+            v[0] = take_real(&in), v[1] = take_real(&in), v[2] = take_real(&in);
+            v2[0] = take_real(&in), v2[1] = take_real(&in), v2[2] = take_real(&in);
+            if (hkf_init(&before, &second) == HKF_OK) { /* (before is rewritten below) */
+                const hkf_real_t low = second.r_min < s.r_min ? second.r_min : s.r_min;
+#if defined(HKF_REAL_FIXED)
+                allow_r(low / 2 - 1, second.r_max); /* less a unit for the quotient's rounding */
+#else
+                allow_r(low * HKF_REAL(0.4999), second.r_max);
+#endif
+            }
+            before = f;
+            result = hkf_update_pair(&f, v, v2, &second, take_real(&in), &out);
+            ++steps;
+            after_call(&before, &f, result, &out);
+            break;
+        }
         default:
             result = hkf_init(&f, &s);
             after_call(&before, &f, result, NULL);

@@ -22,7 +22,7 @@ import cortex_m4_cycles
 
 TARGETS = [("cortex-m0", "fixed"), ("cortex-m0", "float"), ("cortex-m4f", "fixed"), ("cortex-m4f", "float"),
            ("cortex-m7", "fixed"), ("cortex-m7", "float"), ("cortex-m7", "double")]
-PUBLIC = ["hkf_init", "hkf_update", "hkf_predict", "hkf_extrapolate", "hkf_get_output", "hkf_reset",
+PUBLIC = ["hkf_init", "hkf_update", "hkf_update_pair", "hkf_predict", "hkf_extrapolate", "hkf_get_output", "hkf_reset",
           "hkf_set_center", "hkf_recenter", "hkf_get_center", "hkf_observation_noise"]
 
 

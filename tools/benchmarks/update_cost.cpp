@@ -5,6 +5,8 @@
  *   step_libhkf_paper     hkf_update, adaptive R (Eq. 8) + loop closure (Eq. 9)
  *   step_libhkf_constant  hkf_update, constant R, no loop closure
  *   step_libhkf_defaults  hkf_update with hkf_default_settings (the paper's + q_boost)
+ *   step_libhkf_pair      hkf_update_pair: the paper's filter, a second estimator's measurement
+ *                         with Hopenet's curves (two measurements, not the same work)
  *   step_opencv           cv::KalmanFilter(6, 3): predict + correct
  *   step_eigen            a fixed-size Eigen 6-state filter, generic matrix form
  *
@@ -114,6 +116,12 @@ NOINLINE int step_libhkf_constant(hkf_filter_t *f, const Input *in, hkf_output_t
 NOINLINE int step_libhkf_defaults(hkf_filter_t *f, const Input *in, hkf_output_t *out)
 {
     return hkf_update(f, in->z, in->dt, out);
+}
+
+NOINLINE int step_libhkf_pair(hkf_filter_t *f, const Input *in, const hkf_settings_t *second, hkf_output_t *out)
+{
+    const hkf_real_t z2[3] = {in->z[0] + 1.5f, in->z[1] - 2.0f, in->z[2] + 0.5f};
+    return hkf_update_pair(f, in->z, z2, second, in->dt, out);
 }
 
 NOINLINE void step_opencv(OpenCvFilter *k, const Input *in, float yaw_out[1])
@@ -252,9 +260,11 @@ int main(int argc, char **argv)
     constant.noise_mode = HKF_NOISE_CONSTANT;
     constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
     paper.lc_theta = 6.0f; /* wider than the paper's 2 deg so this noisy drive closes the loop often */
-    hkf_filter_t f_paper, f_constant, f_defaults;
+    hkf_settings_t second = paper;
+    for (int a = 0; a < 3; ++a) second.noise[a] = hkf_noise_hopenet[a];
+    hkf_filter_t f_paper, f_constant, f_defaults, f_pair;
     if (hkf_init(&f_paper, &paper) != HKF_OK || hkf_init(&f_constant, &constant) != HKF_OK ||
-        hkf_init(&f_defaults, &hkf_default_settings) != HKF_OK) {
+        hkf_init(&f_defaults, &hkf_default_settings) != HKF_OK || hkf_init(&f_pair, &paper) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: hkf_init failed\n");
         return 1;
     }
@@ -264,10 +274,10 @@ int main(int argc, char **argv)
     double worst_cv = 0.0, worst_eigen = 0.0;
     long closures = 0;
     for (const Input &in : inputs) {
-        hkf_output_t a, b, c;
+        hkf_output_t a, b, c, d;
         float yaw_cv, yaw_eigen;
         if (step_libhkf_paper(&f_paper, &in, &a) != HKF_OK || step_libhkf_constant(&f_constant, &in, &b) != HKF_OK ||
-            step_libhkf_defaults(&f_defaults, &in, &c) != HKF_OK) {
+            step_libhkf_defaults(&f_defaults, &in, &c) != HKF_OK || step_libhkf_pair(&f_pair, &in, &second, &d) != HKF_OK) {
             std::fprintf(stderr, "hkf-bench-update: hkf_update failed\n");
             return 1;
         }

@@ -249,6 +249,21 @@ void hkf_reset(hkf_filter_t *f);
  * filter is untouched. */
 int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output_t *out);
 
+/* Two measurements of the same frame from two estimators whose errors are
+ * independent (e.g. a face mesh and an angle-regression network), each with
+ * its own R: `second` holds the second model's settings, of which its
+ * noise_mode, noise curves, r_const, r_min and r_max give its R (Eq. 8 at its
+ * own angles); everything else is the filter's. One predict, then z as
+ * hkf_update takes it, then z2 as a sequential scalar update (loop closure
+ * and gate as for z): for independent noise the same posterior as one update
+ * with both stacked (H = [I; I], R = diag(R1, R2)). q_boost follows z's
+ * innovations. out->r is the R of both, R1 R2 / (R1 + R2) (or of the one
+ * accepted); HKF_FLAG_GATED: one of them was gated. On error (including a
+ * bad `second`, checked as hkf_init checks settings) the filter is untouched.
+ * Costs a filter-sized temporary on the stack. */
+int hkf_update_pair(hkf_filter_t *f, const hkf_real_t z[3], const hkf_real_t z2[3], const hkf_settings_t *second,
+                    hkf_real_t dt, hkf_output_t *out);
+
 /* No measurement this frame (face lost): predict dt s ahead. See the coasting
  * rule in hkf.c. Writes the prediction to out (which may be NULL). */
 int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out);
