@@ -35,6 +35,19 @@ found=$(sed -n 's/^labelled |yaw| .* images, *\([0-9]*\) faces found.*/\1/p' "$w
 evaluated=$(sed -n 's/.* \([0-9]*\) within +-99 deg$/\1/p' "$work/mesh.txt")
 [ "$found" = "$evaluated" ] || fail "the yaw bins hold $found faces, $evaluated were evaluated"
 
+# both models' predictions fused as hkf_update_pair fuses them (tools/eval/fusion_on_aflw.py): every face
+# either model found is estimated, and the fused error lies between the two models' (per image it is a
+# weighted mean of theirs, so far below the worse one)
+"$source/.venv/bin/python" "$source/tools/eval/fusion_on_aflw.py" --labels "$data/labels.csv" --mesh "$work/m.csv" \
+  --whenet "$work/p.csv" --filter "$build/tools/hkf-filter" | tee "$work/fusion.txt"
+"$source/.venv/bin/python" - "$work/fusion.txt" <<'PY' || fail "fusion_on_aflw.py"
+import re, sys
+rows = {m[1]: (float(m[2]), float(m[3])) for m in re.finditer(r"^\| (.+?) \|.*\| ([\d.]+) %, ([\d.]+)° \|$", open(sys.argv[1]).read(), re.M)}
+mesh, whenet, fused = rows["mesh_pnp"], rows["whenet"], next(v for k, v in rows.items() if k.startswith("fused"))
+assert fused[0] >= max(mesh[0], whenet[0]), (fused, mesh, whenet)
+assert fused[1] < max(mesh[1], whenet[1]), (fused, mesh, whenet)
+PY
+
 expect_error() { # expect_error PATTERN COMMAND...: non-zero exit, PATTERN in stderr
   local pattern=$1
   shift
