@@ -38,7 +38,7 @@ evaluated=$(sed -n 's/.* \([0-9]*\) within +-99 deg$/\1/p' "$work/mesh.txt")
 # both models' predictions fused as hkf_update_pair fuses them (tools/eval/fusion_on_aflw.py): every face
 # either model found is estimated, and the fused error lies between the two models' (per image it is a
 # weighted mean of theirs, so far below the worse one)
-"$source/.venv/bin/python" "$source/tools/eval/fusion_on_aflw.py" --labels "$data/labels.csv" --mesh "$work/m.csv" \
+"$source/.venv/bin/python" "$source/tools/eval/fusion_on_aflw.py" --labels "$data/labels.csv" --limit 150 --mesh "$work/m.csv" \
   --whenet "$work/p.csv" --filter "$build/tools/hkf-filter" | tee "$work/fusion.txt"
 "$source/.venv/bin/python" - "$work/fusion.txt" <<'PY' || fail "fusion_on_aflw.py"
 import re, sys

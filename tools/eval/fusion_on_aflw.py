@@ -8,7 +8,8 @@ each R from its model's Eq. 8 curves as hkf-filter has them built in).
 Input: `hkf-estimator --dataset` predictions of both models on the same
 images (the live path by default) and the dataset's labels.
 
-usage: fusion_on_aflw.py --labels L.csv --mesh MESH.csv --whenet WHENET.csv [--filter build/tools/hkf-filter]
+usage: fusion_on_aflw.py --labels L.csv --mesh MESH.csv --whenet WHENET.csv [--limit N]
+                         [--filter build/tools/hkf-filter]
 """
 import argparse
 import csv
@@ -66,6 +67,8 @@ def main():
     parser.add_argument("--mesh", required=True, help="mesh_pnp predictions")
     parser.add_argument("--whenet", required=True, help="whenet predictions")
     parser.add_argument("--filter", default=os.path.join(ROOT, "build", "tools", "hkf-filter"))
+    parser.add_argument("--limit", type=int, default=0,
+                        help="only the first N labelled images, as hkf-estimator --limit N (0: all)")
     parser.add_argument("--select-yaw", type=float, default=30.0,
                         help="the choice rule takes WHENet where its |yaw| is at least this, deg (default 30)")
     args = parser.parse_args()
@@ -86,7 +89,7 @@ def main():
     }
     try:
         with open(args.labels) as f:
-            labels = list(csv.DictReader(f))
+            labels = list(csv.DictReader(f))[: args.limit or None]
     except OSError as e:
         fail(f"cannot read {args.labels}: {e}")
     print("| estimate | " + " | ".join(f"labelled yaw ±{lo:g}-{hi:g}°" for lo, hi in BINS) + " | all |")
