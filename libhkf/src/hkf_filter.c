@@ -381,26 +381,23 @@ static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_r
     f->status = HKF_STATUS_TRACKING;
 }
 
-int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
+/* hkf_update's step for a measurement z whose Eq. 8 curves (and r_const,
+ * r_min, r_max) are those of `noise`: f itself, or a second model's prepared
+ * curves (hkf_update_pair when only the second model measured). z is checked. */
+static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *noise,
+                                         const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
 {
     hkf_real_t y[HKF_LANES], r[HKF_LANES]; /* y holds the loop-closed measurement, then the innovation */
     hkf_divisor_t inv_s[HKF_LANES];
     unsigned flags = 0;
     int a, result;
-    if (f == 0 || z == 0) {
-        return HKF_ERROR_NULL_ARGUMENT;
-    }
-    result = check_angles(z);
-    if (result != HKF_OK) {
-        return result;
-    }
     if (f->status == HKF_STATUS_UNINITIALIZED || f->status == HKF_STATUS_LOST) {
         /* the first measurement (dt ignored), or the first after LOST */
         if (f->status == HKF_STATUS_LOST && (result = check_dt(f, dt)) != HKF_OK) {
             return result;
         }
         load_lanes(y, z);
-        observation_noise_lanes(f, y, f->r);
+        observation_noise_lanes(noise, y, f->r);
         start_track(f, z);
         write_output(f, HKF_FLAG_REACQUIRED, out);
         return HKF_OK;
@@ -414,7 +411,7 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     if (loop_closure(f, z, y)) {
         flags |= HKF_FLAG_LOOP_CLOSURE;
     }
-    observation_noise_lanes(f, y, r);                                 /* Eq. 8 */
+    observation_noise_lanes(noise, y, r);                                 /* Eq. 8 */
     innovation(f, y, r, inv_s);
 
     /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
@@ -422,7 +419,7 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     if (gated(f, y, inv_s)) {
         if (f->gate_rejections >= HKF_SETTINGS(f)->max_gate_rejections) {
             load_lanes(y, z);
-            observation_noise_lanes(f, y, f->r);
+            observation_noise_lanes(noise, y, f->r);
             start_track(f, z);
             write_output(f, HKF_FLAG_GATED | HKF_FLAG_REACQUIRED, out);
         } else {
@@ -451,6 +448,19 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     return HKF_OK;
 }
 
+int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
+{
+    int result;
+    if (f == 0 || z == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = check_angles(z);
+    if (result != HKF_OK) {
+        return result;
+    }
+    return update_with(f, f, z, dt, out);
+}
+
 int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], const hkf_real_t z2[restrict 3],
                     const hkf_settings_t *second, hkf_real_t dt, hkf_output_t *restrict out)
 {
@@ -459,16 +469,22 @@ int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], co
     hkf_divisor_t inv_s[HKF_LANES];
     hkf_output_t first;
     int a, result;
-    if (f == 0 || z == 0 || z2 == 0 || second == 0) {
+    if (f == 0 || (z == 0 && z2 == 0) || second == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
     /* everything about the second measurement is checked before the state changes */
-    result = check_angles(z2);
-    if (result == HKF_OK) {
-        result = hkf_init(&noise2, second);
+    result = hkf_init(&noise2, second);
+    if (result == HKF_OK && z2 != 0) {
+        result = check_angles(z2);
     }
     if (result != HKF_OK) {
         return result;
+    }
+    if (z2 == 0) { /* only the first model measured this frame */
+        return hkf_update(f, z, dt, out);
+    }
+    if (z == 0) { /* only the second: its measurement with its own R, as hkf_update takes one */
+        return update_with(f, &noise2, z2, dt, out);
     }
     /* predict (Eq. 1-3) and the first measurement (Eq. 4-9), or the track's start from it */
     result = hkf_update(f, z, dt, &first);

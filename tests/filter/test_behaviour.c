@@ -390,8 +390,53 @@ static void test_pair_bad_input_changes_nothing(void **state)
     assert_int_equal(hkf_update_pair(&f, far, z, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
     assert_int_equal(hkf_update_pair(&f, z, z, &s, R(-1), &out), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_update_pair(&f, z, z, NULL, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
-    assert_int_equal(hkf_update_pair(&f, z, NULL, &s, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_update_pair(&f, NULL, NULL, &s, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_update_pair(&f, z, NULL, &bad, R(0.033), &out), HKF_ERROR_SETTING_SIGMA);
+    assert_int_equal(hkf_update_pair(&f, NULL, far, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
     assert_memory_equal(&before, &f, sizeof f);
+}
+
+/* One model of the pair missing this frame: with z2 NULL the pair is exactly
+ * hkf_update; with z NULL it is hkf_update with the second model's R - a
+ * filter set up with the second's settings follows the same track, frame by
+ * frame, start included, while the first's R would give another. */
+static void test_pair_with_one_model_missing(void **state)
+{
+    hkf_settings_t first = plain_settings(), second = plain_settings();
+    hkf_filter_t fp, fu, fs;
+    hkf_output_t op, ou, os;
+    int i, a;
+    (void)state;
+    for (a = 0; a < HKF_AXES; ++a) {
+        second.r_const[a] = R(6 * D(first.r_const[a]));
+    }
+    assert_int_equal(hkf_init(&fp, &first), HKF_OK);
+    assert_int_equal(hkf_init(&fu, &first), HKF_OK);
+    assert_int_equal(hkf_init(&fs, &second), HKF_OK);
+    for (i = 0; i < 40; ++i) {
+        hkf_real_t z[3];
+        set3(z, 8.0 * sin(0.2 * i), 2.0 * i - 40.0, (i % 5) - 2.0);
+        assert_int_equal(hkf_update_pair(&fp, NULL, z, &second, R(0.033), &op), HKF_OK);
+        assert_int_equal(hkf_update(&fs, z, R(0.033), &os), HKF_OK);
+        assert_int_equal(hkf_update(&fu, z, R(0.033), &ou), HKF_OK);
+        for (a = 0; a < HKF_AXES; ++a) {
+            assert_near(op.angle[a], D(os.angle[a]), TEST_TOL);
+            assert_near(op.variance[a], D(os.variance[a]), TEST_TOL);
+            assert_near(op.r[a], D(second.r_const[a]), TEST_TOL);
+        }
+        assert_int_equal(op.flags, os.flags);
+    }
+    assert_true(fabs(D(op.angle[1]) - D(ou.angle[1])) > 0.1); /* the first's R would lag less */
+    /* and with only the first, the pair is hkf_update, bit for bit */
+    memcpy(&fs, &fu, sizeof fu);
+    for (i = 0; i < 10; ++i) {
+        hkf_real_t z[3];
+        set3(z, 1.0, 40.0 + i, -2.0);
+        assert_int_equal(hkf_update_pair(&fu, z, NULL, &second, R(0.033), &ou), HKF_OK);
+        assert_int_equal(hkf_update(&fs, z, R(0.033), &os), HKF_OK);
+        assert_memory_equal(&fu, &fs, sizeof fu);
+        assert_memory_equal(&ou, &os, sizeof ou);
+    }
 }
 
 int main(void)
@@ -408,6 +453,7 @@ int main(void)
         cmocka_unit_test(test_pair_start_weighs_by_each_r),
         cmocka_unit_test(test_pair_of_equals_is_half_r),
         cmocka_unit_test(test_pair_bad_input_changes_nothing),
+        cmocka_unit_test(test_pair_with_one_model_missing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

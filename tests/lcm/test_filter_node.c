@@ -483,6 +483,148 @@ static void test_silence_reported_lost(void **state)
     assert_int_equal(node.counts.restarts, 0);
 }
 
+/* Two models on one channel: every frame's second measurement (model
+ * "hopenet", from the same simulated head with its own noise) arrives 3 frames
+ * late, as from a second core; on some frames only the second model found the
+ * face. Nothing is published for a second measurement, each is fused into its
+ * own frame, and in the end the node's filter is where libhkf gets stepping
+ * frame by frame with hkf_update_pair (z NULL where the first found no face). */
+static void test_second_model_fused_into_its_frame(void **state)
+{
+    enum { FRAMES = 300, LATE = 3 };
+    static hkf_head_pose_measurement_t first[FRAMES], second[FRAMES];
+    sim_config_t sc = sim_default_config();
+    sim_t sim;
+    hkf_filter_t reference, before;
+    hkf_output_t ours, theirs;
+    int known, i, a, published = 0, second_only = 0; /* frames only the second model measured */
+    const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known);
+    const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known);
+    (void)state;
+    assert_true(known);
+    assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
+    sim_init(&sim, &sc, 5u);
+    for (i = 0; i < FRAMES; ++i) {
+        sim_frame_t frame;
+        const int64_t utime = T0 + i * FRAME_US;
+        sim_next(&sim, &frame);
+        first[i] = measurement(utime, frame.valid && i % 10 != 7, frame.measured[0], frame.measured[1], frame.measured[2]);
+        second[i] = first[i];
+        second[i].model = "hopenet";
+        second[i].valid = 1;
+        second[i].pitch = (float)(frame.truth[0] + 3.0 * sin(0.7 * i));
+        second[i].yaw = (float)(frame.truth[1] - 2.0 * cos(1.3 * i));
+        second[i].roll = (float)(frame.truth[2] + 2.5 * sin(2.1 * i));
+        second_only += !first[i].valid;
+        {
+            const hkf_real_t z[3] = {first[i].pitch, first[i].yaw, first[i].roll};
+            const hkf_real_t z2[3] = {second[i].pitch, second[i].yaw, second[i].roll};
+            assert_int_equal(hkf_update_pair(&reference, first[i].valid ? z : NULL, z2, &s2,
+                                             (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6), NULL), HKF_OK);
+        }
+    }
+    for (i = 0; i < FRAMES + LATE; ++i) {
+        hkf_head_pose_t pose;
+        if (i < FRAMES) {
+            published += filter_node_receive(&node, &first[i], first[i].utime + 2000, &pose);
+        }
+        if (i >= LATE) {
+            memcpy(&before, &node.filter, sizeof before);
+            assert_int_equal(filter_node_receive(&node, &second[i - LATE], first[i - LATE].utime + 40000, &pose), 0);
+            assert_true(memcmp(&before, &node.filter, sizeof before) != 0); /* taken */
+        }
+    }
+    assert_true(second_only > 20);
+    /* every frame once a track exists: from the first model's first face, or the
+     * second model's of frame 0, fused when frame LATE has come */
+    for (i = 0; i < FRAMES && !first[i].valid; ++i) {
+    }
+    assert_int_equal(published, FRAMES - (i < LATE + 1 ? i : LATE + 1));
+    assert_int_equal(node.counts.paired, FRAMES);
+    assert_int_equal(node.counts.unpaired, 0);
+    assert_int_equal(node.counts.other_publisher, 0);
+    assert_int_equal(node.counts.unknown_models, 0);
+    assert_int_equal(hkf_get_output(&node.filter, &ours), HKF_OK);
+    assert_int_equal(hkf_get_output(&reference, &theirs), HKF_OK);
+    for (a = 0; a < 3; ++a) {
+        assert_float_equal(ours.angle[a], theirs.angle[a], 1e-4);
+        assert_float_equal(ours.variance[a], theirs.variance[a], 1e-6);
+    }
+}
+
+/* A second measurement is used once per frame, only with a face, and only
+ * while its frame is kept: otherwise it is counted and changes nothing. */
+static void test_second_model_late_or_repeated_not_used(void **state)
+{
+    hkf_head_pose_measurement_t m[40], other;
+    hkf_head_pose_t pose;
+    hkf_filter_t before;
+    int i;
+    (void)state;
+    for (i = 0; i < 40; ++i) {
+        m[i] = measurement(T0 + i * FRAME_US, 1, 1.0, 10.0, -2.0);
+        assert_int_equal(filter_node_receive(&node, &m[i], m[i].utime + 2000, &pose), 1);
+    }
+    memcpy(&before, &node.filter, sizeof before);
+    other = m[39 - FILTER_NODE_PAIR_FRAMES]; /* just older than the kept frames */
+    other.model = "hopenet";
+    other.yaw = 30.0f;
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    other = m[35];
+    other.model = "hopenet";
+    other.valid = 0; /* no face: nothing to add */
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    other.valid = 1;
+    other.yaw = NAN;
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    assert_memory_equal(&before, &node.filter, sizeof before);
+    other.yaw = 12.0f;
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    assert_true(memcmp(&before, &node.filter, sizeof before) != 0);
+    memcpy(&before, &node.filter, sizeof before);
+    other.yaw = 14.0f; /* the same frame's second again */
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    assert_memory_equal(&before, &node.filter, sizeof before);
+    assert_int_equal(node.counts.paired, 1);
+    assert_int_equal(node.counts.unpaired, 3);
+    assert_int_equal(node.counts.bad_values, 1);
+    assert_int_equal(node.counts.other_publisher, 0);
+    assert_int_equal(node.counts.restarts, 0);
+    /* the next frame's pose carries the fused frame; the model table is not switched */
+    m[0] = measurement(T0 + 40 * FRAME_US, 1, 1.0, 10.0, -2.0);
+    m[0].seq = m[39].seq + 1;
+    assert_int_equal(filter_node_receive(&node, &m[0], m[0].utime + 2000, &pose), 1);
+    assert_string_equal(node.model, "fsanet");
+}
+
+/* A face only the second model sees (a profile the mesh gives up on): the
+ * track starts from it, and the first model's empty frames coast on it. */
+static void test_second_model_alone_starts_and_keeps_track(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    (void)state;
+    for (i = 0; i < 30; ++i) {
+        m = measurement(T0 + i * FRAME_US, 0, 0, 0, 0);
+        published += filter_node_receive(&node, &m, m.utime + 2000, &pose);
+        if (i > 0) {
+            assert_int_equal(pose.status == HKF_HEAD_POSE_T_LOST, 0);
+            assert_true(fabsf(pose.yaw - 70.0f) < 1.0f);
+        }
+        second = m;
+        second.model = "hopenet";
+        second.valid = 1;
+        second.pitch = -5.0f;
+        second.yaw = 70.0f;
+        second.roll = 3.0f;
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
+    }
+    assert_int_equal(published, 29);
+    assert_int_equal(node.counts.paired, 30);
+    assert_string_equal(node.model, "fsanet");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -503,6 +645,9 @@ int main(void)
         cmocka_unit_test_setup(test_two_publishers_not_mixed, setup),
         cmocka_unit_test_setup(test_publisher_restart_followed, setup),
         cmocka_unit_test_setup(test_silence_reported_lost, setup),
+        cmocka_unit_test_setup(test_second_model_fused_into_its_frame, setup),
+        cmocka_unit_test_setup(test_second_model_late_or_repeated_not_used, setup),
+        cmocka_unit_test_setup(test_second_model_alone_starts_and_keeps_track, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

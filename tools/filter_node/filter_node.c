@@ -77,6 +77,42 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
     ++node->counts.published;
 }
 
+/* The kept frames (for a late second measurement): forgotten on a restart. */
+static void forget_frames(filter_node_t *node)
+{
+    node->frame_count = 0;
+}
+
+/* Keeps this frame's step, about to be made on node->filter: z (NULL: no face), dt. */
+static void keep_frame(filter_node_t *node, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3], hkf_real_t dt)
+{
+    filter_node_frame_t *frame;
+    node->frame_newest = (node->frame_newest + 1) % FILTER_NODE_PAIR_FRAMES;
+    if (node->frame_count < FILTER_NODE_PAIR_FRAMES) {
+        ++node->frame_count;
+    }
+    frame = &node->frames[node->frame_newest];
+    memset(frame, 0, sizeof *frame);
+    frame->seq = m->seq;
+    frame->utime = m->utime;
+    strncpy(frame->model, m->model ? m->model : "", sizeof frame->model - 1);
+    frame->valid = z != NULL;
+    if (z != NULL) {
+        memcpy(frame->z, z, sizeof frame->z);
+    }
+    frame->dt = dt;
+    frame->before = node->filter;
+}
+
+/* The newest kept frame's step failed: it never happened. */
+static void unkeep_newest(filter_node_t *node)
+{
+    if (node->frame_count > 0) {
+        --node->frame_count;
+        node->frame_newest = (node->frame_newest + FILTER_NODE_PAIR_FRAMES - 1) % FILTER_NODE_PAIR_FRAMES;
+    }
+}
+
 static int finite_angles(const hkf_head_pose_measurement_t *m)
 {
     return isfinite(m->pitch) && isfinite(m->yaw) && isfinite(m->roll) &&
@@ -110,10 +146,17 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
 
     if (!m->valid) {
         ++node->counts.without_face;
+        if (node->filter.status == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
+            strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model) == HKF_OK) {
+            forget_frames(node); /* no track yet: the filter is this model's, should a second model start one here */
+        }
+        keep_frame(node, m, NULL, dt);
         result = hkf_predict(&node->filter, dt, &out);
         if (result == HKF_ERROR_DT_RANGE) { /* a long gap: forget the track */
             hkf_reset(&node->filter);
             ++node->counts.restarts;
+            forget_frames(node);
+            keep_frame(node, m, NULL, dt);
             return 0;
         }
         if (result != HKF_OK) { /* no track yet */
@@ -130,6 +173,7 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
         if (setup_filter(node, m->model ? m->model : "") != HKF_OK) {
             return 0; /* cannot happen: the config was validated at start */
         }
+        forget_frames(node);
     }
     {
         int known;
@@ -138,15 +182,19 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
     }
     {
         const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
+        keep_frame(node, m, z, dt);
         result = hkf_update(&node->filter, z, dt, &out);
         if (result == HKF_ERROR_DT_RANGE) {
             hkf_reset(&node->filter);
             ++node->counts.restarts;
+            forget_frames(node);
+            keep_frame(node, m, z, dt);
             result = hkf_update(&node->filter, z, dt, &out);
         }
     }
     if (result != HKF_OK) {
         ++node->counts.bad_values;
+        unkeep_newest(node);
         return 0;
     }
     node->last_measurement_utime = m->utime;
@@ -201,6 +249,7 @@ static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *
     /* the capture clock has moved: follow it; the track restarts as after a gap */
     ++node->counts.clock_resyncs;
     node->have_time = 0;
+    forget_frames(node);
     if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
         hkf_reset(&node->filter);
         ++node->counts.restarts;
@@ -208,12 +257,103 @@ static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *
     return 1;
 }
 
+/* Two models on one channel: the index of the kept frame m is the second
+ * measurement of (same seq and utime, another model), or -1. */
+static int frame_of_second(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
+{
+    int i;
+    for (i = 0; i < node->frame_count; ++i) {
+        const int index = (node->frame_newest + FILTER_NODE_PAIR_FRAMES - i) % FILTER_NODE_PAIR_FRAMES;
+        const filter_node_frame_t *frame = &node->frames[index];
+        if (frame->seq == m->seq && frame->utime == m->utime) {
+            return strncmp(frame->model, m->model ? m->model : "", sizeof frame->model) != 0 ? index : -1;
+        }
+    }
+    return -1;
+}
+
+/* A second model's measurement of a frame already passed, too old for the kept
+ * frames: its seq and utime are behind the followed estimator's, its model another. */
+static int late_second(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
+{
+    const double behind = (double)node->stream_seq - (double)m->seq;
+    return node->have_stream && node->have_time && behind >= 0 && behind <= (double)FILTER_NODE_MAX_SEQ_STEP &&
+           m->utime <= node->last_utime && strncmp(node->model, m->model ? m->model : "", sizeof node->model) != 0;
+}
+
+/* One kept frame's step on f, as the node made it, with the frame's second
+ * measurement if it has one. */
+static int redo_step(const filter_node_t *node, hkf_filter_t *f, const filter_node_frame_t *frame)
+{
+    int result;
+    if (frame->paired) {
+        int known;
+        const hkf_settings_t second = node_config_for_model(node->config, frame->second_model, &known);
+        return hkf_update_pair(f, frame->valid ? frame->z : NULL, frame->z2, &second, frame->dt, NULL);
+    }
+    if (frame->valid) {
+        return hkf_update(f, frame->z, frame->dt, NULL);
+    }
+    result = hkf_predict(f, frame->dt, NULL);
+    return result == HKF_ERROR_NOT_INITIALIZED ? HKF_OK : result; /* no track yet, as the node found */
+}
+
+/* Fuses m, the second measurement of kept frame `index`: that frame's step
+ * again with both (hkf_update_pair), then the steps of the frames after it. */
+static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
+{
+    hkf_filter_t f, before[FILTER_NODE_PAIR_FRAMES];
+    filter_node_frame_t *frame = &node->frames[index];
+    const int count = (node->frame_newest - index + FILTER_NODE_PAIR_FRAMES) % FILTER_NODE_PAIR_FRAMES + 1;
+    int i, known;
+    if (frame->paired) { /* one second measurement per frame */
+        ++node->counts.unpaired;
+        return;
+    }
+    frame->paired = 1;
+    strncpy(frame->second_model, m->model ? m->model : "", sizeof frame->second_model - 1);
+    frame->z2[0] = m->pitch;
+    frame->z2[1] = m->yaw;
+    frame->z2[2] = m->roll;
+    f = frame->before;
+    for (i = 0; i < count; ++i) {
+        before[i] = f;
+        if (redo_step(node, &f, &node->frames[(index + i) % FILTER_NODE_PAIR_FRAMES]) != HKF_OK) {
+            frame->paired = 0; /* cannot happen (the steps were made before, z2 is checked): nothing changes */
+            ++node->counts.unpaired;
+            return;
+        }
+    }
+    for (i = 1; i < count; ++i) {
+        node->frames[(index + i) % FILTER_NODE_PAIR_FRAMES].before = before[i];
+    }
+    node->filter = f;
+    if (m->utime > node->last_measurement_utime) {
+        node->last_measurement_utime = m->utime;
+    }
+    (void)node_config_for_model(node->config, frame->second_model, &known);
+    node->counts.unknown_models += !known;
+    ++node->counts.paired;
+}
+
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose)
 {
     const int64_t previous_utime = node->last_utime;
     const int had_time = node->have_time;
+    const int second_of = frame_of_second(node, m);
     int publish;
+    if (second_of >= 0 || late_second(node, m)) { /* a second model's measurement of a frame taken */
+        ++node->counts.received;
+        if (m->valid && !finite_angles(m)) {
+            ++node->counts.bad_values;
+        } else if (!m->valid || second_of < 0) {
+            ++node->counts.unpaired;
+        } else {
+            fuse_second(node, second_of, m);
+        }
+        return 0;
+    }
     if (!from_followed_publisher(node, m, arrival_utime)) {
         ++node->counts.received;
         ++node->counts.other_publisher;
@@ -292,10 +432,12 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
     switch (command->command) {
     case HKF_TRACKER_COMMAND_T_RECENTER:
         ++node->counts.commands;
+        forget_frames(node); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;
+        forget_frames(node);
         (void)setup_filter(node, node->model);
         return 0;
     default:

@@ -26,7 +26,18 @@
  *   is reported as LOST after coast_time, so a simulator never shows a frozen
  *   pose as if it were tracked;
  * - the measurement's `model` picks its noise curves from the model table;
- *   a change of model restarts the track with the new curves.
+ *   a change of model restarts the track with the new curves;
+ * - two models on one channel (filter_node_receive): a measurement with the
+ *   seq and utime of a frame already taken but another model is that frame's
+ *   *second* measurement (an estimator running a second model, e.g. WHENet
+ *   beside the face mesh, possibly on another core and so a few frames late).
+ *   The node keeps the last FILTER_NODE_PAIR_FRAMES frames' steps; it goes back
+ *   to the frame, takes both measurements there in one hkf_update_pair step
+ *   (each with its own model's Eq. 8 curves; the second alone when the first
+ *   found no face) and redoes the frames after it. Nothing is published for a
+ *   second measurement: the next frame's pose carries it. One per frame; a
+ *   second measurement older than the kept frames is counted, not used. A
+ *   restart, a command or a clock resync forgets the kept frames.
  */
 #ifndef FILTER_NODE_H
 #define FILTER_NODE_H
@@ -54,8 +65,25 @@ typedef struct {
     unsigned long other_publisher; /* rejected: seq does not continue the followed estimator's */
     unsigned long unknown_models;  /* measurements whose model is not in the table */
     unsigned long silences;        /* the estimator fell silent for coast_time: LOST published */
+    unsigned long paired;          /* second-model measurements fused into their frame */
+    unsigned long unpaired;        /* second-model measurements not used: too late, no face, or a frame's third */
     unsigned long commands;        /* commands applied */
 } filter_node_counts_t;
+
+#define FILTER_NODE_PAIR_FRAMES 16 /* frames kept for a late second measurement: 0.27 s at 60 fps */
+
+/* One frame's filter step, kept so that a second model's measurement of it can
+ * be fused afterwards. */
+typedef struct {
+    int64_t seq, utime;                      /* the frame */
+    char model[NODE_MODEL_NAME_MAX];         /* the first model (the filter's) */
+    int valid;                               /* the first model measured z */
+    hkf_real_t z[3], dt;
+    int paired;                              /* a second model measured z2: */
+    char second_model[NODE_MODEL_NAME_MAX];
+    hkf_real_t z2[3];
+    hkf_filter_t before;                     /* the filter before this frame's step */
+} filter_node_frame_t;
 
 typedef struct {
     const node_config_t *config;
@@ -72,6 +100,8 @@ typedef struct {
     int64_t jump_utime, jump_arrival_utime; /* the last of them */
     int64_t lost_published;           /* LOST poses published in the current silence */
     int64_t seq;
+    filter_node_frame_t frames[FILTER_NODE_PAIR_FRAMES]; /* the last frames' steps, a ring */
+    int frame_count, frame_newest;
     filter_node_counts_t counts;
 } filter_node_t;
 

@@ -260,6 +260,9 @@ int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output
  * innovations. out->r is the R of both, R1 R2 / (R1 + R2) (or of the one
  * accepted); HKF_FLAG_GATED: one of them was gated. On error (including a
  * bad `second`, checked as hkf_init checks settings) the filter is untouched.
+ * Either z or z2 may be NULL (that model found no face this frame, or has not
+ * run on it): then the other alone is taken, as hkf_update takes it but with
+ * its own model's R (and q_boost follows it). Both NULL: an error.
  * Costs a filter-sized temporary on the stack. */
 int hkf_update_pair(hkf_filter_t *f, const hkf_real_t z[3], const hkf_real_t z2[3], const hkf_settings_t *second,
                     hkf_real_t dt, hkf_output_t *out);
