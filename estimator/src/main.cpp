@@ -21,6 +21,7 @@ namespace {
 
 struct Options {
     std::string dataset, model = "mesh_pnp", predictions;  // the default keeps up with 60 fps
+    std::string second_model;  // --second-model: none by default
     std::string models_dir = HKF_DEFAULT_MODELS_DIR, spec_dir = HKF_DEFAULT_SPEC_DIR;
     long limit = 0;
     hkf_estimator::PipelineOptions pipeline;
@@ -51,6 +52,11 @@ void usage(std::ostream &out)
            "  --lcm-url URL      default udpm://239.255.76.67:7667?ttl=0 (stays on this host)\n"
            "  --channel C        default HEAD_POSE_RAW\n"
            "  --max-frames N     stop after N frames\n"
+           "  --second-model NAME  also run this model (e.g. whenet) on its own thread where the first\n"
+           "                     finds no pose on the tracked face or measures a large yaw; its\n"
+           "                     measurements go on the same channel with the frame's seq and time,\n"
+           "                     and hkf-filter fuses both (README: \"Two models on one channel\")\n"
+           "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 30; 0: every frame)\n"
            "--dataset mode evaluates a head-pose model on a labelled image set laid out like\n"
            "../shared/data/aflw2000 (labels.csv and images/): finds each face the way live video\n"
            "does (the detector on the whole image, the largest face; one away from the labelled\n"
@@ -122,6 +128,14 @@ int parse(int argc, char **argv, Options &o)
                 return 2;
             }
             o.crop = value == "live" ? hkf_estimator::DatasetCrop::Live : hkf_estimator::DatasetCrop::Labels;
+        } else if (arg == "--second-model") o.second_model = value;
+        else if (arg == "--second-from-yaw") {
+            double v;
+            if (!parse_number(value, 0.0, 180.0, v)) {
+                std::cerr << "hkf-estimator: --second-from-yaw wants degrees from 0 to 180, not '" << value << "'\n";
+                return 2;
+            }
+            o.pipeline.second_from_yaw = static_cast<float>(v);
         } else if (arg == "--dataset") o.dataset = value;
         else if (arg == "--model") o.model = value;
         else if (arg == "--predictions") o.predictions = value;
@@ -141,6 +155,15 @@ int parse(int argc, char **argv, Options &o)
     }
     if (o.pipeline.source.empty() == o.dataset.empty()) {
         std::cerr << "hkf-estimator: give either --source SRC or --dataset DIR (see --help)\n";
+        return 2;
+    }
+    if (!o.dataset.empty() && !o.second_model.empty()) {
+        std::cerr << "hkf-estimator: --second-model is for --source; on a dataset run each model and fuse their "
+                     "predictions with tools/eval/fusion_on_aflw.py (see --help)\n";
+        return 2;
+    }
+    if (!o.second_model.empty() && o.second_model == o.model) {
+        std::cerr << "hkf-estimator: --second-model must differ from --model (" << o.model << ")\n";
         return 2;
     }
     if (!o.dataset.empty() && o.predictions.empty()) {
@@ -164,7 +187,11 @@ int main(int argc, char **argv)
     try {
         const std::unique_ptr<HeadPoseEstimator> model = make_estimator(load_model_spec(o.spec_dir, o.model, o.models_dir));
         FaceDetector detector(o.models_dir, o.range);
-        if (!o.pipeline.source.empty()) return run_pipeline(*model, detector, o.pipeline);
+        if (!o.pipeline.source.empty()) {
+            std::unique_ptr<HeadPoseEstimator> second;
+            if (!o.second_model.empty()) second = make_estimator(load_model_spec(o.spec_dir, o.second_model, o.models_dir));
+            return run_pipeline(*model, detector, o.pipeline, second.get());
+        }
         std::ofstream predictions(o.predictions);
         if (!predictions) throw EstimatorError("cannot write " + o.predictions);
         auto last = std::chrono::steady_clock::now();

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -22,6 +24,7 @@
 #include "hkf/head_pose_measurement_t.hpp"
 #include "hkf/head_pose_t.hpp"
 #include "pose_drawing.hpp"
+#include "second_model.hpp"
 
 namespace hkf_estimator {
 namespace {
@@ -101,9 +104,34 @@ double percentile(std::vector<double> v, double q)
     return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1))];
 }
 
+// The measurement message for a frame.
+hkf::head_pose_measurement_t measurement_message(int64_t utime, int64_t seq, const std::string &model_name,
+                                                 const std::optional<Face> &face, const HeadPose &pose, double inference_ms)
+{
+    hkf::head_pose_measurement_t m;
+    m.utime = utime;
+    m.seq = seq;
+    m.model = model_name;
+    m.valid = face.has_value();
+    m.pitch = pose.pitch;
+    m.yaw = pose.yaw;
+    m.roll = pose.roll;
+    for (int i = 0; i < 4; ++i) m.face_box[i] = 0.f;
+    m.detection_score = face ? face->score : 0.f;
+    if (face) {
+        m.face_box[0] = face->box.x;
+        m.face_box[1] = face->box.y;
+        m.face_box[2] = face->box.br().x;
+        m.face_box[3] = face->box.br().y;
+    }
+    m.inference_us = static_cast<int64_t>(inference_ms * 1000.0);
+    return m;
+}
+
 }  // namespace
 
-int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const PipelineOptions &options)
+int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const PipelineOptions &options,
+                 HeadPoseEstimator *second)
 {
     FrameSource source(options.source, options.fps_for_images);
     lcm::LCM lcm(options.lcm_url);
@@ -148,6 +176,24 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
 
     std::fprintf(stderr, "hkf-estimator: %s -> %s on %s (model %s)\n", source.description().c_str(), options.channel.c_str(),
                  options.lcm_url.c_str(), model.spec().name.c_str());
+    // LCM is published to from this thread and the second model's; one at a time
+    std::mutex lcm_mutex;
+    std::vector<double> second_latency_ms;  // capture -> publish of the second model's measurements
+    std::unique_ptr<SecondModelWorker> second_worker;
+    if (second != nullptr) {
+        std::fprintf(stderr, "hkf-estimator: second model %s where %s finds no pose or |yaw| >= %.0f deg\n",
+                     second->spec().name.c_str(), model.spec().name.c_str(), static_cast<double>(options.second_from_yaw));
+        second_worker = std::make_unique<SecondModelWorker>(*second, [&](const SecondModelResult &r) {
+            std::optional<Face> face;
+            if (r.pose) face = r.job.face;
+            const hkf::head_pose_measurement_t m = measurement_message(r.job.utime, r.job.seq, second->spec().name, face,
+                                                                       r.pose.value_or(HeadPose{}), r.inference_ms);
+            std::lock_guard<std::mutex> lock(lcm_mutex);
+            lcm.publish(options.channel, &m);
+            second_latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? r.job.utime : r.job.taken_utime)) /
+                                        1000.0);
+        });
+    }
     long frames = 0, with_face = 0;
     std::vector<double> latency_ms, inference_ms;
     const auto started = std::chrono::steady_clock::now();
@@ -182,29 +228,22 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
         const int64_t taken = wall_utime();
         const auto t0 = std::chrono::steady_clock::now();
         std::optional<Face> face = tracker.track(frame->image, frame->utime);
+        const std::optional<Face> tracked = face;
         std::optional<HeadPose> estimate = face ? model.estimate(frame->image, *face) : std::nullopt;
         if (!estimate) face.reset();  // the pose model saw no face there either
         const HeadPose pose = estimate.value_or(HeadPose{});
         const double inference = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
-        hkf::head_pose_measurement_t m;
-        m.utime = frame->utime;
-        m.seq = seq++;
-        m.model = model.spec().name;
-        m.valid = face.has_value();
-        m.pitch = pose.pitch;
-        m.yaw = pose.yaw;
-        m.roll = pose.roll;
-        for (int i = 0; i < 4; ++i) m.face_box[i] = 0.f;
-        m.detection_score = face ? face->score : 0.f;
-        if (face) {
-            m.face_box[0] = face->box.x;
-            m.face_box[1] = face->box.y;
-            m.face_box[2] = face->box.br().x;
-            m.face_box[3] = face->box.br().y;
+        const hkf::head_pose_measurement_t m =
+            measurement_message(frame->utime, seq++, model.spec().name, face, pose, inference);
+        {
+            std::lock_guard<std::mutex> lock(lcm_mutex);
+            lcm.publish(options.channel, &m);
         }
-        m.inference_us = static_cast<int64_t>(inference * 1000.0);
-        lcm.publish(options.channel, &m);
+        if (second_worker && tracked && (!estimate || std::fabs(estimate->yaw) >= options.second_from_yaw)) {
+            // after the first model's message, so that the node has the frame when the second's comes
+            second_worker->submit(SecondModelJob{frame->image, *tracked, m.utime, m.seq, taken}, drop_old);
+        }
         // from the frame being available (a camera's capture) to its publish
         latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0);
         inference_ms.push_back(inference);
@@ -212,7 +251,10 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
         with_face += face.has_value();
 
         if (!options.annotate_path.empty() || show) {
-            lcm.handleTimeout(0);  // filtered poses that have arrived
+            {
+                std::lock_guard<std::mutex> lock(lcm_mutex);
+                lcm.handleTimeout(0);  // filtered poses that have arrived
+            }
             cv::Mat image = frame->image.clone();
             if (face) {
                 draw_face(image, *face);
@@ -245,6 +287,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
         if (frames % 100 == 0)
             std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", frames, with_face);
     }
+    if (second_worker) second_worker->stop();  // its frames in hand are measured and published
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (writer.isOpened()) writer.release();  // the annotated video is whole, however the run ends
     // A capture thread blocked inside the source (a hung camera or stream) cannot
@@ -264,6 +307,12 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
                 frames, with_face, seconds > 0 ? static_cast<double>(frames) / seconds : 0.0, percentile(latency_ms, 0.5),
                 percentile(latency_ms, 0.99), percentile(inference_ms, 0.5), slot.dropped(), tracker.full_frame_searches(),
                 stalls);
+    if (second_worker)
+        std::printf("hkf-estimator: second model %s: %ld frames asked for, %ld measured, %ld skipped (it was busy); "
+                    "capture->publish ms p50 %.1f p99 %.1f; inference ms p50 %.1f\n",
+                    second->spec().name.c_str(), second_worker->asked(), second_worker->done(), second_worker->skipped(),
+                    percentile(second_latency_ms, 0.5), percentile(second_latency_ms, 0.99),
+                    percentile(second_worker->inference_ms(), 0.5));
     int status = frames > 0 ? 0 : 1;
     if (!stop_requested && source.live()) {  // a camera or stream that ends by itself has failed
         std::fprintf(stderr, "hkf-estimator: %s stopped delivering frames (unplugged?) after %ld frames\n",

@@ -26,10 +26,17 @@ struct PipelineOptions {
     bool show = false;                 // a window, when there is a display
     long max_frames = 0;               // stop after this many (0: all)
     TrackerSettings tracker;
+    // A second model (run_pipeline's `second`) measures the frames where the
+    // first finds no pose on the tracked face or measures |yaw| >= this (deg;
+    // 0: every frame), on its own thread (second_model.hpp).
+    float second_from_yaw = 30.f;
 };
 
 // Runs until the source ends (or SIGINT / SIGTERM); prints a summary.
+// second: nullptr, or a second model whose measurements go on the same
+// channel with the frame's seq and utime (hkf-filter fuses them).
 // Returns the process exit status; throws EstimatorError on set-up errors.
-int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const PipelineOptions &options);
+int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const PipelineOptions &options,
+                 HeadPoseEstimator *second = nullptr);
 
 }  // namespace hkf_estimator

@@ -501,6 +501,7 @@ static void test_second_model_fused_into_its_frame(void **state)
     const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known);
     const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known);
     (void)state;
+    node.align_frames = 0; /* the models' offset is another test's */
     assert_true(known);
     assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
     sim_init(&sim, &sc, 5u);
@@ -625,6 +626,50 @@ static void test_second_model_alone_starts_and_keeps_track(void **state)
     assert_string_equal(node.model, "fsanet");
 }
 
+/* Two models that disagree by a steady offset (the second reads pitch 4 deg
+ * higher, yaw 3 deg lower): the second is moved onto the first's frame, so the
+ * fused track keeps to where the first model alone puts it (on average over
+ * the second half; the lag differs, as fusing halves R) - without the
+ * alignment it sits between the two. */
+static void test_second_model_offset_aligned(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    filter_node_t alone, unaligned;
+    double bias_aligned[2] = {0, 0}, bias_unaligned[2] = {0, 0};
+    int i;
+    (void)state;
+    assert_int_equal(filter_node_init(&alone, &config), 0);
+    assert_int_equal(filter_node_init(&unaligned, &config), 0);
+    unaligned.align_frames = 0;
+    for (i = 0; i < 400; ++i) {
+        hkf_head_pose_t p_alone, p_unaligned;
+        const double pitch = 5.0 * sin(0.05 * i), yaw = 20.0 * sin(0.03 * i), noise = 0.5 * sin(1.7 * i);
+        m = measurement(T0 + i * FRAME_US, 1, pitch + noise, yaw - noise, 1.0);
+        second = m;
+        second.model = "hopenet";
+        second.pitch = (float)(pitch + 4.0 - noise);
+        second.yaw = (float)(yaw - 3.0 + noise);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
+        assert_int_equal(filter_node_receive(&alone, &m, m.utime + 2000, &p_alone), 1);
+        assert_int_equal(filter_node_receive(&unaligned, &m, m.utime + 2000, &p_unaligned), 1);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
+        assert_int_equal(filter_node_receive(&unaligned, &second, m.utime + 30000, &p_unaligned), 0);
+        if (i >= 200) {
+            bias_aligned[0] += (pose.pitch - p_alone.pitch) / 200.0;
+            bias_aligned[1] += (pose.yaw - p_alone.yaw) / 200.0;
+            bias_unaligned[0] += (p_unaligned.pitch - p_alone.pitch) / 200.0;
+            bias_unaligned[1] += (p_unaligned.yaw - p_alone.yaw) / 200.0;
+        }
+    }
+    print_message("mean offset from the first model's track, pitch / yaw: aligned %.3f / %.3f deg, unaligned "
+                  "%.3f / %.3f deg\n", bias_aligned[0], bias_aligned[1], bias_unaligned[0], bias_unaligned[1]);
+    assert_true(fabs(bias_aligned[0]) < 0.2 && fabs(bias_aligned[1]) < 0.2);
+    assert_true(bias_unaligned[0] > 0.75 && bias_unaligned[1] < -0.75); /* where R weighs them: fsanet vs hopenet */
+    assert_float_equal(node.second_offset[0], -4.0, 0.05);
+    assert_float_equal(node.second_offset[1], 3.0, 0.05);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -648,6 +693,7 @@ int main(void)
         cmocka_unit_test_setup(test_second_model_fused_into_its_frame, setup),
         cmocka_unit_test_setup(test_second_model_late_or_repeated_not_used, setup),
         cmocka_unit_test_setup(test_second_model_alone_starts_and_keeps_track, setup),
+        cmocka_unit_test_setup(test_second_model_offset_aligned, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

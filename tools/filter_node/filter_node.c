@@ -43,6 +43,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
 {
     memset(node, 0, sizeof *node);
     node->config = config;
+    node->align_frames = FILTER_NODE_ALIGN_FRAMES;
     return setup_filter(node, "");
 }
 
@@ -298,6 +299,38 @@ static int redo_step(const filter_node_t *node, hkf_filter_t *f, const filter_no
     return result == HKF_ERROR_NOT_INITIALIZED ? HKF_OK : result; /* no track yet, as the node found */
 }
 
+/* The second model's measurement on the first's frame: z2 plus the running
+ * mean of (first - second) over the frames both measured, updated with this
+ * frame's difference when the first measured it too. */
+static void align_second(filter_node_t *node, const filter_node_frame_t *frame, const char *model, hkf_real_t z2[3])
+{
+    int a;
+    if (strncmp(node->second_model, model, sizeof node->second_model) != 0) { /* another second model: start over */
+        strncpy(node->second_model, model, sizeof node->second_model - 1);
+        node->second_offset_frames = 0;
+        memset(node->second_offset, 0, sizeof node->second_offset);
+    }
+    if (frame->valid && node->align_frames > 0) {
+        const long n = node->second_offset_frames < node->align_frames ? node->second_offset_frames + 1
+                                                                       : node->align_frames;
+        for (a = 0; a < 3; ++a) {
+            double difference = (double)frame->z[a] - (double)z2[a];
+            if (a == HKF_AXIS_YAW) {
+                difference -= 360.0 * floor((difference + 180.0) / 360.0);
+            }
+            node->second_offset[a] += (hkf_real_t)((difference - (double)node->second_offset[a]) / (double)n);
+        }
+        node->second_offset_frames = n;
+    }
+    for (a = 0; a < 3; ++a) {
+        double v = (double)z2[a] + (double)node->second_offset[a];
+        if (a == HKF_AXIS_YAW) {
+            v -= 360.0 * floor((v + 180.0) / 360.0);
+        }
+        z2[a] = (hkf_real_t)(v < HKF_MAX_ABS_ANGLE ? (v > -HKF_MAX_ABS_ANGLE ? v : -HKF_MAX_ABS_ANGLE) : HKF_MAX_ABS_ANGLE);
+    }
+}
+
 /* Fuses m, the second measurement of kept frame `index`: that frame's step
  * again with both (hkf_update_pair), then the steps of the frames after it. */
 static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
@@ -315,6 +348,7 @@ static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_meas
     frame->z2[0] = m->pitch;
     frame->z2[1] = m->yaw;
     frame->z2[2] = m->roll;
+    align_second(node, frame, frame->second_model, frame->z2);
     f = frame->before;
     for (i = 0; i < count; ++i) {
         before[i] = f;

@@ -37,7 +37,13 @@
  *   found no face) and redoes the frames after it. Nothing is published for a
  *   second measurement: the next frame's pose carries it. One per frame; a
  *   second measurement older than the kept frames is counted, not used. A
- *   restart, a command or a clock resync forgets the kept frames.
+ *   restart, a command or a clock resync forgets the kept frames. Two models
+ *   disagree by a steady few degrees (on d10.mp4 WHENet's pitch is 4.3 deg
+ *   above the mesh's): the second's measurements are moved onto the first's
+ *   frame by the running mean of their difference over the last
+ *   FILTER_NODE_ALIGN_FRAMES frames both measured, so that the pose does not
+ *   step when the second model comes and goes, and the first's innovations
+ *   do not read the gap as motion (q_boost).
  */
 #ifndef FILTER_NODE_H
 #define FILTER_NODE_H
@@ -71,6 +77,7 @@ typedef struct {
 } filter_node_counts_t;
 
 #define FILTER_NODE_PAIR_FRAMES 16 /* frames kept for a late second measurement: 0.27 s at 60 fps */
+#define FILTER_NODE_ALIGN_FRAMES 60 /* frames both models measured that the second's offset averages */
 
 /* One frame's filter step, kept so that a second model's measurement of it can
  * be fused afterwards. */
@@ -102,6 +109,10 @@ typedef struct {
     int64_t seq;
     filter_node_frame_t frames[FILTER_NODE_PAIR_FRAMES]; /* the last frames' steps, a ring */
     int frame_count, frame_newest;
+    long align_frames;                      /* FILTER_NODE_ALIGN_FRAMES (0: no alignment) */
+    char second_model[NODE_MODEL_NAME_MAX]; /* the second model the offset is for */
+    hkf_real_t second_offset[3];            /* first minus second, deg, running mean */
+    long second_offset_frames;              /* frames it has averaged */
     filter_node_counts_t counts;
 } filter_node_t;
 

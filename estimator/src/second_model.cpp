@@ -1,0 +1,84 @@
+// second_model.cpp - see second_model.hpp.
+#include "second_model.hpp"
+
+#include <chrono>
+
+namespace hkf_estimator {
+
+SecondModelWorker::SecondModelWorker(HeadPoseEstimator &model, std::function<void(const SecondModelResult &)> publish)
+    : model_(model), publish_(std::move(publish)), thread_([this] { run(); })
+{
+}
+
+SecondModelWorker::~SecondModelWorker() { stop(); }
+
+void SecondModelWorker::submit(SecondModelJob job, bool drop_old)
+{
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (!drop_old) changed_.wait(lock, [&] { return !waiting_ || stopping_; });
+    if (stopping_) return;
+    if (waiting_) ++skipped_;
+    ++asked_;
+    waiting_ = std::move(job);
+    changed_.notify_all();
+}
+
+void SecondModelWorker::stop()
+{
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+        changed_.notify_all();
+    }
+    if (thread_.joinable()) thread_.join();
+}
+
+void SecondModelWorker::run()
+{
+    for (;;) {
+        SecondModelJob job;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            changed_.wait(lock, [&] { return waiting_ || stopping_; });
+            if (!waiting_) return;  // stopping, nothing left
+            job = std::move(*waiting_);
+            waiting_.reset();
+            changed_.notify_all();  // a submit waiting for the slot may go on
+        }
+        SecondModelResult result;
+        const auto t0 = std::chrono::steady_clock::now();
+        result.pose = model_.estimate(job.image, job.face);
+        result.inference_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        result.job = std::move(job);
+        publish_(result);
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++done_;
+        inference_ms_.push_back(result.inference_ms);
+    }
+}
+
+long SecondModelWorker::asked() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    return asked_;
+}
+
+long SecondModelWorker::skipped() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    return skipped_;
+}
+
+long SecondModelWorker::done() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    return done_;
+}
+
+std::vector<double> SecondModelWorker::inference_ms() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    return inference_ms_;
+}
+
+}  // namespace hkf_estimator
