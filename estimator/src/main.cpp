@@ -56,7 +56,7 @@ void usage(std::ostream &out)
            "                     finds no pose on the tracked face or measures a large yaw; its\n"
            "                     measurements go on the same channel with the frame's seq and time,\n"
            "                     and hkf-filter fuses both (README: \"Two models on one channel\")\n"
-           "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 30; 0: every frame)\n"
+           "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 10; 0: every frame)\n"
            "--dataset mode evaluates a head-pose model on a labelled image set laid out like\n"
            "../shared/data/aflw2000 (labels.csv and images/): finds each face the way live video\n"
            "does (the detector on the whole image, the largest face; one away from the labelled\n"

@@ -46,6 +46,9 @@ rows = {m[1]: (float(m[2]), float(m[3])) for m in re.finditer(r"^\| (.+?) \|.*\|
 mesh, whenet, fused = rows["mesh_pnp"], rows["whenet"], next(v for k, v in rows.items() if k.startswith("fused"))
 assert fused[0] >= max(mesh[0], whenet[0]), (fused, mesh, whenet)
 assert fused[1] < max(mesh[1], whenet[1]), (fused, mesh, whenet)
+# the pipeline's row (mesh, WHENet fused in or alone at larger yaw): every face either found, and better than the worse
+pipeline = next(v for k, v in rows.items() if k.startswith("the pipeline"))
+assert pipeline[0] == fused[0] and pipeline[1] < max(mesh[1], whenet[1]), (pipeline, mesh, whenet)
 PY
 
 expect_error() { # expect_error PATTERN COMMAND...: non-zero exit, PATTERN in stderr

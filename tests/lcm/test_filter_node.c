@@ -502,6 +502,7 @@ static void test_second_model_fused_into_its_frame(void **state)
     const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known);
     (void)state;
     node.align_frames = 0; /* the models' offset is another test's */
+    config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
     assert_true(known);
     assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
     sim_init(&sim, &sc, 5u);
@@ -670,6 +671,48 @@ static void test_second_model_offset_aligned(void **state)
     assert_float_equal(node.second_offset[1], 3.0, 0.05);
 }
 
+/* Where the first model measures a large turn (|yaw| >= pair_second_alone_from_yaw,
+ * 25 deg), a frame the second model also measured takes the second's
+ * measurement alone, with its own R; below, both are fused. The node's track
+ * is libhkf's stepped that way. */
+static void test_second_model_alone_at_large_yaw(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    hkf_filter_t reference;
+    hkf_output_t ours, theirs;
+    int known, i, a;
+    const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known);
+    const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known);
+    (void)state;
+    node.align_frames = 0;
+    assert_float_equal(config.second_alone_from_yaw, 25.0, 0.0);
+    assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
+    for (i = 0; i < 60; ++i) {
+        const double yaw = 1.5 * i; /* 0 .. 88.5 deg: fused below 25, the second alone from there */
+        const hkf_real_t z[3] = {(hkf_real_t)(2.0 + 0.3 * sin(i)), (hkf_real_t)yaw, -1.0f};
+        const hkf_real_t z2[3] = {(hkf_real_t)(-1.0 + 0.4 * cos(i)), (hkf_real_t)(yaw + 4.0), 2.0f};
+        m = measurement(T0 + i * FRAME_US, 1, z[0], z[1], z[2]);
+        second = m;
+        second.model = "hopenet";
+        second.pitch = z2[0];
+        second.yaw = z2[1];
+        second.roll = z2[2];
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
+        assert_int_equal(hkf_update_pair(&reference, yaw >= 25.0 ? NULL : z, z2, &s2,
+                                         (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6), NULL), HKF_OK);
+    }
+    assert_int_equal(hkf_get_output(&node.filter, &ours), HKF_OK);
+    assert_int_equal(hkf_get_output(&reference, &theirs), HKF_OK);
+    for (a = 0; a < 3; ++a) {
+        assert_float_equal(ours.angle[a], theirs.angle[a], 1e-4);
+    }
+    /* the second model's pitch, not a blend: the first's (2 deg) is set aside */
+    assert_true(fabs(ours.angle[0] - (-1.0)) < 1.0);
+    assert_int_equal(node.counts.paired, 60);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -694,6 +737,7 @@ int main(void)
         cmocka_unit_test_setup(test_second_model_late_or_repeated_not_used, setup),
         cmocka_unit_test_setup(test_second_model_alone_starts_and_keeps_track, setup),
         cmocka_unit_test_setup(test_second_model_offset_aligned, setup),
+        cmocka_unit_test_setup(test_second_model_alone_at_large_yaw, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,15 +1,21 @@
 #!/usr/bin/env python3
 """What fusing the two estimators would give on AFLW2000 (issue 8), per
 labelled |yaw| bin: faces found and mean MAE of pitch, yaw and roll, for each
-estimator alone, for choosing one by WHENet's yaw, and for the measurement
+estimator alone, for choosing one by WHENet's yaw, for the measurement
 update hkf_update_pair makes of a single frame (inverse-variance weights,
-each R from its model's Eq. 8 curves as hkf-filter has them built in).
+each R from its model's Eq. 8 curves as hkf-filter has them built in), and
+for the pipeline hkf-estimator --second-model whenet and hkf-filter run
+(WHENet only where the mesh's yaw is beyond --second-from-yaw, fused there,
+taken alone beyond --second-alone-from-yaw or where the mesh gives no pose;
+a single image has no history, so the node's offset between the two models
+is not applied).
 
 Input: `hkf-estimator --dataset` predictions of both models on the same
 images (the live path by default) and the dataset's labels.
 
 usage: fusion_on_aflw.py --labels L.csv --mesh MESH.csv --whenet WHENET.csv [--limit N]
-                         [--filter build/tools/hkf-filter]
+                         [--filter build/tools/hkf-filter] [--select-yaw DEG] [--second-from-yaw DEG]
+                         [--second-alone-from-yaw DEG] [--part all|even|odd]
 """
 import argparse
 import csv
@@ -71,6 +77,14 @@ def main():
                         help="only the first N labelled images, as hkf-estimator --limit N (0: all)")
     parser.add_argument("--select-yaw", type=float, default=30.0,
                         help="the choice rule takes WHENet where its |yaw| is at least this, deg (default 30)")
+    parser.add_argument("--second-from-yaw", type=float, default=10.0,
+                        help="the pipeline row: WHENet runs where the mesh's |yaw| is at least this, deg, as "
+                             "hkf-estimator --second-from-yaw (default 10)")
+    parser.add_argument("--second-alone-from-yaw", type=float, default=25.0,
+                        help="the pipeline row: WHENet alone where the mesh's |yaw| is at least this, deg, as "
+                             "hkf-filter's pair_second_alone_from_yaw (default 25)")
+    parser.add_argument("--part", choices=["all", "even", "odd"], default="all",
+                        help="only the even or odd labelled images (tuning and held-out halves)")
     args = parser.parse_args()
     mesh, whenet = predictions(args.mesh), predictions(args.whenet)
     c_mesh, c_whenet = curves(args.filter, "mesh_pnp"), curves(args.filter, "whenet")
@@ -79,6 +93,13 @@ def main():
         return [(m[a] / noise(c_mesh[a], m[a]) + w[a] / noise(c_whenet[a], w[a])) /
                 (1.0 / noise(c_mesh[a], m[a]) + 1.0 / noise(c_whenet[a], w[a])) for a in range(3)]
 
+    def pipeline(m, w):  # what hkf-estimator --second-model whenet and hkf-filter make of one frame
+        if m is None:
+            return w
+        if w is None or abs(m[1]) < args.second_from_yaw:
+            return m
+        return w if abs(m[1]) >= args.second_alone_from_yaw else fused(m, w)
+
     ways = {
         "mesh_pnp": lambda m, w: m,
         "whenet": lambda m, w: w,
@@ -86,10 +107,15 @@ def main():
             w if (w is not None and (m is None or abs(w[1]) >= args.select_yaw)) else m,
         "fused: inverse-variance, each R by Eq. 8 at its own angle": lambda m, w:
             fused(m, w) if (m is not None and w is not None) else (m if m is not None else w),
+        f"the pipeline (`--second-model whenet`): mesh_pnp; WHENet fused in where the mesh's yaw is beyond "
+        f"±{args.second_from_yaw:g}°, alone beyond ±{args.second_alone_from_yaw:g}° or where the mesh gives no pose":
+            pipeline,
     }
     try:
         with open(args.labels) as f:
             labels = list(csv.DictReader(f))[: args.limit or None]
+        if args.part != "all":
+            labels = labels[args.part == "odd"::2]
     except OSError as e:
         fail(f"cannot read {args.labels}: {e}")
     print("| estimate | " + " | ".join(f"labelled yaw ±{lo:g}-{hi:g}°" for lo, hi in BINS) + " | all |")

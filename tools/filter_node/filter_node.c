@@ -282,6 +282,12 @@ static int late_second(const filter_node_t *node, const hkf_head_pose_measuremen
            m->utime <= node->last_utime && strncmp(node->model, m->model ? m->model : "", sizeof node->model) != 0;
 }
 
+/* Where the first model measures a large turn, the second's measurement is taken alone. */
+static int first_set_aside(const filter_node_t *node, const filter_node_frame_t *frame)
+{
+    return frame->valid && fabs((double)frame->z[HKF_AXIS_YAW]) >= (double)node->config->second_alone_from_yaw;
+}
+
 /* One kept frame's step on f, as the node made it, with the frame's second
  * measurement if it has one. */
 static int redo_step(const filter_node_t *node, hkf_filter_t *f, const filter_node_frame_t *frame)
@@ -290,7 +296,8 @@ static int redo_step(const filter_node_t *node, hkf_filter_t *f, const filter_no
     if (frame->paired) {
         int known;
         const hkf_settings_t second = node_config_for_model(node->config, frame->second_model, &known);
-        return hkf_update_pair(f, frame->valid ? frame->z : NULL, frame->z2, &second, frame->dt, NULL);
+        const int first = frame->valid && !first_set_aside(node, frame);
+        return hkf_update_pair(f, first ? frame->z : NULL, frame->z2, &second, frame->dt, NULL);
     }
     if (frame->valid) {
         return hkf_update(f, frame->z, frame->dt, NULL);
@@ -305,12 +312,14 @@ static int redo_step(const filter_node_t *node, hkf_filter_t *f, const filter_no
 static void align_second(filter_node_t *node, const filter_node_frame_t *frame, const char *model, hkf_real_t z2[3])
 {
     int a;
+    /* learnt only where the first model is trusted (where the two are fused): at a large turn the
+     * mesh's own error is what the second model is there to avoid */
     if (strncmp(node->second_model, model, sizeof node->second_model) != 0) { /* another second model: start over */
         strncpy(node->second_model, model, sizeof node->second_model - 1);
         node->second_offset_frames = 0;
         memset(node->second_offset, 0, sizeof node->second_offset);
     }
-    if (frame->valid && node->align_frames > 0) {
+    if (frame->valid && node->align_frames > 0 && !first_set_aside(node, frame)) {
         const long n = node->second_offset_frames < node->align_frames ? node->second_offset_frames + 1
                                                                        : node->align_frames;
         for (a = 0; a < 3; ++a) {

@@ -19,6 +19,7 @@ typedef struct {
 } config_key_t;
 
 #define FIELD(f) offsetof(hkf_settings_t, f)
+#define PAIR_KEY "pair_second_alone_from_yaw"
 
 static const config_key_t keys[] = {
     {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll), deg^2/s^3"},
@@ -61,6 +62,7 @@ void node_config_defaults(node_config_t *config)
 {
     memset(config, 0, sizeof *config);
     config->settings = hkf_default_settings;
+    config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
     add_builtin_model(config, "fsanet", hkf_noise_fsanet);
     add_builtin_model(config, "hopenet", hkf_noise_hopenet);
     add_builtin_model(config, "mesh_pnp", model_curves_mesh_pnp); /* fitted by tools/fit */
@@ -265,6 +267,15 @@ static int apply(node_config_t *config, const char *model, char *key, char *valu
     if (model != NULL) {
         return set_model_key(config, model, key, value, error, error_size);
     }
+    if (strcmp(key, PAIR_KEY) == 0) { /* the node's own setting, not libhkf's */
+        hkf_real_t v;
+        if (parse_reals(value, &v, 1) == 0 && v >= 0 && v <= 180) {
+            config->second_alone_from_yaw = v;
+            return 0;
+        }
+        snprintf(error, error_size, "%s wants degrees from 0 to 180, not '%s'", key, value);
+        return -1;
+    }
     k = find_key(key);
     if (k == NULL) {
         snprintf(error, error_size, "unknown key '%s' (--print-config lists them)", key);
@@ -410,10 +421,13 @@ void node_config_print(const node_config_t *config, FILE *out)
 {
     size_t i;
     int m;
+    char text[32];
     fprintf(out, "# hkf-filter effective configuration\n");
     for (i = 0; i < KEY_COUNT; ++i) {
         print_key(&config->settings, &keys[i], out);
     }
+    fprintf(out, "%-20s = %-40s # %s\n", PAIR_KEY, format_real(config->second_alone_from_yaw, text, sizeof text),
+            "deg; two models on one channel: the second alone where the first's |yaw| >= this");
     for (m = 0; m < config->model_count; ++m) {
         const node_model_t *model = &config->models[m];
         hkf_settings_t s = config->settings;

@@ -24,7 +24,14 @@ typedef struct {
     hkf_settings_t settings;         /* for a model not in the table */
     node_model_t models[NODE_MAX_MODELS];
     int model_count;
+    /* Two models on one channel (filter_node.h): where the first model
+     * measures |yaw| >= this (deg), a frame the second also measured takes
+     * the second's measurement alone; below it, both are fused by their Eq. 8
+     * R. Key "pair_second_alone_from_yaw"; default NODE_SECOND_ALONE_FROM_YAW. */
+    hkf_real_t second_alone_from_yaw;
 } node_config_t;
+
+#define NODE_SECOND_ALONE_FROM_YAW 25.0 /* deg: chosen on AFLW2000's even images (README) */
 
 /* libhkf's defaults, and the models "fsanet" and "hopenet" with the paper's
  * Table I curves (r_const = each curve's minimum). */
