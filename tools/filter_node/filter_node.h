@@ -76,7 +76,7 @@ typedef struct {
     unsigned long commands;        /* commands applied */
 } filter_node_counts_t;
 
-#define FILTER_NODE_PAIR_FRAMES 16 /* frames kept for a late second measurement: 0.27 s at 60 fps */
+#define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
 #define FILTER_NODE_ALIGN_FRAMES 60 /* frames both models measured that the second's offset averages */
 
 /* One frame's filter step, kept so that a second model's measurement of it can

@@ -37,6 +37,8 @@ def parse_args():
     p.add_argument("--realtime", action="store_true", help="pace a file at its frame rate, like a camera")
     p.add_argument("--model", help="head-pose model for hkf-estimator (mesh_pnp, whenet)")
     p.add_argument("--detector", choices=["short", "full"], help="face detector range for hkf-estimator")
+    p.add_argument("--second-model", metavar="NAME",
+                   help="hkf-estimator also runs this model (whenet) at large turns; hkf-filter fuses both")
     p.add_argument("--config", metavar="FILE", help="hkf-filter settings file")
     p.add_argument("--rate", type=float, metavar="HZ", help="hkf-filter also publishes extrapolated poses at HZ")
     p.add_argument("--opentrack", action="store_true", help="also run hkf-opentrack")
@@ -79,6 +81,8 @@ def commands(args):
         est += ["--model", args.model]
     if args.detector:
         est += ["--detector", args.detector]
+    if args.second_model:
+        est += ["--second-model", args.second_model]
     out.append(("hkf-estimator", est))
     return out
 
@@ -100,13 +104,18 @@ class Monitor:
         self.lc = lcm.LCM(url)
         self.lc.subscribe("HEAD_POSE_RAW", self.on_raw)
         self.lc.subscribe("HEAD_POSE", self.on_pose)
-        self.raw = self.faces = self.poses = 0
+        self.raw = self.faces = self.poses = self.second = 0
         self.latency_ms = []
         self.last = None
         self.total_poses = 0
+        self.last_seq = None
 
     def on_raw(self, channel, data):
         m = self.raw_t.decode(data)
+        if self.last_seq is not None and self.last_seq - 300 < m.seq <= self.last_seq:
+            self.second += 1  # a second model's measurement of a frame already counted (it may come late)
+            return
+        self.last_seq = m.seq
         self.raw += 1
         self.faces += bool(m.valid)
 
@@ -121,6 +130,8 @@ class Monitor:
     def line(self, elapsed, interval):
         text = (f"[{elapsed:6.1f} s] camera {self.raw / interval:5.1f} fps ({self.faces} with a face), "
                 f"filter {self.poses / interval:5.1f} poses/s")
+        if self.second:
+            text += f", second model {self.second / interval:4.1f}/s"
         if self.latency_ms:
             lat = sorted(self.latency_ms)
             text += f", capture->pose p50 {lat[len(lat) // 2]:.1f} ms max {lat[-1]:.1f} ms"
@@ -129,7 +140,7 @@ class Monitor:
             yaw = (p.yaw - p.center[1] + 180.0) % 360.0 - 180.0
             text += (f", {STATUS.get(p.status, '?')} pitch {p.pitch - p.center[0]:+6.1f} yaw {yaw:+6.1f} "
                      f"roll {p.roll - p.center[2]:+6.1f} deg from centre")
-        self.raw = self.faces = self.poses = 0
+        self.raw = self.faces = self.poses = self.second = 0
         self.latency_ms = []
         return text
 
