@@ -177,7 +177,7 @@ int main(int argc, char **argv)
     if (filtered_poses.empty()) return fail(o.filtered_log + " has no " + o.filtered_channel + " messages");
 
     std::map<int64_t, const hkf::head_pose_measurement_t *> raw_by_seq;
-    for (const auto &m : raws) raw_by_seq[m.seq] = &m;
+    for (const auto &m : raws) raw_by_seq.emplace(m.seq, &m);  // the first model's, where a second one measured too
     std::map<int64_t, const hkf::head_pose_t *> filtered_by_utime;
     for (const auto &p : filtered_poses)
         if (!p.extrapolated) filtered_by_utime[p.utime] = &p;
