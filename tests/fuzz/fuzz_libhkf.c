@@ -241,7 +241,21 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #endif
             }
             before = f;
-            result = hkf_update_pair(&f, v, v2, &second, take_real(&in), &out);
+            { /* either measurement may be missing (that model found no face); both missing is an error */
+                uint8_t missing = 0;
+                hkf_real_t dt;
+                (void)take_byte(&in, &missing);
+                dt = take_real(&in);
+                result = hkf_update_pair(&f, missing % 4 == 1 ? NULL : v, missing % 4 == 2 ? NULL : v2, &second, dt,
+                                         &out);
+                if (missing % 4 == 3) {
+                    before = f;
+                    result = hkf_update_pair(&f, NULL, NULL, &second, dt, &out);
+                    if (result != HKF_ERROR_NULL_ARGUMENT) {
+                        abort();
+                    }
+                }
+            }
             ++steps;
             after_call(&before, &f, result, &out);
             break;
