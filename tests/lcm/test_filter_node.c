@@ -713,6 +713,34 @@ static void test_second_model_alone_at_large_yaw(void **state)
     assert_int_equal(node.counts.paired, 60);
 }
 
+/* Another estimator with another model on the channel, its counter behind and
+ * its frames a little older than the followed one's (fault catalogue 5, WHENet
+ * started a second after the mesh): another publisher, never taken for a late
+ * second measurement - its seq and utime are no frame of the followed one. */
+static void test_other_model_publisher_not_a_second(void **state)
+{
+    hkf_head_pose_measurement_t a, b;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    (void)state;
+    for (i = 0; i < 60; ++i) {
+        a = measurement(T0 + i * FRAME_US, 1, 0, 10, 0);
+        a.seq = 100 + i;
+        published += filter_node_receive(&node, &a, a.utime + 2000, &pose);
+        if (i >= 30) {
+            b = measurement(T0 + i * FRAME_US - 20000, 1, 0, 40, 0); /* captured 20 ms before a */
+            b.seq = i - 30;
+            b.model = "hopenet";
+            assert_int_equal(filter_node_receive(&node, &b, a.utime + 30000, &pose), 0);
+        }
+    }
+    assert_int_equal(published, 60);
+    assert_int_equal(node.counts.other_publisher, 30);
+    assert_int_equal(node.counts.unpaired, 0);
+    assert_int_equal(node.counts.paired, 0);
+    assert_true(fabsf(pose.yaw - 10.0f) < 0.5f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -738,6 +766,7 @@ int main(void)
         cmocka_unit_test_setup(test_second_model_alone_starts_and_keeps_track, setup),
         cmocka_unit_test_setup(test_second_model_offset_aligned, setup),
         cmocka_unit_test_setup(test_second_model_alone_at_large_yaw, setup),
+        cmocka_unit_test_setup(test_other_model_publisher_not_a_second, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

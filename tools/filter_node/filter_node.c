@@ -273,13 +273,19 @@ static int frame_of_second(const filter_node_t *node, const hkf_head_pose_measur
     return -1;
 }
 
+static int frame_id_slot(int64_t seq)
+{
+    return (int)((uint64_t)seq % FILTER_NODE_FRAME_IDS);
+}
+
 /* A second model's measurement of a frame already passed, too old for the kept
- * frames: its seq and utime are behind the followed estimator's, its model another. */
+ * frames: its seq and utime are those of one of the followed publisher's last
+ * frames, its model another. (Another publisher's seq and utime are not.) */
 static int late_second(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
-    const double behind = (double)node->stream_seq - (double)m->seq;
-    return node->have_stream && node->have_time && behind >= 0 && behind <= (double)FILTER_NODE_MAX_SEQ_STEP &&
-           m->utime <= node->last_utime && strncmp(node->model, m->model ? m->model : "", sizeof node->model) != 0;
+    const int slot = frame_id_slot(m->seq);
+    return node->have_stream && node->frame_ids[slot].seq == m->seq && node->frame_ids[slot].utime == m->utime &&
+           m->utime != 0 && strncmp(node->model, m->model ? m->model : "", sizeof node->model) != 0;
 }
 
 /* Where the first model measures a large turn, the second's measurement is taken alone. */
@@ -406,6 +412,11 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
         ++node->counts.received;
         ++node->counts.clock_jumps;
         return 0;
+    }
+    {
+        const int slot = frame_id_slot(m->seq);
+        node->frame_ids[slot].seq = m->seq;
+        node->frame_ids[slot].utime = m->utime;
     }
     publish = filter_node_measurement(node, m, pose);
     if (node->have_time && (!had_time || node->last_utime != previous_utime)) {

@@ -36,7 +36,8 @@
  *   (each with its own model's Eq. 8 curves; the second alone when the first
  *   found no face) and redoes the frames after it. Nothing is published for a
  *   second measurement: the next frame's pose carries it. One per frame; a
- *   second measurement older than the kept frames is counted, not used. A
+ *   second measurement older than the kept frames (its seq and utime are
+ *   one of the followed publisher's last frames) is counted, not used. A
  *   restart, a command or a clock resync forgets the kept frames. Two models
  *   disagree by a steady few degrees (on d10.mp4 WHENet's pitch is 4.3 deg
  *   above the mesh's): the second's measurements are moved onto the first's
@@ -78,6 +79,8 @@ typedef struct {
 
 #define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
 #define FILTER_NODE_ALIGN_FRAMES 60 /* frames both models measured that the second's offset averages */
+#define FILTER_NODE_FRAME_IDS 512   /* (seq, utime) of the followed publisher's last frames: a second measurement
+                                       too late to fuse is told from another publisher's by them */
 
 /* One frame's filter step, kept so that a second model's measurement of it can
  * be fused afterwards. */
@@ -109,6 +112,9 @@ typedef struct {
     int64_t seq;
     filter_node_frame_t frames[FILTER_NODE_PAIR_FRAMES]; /* the last frames' steps, a ring */
     int frame_count, frame_newest;
+    struct {
+        int64_t seq, utime;
+    } frame_ids[FILTER_NODE_FRAME_IDS];     /* by seq modulo FILTER_NODE_FRAME_IDS */
     long align_frames;                      /* FILTER_NODE_ALIGN_FRAMES (0: no alignment) */
     char second_model[NODE_MODEL_NAME_MAX]; /* the second model the offset is for */
     hkf_real_t second_offset[3];            /* first minus second, deg, running mean */
