@@ -52,7 +52,6 @@ void SecondModelWorker::run()
         result.job = std::move(job);
         publish_(result);
         std::lock_guard<std::mutex> lock(mutex_);
-        ++done_;
         inference_ms_.push_back(result.inference_ms);
     }
 }
@@ -72,7 +71,7 @@ long SecondModelWorker::skipped() const
 long SecondModelWorker::done() const
 {
     std::lock_guard<std::mutex> lock(mutex_);
-    return done_;
+    return static_cast<long>(inference_ms_.size());
 }
 
 std::vector<double> SecondModelWorker::inference_ms() const

@@ -66,8 +66,8 @@ private:
     std::condition_variable changed_;
     std::optional<SecondModelJob> waiting_;
     bool stopping_ = false;
-    long asked_ = 0, skipped_ = 0, done_ = 0;
-    std::vector<double> inference_ms_;
+    long asked_ = 0, skipped_ = 0;
+    std::vector<double> inference_ms_;  // one per job done
     std::thread thread_;
 };
 

@@ -312,37 +312,45 @@ static int redo_step(const filter_node_t *node, hkf_filter_t *f, const filter_no
     return result == HKF_ERROR_NOT_INITIALIZED ? HKF_OK : result; /* no track yet, as the node found */
 }
 
-/* The second model's measurement on the first's frame: z2 plus the running
- * mean of (first - second) over the frames both measured, updated with this
- * frame's difference when the first measured it too. */
-static void align_second(filter_node_t *node, const filter_node_frame_t *frame, const char *model, hkf_real_t z2[3])
+/* deg in [-180, 180) */
+static double wrap180(double angle)
+{
+    return angle - 360.0 * floor((angle + 180.0) / 360.0);
+}
+
+/* The frame's second measurement (frame->z2) moved onto the first model's
+ * frame: plus the running mean of (first - second) over the frames both
+ * measured, updated with this frame's difference when the first measured it too. */
+static void align_second(filter_node_t *node, filter_node_frame_t *frame)
 {
     int a;
-    /* learnt only where the first model is trusted (where the two are fused): at a large turn the
-     * mesh's own error is what the second model is there to avoid */
-    if (strncmp(node->second_model, model, sizeof node->second_model) != 0) { /* another second model: start over */
-        strncpy(node->second_model, model, sizeof node->second_model - 1);
+    if (strncmp(node->second_model, frame->second_model, sizeof node->second_model) != 0) {
+        /* another second model: start over */
+        strncpy(node->second_model, frame->second_model, sizeof node->second_model - 1);
         node->second_offset_frames = 0;
         memset(node->second_offset, 0, sizeof node->second_offset);
     }
+    /* learnt only where the first model is trusted (where the two are fused): at a large turn the
+     * mesh's own error is what the second model is there to avoid */
     if (frame->valid && node->align_frames > 0 && !first_set_aside(node, frame)) {
         const long n = node->second_offset_frames < node->align_frames ? node->second_offset_frames + 1
                                                                        : node->align_frames;
         for (a = 0; a < 3; ++a) {
-            double difference = (double)frame->z[a] - (double)z2[a];
+            double difference = (double)frame->z[a] - (double)frame->z2[a];
             if (a == HKF_AXIS_YAW) {
-                difference -= 360.0 * floor((difference + 180.0) / 360.0);
+                difference = wrap180(difference);
             }
             node->second_offset[a] += (hkf_real_t)((difference - (double)node->second_offset[a]) / (double)n);
         }
         node->second_offset_frames = n;
     }
     for (a = 0; a < 3; ++a) {
-        double v = (double)z2[a] + (double)node->second_offset[a];
+        double v = (double)frame->z2[a] + (double)node->second_offset[a];
         if (a == HKF_AXIS_YAW) {
-            v -= 360.0 * floor((v + 180.0) / 360.0);
+            v = wrap180(v);
         }
-        z2[a] = (hkf_real_t)(v < HKF_MAX_ABS_ANGLE ? (v > -HKF_MAX_ABS_ANGLE ? v : -HKF_MAX_ABS_ANGLE) : HKF_MAX_ABS_ANGLE);
+        frame->z2[a] =
+            (hkf_real_t)(v < HKF_MAX_ABS_ANGLE ? (v > -HKF_MAX_ABS_ANGLE ? v : -HKF_MAX_ABS_ANGLE) : HKF_MAX_ABS_ANGLE);
     }
 }
 
@@ -363,7 +371,7 @@ static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_meas
     frame->z2[0] = m->pitch;
     frame->z2[1] = m->yaw;
     frame->z2[2] = m->roll;
-    align_second(node, frame, frame->second_model, frame->z2);
+    align_second(node, frame);
     f = frame->before;
     for (i = 0; i < count; ++i) {
         before[i] = f;
