@@ -64,7 +64,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static int registered;
     filter_node_offline_t options;
     filter_node_offline_report_t report;
-    lcm_eventlog_t out;
+    lcm_log_writer_t out;
+    FILE *out_file;
     char *written = NULL;
     size_t written_size = 0;
     FILE *in;
@@ -83,16 +84,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     options.csv = NULL;
     options.stop_requested = NULL;
     in = size > 1 ? fmemopen((void *)(data + 1), size - 1, "rb") : fopen("/dev/null", "rb");
-    out.f = open_memstream(&written, &written_size);
-    out.eventcount = 0;
-    CHECK(in != NULL && out.f != NULL, "cannot open the in-memory files");
+    out_file = open_memstream(&written, &written_size);
+    CHECK(in != NULL && out_file != NULL, "cannot open the in-memory files");
+    lcm_log_writer_start(&out, out_file);
 
     CHECK(filter_node_offline(&node, &options, in, &out, &report) == 0, "filter_node_offline failed");
     CHECK(report.skipped_bytes >= 0 && report.cut_bytes >= 0 &&
               report.skipped_bytes + report.cut_bytes + (long)report.events * 29 <= (long)size - 1,
           "the reader's account exceeds the input");
     fclose(in);
-    fclose(out.f);
+    CHECK(lcm_log_writer_close(&out) == 0, "closing the output log failed");
     CHECK(read_back(written, written_size) == report.poses_written, "poses written and read back differ");
     free(written);
     ++logs;

@@ -24,6 +24,7 @@ void lcm_wait_stop_on_signals(void)
     action.sa_handler = on_stop_signal;
     sigaction(SIGINT, &action, NULL);
     sigaction(SIGTERM, &action, NULL);
+    sigaction(SIGHUP, &action, NULL); /* the terminal closed: stop with a summary too */
 }
 
 int lcm_wait_stop_requested(void)

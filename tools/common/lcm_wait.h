@@ -21,7 +21,7 @@
 lcm_subscription_t *lcm_wait_subscribe(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user,
                                        const char *program);
 
-/* SIGINT and SIGTERM only set a flag, which the loop polls to stop with a summary. */
+/* SIGINT, SIGTERM and SIGHUP (the terminal closed) only set a flag, which the loop polls to stop with a summary. */
 void lcm_wait_stop_on_signals(void);
 int lcm_wait_stop_requested(void);
 

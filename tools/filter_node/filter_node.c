@@ -228,26 +228,25 @@ static int from_followed_publisher(filter_node_t *node, const hkf_head_pose_meas
     return 1;
 }
 
-/* The clock rule: 0 when m's stamp disagrees with its arrival (a corrupt stamp,
- * or the first messages after a clock jump); 1 to go on. On the last of
- * FILTER_NODE_RESYNC_MESSAGES consistent ones the node follows the new clock. */
-static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
+/* Measurements the node's time reference rejects (clock rule, or older than
+ * the last one taken) that agree with each other: later than the one before,
+ * with a capture step that matches the arrival step. Returns 1 on the
+ * FILTER_NODE_RESYNC_MESSAGES-th in a row: the reference is what was wrong. */
+static int rejected_stamps_agree(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
 {
-    const double limit = (double)FILTER_NODE_CLOCK_JUMP_US;
-    int consistent;
-    if (!node->have_time ||
-        fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) <= limit) {
-        return 1;
-    }
-    consistent = node->jump_count > 0 && m->utime > node->jump_utime &&
-                 fabs(clock_skew_us(m->utime, arrival_utime, node->jump_utime, node->jump_arrival_utime)) <= limit;
+    const int consistent =
+        node->jump_count > 0 && m->utime > node->jump_utime &&
+        fabs(clock_skew_us(m->utime, arrival_utime, node->jump_utime, node->jump_arrival_utime)) <=
+            (double)FILTER_NODE_CLOCK_JUMP_US;
     node->jump_count = consistent ? node->jump_count + 1 : 1;
     node->jump_utime = m->utime;
     node->jump_arrival_utime = arrival_utime;
-    if (node->jump_count < FILTER_NODE_RESYNC_MESSAGES) {
-        return 0;
-    }
-    /* the capture clock has moved: follow it; the track restarts as after a gap */
+    return node->jump_count >= FILTER_NODE_RESYNC_MESSAGES;
+}
+
+/* The node follows a new capture clock: the track restarts as after a gap. */
+static void resync_clock(filter_node_t *node)
+{
     ++node->counts.clock_resyncs;
     node->have_time = 0;
     forget_frames(node);
@@ -255,6 +254,41 @@ static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *
         hkf_reset(&node->filter);
         ++node->counts.restarts;
     }
+}
+
+/* The clock rule: 0 when m's stamp disagrees with its arrival (a corrupt stamp,
+ * or the first messages after a clock jump); 1 to go on. On the last of
+ * FILTER_NODE_RESYNC_MESSAGES consistent ones the node follows the new clock. */
+static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
+{
+    if (!node->have_time ||
+        fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) <=
+            (double)FILTER_NODE_CLOCK_JUMP_US) {
+        return 1;
+    }
+    if (!rejected_stamps_agree(node, m, arrival_utime)) {
+        return 0;
+    }
+    resync_clock(node);
+    return 1;
+}
+
+/* The stale rule: 0 when m is older than the last measurement taken (out of
+ * order); 1 to go on. FILTER_NODE_RESYNC_MESSAGES such measurements in a row
+ * that agree with each other mean the last one taken was the odd one out: a
+ * forged stamp ahead of time, or a clock that stepped back together with the
+ * receive clock (which the clock rule cannot see). The node then follows
+ * them, so that no single message holds tracking up for longer than a few
+ * frames. */
+static int not_stale(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
+{
+    if (!node->have_time || m->utime >= node->last_utime) {
+        return 1;
+    }
+    if (!rejected_stamps_agree(node, m, arrival_utime)) {
+        return 0;
+    }
+    resync_clock(node);
     return 1;
 }
 
@@ -419,6 +453,11 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
     if (!clock_agrees(node, m, arrival_utime)) {
         ++node->counts.received;
         ++node->counts.clock_jumps;
+        return 0;
+    }
+    if (!not_stale(node, m, arrival_utime)) {
+        ++node->counts.received;
+        ++node->counts.out_of_order;
         return 0;
     }
     {

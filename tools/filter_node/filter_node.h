@@ -22,6 +22,12 @@
  *   measurements in a row that agree with each other mean the capture clock
  *   really moved (either way): the last of them is taken and the track restarts
  *   on the new clock, as after a gap;
+ * - stale rule (filter_node_receive): FILTER_NODE_RESYNC_MESSAGES measurements
+ *   in a row older than the last one taken, that agree with each other, mean
+ *   the last one taken was the odd one out (a forged stamp ahead of time, or
+ *   the capture and receive clocks stepped back together, e.g. NTP): the node
+ *   follows them as after a clock jump. One message can hold tracking up for
+ *   two frames at most, never for the coast time;
  * - silence (filter_node_silence, live only): an estimator that stops sending
  *   is reported as LOST after coast_time, so a simulator never shows a frozen
  *   pose as if it were tracked;
@@ -106,7 +112,7 @@ typedef struct {
     int have_stream;                  /* a publisher is followed: */
     int64_t stream_seq;               /* its last seq */
     int64_t stream_arrival_utime;     /* when that arrived */
-    int jump_count;                   /* clock rule: consistent rejected stamps in a row */
+    int jump_count;                   /* clock and stale rules: consistent rejected stamps in a row */
     int64_t jump_utime, jump_arrival_utime; /* the last of them */
     int64_t lost_published;           /* LOST poses published in the current silence */
     int64_t seq;
@@ -138,7 +144,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
 #define FILTER_NODE_STREAM_TIMEOUT_US 1000000LL   /* 1 s without the followed publisher */
 
 /* Handles one measurement that arrived at arrival_utime (the receive clock:
- * wall time live, the log's event timestamp offline): the clock rule, then
+ * a monotonic clock live, the log's event timestamp offline): the clock and stale rules, then
  * filter_node_measurement. Returns 1 when *pose is to be published. */
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose);

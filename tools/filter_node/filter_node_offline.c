@@ -12,33 +12,23 @@
 
 typedef struct {
     const filter_node_offline_t *options;
-    lcm_eventlog_t *out;
+    lcm_log_writer_t *out;
     filter_node_offline_report_t *report;
 } output_t;
 
 static void write_pose(output_t *output, int64_t timestamp, const hkf_head_pose_t *pose)
 {
     unsigned char buffer[512];
-    lcm_eventlog_event_t event;
     const int size = hkf_head_pose_t_encoded_size(pose);
-    if (output->options->csv != NULL) {
-        pose_csv_write(output->options->csv, pose);
+    if (output->options->csv != NULL && pose_csv_write(output->options->csv, pose) != 0) {
+        output->report->csv_failed = 1;
     }
     ++output->report->poses_written;
     if (output->out == NULL) {
         return;
     }
-    if (size > (int)sizeof buffer || hkf_head_pose_t_encode(buffer, 0, size, pose) < 0) {
-        output->report->write_failed = 1;
-        return;
-    }
-    event.eventnum = (int64_t)output->report->poses_written - 1;
-    event.timestamp = timestamp;
-    event.channellen = (int32_t)strlen(output->options->output_channel);
-    event.datalen = size;
-    event.channel = (char *)output->options->output_channel;
-    event.data = buffer;
-    if (lcm_eventlog_write_event(output->out, &event) != 0) {
+    if (size > (int)sizeof buffer || hkf_head_pose_t_encode(buffer, 0, size, pose) < 0 ||
+        lcm_log_writer_write(output->out, timestamp, output->options->output_channel, buffer, size) != 0) {
         output->report->write_failed = 1;
     }
 }
@@ -91,7 +81,7 @@ static void handle_measurement(filter_node_t *node, output_t *output, const void
     hkf_head_pose_measurement_t_decode_cleanup(&m);
 }
 
-int filter_node_offline(filter_node_t *node, const filter_node_offline_t *options, FILE *in, lcm_eventlog_t *out,
+int filter_node_offline(filter_node_t *node, const filter_node_offline_t *options, FILE *in, lcm_log_writer_t *out,
                         filter_node_offline_report_t *report)
 {
     static unsigned char data[MESSAGE_MAX];
@@ -110,6 +100,9 @@ int filter_node_offline(filter_node_t *node, const filter_node_offline_t *option
             report->stopped = 1;
             break;
         }
+        if (report->write_failed) {
+            break; /* the disk is full: no use filtering on */
+        }
         const int ours = strcmp(event.channel, options->input_channel) == 0 ||
                          strcmp(event.channel, options->command_channel) == 0;
         if (ours && !event.data_read) {
@@ -120,11 +113,11 @@ int filter_node_offline(filter_node_t *node, const filter_node_offline_t *option
             handle_measurement(node, &output, data, event.datalen, event.timestamp);
         }
     }
-    if (!report->stopped) {
+    if (!report->stopped && !report->write_failed) {
         silence_before(node, &output, INT64_MAX); /* the log ends: the estimator is silent from here on */
     }
     report->events = reader.events;
     report->skipped_bytes = reader.skipped;
-    report->cut_bytes = report->stopped ? 0 : lcm_log_reader_cut(&reader);
-    return report->write_failed ? -1 : 0;
+    report->cut_bytes = report->stopped || report->write_failed ? 0 : lcm_log_reader_cut(&reader);
+    return report->write_failed || report->csv_failed ? -1 : 0;
 }

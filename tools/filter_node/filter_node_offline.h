@@ -11,9 +11,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include <lcm/eventlog.h>
-
 #include "filter_node.h"
+#include "lcm_log_writer.h"
 
 typedef struct {
     const char *input_channel, *output_channel, *command_channel;
@@ -28,13 +27,15 @@ typedef struct {
     long cut_bytes;                 /* bytes at the end that are part of no whole event */
     unsigned long unknown_commands; /* commands with an unknown code, ignored */
     unsigned long poses_written;
-    int write_failed;               /* writing the output log failed */
+    int write_failed;               /* writing the output log failed (e.g. a full disk) */
+    int csv_failed;                 /* writing the CSV failed */
     int stopped;                    /* stopped early by stop_requested; the output is whole so far */
 } filter_node_offline_report_t;
 
 /* Filters the log `in` (a seekable file) into `out` (NULL: poses not written,
- * only counted). Returns 0, or -1 if `in` is not seekable or writing failed. */
-int filter_node_offline(filter_node_t *node, const filter_node_offline_t *options, FILE *in, lcm_eventlog_t *out,
+ * only counted). Returns 0, or -1 if `in` is not seekable or a write failed
+ * (the output log stops at the first failed write). */
+int filter_node_offline(filter_node_t *node, const filter_node_offline_t *options, FILE *in, lcm_log_writer_t *out,
                         filter_node_offline_report_t *report);
 
 #endif /* FILTER_NODE_OFFLINE_H */

@@ -17,9 +17,11 @@
 
 #include "filter_node.h"
 #include "filter_node_offline.h"
+#include "lcm_log_writer.h"
 #include "lcm_wait.h"
 #include "node_config.h"
 #include "pose_csv.h"
+#include "safe_files.h"
 
 #define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
 
@@ -28,6 +30,8 @@ typedef struct {
     const char *input_channel, *output_channel, *command_channel;
     const char *offline_in, *offline_out;
     const char *csv_path;
+    const char *config_paths[8]; /* inputs too: never written over */
+    int config_count;
     double rate_hz;
     int print_config;
     node_config_t config;
@@ -38,15 +42,30 @@ typedef struct {
     filter_node_t node;
     lcm_t *out_lcm;
     FILE *csv;
-    int64_t last_arrival_us;   /* wall clock when the last measurement was handled */
-    int reported_decode_errors;
+    int64_t last_arrival_us;   /* monotonic clock when the last measurement was handled */
+    int reported_decode_errors, reported_unknown_commands;
+    unsigned long unknown_commands, publish_errors, csv_errors;
 } node_run_t;
 
-static int64_t wall_utime(void)
+static int64_t clock_utime(clockid_t clock)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
+    clock_gettime(clock, &ts);
     return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+/* The capture clock, for the latency a pose reports. */
+static int64_t wall_utime(void)
+{
+    return clock_utime(CLOCK_REALTIME);
+}
+
+/* The receive clock of the live node: arrivals, silence, --rate ticks. It
+ * never steps, so a wall clock stepped back (NTP, a user, a resumed VM) shows
+ * in the estimator's stamps alone, where the clock rule sees it. */
+static int64_t arrival_utime(void)
+{
+    return clock_utime(CLOCK_MONOTONIC);
 }
 
 static void usage(FILE *to)
@@ -70,7 +89,9 @@ static void usage(FILE *to)
             "  --offline IN OUT     filter the log IN into the log OUT as fast as possible\n"
             "  --csv FILE           also write every published pose as CSV\n"
             "  --help               this text\n"
-            "Stops on SIGINT / SIGTERM (live) or at the end of IN (offline) with a summary.\n");
+            "Stops on SIGINT / SIGTERM / SIGHUP (live) or at the end of IN (offline) with a summary.\n"
+            "Exit status: 0; 1 when a file or LCM provider fails (a write that did not reach the disk\n"
+            "included); 2 for bad arguments or settings.\n");
 }
 
 /* 0 = run, 1 = done (help, print-config), 2 = bad arguments */
@@ -109,12 +130,16 @@ static int parse_options(int argc, char **argv, options_t *o)
             o->command_channel = argv[++i];
         } else if (strcmp(arg, "--rate") == 0) {
             char *end = NULL;
+            errno = 0;
             o->rate_hz = strtod(argv[++i], &end);
-            if (*end != '\0' || !(o->rate_hz > 0.0 && o->rate_hz <= 10000.0)) {
-                fprintf(stderr, "hkf-filter: --rate wants a frequency from 0 to 10000 Hz, not '%s'\n", argv[i]);
+            if (end == argv[i] || *end != '\0' || errno != 0 || !(o->rate_hz >= 0.1 && o->rate_hz <= 10000.0)) {
+                fprintf(stderr, "hkf-filter: --rate wants a frequency from 0.1 to 10000 Hz, not '%s'\n", argv[i]);
                 return 2;
             }
         } else if (strcmp(arg, "--config") == 0) {
+            if (o->config_count < (int)(sizeof o->config_paths / sizeof o->config_paths[0])) {
+                o->config_paths[o->config_count++] = argv[i + 1];
+            }
             if (node_config_read_file(&o->config, argv[++i], error, sizeof error) != 0) {
                 fprintf(stderr, "hkf-filter: %s\n", error);
                 return 2;
@@ -136,27 +161,26 @@ static int parse_options(int argc, char **argv, options_t *o)
     }
     o->input_url = o->input_url ? o->input_url : lcm_url;
     o->output_url = o->output_url ? o->output_url : lcm_url;
+    {
+        const char *const channels[] = {o->input_channel, o->output_channel, o->command_channel};
+        for (i = 0; i < 3; ++i) {
+            if (channels[i][0] == '\0' || strlen(channels[i]) > LCM_MAX_CHANNEL_NAME_LENGTH) {
+                fprintf(stderr, "hkf-filter: a channel name has 1 to %d characters, not '%.80s%s'\n",
+                        LCM_MAX_CHANNEL_NAME_LENGTH, channels[i], strlen(channels[i]) > 80 ? "..." : "");
+                return 2;
+            }
+        }
+    }
     return 0;
 }
 
 /* Every settings set (the base and each model's) must pass hkf_init. */
 static int validate_config(const node_config_t *config)
 {
-    hkf_filter_t probe;
-    int m, result = hkf_init(&probe, &config->settings);
-    if (result != HKF_OK) {
-        fprintf(stderr, "hkf-filter: invalid settings: %s\n", hkf_result_string(result));
+    char error[800];
+    if (node_config_check(config, error, sizeof error) != 0) {
+        fprintf(stderr, "hkf-filter: %s\n", error);
         return -1;
-    }
-    for (m = 0; m < config->model_count; ++m) {
-        int known;
-        const hkf_settings_t s = node_config_for_model(config, config->models[m].name, &known);
-        result = hkf_init(&probe, &s);
-        if (result != HKF_OK) {
-            fprintf(stderr, "hkf-filter: invalid settings for model '%s': %s\n", config->models[m].name,
-                    hkf_result_string(result));
-            return -1;
-        }
     }
     return 0;
 }
@@ -175,11 +199,27 @@ static void print_summary(const filter_node_t *node, FILE *to)
             c->unknown_models, c->commands, c->silences, c->paired, c->unpaired);
 }
 
-static void report_decode_error(node_run_t *run, const char *channel)
+/* Why a HEAD_POSE_RAW payload did not decode, when it is the one mistake a
+ * user makes: an estimator's model id longer than the message allows. */
+static const char *decode_hint(const lcm_recv_buf_t *rbuf)
+{
+    const unsigned char *bytes = rbuf->data;
+    long length;
+    if (rbuf->data_size < 28) {
+        return "";
+    }
+    length = ((long)bytes[24] << 24) | ((long)bytes[25] << 16) | ((long)bytes[26] << 8) | bytes[27];
+    return length > NODE_MODEL_NAME_MAX && length < 65536
+               ? " (its model id is longer than the 31 bytes head_pose_measurement_t.lcm allows)"
+               : "";
+}
+
+static void report_decode_error(node_run_t *run, const char *channel, const char *hint)
 {
     ++run->node.counts.decode_errors;
     if (run->reported_decode_errors++ < 5) {
-        fprintf(stderr, "hkf-filter: a message on %s did not decode; counted and skipped\n", channel);
+        fprintf(stderr, "hkf-filter: a message on %s did not decode%s; counted and skipped%s\n", channel, hint,
+                run->reported_decode_errors == 5 ? " (no more such messages)" : "");
     }
 }
 
@@ -188,11 +228,12 @@ static void report_decode_error(node_run_t *run, const char *channel)
 static void publish(node_run_t *run, hkf_head_pose_t *pose)
 {
     pose->latency_us = wall_utime() - pose->measurement_utime;
-    if (hkf_head_pose_t_publish(run->out_lcm, run->options->output_channel, pose) != 0) {
+    if (hkf_head_pose_t_publish(run->out_lcm, run->options->output_channel, pose) != 0 &&
+        run->publish_errors++ < 5) {
         fprintf(stderr, "hkf-filter: publishing on %s failed\n", run->options->output_channel);
     }
-    if (run->csv != NULL) {
-        pose_csv_write(run->csv, pose);
+    if (run->csv != NULL && pose_csv_write(run->csv, pose) != 0 && run->csv_errors++ == 0) {
+        fprintf(stderr, "hkf-filter: writing '%s' failed (a full disk?)\n", run->options->csv_path);
     }
 }
 
@@ -202,10 +243,10 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void
     hkf_head_pose_measurement_t m;
     hkf_head_pose_t pose;
     if (filter_node_decode(rbuf->data, (int)rbuf->data_size, &m) != 0) {
-        report_decode_error(run, channel);
+        report_decode_error(run, channel, decode_hint(rbuf));
         return;
     }
-    run->last_arrival_us = wall_utime();
+    run->last_arrival_us = arrival_utime();
     if (filter_node_receive(&run->node, &m, run->last_arrival_us, &pose)) {
         publish(run, &pose);
     }
@@ -217,11 +258,15 @@ static void on_command(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     node_run_t *run = user;
     hkf_tracker_command_t command;
     if (hkf_tracker_command_t_decode(rbuf->data, 0, (int)rbuf->data_size, &command) < 0) {
-        report_decode_error(run, channel);
+        report_decode_error(run, channel, "");
         return;
     }
     if (filter_node_command(&run->node, &command) != 0) {
-        fprintf(stderr, "hkf-filter: unknown command %d on %s ignored\n", command.command, channel);
+        ++run->unknown_commands;
+        if (run->reported_unknown_commands++ < 5) { /* a flood must not flood the terminal */
+            fprintf(stderr, "hkf-filter: unknown command %d on %s ignored%s\n", command.command, channel,
+                    run->reported_unknown_commands == 5 ? " (no more such messages; counted)" : "");
+        }
     }
 }
 
@@ -229,8 +274,9 @@ static int run_live(node_run_t *run)
 {
     const options_t *o = run->options;
     lcm_t *in = lcm_create(o->input_url);
+    int status = 0;
     const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
-    int64_t next_tick = wall_utime() + tick_us;
+    int64_t next_tick = arrival_utime() + tick_us;
     if (in == NULL) {
         fprintf(stderr, "hkf-filter: cannot open LCM provider '%s'\n", o->input_url);
         return 1;
@@ -256,26 +302,27 @@ static int run_live(node_run_t *run)
     while (!lcm_wait_stop_requested()) {
         const int64_t silence_due = filter_node_silence_due(&run->node);
         const int64_t wake = tick_us > 0 && (silence_due == 0 || next_tick < silence_due) ? next_tick : silence_due;
-        if (lcm_wait_and_handle(in, lcm_wait_time(wake, wall_utime()), "hkf-filter") < 0) {
+        if (lcm_wait_and_handle(in, lcm_wait_time(wake, arrival_utime()), "hkf-filter") < 0) {
+            status = 1;
             break;
         }
         {
             hkf_head_pose_t pose;
-            if (filter_node_silence(&run->node, wall_utime(), &pose)) { /* the estimator has gone quiet */
+            if (filter_node_silence(&run->node, arrival_utime(), &pose)) { /* the estimator has gone quiet */
                 publish(run, &pose);
             }
         }
-        if (tick_us > 0 && wall_utime() >= next_tick) {
+        if (tick_us > 0 && arrival_utime() >= next_tick) {
             /* between measurements: the pose at the capture clock's "now" */
             hkf_head_pose_t pose;
-            const int64_t since = wall_utime() - run->last_arrival_us;
+            const int64_t since = arrival_utime() - run->last_arrival_us;
             if (run->node.have_time && since > 0 && run->node.last_utime <= INT64_MAX - since &&
                 filter_node_extrapolate(&run->node, run->node.last_utime + since, &pose)) {
                 publish(run, &pose);
             }
             next_tick += tick_us;
-            if (next_tick < wall_utime()) {
-                next_tick = wall_utime() + tick_us;
+            if (next_tick < arrival_utime()) {
+                next_tick = arrival_utime() + tick_us;
             }
         }
     }
@@ -283,27 +330,102 @@ static int run_live(node_run_t *run)
         lcm_destroy(run->out_lcm);
     }
     lcm_destroy(in);
-    return 0;
+    if (run->unknown_commands > 0) {
+        fprintf(stderr, "hkf-filter: %lu unknown commands ignored\n", run->unknown_commands);
+    }
+    if (run->publish_errors > 0) {
+        fprintf(stderr, "hkf-filter: %lu poses could not be published on %s\n", run->publish_errors, o->output_channel);
+        status = 1;
+    }
+    return status;
 }
 
 /* ---- offline ---- */
+
+/* The paths this run reads or writes, other than `except`: a file it opens
+ * for writing must be none of them. Returns how many are in keep. */
+static int paths_to_keep(const options_t *o, const char *except, const char **keep)
+{
+    const char *all[3 + 8];
+    int i, count = 0, n = 0;
+    all[count++] = o->offline_in;
+    all[count++] = o->offline_out;
+    all[count++] = o->csv_path;
+    for (i = 0; i < o->config_count; ++i) {
+        all[count++] = o->config_paths[i];
+    }
+    for (i = 0; i < count; ++i) {
+        if (all[i] != NULL && all[i] != except) {
+            keep[n++] = all[i];
+        }
+    }
+    return n;
+}
+
+/* --csv: opened (with its header) only once every other file is known to be another. */
+static int open_csv(node_run_t *run)
+{
+    const options_t *o = run->options;
+    const char *keep[3 + 8];
+    if (o->csv_path == NULL) {
+        return 0;
+    }
+    run->csv = safe_open_output(o->csv_path, "w", keep, paths_to_keep(o, o->csv_path, keep), "hkf-filter");
+    if (run->csv == NULL) {
+        return -1;
+    }
+    if (pose_csv_write_header(run->csv) != 0) {
+        run->csv_errors = 1;
+    }
+    return 0;
+}
+
+/* No output may be an input or the other output: checked for all before any is opened. */
+static int outputs_distinct(const options_t *o)
+{
+    const char *const outputs[] = {o->offline_out, o->csv_path};
+    const char *keep[3 + 8];
+    int i, k, count;
+    for (i = 0; i < 2; ++i) {
+        if (outputs[i] == NULL) {
+            continue;
+        }
+        count = paths_to_keep(o, outputs[i], keep);
+        for (k = 0; k < count; ++k) {
+            if (safe_same_file(outputs[i], keep[k])) {
+                fprintf(stderr, "hkf-filter: '%s' is also '%s', which this run reads or writes; refusing to write "
+                                "over it\n", outputs[i], keep[k]);
+                return 0;
+            }
+        }
+    }
+    return 1;
+}
 
 static int run_offline(node_run_t *run)
 {
     const options_t *o = run->options;
     filter_node_offline_t offline;
     filter_node_offline_report_t report;
-    FILE *in = fopen(o->offline_in, "rb");
-    lcm_eventlog_t *out;
+    const char *keep[3 + 8];
+    lcm_log_writer_t out;
+    FILE *in, *out_file;
     int status;
+    /* the input first, as a regular file (a named pipe would block and cannot seek); then the
+     * outputs, refusing any that is the input or another output: opening it would truncate it */
+    in = safe_open_input(o->offline_in, "hkf-filter");
     if (in == NULL) {
-        fprintf(stderr, "hkf-filter: cannot read the LCM log '%s': %s\n", o->offline_in, strerror(errno));
         return 1;
     }
-    out = lcm_eventlog_create(o->offline_out, "w");
-    if (out == NULL) {
-        fprintf(stderr, "hkf-filter: cannot write the LCM log '%s'\n", o->offline_out);
+    out_file = safe_open_output(o->offline_out, "wb", keep, paths_to_keep(o, o->offline_out, keep), "hkf-filter");
+    if (out_file == NULL) {
         fclose(in);
+        return 1;
+    }
+    lcm_log_writer_start(&out, out_file);
+    if (open_csv(run) != 0) {
+        fclose(in);
+        (void)lcm_log_writer_close(&out);
         return 1;
     }
     offline.input_channel = o->input_channel;
@@ -312,14 +434,14 @@ static int run_offline(node_run_t *run)
     offline.tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     offline.csv = run->csv;
     offline.stop_requested = lcm_wait_stop_requested;
-    lcm_wait_stop_on_signals(); /* SIGINT / SIGTERM: stop between events, close the output whole */
-    status = filter_node_offline(&run->node, &offline, in, out, &report);
+    lcm_wait_stop_on_signals(); /* SIGINT / SIGTERM / SIGHUP: stop between events, close the output whole */
+    status = filter_node_offline(&run->node, &offline, in, &out, &report);
     if (report.stopped) {
         fprintf(stderr, "hkf-filter: stopped by a signal after %lu events of '%s'; '%s' is whole up to there\n",
                 report.events, o->offline_in, o->offline_out);
         status = -1;
     }
-    if (status != 0 && !report.write_failed && !report.stopped) {
+    if (status != 0 && !report.write_failed && !report.csv_failed && !report.stopped) {
         fprintf(stderr, "hkf-filter: '%s' is not a file that can be read from any position\n", o->offline_in);
     }
     if (report.skipped_bytes > 0) { /* damage inside the log: what was around it was filtered */
@@ -337,10 +459,11 @@ static int run_offline(node_run_t *run)
     if (report.unknown_commands > 0) {
         fprintf(stderr, "hkf-filter: %lu unknown commands ignored\n", report.unknown_commands);
     }
+    run->csv_errors += report.csv_failed != 0;
     fclose(in);
-    lcm_eventlog_destroy(out);
-    if (report.write_failed) {
-        fprintf(stderr, "hkf-filter: error writing '%s'\n", o->offline_out);
+    if (lcm_log_writer_close(&out) != 0) {
+        fprintf(stderr, "hkf-filter: error writing '%s' (a full disk?): it is incomplete; the filtering stopped "
+                        "at the first failed write\n", o->offline_out);
         return 1;
     }
     return status != 0 ? 1 : 0;
@@ -365,17 +488,15 @@ int main(int argc, char **argv)
     }
     run.options = &options;
     filter_node_init(&run.node, &options.config);
-    if (options.csv_path != NULL) {
-        run.csv = fopen(options.csv_path, "w");
-        if (run.csv == NULL) {
-            fprintf(stderr, "hkf-filter: cannot write '%s': %s\n", options.csv_path, strerror(errno));
-            return 1;
-        }
-        pose_csv_write_header(run.csv);
+    if (!outputs_distinct(&options)) {
+        status = 1;
+    } else if (options.offline_in != NULL) {
+        status = run_offline(&run);
+    } else {
+        status = open_csv(&run) != 0 ? 1 : run_live(&run);
     }
-    status = options.offline_in != NULL ? run_offline(&run) : run_live(&run);
-    if (run.csv != NULL && fclose(run.csv) != 0) {
-        fprintf(stderr, "hkf-filter: error writing '%s'\n", options.csv_path);
+    if (run.csv != NULL && (safe_close(run.csv) != 0 || run.csv_errors > 0)) {
+        fprintf(stderr, "hkf-filter: error writing '%s' (a full disk?): it is cut\n", options.csv_path);
         status = 1;
     }
     print_summary(&run.node, stderr);

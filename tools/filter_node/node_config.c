@@ -1,13 +1,18 @@
 /* node_config.c - see node_config.h. */
+#define _POSIX_C_SOURCE 200809L
 #include "node_config.h"
 
 #include "model_curves.h"
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 typedef enum { KIND_REAL, KIND_REAL3, KIND_CURVE, KIND_NOISE_MODE, KIND_LOOP_CLOSURE, KIND_UINT } key_kind_t;
 
@@ -43,6 +48,7 @@ static const config_key_t keys[] = {
     {"q_boost_time", KIND_REAL, FIELD(q_boost_time), "s; time constant of m, the innovation's excess"},
 };
 #define KEY_COUNT (sizeof keys / sizeof keys[0])
+typedef char origin_slots_fit[KEY_COUNT + 1 <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys and the pair key */
 
 static const char *const noise_mode_names[] = {"constant", "adaptive", "adaptive_squared"};
 static const char *const loop_closure_names[] = {"off", "norm", "per_axis"};
@@ -80,18 +86,23 @@ static const config_key_t *find_key(const char *name)
     return NULL;
 }
 
-/* Reads exactly n numbers separated by blanks. */
+/* Reads exactly n numbers separated by blanks: 0, -1 when it is not n numbers,
+ * -2 when one is NaN, infinite, or beyond what a hkf_real_t holds (1e300 in a
+ * float build). */
 static int parse_reals(const char *text, hkf_real_t *out, int n)
 {
     const char *p = text;
-    int i;
+    int i, beyond = 0;
     for (i = 0; i < n; ++i) {
         char *end = NULL;
         double v;
         errno = 0;
         v = strtod(p, &end);
-        if (end == p || errno != 0) {
+        if (end == p) {
             return -1;
+        }
+        if (errno == ERANGE || !isfinite(v) || !isfinite((double)(hkf_real_t)v)) {
+            beyond = 1; /* underflow to 0 included: "1e-400" is not what was meant */
         }
         out[i] = (hkf_real_t)v;
         p = end;
@@ -99,7 +110,7 @@ static int parse_reals(const char *text, hkf_real_t *out, int n)
     while (isspace((unsigned char)*p)) {
         ++p;
     }
-    return *p == '\0' ? 0 : -1;
+    return *p != '\0' ? -1 : beyond ? -2 : 0;
 }
 
 static int parse_name(const char *text, const char *const *names, int count)
@@ -115,34 +126,37 @@ static int parse_name(const char *text, const char *const *names, int count)
 
 static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value, char *error, size_t error_size)
 {
+    static const char *const wants[] = {"a number", "three numbers (pitch yaw roll)",
+                                        "four numbers (tau lambda mu sigma)"};
     char *base = (char *)s + key->offset;
+    hkf_real_t v[4];
     int n;
     switch (key->kind) {
     case KIND_REAL:
-        if (parse_reals(value, (hkf_real_t *)(void *)base, 1) == 0) {
-            return 0;
-        }
-        snprintf(error, error_size, "%s wants a number, not '%s'", key->name, value);
-        return -1;
     case KIND_REAL3:
-        if (parse_reals(value, (hkf_real_t *)(void *)base, 3) == 0) {
+    case KIND_CURVE:
+        n = key->kind == KIND_REAL ? 1 : key->kind == KIND_REAL3 ? 3 : 4;
+        switch (parse_reals(value, v, n)) {
+        case 0:
+            if (key->kind == KIND_CURVE) {
+                hkf_noise_curve_t *c = (hkf_noise_curve_t *)(void *)base;
+                c->tau = v[0];
+                c->lambda = v[1];
+                c->mu = v[2];
+                c->sigma = v[3];
+            } else {
+                memcpy(base, v, (size_t)n * sizeof v[0]);
+            }
             return 0;
+        case -2:
+            snprintf(error, error_size, "%s = %s: a value is NaN, infinite or beyond the range of a number here",
+                     key->name, value);
+            return -1;
+        default:
+            snprintf(error, error_size, "%s wants %s, not '%s'", key->name, wants[n == 1 ? 0 : n == 3 ? 1 : 2],
+                     value);
+            return -1;
         }
-        snprintf(error, error_size, "%s wants three numbers (pitch yaw roll), not '%s'", key->name, value);
-        return -1;
-    case KIND_CURVE: {
-        hkf_real_t v[4];
-        hkf_noise_curve_t *c = (hkf_noise_curve_t *)(void *)base;
-        if (parse_reals(value, v, 4) == 0) {
-            c->tau = v[0];
-            c->lambda = v[1];
-            c->mu = v[2];
-            c->sigma = v[3];
-            return 0;
-        }
-        snprintf(error, error_size, "%s wants four numbers (tau lambda mu sigma), not '%s'", key->name, value);
-        return -1;
-    }
     case KIND_NOISE_MODE:
         n = parse_name(value, noise_mode_names, 3);
         if (n >= 0) {
@@ -161,11 +175,11 @@ static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value
         return -1;
     case KIND_UINT: {
         char *end = NULL;
-        unsigned long v;
+        unsigned long whole;
         errno = 0;
-        v = strtoul(value, &end, 10);
-        if (end != value && *end == '\0' && errno == 0 && v <= 1000000ul && value[0] != '-') {
-            *(unsigned *)(void *)base = (unsigned)v;
+        whole = strtoul(value, &end, 10);
+        if (end != value && *end == '\0' && errno == 0 && whole <= 1000000ul && value[0] != '-') {
+            *(unsigned *)(void *)base = (unsigned)whole;
             return 0;
         }
         snprintf(error, error_size, "%s wants a whole number from 0 to 1000000, not '%s'", key->name, value);
@@ -173,6 +187,18 @@ static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value
     }
     }
     return -1;
+}
+
+int node_model_name_valid(const char *name)
+{
+    size_t i;
+    for (i = 0; name[i] != '\0'; ++i) {
+        if (i >= HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX ||
+            !(isalnum((unsigned char)name[i]) || name[i] == '_' || name[i] == '-')) {
+            return 0;
+        }
+    }
+    return i > 0;
 }
 
 static node_model_t *find_or_add_model(node_config_t *config, const char *name, char *error, size_t error_size)
@@ -184,8 +210,9 @@ static node_model_t *find_or_add_model(node_config_t *config, const char *name, 
             return &config->models[i];
         }
     }
-    if (name[0] == '\0' || strlen(name) >= NODE_MODEL_NAME_MAX) {
-        snprintf(error, error_size, "a model name has 1 to %d characters, not '%s'", NODE_MODEL_NAME_MAX - 1, name);
+    if (!node_model_name_valid(name)) {
+        snprintf(error, error_size, "a model name has 1 to %d letters, digits, '_' or '-', not '%.60s'",
+                 HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX, name);
         return NULL;
     }
     if (config->model_count == NODE_MAX_MODELS) {
@@ -200,14 +227,27 @@ static node_model_t *find_or_add_model(node_config_t *config, const char *name, 
     return m;
 }
 
+static void set_origin(char *slot, const char *origin)
+{
+    snprintf(slot, NODE_ORIGIN_MAX, "%s", origin);
+}
+
+/* A model's keys: noise.pitch, noise.yaw, noise.roll (0-2) and r_const (3). */
+static int model_key_slot(const char *key_name)
+{
+    return strcmp(key_name, "r_const") == 0 ? 3 : strcmp(key_name, "noise.pitch") == 0 ? 0
+         : strcmp(key_name, "noise.yaw") == 0 ? 1 : strcmp(key_name, "noise.roll") == 0 ? 2 : -1;
+}
+
 /* A model entry has only the noise curves and r_const of the settings. */
 static int set_model_key(node_config_t *config, const char *model, const char *key_name, const char *value,
-                         char *error, size_t error_size)
+                         const char *origin, char *error, size_t error_size)
 {
     const config_key_t *key = find_key(key_name);
+    const int slot = model_key_slot(key_name);
     node_model_t *m;
     hkf_settings_t scratch;
-    if (key == NULL || (key->kind != KIND_CURVE && strcmp(key_name, "r_const") != 0)) {
+    if (key == NULL || slot < 0) {
         snprintf(error, error_size, "a model sets noise.pitch, noise.yaw, noise.roll or r_const, not '%s'", key_name);
         return -1;
     }
@@ -223,6 +263,7 @@ static int set_model_key(node_config_t *config, const char *model, const char *k
     }
     memcpy(m->noise, scratch.noise, sizeof m->noise);
     memcpy(m->r_const, scratch.r_const, sizeof m->r_const);
+    set_origin(m->origin[slot], origin);
     return 0;
 }
 
@@ -252,7 +293,11 @@ static int split_assignment(char *line, char **key, char **value)
     return (*key)[0] != '\0' && (*value)[0] != '\0' ? 0 : -1;
 }
 
-static int apply(node_config_t *config, const char *model, char *key, char *value, char *error, size_t error_size)
+/* The index of a base key in keys[], KEY_COUNT for the pair key. */
+#define PAIR_SLOT KEY_COUNT
+
+static int apply(node_config_t *config, const char *model, char *key, char *value, const char *origin, char *error,
+                 size_t error_size)
 {
     const config_key_t *k;
     if (strncmp(key, "model.", 6) == 0 && model == NULL) {
@@ -262,15 +307,16 @@ static int apply(node_config_t *config, const char *model, char *key, char *valu
             return -1;
         }
         *dot = '\0';
-        return set_model_key(config, name, dot + 1, value, error, error_size);
+        return set_model_key(config, name, dot + 1, value, origin, error, error_size);
     }
     if (model != NULL) {
-        return set_model_key(config, model, key, value, error, error_size);
+        return set_model_key(config, model, key, value, origin, error, error_size);
     }
     if (strcmp(key, PAIR_KEY) == 0) { /* the node's own setting, not libhkf's */
         hkf_real_t v;
         if (parse_reals(value, &v, 1) == 0 && v >= 0 && v <= 180) {
             config->second_alone_from_yaw = v;
+            set_origin(config->origin[PAIR_SLOT], origin);
             return 0;
         }
         snprintf(error, error_size, "%s wants degrees from 0 to 180, not '%s'", key, value);
@@ -281,7 +327,11 @@ static int apply(node_config_t *config, const char *model, char *key, char *valu
         snprintf(error, error_size, "unknown key '%s' (--print-config lists them)", key);
         return -1;
     }
-    return set_key(&config->settings, k, value, error, error_size);
+    if (set_key(&config->settings, k, value, error, error_size) != 0) {
+        return -1;
+    }
+    set_origin(config->origin[k - keys], origin);
+    return 0;
 }
 
 int node_config_set(node_config_t *config, const char *assignment, char *error, size_t error_size)
@@ -296,27 +346,71 @@ int node_config_set(node_config_t *config, const char *assignment, char *error, 
         snprintf(error, error_size, "'%s' is not KEY=VALUE", assignment);
         return -1;
     }
-    return apply(config, NULL, key, value, error, error_size);
+    return apply(config, NULL, key, value, "--set", error, error_size);
+}
+
+/* One line of in (without its newline) into line: 1, 0 at the end, -1 for a
+ * line longer than size - 1, -2 for a NUL byte (not a text file). */
+static int read_line(FILE *in, char *line, size_t size)
+{
+    size_t n = 0;
+    int c;
+    while ((c = fgetc(in)) != EOF && c != '\n') {
+        if (c == '\0') {
+            return -2;
+        }
+        if (n + 1 >= size) {
+            return -1;
+        }
+        line[n++] = (char)c;
+    }
+    line[n] = '\0';
+    return c == EOF && n == 0 ? 0 : 1;
+}
+
+/* The config file as a regular file, opened without blocking on a named pipe. */
+static FILE *open_config(const char *path, char *error, size_t error_size)
+{
+    struct stat st;
+    FILE *in;
+    const int fd = open(path, O_RDONLY | O_NONBLOCK);
+    if (fd < 0) {
+        snprintf(error, error_size, "%s: %s", path, strerror(errno));
+        return NULL;
+    }
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        snprintf(error, error_size, "%s: not a regular file (a named pipe, device or folder); give a config file",
+                 path);
+        close(fd);
+        return NULL;
+    }
+    in = fdopen(fd, "r");
+    if (in == NULL) {
+        snprintf(error, error_size, "%s: %s", path, strerror(errno));
+        close(fd);
+    }
+    return in;
 }
 
 int node_config_read_file(node_config_t *config, const char *path, char *error, size_t error_size)
 {
-    FILE *in = fopen(path, "r");
+    FILE *in = open_config(path, error, error_size);
     char line[512], model[NODE_MODEL_NAME_MAX + 1] = "";
-    char message[400];
-    int number = 0, in_model = 0;
+    char message[400], origin[NODE_ORIGIN_MAX];
+    int number = 0, in_model = 0, got;
     if (in == NULL) {
-        snprintf(error, error_size, "%s: %s", path, strerror(errno));
         return -1;
     }
-    while (fgets(line, sizeof line, in) != NULL) {
+    while ((got = read_line(in, line, sizeof line)) != 0) {
         char *text, *hash, *key, *value;
         ++number;
-        if (strchr(line, '\n') == NULL && !feof(in)) {
-            snprintf(error, error_size, "%s:%d: line too long", path, number);
+        if (got < 0) {
+            snprintf(error, error_size, "%s:%d: %s", path, number,
+                     got == -2 ? "a NUL byte (not a text file?)" : "line too long (at most 511 characters)");
             fclose(in);
             return -1;
         }
+        snprintf(origin, sizeof origin, "%.80s:%d", path, number);
         hash = strchr(line, '#');
         if (hash != NULL) {
             *hash = '\0';
@@ -347,7 +441,7 @@ int node_config_read_file(node_config_t *config, const char *path, char *error, 
             fclose(in);
             return -1;
         }
-        if (apply(config, in_model ? model : NULL, key, value, message, sizeof message) != 0) {
+        if (apply(config, in_model ? model : NULL, key, value, origin, message, sizeof message) != 0) {
             snprintf(error, error_size, "%s:%d: %s", path, number, message);
             fclose(in);
             return -1;
@@ -359,6 +453,93 @@ int node_config_read_file(node_config_t *config, const char *path, char *error, 
         return -1;
     }
     fclose(in);
+    return 0;
+}
+
+/* The keys a hkf_init error is about (NULL-terminated). */
+static const char *const *keys_of_result(int result)
+{
+    static const char *const noise_mode[] = {"noise_mode", NULL};
+    static const char *const curves[] = {"noise.pitch", "noise.yaw", "noise.roll", NULL};
+    static const char *const r_range[] = {"r_min", "r_max", NULL};
+    static const char *const r_const[] = {"r_const", NULL};
+    static const char *const q[] = {"process_noise", NULL};
+    static const char *const lc[] = {"loop_closure", NULL};
+    static const char *const lc_xi[] = {"lc_xi", NULL};
+    static const char *const lc_theta[] = {"lc_theta", NULL};
+    static const char *const p0[] = {"p0_angle", "p0_rate", NULL};
+    static const char *const gate[] = {"gate_sigma", "max_gate_rejections", NULL};
+    static const char *const coast[] = {"coast_time", NULL};
+    static const char *const max_dt[] = {"max_dt", NULL};
+    static const char *const boost[] = {"q_boost", "q_boost_time", NULL};
+    static const char *const none[] = {NULL};
+    switch (result) {
+    case HKF_ERROR_SETTING_NOISE_MODE: return noise_mode;
+    case HKF_ERROR_SETTING_SIGMA:
+    case HKF_ERROR_SETTING_CURVE: return curves;
+    case HKF_ERROR_SETTING_R_RANGE: return r_range;
+    case HKF_ERROR_SETTING_R_CONST: return r_const;
+    case HKF_ERROR_SETTING_PROCESS_NOISE: return q;
+    case HKF_ERROR_SETTING_LOOP_CLOSURE: return lc;
+    case HKF_ERROR_SETTING_LC_XI: return lc_xi;
+    case HKF_ERROR_SETTING_LC_THETA: return lc_theta;
+    case HKF_ERROR_SETTING_P0: return p0;
+    case HKF_ERROR_SETTING_GATE: return gate;
+    case HKF_ERROR_SETTING_COAST_TIME: return coast;
+    case HKF_ERROR_SETTING_MAX_DT: return max_dt;
+    case HKF_ERROR_SETTING_Q_BOOST: return boost;
+    default: return none;
+    }
+}
+
+static void print_key_value(const hkf_settings_t *s, const config_key_t *key, char *value, size_t size);
+
+/* "where: key = value; " for each key of the error that was given somewhere
+ * (a model's curves from its entry), appended to text. */
+static void describe_origins(const node_config_t *config, const node_model_t *model, int result, char *text,
+                             size_t size)
+{
+    const char *const *names = keys_of_result(result);
+    hkf_settings_t s = config->settings;
+    if (model != NULL) {
+        memcpy(s.noise, model->noise, sizeof s.noise);
+        memcpy(s.r_const, model->r_const, sizeof s.r_const);
+    }
+    for (; *names != NULL; ++names) {
+        const config_key_t *key = find_key(*names);
+        const int slot = model_key_slot(*names);
+        const char *origin = model != NULL && slot >= 0 ? model->origin[slot] : config->origin[key - keys];
+        char value[160];
+        const size_t used = strlen(text);
+        if (origin[0] == '\0') {
+            continue; /* a default: not what the user wrote */
+        }
+        print_key_value(&s, key, value, sizeof value);
+        snprintf(text + used, size - used, "%s: %s = %s; ", origin, key->name, value);
+    }
+}
+
+int node_config_check(const node_config_t *config, char *error, size_t error_size)
+{
+    hkf_filter_t probe;
+    int m, result = hkf_init(&probe, &config->settings);
+    char where[600] = "";
+    if (result != HKF_OK) {
+        describe_origins(config, NULL, result, where, sizeof where);
+        snprintf(error, error_size, "%sinvalid settings: %s", where, hkf_result_string(result));
+        return -1;
+    }
+    for (m = 0; m < config->model_count; ++m) {
+        int known;
+        const hkf_settings_t s = node_config_for_model(config, config->models[m].name, &known);
+        result = hkf_init(&probe, &s);
+        if (result != HKF_OK) {
+            describe_origins(config, &config->models[m], result, where, sizeof where);
+            snprintf(error, error_size, "%sinvalid settings for model '%s': %s", where, config->models[m].name,
+                     hkf_result_string(result));
+            return -1;
+        }
+    }
     return 0;
 }
 
@@ -391,29 +572,34 @@ static const char *format_real(hkf_real_t v, char *text, size_t size)
     return text;
 }
 
-static void print_key(const hkf_settings_t *s, const config_key_t *key, FILE *out)
+static void print_key_value(const hkf_settings_t *s, const config_key_t *key, char *value, size_t size)
 {
     char a[32], b[32], c[32], d[32];
     const char *base = (const char *)s + key->offset;
     const hkf_real_t *v = (const hkf_real_t *)(const void *)base;
-    char value[160];
     switch (key->kind) {
-    case KIND_REAL: snprintf(value, sizeof value, "%s", format_real(v[0], a, sizeof a)); break;
+    case KIND_REAL: snprintf(value, size, "%s", format_real(v[0], a, sizeof a)); break;
     case KIND_REAL3:
-        snprintf(value, sizeof value, "%s %s %s", format_real(v[0], a, sizeof a), format_real(v[1], b, sizeof b),
+        snprintf(value, size, "%s %s %s", format_real(v[0], a, sizeof a), format_real(v[1], b, sizeof b),
                  format_real(v[2], c, sizeof c));
         break;
     case KIND_CURVE: {
         const hkf_noise_curve_t *curve = (const hkf_noise_curve_t *)(const void *)base;
-        snprintf(value, sizeof value, "%s %s %s %s", format_real(curve->tau, a, sizeof a),
+        snprintf(value, size, "%s %s %s %s", format_real(curve->tau, a, sizeof a),
                  format_real(curve->lambda, b, sizeof b), format_real(curve->mu, c, sizeof c),
                  format_real(curve->sigma, d, sizeof d));
         break;
     }
-    case KIND_NOISE_MODE: snprintf(value, sizeof value, "%s", noise_mode_names[*(const hkf_noise_mode_t *)(const void *)base]); break;
-    case KIND_LOOP_CLOSURE: snprintf(value, sizeof value, "%s", loop_closure_names[*(const int *)(const void *)base]); break;
-    case KIND_UINT: snprintf(value, sizeof value, "%u", *(const unsigned *)(const void *)base); break;
+    case KIND_NOISE_MODE: snprintf(value, size, "%s", noise_mode_names[*(const hkf_noise_mode_t *)(const void *)base]); break;
+    case KIND_LOOP_CLOSURE: snprintf(value, size, "%s", loop_closure_names[*(const int *)(const void *)base]); break;
+    case KIND_UINT: snprintf(value, size, "%u", *(const unsigned *)(const void *)base); break;
     }
+}
+
+static void print_key(const hkf_settings_t *s, const config_key_t *key, FILE *out)
+{
+    char value[160];
+    print_key_value(s, key, value, sizeof value);
     fprintf(out, "%-20s = %-40s # %s\n", key->name, value, key->comment);
 }
 

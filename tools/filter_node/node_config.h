@@ -10,14 +10,19 @@
 #include <stdio.h>
 
 #include "hkf/hkf.h"
+#include "hkf_head_pose_measurement_t.h"
 
 #define NODE_MAX_MODELS 16
-#define NODE_MODEL_NAME_MAX 32
+/* a model id and its NUL: the limit stated in head_pose_measurement_t.lcm */
+#define NODE_MODEL_NAME_MAX (HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX + 1)
+#define NODE_ORIGIN_MAX 96 /* "FILE:LINE" or "--set", where a setting was last given */
+#define NODE_KEY_SLOTS 24  /* settings keys (node_config.c's table), with room to grow */
 
 typedef struct {
     char name[NODE_MODEL_NAME_MAX];  /* the measurement's `model` field */
     hkf_noise_curve_t noise[3];      /* its Eq. 8 curves: pitch, yaw, roll */
     hkf_real_t r_const[3];           /* its constant R, deg^2 */
+    char origin[4][NODE_ORIGIN_MAX]; /* where noise.pitch/yaw/roll and r_const were set ("": built in) */
 } node_model_t;
 
 typedef struct {
@@ -29,6 +34,7 @@ typedef struct {
      * the second's measurement alone; below it, both are fused by their Eq. 8
      * R. Key "pair_second_alone_from_yaw"; default NODE_SECOND_ALONE_FROM_YAW. */
     hkf_real_t second_alone_from_yaw;
+    char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* where each base key was set ("": the default) */
 } node_config_t;
 
 #define NODE_SECOND_ALONE_FROM_YAW 25.0 /* deg: chosen on AFLW2000's even images (README) */
@@ -37,13 +43,24 @@ typedef struct {
  * Table I curves (r_const = each curve's minimum). */
 void node_config_defaults(node_config_t *config);
 
-/* Reads a config file into config (on top of what it holds). On error writes
- * "FILE:LINE: what" into error and returns -1. */
+/* 1 when name is a valid model id: 1 to HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX
+ * letters, digits, '_' or '-' (so that it reads back from --print-config and
+ * fits the message). The one rule for config sections, --set and messages. */
+int node_model_name_valid(const char *name);
+
+/* Reads a config file (a regular file: a named pipe is refused, not waited
+ * on) into config, on top of what it holds. On error writes "FILE:LINE: what"
+ * into error and returns -1. */
 int node_config_read_file(node_config_t *config, const char *path, char *error, size_t error_size);
 
 /* Applies one "key = value" line; a key may name a model ("model.NAME.noise.yaw").
  * Returns -1 with a message in error when the key or value is bad. */
 int node_config_set(node_config_t *config, const char *assignment, char *error, size_t error_size);
+
+/* Every settings set (the base and each model's) passes hkf_init: 0, or -1
+ * with "FILE:LINE: key = value: what is wrong" in error, naming where the
+ * offending settings were given. */
+int node_config_check(const node_config_t *config, char *error, size_t error_size);
 
 /* The settings for a model id: its table entry's curves over the base settings. */
 hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known);

@@ -3,17 +3,17 @@
  */
 #include "pose_csv.h"
 
-void pose_csv_write_header(FILE *csv)
+int pose_csv_write_header(FILE *csv)
 {
-    fprintf(csv, "utime,measurement_utime,seq,status,pitch,yaw,roll,pitch_rate,yaw_rate,roll_rate,"
-                 "var_pitch,var_yaw,var_roll,r_pitch,r_yaw,r_roll,loop_closure_active,extrapolated,latency_us\n");
+    return fprintf(csv, "utime,measurement_utime,seq,status,pitch,yaw,roll,pitch_rate,yaw_rate,roll_rate,"
+                 "var_pitch,var_yaw,var_roll,r_pitch,r_yaw,r_roll,loop_closure_active,extrapolated,latency_us\n") < 0 ? -1 : 0;
 }
 
-void pose_csv_write(FILE *csv, const hkf_head_pose_t *p)
+int pose_csv_write(FILE *csv, const hkf_head_pose_t *p)
 {
-    fprintf(csv, "%lld,%lld,%lld,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld\n",
+    return fprintf(csv, "%lld,%lld,%lld,%d,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%lld\n",
             (long long)p->utime, (long long)p->measurement_utime, (long long)p->seq, p->status, (double)p->pitch,
             (double)p->yaw, (double)p->roll, (double)p->pitch_rate, (double)p->yaw_rate, (double)p->roll_rate,
             (double)p->variance[0], (double)p->variance[1], (double)p->variance[2], (double)p->r[0], (double)p->r[1],
-            (double)p->r[2], p->loop_closure_active, p->extrapolated, (long long)p->latency_us);
+            (double)p->r[2], p->loop_closure_active, p->extrapolated, (long long)p->latency_us) < 0 ? -1 : 0;
 }

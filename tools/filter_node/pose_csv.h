@@ -8,7 +8,8 @@
 
 #include "hkf_head_pose_t.h"
 
-void pose_csv_write_header(FILE *csv);
-void pose_csv_write(FILE *csv, const hkf_head_pose_t *pose);
+/* Each returns 0, or -1 when the write failed (the file's close must still be checked). */
+int pose_csv_write_header(FILE *csv);
+int pose_csv_write(FILE *csv, const hkf_head_pose_t *pose);
 
 #endif /* POSE_CSV_H */

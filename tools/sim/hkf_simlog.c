@@ -14,6 +14,8 @@
 
 #include "head_motion_sim.h"
 #include "hkf_head_pose_measurement_t.h"
+#include "lcm_log_writer.h"
+#include "safe_files.h"
 
 static void usage(FILE *to)
 {
@@ -52,7 +54,8 @@ int main(int argc, char **argv)
     double seconds = 20.0, seed = 1.0, fps = 30.0, start = 1700000000000000.0, start_seq = 0.0;
     sim_config_t config = sim_default_config();
     sim_t sim;
-    lcm_eventlog_t *log;
+    lcm_log_writer_t log;
+    FILE *log_file;
     FILE *truth = NULL;
     long frames, i;
     int i_arg, status = 0;
@@ -96,16 +99,15 @@ int main(int argc, char **argv)
         fprintf(stderr, "hkf-simlog: --out FILE is required (see --help)\n");
         return 2;
     }
-    log = lcm_eventlog_create(out_path, "w");
-    if (log == NULL) {
-        fprintf(stderr, "hkf-simlog: cannot write '%s': %s\n", out_path, strerror(errno));
+    log_file = safe_open_output(out_path, "wb", NULL, 0, "hkf-simlog");
+    if (log_file == NULL) {
         return 1;
     }
+    lcm_log_writer_start(&log, log_file);
     if (truth_path != NULL) {
-        truth = fopen(truth_path, "w");
+        truth = safe_open_output(truth_path, "w", &out_path, 1, "hkf-simlog");
         if (truth == NULL) {
-            fprintf(stderr, "hkf-simlog: cannot write '%s': %s\n", truth_path, strerror(errno));
-            lcm_eventlog_destroy(log);
+            (void)lcm_log_writer_close(&log);
             return 1;
         }
         fprintf(truth, "utime,pitch,yaw,roll\n");
@@ -118,7 +120,6 @@ int main(int argc, char **argv)
         sim_frame_t frame;
         hkf_head_pose_measurement_t m;
         unsigned char buffer[512];
-        lcm_eventlog_event_t event;
         int size;
         sim_next(&sim, &frame);
         memset(&m, 0, sizeof m);
@@ -143,23 +144,19 @@ int main(int argc, char **argv)
             status = 1;
             break;
         }
-        event.eventnum = i;
-        event.timestamp = m.utime; /* lcm-logplayer paces by this */
-        event.channellen = (int32_t)strlen(channel);
-        event.datalen = size;
-        event.channel = (char *)channel;
-        event.data = buffer;
-        if (lcm_eventlog_write_event(log, &event) != 0) {
-            fprintf(stderr, "hkf-simlog: error writing '%s'\n", out_path);
-            status = 1;
-            break;
+        /* stamped with the capture time: lcm-logplayer paces by it */
+        if (lcm_log_writer_write(&log, m.utime, channel, buffer, size) != 0) {
+            break; /* reported at the close */
         }
         if (truth != NULL) {
             fprintf(truth, "%lld,%.4f,%.4f,%.4f\n", (long long)m.utime, frame.truth[0], frame.truth[1], frame.truth[2]);
         }
     }
-    lcm_eventlog_destroy(log);
-    if (truth != NULL && fclose(truth) != 0) {
+    if (lcm_log_writer_close(&log) != 0) {
+        fprintf(stderr, "hkf-simlog: error writing '%s' (a full disk?): the log is cut\n", out_path);
+        status = 1;
+    }
+    if (truth != NULL && safe_close(truth) != 0) {
         fprintf(stderr, "hkf-simlog: error writing '%s'\n", truth_path);
         status = 1;
     }

@@ -1,0 +1,32 @@
+/*
+ * safe_files.h - opening inputs and outputs so that no command line can make
+ * a program hang on a named pipe, write over its own input, or report a cut
+ * file as success.
+ */
+#ifndef SAFE_FILES_H
+#define SAFE_FILES_H
+
+#include <stdio.h>
+
+/* Opens path for reading when it is a regular file; a named pipe, device or
+ * folder is refused at once (opening a pipe with no writer would block for
+ * ever). NULL with a message ("PROGRAM: ...") on stderr. */
+FILE *safe_open_input(const char *path, const char *program);
+
+/* 1 when a and b name one file: the same inode when both exist (through
+ * links, "./", "..", hard links), or the same folder and name when they do not
+ * exist yet. */
+int safe_same_file(const char *a, const char *b);
+
+/* Opens path for writing ("w" or "wb"), refusing one that names any of the
+ * `count` paths in `keep` (the program's inputs and its other outputs): it
+ * would be truncated before it is read. A named pipe is opened without
+ * blocking: with no reader, a clear error instead of a hang. NULL with a
+ * message on stderr. */
+FILE *safe_open_output(const char *path, const char *mode, const char *const *keep, int count, const char *program);
+
+/* Flushes, syncs (regular files) and closes f: 0, or -1 when any write, the
+ * flush, the sync or the close failed (a full disk shows here at the latest). */
+int safe_close(FILE *f);
+
+#endif /* SAFE_FILES_H */
