@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "network_outputs.hpp"
 #include "onnx_network.hpp"
 
 namespace hkf_estimator {
@@ -16,32 +17,16 @@ AngleBinsModel::AngleBinsModel(ModelSpec spec)
 
 cv::Mat AngleBinsModel::make_input(const cv::Mat &bgr_crop) const { return network_input(spec_, bgr_crop); }
 
-float AngleBinsModel::decode_bins(const cv::Mat &logits, const AngleBins &bins) const
-{
-    if (static_cast<int>(logits.total()) != bins.bins)
-        throw EstimatorError("output '" + bins.output + "' has " + std::to_string(logits.total()) + " values, the description says " +
-                             std::to_string(bins.bins));
-    const float *v = logits.ptr<float>();
-    float peak = v[0];
-    for (int i = 1; i < bins.bins; ++i) peak = std::max(peak, v[i]);
-    double sum = 0.0, expectation = 0.0;
-    for (int i = 0; i < bins.bins; ++i) {
-        const double e = std::exp(static_cast<double>(v[i] - peak));  // softmax, shifted for range
-        sum += e;
-        expectation += e * i;
-    }
-    return static_cast<float>(expectation / sum * bins.step + bins.offset);
-}
-
 HeadPose AngleBinsModel::estimate_input(const cv::Mat &input)
 {
     net_.setInput(input);
     std::vector<cv::Mat> out;
     net_.forward(out, outputs_);
+    if (out.size() != 3) throw EstimatorError(spec_.name + " gave " + std::to_string(out.size()) + " outputs, not 3");
     HeadPose pose;
-    pose.pitch = spec_.signs[0] * decode_bins(out[0], spec_.pitch);
-    pose.yaw = spec_.signs[1] * decode_bins(out[1], spec_.yaw);
-    pose.roll = spec_.signs[2] * decode_bins(out[2], spec_.roll);
+    pose.pitch = spec_.signs[0] * decode_angle_bins(out[0], spec_.pitch);
+    pose.yaw = spec_.signs[1] * decode_angle_bins(out[1], spec_.yaw);
+    pose.roll = spec_.signs[2] * decode_angle_bins(out[2], spec_.roll);
     return pose;
 }
 
@@ -49,7 +34,9 @@ std::optional<HeadPose> AngleBinsModel::estimate(const cv::Mat &frame, const Fac
 {
     const cv::Rect crop = face_crop_rect(face.box, spec_.crop_margin, frame.size());
     if (crop.empty()) return std::nullopt;
-    return estimate_crop(frame(crop));
+    const HeadPose pose = estimate_crop(frame(crop));
+    if (!std::isfinite(pose.pitch) || !std::isfinite(pose.yaw) || !std::isfinite(pose.roll)) return std::nullopt;
+    return pose;
 }
 
 cv::Rect face_crop_rect(const cv::Rect2f &box, float margin, const cv::Size &image)

@@ -33,7 +33,6 @@ public:
     HeadPose estimate_input(const cv::Mat &input);
 
 private:
-    float decode_bins(const cv::Mat &logits, const AngleBins &bins) const;
 
     ModelSpec spec_;
     cv::dnn::Net net_;

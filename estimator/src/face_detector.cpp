@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "model_spec.hpp"
+#include "network_outputs.hpp"
 #include "onnx_network.hpp"
 
 namespace hkf_estimator {
@@ -22,32 +23,14 @@ FaceDetector::FaceDetector(const std::string &models_dir, DetectorRange range, f
     const std::string file = models_dir + (short_range ? "/face_detection_short_range.onnx" : "/face_detection_full_range.onnx");
     if (short_range) {
         input_size_ = 128;  // strides 8, 16, 16, 16; two anchors per layer and location
-        make_anchors({8, 16, 16, 16}, 2);
+        anchors_ = ssd_anchors(input_size_, {8, 16, 16, 16}, 2);
         outputs_ = {"classificators", "regressors"};
     } else {
         input_size_ = 192;  // one layer of stride 4, one anchor per location
-        make_anchors({4}, 1);
+        anchors_ = ssd_anchors(input_size_, {4}, 1);
         outputs_ = {"reshaped_classifier_face_4", "reshaped_regressor_face_4"};
     }
     net_ = load_onnx_network(file, outputs_);
-}
-
-// SSD anchors: layers of equal stride share one grid; per location each layer
-// adds anchors_per_layer anchors, all of fixed size (only centres matter).
-void FaceDetector::make_anchors(const std::vector<int> &strides, int anchors_per_layer)
-{
-    for (size_t layer = 0; layer < strides.size();) {
-        size_t last = layer;
-        while (last < strides.size() && strides[last] == strides[layer]) ++last;
-        const int per_location = anchors_per_layer * static_cast<int>(last - layer);
-        const int cells = (input_size_ + strides[layer] - 1) / strides[layer];
-        for (int y = 0; y < cells; ++y)
-            for (int x = 0; x < cells; ++x)
-                for (int k = 0; k < per_location; ++k)
-                    anchors_.push_back({(static_cast<float>(x) + 0.5f) / static_cast<float>(cells),
-                                        (static_cast<float>(y) + 0.5f) / static_cast<float>(cells)});
-        layer = last;
-    }
 }
 
 std::vector<Face> FaceDetector::detect(const cv::Mat &bgr)
@@ -63,27 +46,10 @@ std::vector<Face> FaceDetector::detect(const cv::Mat &bgr)
     net_.setInput(cv::dnn::blobFromImage(rgb, 1.0 / 127.5, cv::Size(), cv::Scalar(127.5, 127.5, 127.5)));
     std::vector<cv::Mat> out;
     net_.forward(out, outputs_);
-    const float *scores = out[0].ptr<float>();
-    const float *regress = out[1].ptr<float>();
-    const float to_px = static_cast<float>(side), size = static_cast<float>(input_size_);
-
-    std::vector<Face> candidates;
-    for (size_t i = 0; i < anchors_.size(); ++i) {
-        const float raw = std::min(100.f, std::max(-100.f, scores[i]));
-        const float score = 1.f / (1.f + std::exp(-raw));
-        if (score < min_score_) continue;
-        const float *r = regress + 16 * i;
-        const Anchor &a = anchors_[i];
-        const float cx = a.x + r[0] / size, cy = a.y + r[1] / size, w = r[2] / size, h = r[3] / size;
-        Face f;
-        f.score = score;
-        f.box = cv::Rect2f((cx - w / 2) * to_px - static_cast<float>(pad_x), (cy - h / 2) * to_px - static_cast<float>(pad_y),
-                           w * to_px, h * to_px);
-        for (int k = 0; k < 6; ++k)
-            f.keypoints[static_cast<size_t>(k)] = {(a.x + r[4 + 2 * k] / size) * to_px - static_cast<float>(pad_x),
-                                                   (a.y + r[5 + 2 * k] / size) * to_px - static_cast<float>(pad_y)};
-        candidates.push_back(f);
-    }
+    if (out.size() != 2) throw EstimatorError("the face detector gave " + std::to_string(out.size()) + " outputs, not 2");
+    std::vector<Face> candidates = decode_face_detections(
+        out[0], out[1], anchors_, input_size_,
+        Letterbox{static_cast<float>(side), static_cast<float>(pad_x), static_cast<float>(pad_y)}, min_score_);
     std::sort(candidates.begin(), candidates.end(), [](const Face &a, const Face &b) { return a.score > b.score; });
 
     // weighted non-maximum suppression: each kept face is the score-weighted

@@ -29,15 +29,11 @@ public:
     std::vector<Face> detect(const cv::Mat &bgr);
 
 private:
-    struct Anchor {
-        float x, y;  // centre, normalised to the letterboxed input
-    };
-    void make_anchors(const std::vector<int> &strides, int anchors_per_layer);
 
     cv::dnn::Net net_;
     int input_size_ = 0;
     float min_score_;
-    std::vector<Anchor> anchors_;
+    std::vector<cv::Point2f> anchors_;  // centres, normalised to the letterboxed input
     std::vector<std::string> outputs_;  // scores, regressors
 };
 

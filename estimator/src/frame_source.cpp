@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <opencv2/imgcodecs.hpp>
@@ -17,10 +18,27 @@ int64_t wall_utime()
     return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
+namespace {
+
+// A frame larger than the documented cap is refused: OpenCV itself allows ~1 G pixels (3 GB).
+void check_frame_size(int width, int height, const std::string &what)
+{
+    if (width > kMaxFrameSide || height > kMaxFrameSide ||
+        static_cast<int64_t>(width) * height > kMaxFramePixels)
+        throw EstimatorError(what + " has " + std::to_string(width) + "x" + std::to_string(height) +
+                             " px frames; hkf-estimator takes at most " + std::to_string(kMaxFramePixels) +
+                             " px (8K UHD) and " + std::to_string(kMaxFrameSide) + " px a side");
+}
+
+}  // namespace
+
 FrameSource::FrameSource(const std::string &spec, double fps_for_images) : fps_(fps_for_images)
 {
     namespace fs = std::filesystem;
+    std::error_code error;  // a path that cannot be looked at (a symlink loop, no permission) is not a folder
     const bool index = !spec.empty() && std::all_of(spec.begin(), spec.end(), ::isdigit);
+    if (index && (spec.size() > 3 || std::stol(spec) > kMaxCameraIndex))
+        throw EstimatorError("no camera " + spec + ": a camera index is 0 to " + std::to_string(kMaxCameraIndex));
     if (index || spec.rfind("/dev/video", 0) == 0) {
         live_ = true;
         const bool opened = index ? capture_.open(std::stoi(spec), cv::CAP_V4L2) : capture_.open(spec, cv::CAP_V4L2);
@@ -28,8 +46,8 @@ FrameSource::FrameSource(const std::string &spec, double fps_for_images) : fps_(
         const double camera_fps = capture_.get(cv::CAP_PROP_FPS);
         if (camera_fps > 0) fps_ = camera_fps;
         description_ = "camera " + spec;
-    } else if (fs::is_directory(spec)) {
-        for (const auto &entry : fs::directory_iterator(spec)) {
+    } else if (fs::is_directory(spec, error)) {
+        for (const auto &entry : fs::directory_iterator(spec, error)) {
             std::string ext = entry.path().extension().string();
             std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
             if (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".bmp") images_.push_back(entry.path().string());
@@ -37,7 +55,7 @@ FrameSource::FrameSource(const std::string &spec, double fps_for_images) : fps_(
         std::sort(images_.begin(), images_.end());
         if (images_.empty()) throw EstimatorError("no images (.jpg .jpeg .png .bmp) in " + spec);
         description_ = "folder " + spec + " (" + std::to_string(images_.size()) + " images)";
-    } else if (fs::is_fifo(spec) || fs::is_character_file(spec)) {  // a stream arriving in real time
+    } else if (fs::is_fifo(spec, error) || fs::is_character_file(spec, error)) {  // a stream arriving in real time
         live_ = true;
         if (!capture_.open(spec, cv::CAP_FFMPEG) || !capture_.isOpened())
             throw EstimatorError("cannot read the stream " + spec + " (not a video OpenCV can decode)");
@@ -45,7 +63,8 @@ FrameSource::FrameSource(const std::string &spec, double fps_for_images) : fps_(
         if (stream_fps > 0 && stream_fps < 1000) fps_ = stream_fps;
         description_ = "stream " + spec;
     } else {
-        if (!fs::exists(spec)) throw EstimatorError("no such file or camera: " + spec);
+        if (!fs::exists(spec, error))
+            throw EstimatorError("no such file or camera: " + spec + (error ? " (" + error.message() + ")" : ""));
         if (!capture_.open(spec, cv::CAP_FFMPEG) || !capture_.isOpened())
             throw EstimatorError("cannot read video " + spec + " (not a video OpenCV can decode)");
         const double file_fps = capture_.get(cv::CAP_PROP_FPS);
@@ -54,17 +73,29 @@ FrameSource::FrameSource(const std::string &spec, double fps_for_images) : fps_(
         if (count > 0 && count < 1e9) expected_frames_ = static_cast<int64_t>(count);
         description_ = "video " + spec;
     }
+    if (images_.empty())
+        check_frame_size(static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_WIDTH)),
+                         static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_HEIGHT)), description_);
     start_utime_ = wall_utime();
 }
 
 bool FrameSource::read(Frame &frame)
 {
     if (!images_.empty()) {
-        if (next_index_ >= static_cast<int64_t>(images_.size())) return false;
-        frame.image = cv::imread(images_[static_cast<size_t>(next_index_)], cv::IMREAD_COLOR);
-        if (frame.image.empty()) throw EstimatorError("cannot read image " + images_[static_cast<size_t>(next_index_)]);
+        for (;;) {  // an image that cannot be read (damaged, not an image, too large) is skipped and counted
+            if (next_image_ >= images_.size()) return false;
+            const std::string &path = images_[next_image_++];
+            frame.image = cv::imread(path, cv::IMREAD_COLOR);
+            if (!frame.image.empty() && frame.image.cols <= kMaxFrameSide && frame.image.rows <= kMaxFrameSide &&
+                static_cast<int64_t>(frame.image.cols) * frame.image.rows <= kMaxFramePixels)
+                break;
+            if (skipped_images_++ < 5)
+                std::fprintf(stderr, "hkf-estimator: cannot read the image %s (damaged, not an image, or larger than "
+                             "%lld px); skipped\n", path.c_str(), static_cast<long long>(kMaxFramePixels));
+        }
     } else {
         if (!capture_.read(frame.image) || frame.image.empty()) return false;
+        check_frame_size(frame.image.cols, frame.image.rows, description_);  // a stream may change size
     }
     frame.index = next_index_++;
     frame.utime = live_ ? wall_utime() : start_utime_ + static_cast<int64_t>(std::llround(1e6 * static_cast<double>(frame.index) / fps_));

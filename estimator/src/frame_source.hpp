@@ -19,6 +19,11 @@ struct Frame {
 
 int64_t wall_utime();
 
+// The largest frame taken (a documented cap: OpenCV's own allows ~3 GB a frame).
+constexpr int64_t kMaxFramePixels = 7680LL * 4320;  // 8K UHD, 33.2 M pixels
+constexpr int kMaxFrameSide = 16384;                // px
+constexpr long kMaxCameraIndex = 999;
+
 class FrameSource {
 public:
     // "0" or "/dev/video0": a camera; a named pipe or character device: a live
@@ -33,10 +38,13 @@ public:
     // frames have been read: a file that ends well short of its count is damaged.
     int64_t expected_frames() const { return expected_frames_; }
     int64_t frames_read() const { return next_index_; }
+    // Images of a folder that could not be read (skipped, the run goes on).
+    long skipped_images() const { return skipped_images_; }
     const std::string &description() const { return description_; }
 
     // The next frame; false at the end of a file or folder. Camera frames are
-    // stamped when grabbed; file frames at start + index / fps.
+    // stamped when grabbed; file frames at start + index / fps. Throws
+    // EstimatorError for a video frame beyond kMaxFramePixels.
     bool read(Frame &frame);
 
 private:
@@ -45,6 +53,8 @@ private:
     bool live_ = false;
     double fps_ = 30.0;
     int64_t start_utime_ = 0, next_index_ = 0, expected_frames_ = 0;
+    size_t next_image_ = 0;
+    long skipped_images_ = 0;
     std::string description_;
 };
 

@@ -2,20 +2,35 @@
 // image folder in, hkf.head_pose_measurement_t on HEAD_POSE_RAW out (see
 // pipeline.hpp); or, with --dataset, the evaluation of a head-pose model on a
 // labelled image set.
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
 #include <string>
 
+#include <filesystem>
+
+#include <unistd.h>
+
+#include <lcm/lcm.h>
+
 #include <opencv2/core/utility.hpp>
 
 #include "dataset_eval.hpp"
 #include "face_detector.hpp"
+#include "frame_source.hpp"
 #include "model_spec.hpp"
 #include "pipeline.hpp"
 #include "head_pose_estimator.hpp"
+#include "hkf/head_pose_measurement_t.hpp"
+
+extern "C" {
+#include "safe_files.h"
+}
 
 namespace {
 
@@ -28,6 +43,33 @@ struct Options {
     hkf_estimator::DetectorRange range = hkf_estimator::DetectorRange::Short;
     hkf_estimator::DatasetCrop crop = hkf_estimator::DatasetCrop::Live;
 };
+
+// A model id as the message allows it (head_pose_measurement_t.lcm): 1 to 31
+// letters, digits, '_' or '-'. The same rule as hkf-filter's (node_config.h).
+bool valid_model_name(const std::string &name)
+{
+    return !name.empty() && name.size() <= static_cast<size_t>(hkf::head_pose_measurement_t::MODEL_NAME_MAX) &&
+           std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
+}
+
+// --annotate OUT: a video file name in a folder that exists and can be written,
+// and not the source. Checked before anything runs; "" or why not.
+std::string annotate_path_problem(const std::string &path, const std::string &source)
+{
+    namespace fs = std::filesystem;
+    std::error_code error;
+    std::string extension = fs::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+    if (extension != ".mp4" && extension != ".m4v" && extension != ".mov" && extension != ".avi" && extension != ".mkv")
+        return "the name ends in ." + std::string(extension.empty() ? "(nothing)" : extension.substr(1)) +
+               "; give a video file: .mp4, .m4v, .mov, .avi or .mkv";
+    const fs::path folder = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
+    if (!fs::is_directory(folder, error)) return "the folder " + folder.string() + " does not exist";
+    if (access(folder.c_str(), W_OK) != 0) return "the folder " + folder.string() + " cannot be written";
+    if (fs::exists(path, error) && !fs::is_regular_file(path, error)) return "it exists and is not a regular file";
+    if (!source.empty() && safe_same_file(path.c_str(), source.c_str())) return "it is the source; refusing to write over it";
+    return "";
+}
 
 bool parse_number(const std::string &text, double low, double high, double &value)
 {
@@ -117,8 +159,11 @@ int parse(int argc, char **argv, Options &o)
         } else if (arg == "--region") {
             float x, y, w, h;
             char extra;
-            if (std::sscanf(value.c_str(), "%f,%f,%f,%f%c", &x, &y, &w, &h, &extra) != 4 || w <= 0 || h <= 0) {
-                std::cerr << "hkf-estimator: --region wants X,Y,W,H in px, not '" << value << "'\n";
+            const auto px = [](float v) { return std::isfinite(v) && std::fabs(v) <= static_cast<float>(hkf_estimator::kMaxFrameSide); };
+            if (std::sscanf(value.c_str(), "%f,%f,%f,%f%c", &x, &y, &w, &h, &extra) != 4 || !px(x) || !px(y) || !px(w) ||
+                !px(h) || !(w > 0) || !(h > 0)) {
+                std::cerr << "hkf-estimator: --region wants X,Y,W,H in px (finite, W and H > 0, each within "
+                          << hkf_estimator::kMaxFrameSide << "), not '" << value << "'\n";
                 return 2;
             }
             o.pipeline.tracker.region = cv::Rect2f(x, y, w, h);
@@ -166,6 +211,25 @@ int parse(int argc, char **argv, Options &o)
         std::cerr << "hkf-estimator: --second-model must differ from --model (" << o.model << ")\n";
         return 2;
     }
+    for (const std::string *name : {&o.model, &o.second_model}) {
+        if ((name == &o.model || !name->empty()) && !valid_model_name(*name)) {
+            std::cerr << "hkf-estimator: a model name has 1 to " << hkf::head_pose_measurement_t::MODEL_NAME_MAX
+                      << " letters, digits, '_' or '-' (the limit of head_pose_measurement_t.lcm), not '" << *name << "'\n";
+            return 2;
+        }
+    }
+    if (o.pipeline.channel.empty() || o.pipeline.channel.size() > LCM_MAX_CHANNEL_NAME_LENGTH) {
+        std::cerr << "hkf-estimator: a channel name has 1 to " << LCM_MAX_CHANNEL_NAME_LENGTH << " characters, not '"
+                  << o.pipeline.channel << "'\n";
+        return 2;
+    }
+    if (!o.pipeline.annotate_path.empty()) {
+        const std::string problem = annotate_path_problem(o.pipeline.annotate_path, o.pipeline.source);
+        if (!problem.empty()) {
+            std::cerr << "hkf-estimator: --annotate " << o.pipeline.annotate_path << ": " << problem << "\n";
+            return 2;
+        }
+    }
     if (!o.dataset.empty() && o.predictions.empty()) {
         std::cerr << "hkf-estimator: --dataset DIR needs --predictions OUT.csv (see --help)\n";
         return 2;
@@ -179,6 +243,8 @@ int main(int argc, char **argv)
 {
     using namespace hkf_estimator;
     Options o;
+    // OpenCV reads this on its first image: beyond it, imread gives no image (the cap of frame_source.hpp)
+    setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
     switch (parse(argc, argv, o)) {
     case 1: return 0;
     case 2: return 2;
@@ -225,6 +291,9 @@ int main(int argc, char **argv)
         }
         return r.evaluated > 0 ? 0 : 1;
     } catch (const EstimatorError &e) {
+        std::cerr << "hkf-estimator: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception &e) {  // OpenCV's, the standard library's: an error, never an abort
         std::cerr << "hkf-estimator: " << e.what() << "\n";
         return 1;
     }

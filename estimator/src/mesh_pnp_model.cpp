@@ -1,6 +1,7 @@
 // mesh_pnp_model.cpp - see mesh_pnp_model.hpp.
 #include "mesh_pnp_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "head_rotation.hpp"
+#include "network_outputs.hpp"
 #include "onnx_network.hpp"
 
 namespace hkf_estimator {
@@ -62,14 +64,14 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     net_.setInput(network_input(spec_, patch));
     std::vector<cv::Mat> out;
     net_.forward(out, std::vector<std::string>{spec_.landmarks_output, spec_.flag_output});
-    if (static_cast<int>(out[0].total()) != 3 * spec_.landmarks) throw EstimatorError("the mesh output has an unexpected size");
-    const float flag = 1.f / (1.f + std::exp(-out[1].ptr<float>()[0]));
-    if (flag < spec_.min_face_flag) return std::nullopt;
+    if (out.size() != 2) throw EstimatorError(spec_.name + " gave " + std::to_string(out.size()) + " outputs, not 2");
+    const float *xyz = mesh_landmarks(out[0], spec_.landmarks, spec_.landmarks_output);
+    if (decode_face_flag(out[1], spec_.flag_output) < spec_.min_face_flag) return std::nullopt;
+    if (!std::all_of(xyz, xyz + 3 * spec_.landmarks, [](float v) { return std::isfinite(v); })) return std::nullopt;
 
     // landmarks back into the frame
     cv::Mat to_frame;
     cv::invertAffineTransform(to_input, to_frame);
-    const float *xyz = out[0].ptr<float>();
     std::vector<cv::Point2f> in_patch(static_cast<size_t>(spec_.landmarks));
     for (int i = 0; i < spec_.landmarks; ++i) in_patch[static_cast<size_t>(i)] = {xyz[3 * i], xyz[3 * i + 1]};
     cv::transform(in_patch, landmarks_, to_frame);
@@ -85,6 +87,7 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     pose.pitch *= spec_.signs[0];
     pose.yaw *= spec_.signs[1];
     pose.roll *= spec_.signs[2];
+    if (!std::isfinite(pose.pitch) || !std::isfinite(pose.yaw) || !std::isfinite(pose.roll)) return std::nullopt;
     return pose;
 }
 

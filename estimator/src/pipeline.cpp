@@ -141,6 +141,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
         lcm_subscribe(lcm.getUnderlyingLCM(), options.filtered_channel.c_str(), on_filtered_pose, &filtered);
     FaceTracker tracker(detector, options.tracker);
     cv::VideoWriter writer;
+    cv::Size writer_size;
     bool show = options.show;
     if (show && std::getenv("DISPLAY") == nullptr) {
         std::fprintf(stderr, "hkf-estimator: --show needs a display (DISPLAY is not set); no window\n");
@@ -148,6 +149,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
     }
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
+    std::signal(SIGHUP, on_signal);  // the terminal closed: stop with the summary and a whole --annotate video
 
     const bool drop_old = source.live() || options.realtime;
     LatestFrame slot;
@@ -166,7 +168,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
                 }
                 slot.put(std::move(frame), drop_old);
             }
-        } catch (const EstimatorError &e) {
+        } catch (const std::exception &e) {  // EstimatorError, or OpenCV's own on a broken source
             capture_error = e.what();
             capture_failed = true;
         }
@@ -178,6 +180,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
                  options.lcm_url.c_str(), model.spec().name.c_str());
     // LCM is published to from this thread and the second model's; one at a time
     std::mutex lcm_mutex;
+    long publish_failures = 0;  // under lcm_mutex
     std::vector<double> second_latency_ms;  // capture -> publish of the second model's measurements
     std::unique_ptr<SecondModelWorker> second_worker;
     if (second != nullptr) {
@@ -189,7 +192,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
             const hkf::head_pose_measurement_t m = measurement_message(r.job.utime, r.job.seq, second->spec().name, face,
                                                                        r.pose.value_or(HeadPose{}), r.inference_ms);
             std::lock_guard<std::mutex> lock(lcm_mutex);
-            lcm.publish(options.channel, &m);
+            if (lcm.publish(options.channel, &m) != 0) ++publish_failures;
             second_latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? r.job.utime : r.job.taken_utime)) /
                                         1000.0);
         });
@@ -204,88 +207,104 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
     constexpr auto kStallWarning = std::chrono::seconds(2);
     auto last_frame_time = std::chrono::steady_clock::now();
     bool stalled = false;
-    long stalls = 0;
-    for (;;) {
-        bool ended = false;
-        auto frame = slot.take(std::chrono::milliseconds(100), ended);
-        if (ended || stop_requested) break;
-        const auto now = std::chrono::steady_clock::now();
-        if (!frame) {
-            if (!stalled && now - last_frame_time >= kStallWarning) {
-                stalled = true;
-                ++stalls;
-                std::fprintf(stderr, "hkf-estimator: no frame from %s for %.1f s (camera unplugged or stalled?); waiting\n",
-                             source.description().c_str(), std::chrono::duration<double>(now - last_frame_time).count());
+    long stalls = 0, resized = 0;
+    std::string loop_error;  // what stopped the frame loop, if anything did
+    try {
+        for (;;) {
+            bool ended = false;
+            auto frame = slot.take(std::chrono::milliseconds(100), ended);
+            if (ended || stop_requested) break;
+            const auto now = std::chrono::steady_clock::now();
+            if (!frame) {
+                if (!stalled && now - last_frame_time >= kStallWarning) {
+                    stalled = true;
+                    ++stalls;
+                    std::fprintf(stderr, "hkf-estimator: no frame from %s for %.1f s (camera unplugged or stalled?); waiting\n",
+                                 source.description().c_str(), std::chrono::duration<double>(now - last_frame_time).count());
+                }
+                continue;
             }
-            continue;
-        }
-        if (stalled) {
-            std::fprintf(stderr, "hkf-estimator: frames again after %.1f s\n",
-                         std::chrono::duration<double>(now - last_frame_time).count());
-            stalled = false;
-        }
-        last_frame_time = now;
-        const int64_t taken = wall_utime();
-        const auto t0 = std::chrono::steady_clock::now();
-        std::optional<Face> face = tracker.track(frame->image, frame->utime);
-        const std::optional<Face> tracked = face;
-        std::optional<HeadPose> estimate = face ? model.estimate(frame->image, *face) : std::nullopt;
-        if (!estimate) face.reset();  // the pose model saw no face there either
-        const HeadPose pose = estimate.value_or(HeadPose{});
-        const double inference = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            if (stalled) {
+                std::fprintf(stderr, "hkf-estimator: frames again after %.1f s\n",
+                             std::chrono::duration<double>(now - last_frame_time).count());
+                stalled = false;
+            }
+            last_frame_time = now;
+            const int64_t taken = wall_utime();
+            const auto t0 = std::chrono::steady_clock::now();
+            std::optional<Face> face = tracker.track(frame->image, frame->utime);
+            const std::optional<Face> tracked = face;
+            std::optional<HeadPose> estimate = face ? model.estimate(frame->image, *face) : std::nullopt;
+            if (!estimate) face.reset();  // the pose model saw no face there either
+            const HeadPose pose = estimate.value_or(HeadPose{});
+            const double inference = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
-        const hkf::head_pose_measurement_t m =
-            measurement_message(frame->utime, seq++, model.spec().name, face, pose, inference);
-        {
-            std::lock_guard<std::mutex> lock(lcm_mutex);
-            lcm.publish(options.channel, &m);
-        }
-        if (second_worker && tracked && (!estimate || std::fabs(estimate->yaw) >= options.second_from_yaw)) {
-            // after the first model's message, so that the node has the frame when the second's comes
-            second_worker->submit(SecondModelJob{frame->image, *tracked, m.utime, m.seq, taken}, drop_old);
-        }
-        // from the frame being available (a camera's capture) to its publish
-        latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0);
-        inference_ms.push_back(inference);
-        ++frames;
-        with_face += face.has_value();
-
-        if (!options.annotate_path.empty() || show) {
+            const hkf::head_pose_measurement_t m =
+                measurement_message(frame->utime, seq++, model.spec().name, face, pose, inference);
             {
                 std::lock_guard<std::mutex> lock(lcm_mutex);
-                lcm.handleTimeout(0);  // filtered poses that have arrived
+                if (lcm.publish(options.channel, &m) != 0 && publish_failures++ == 0)
+                    std::fprintf(stderr, "hkf-estimator: publishing on %s failed (counted)\n", options.channel.c_str());
             }
-            cv::Mat image = frame->image.clone();
-            if (face) {
-                draw_face(image, *face);
-                const cv::Point2f c(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2);
-                draw_pose_axes(image, pose, c, 0.8f * face->box.width, 2);
-                char text[96];
-                std::snprintf(text, sizeof text, "raw p %.1f y %.1f r %.1f", pose.pitch, pose.yaw, pose.roll);
-                cv::putText(image, text, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
-                std::lock_guard<std::mutex> lock(filtered.mutex);
-                if (filtered.have) {
-                    draw_pose_axes(image, filtered.pose, c, 0.8f * face->box.width, 5);
-                    std::snprintf(text, sizeof text, "filtered p %.1f y %.1f r %.1f", filtered.pose.pitch, filtered.pose.yaw,
-                                  filtered.pose.roll);
-                    cv::putText(image, text, {10, 50}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2);
+            if (second_worker && tracked && (!estimate || std::fabs(estimate->yaw) >= options.second_from_yaw)) {
+                // after the first model's message, so that the node has the frame when the second's comes
+                second_worker->submit(SecondModelJob{frame->image, *tracked, m.utime, m.seq, taken}, drop_old);
+            }
+            // from the frame being available (a camera's capture) to its publish
+            latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0);
+            inference_ms.push_back(inference);
+            ++frames;
+            with_face += face.has_value();
+
+            if (!options.annotate_path.empty() || show) {
+                {
+                    std::lock_guard<std::mutex> lock(lcm_mutex);
+                    lcm.handleTimeout(0);  // filtered poses that have arrived
                 }
-            } else {
-                cv::putText(image, "no face", {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 255), 2);
+                cv::Mat image = frame->image.clone();
+                if (face) {
+                    draw_face(image, *face);
+                    const cv::Point2f c(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2);
+                    draw_pose_axes(image, pose, c, 0.8f * face->box.width, 2);
+                    char text[96];
+                    std::snprintf(text, sizeof text, "raw p %.1f y %.1f r %.1f", pose.pitch, pose.yaw, pose.roll);
+                    cv::putText(image, text, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
+                    std::lock_guard<std::mutex> lock(filtered.mutex);
+                    if (filtered.have) {
+                        draw_pose_axes(image, filtered.pose, c, 0.8f * face->box.width, 5);
+                        std::snprintf(text, sizeof text, "filtered p %.1f y %.1f r %.1f", filtered.pose.pitch, filtered.pose.yaw,
+                                      filtered.pose.roll);
+                        cv::putText(image, text, {10, 50}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2);
+                    }
+                } else {
+                    cv::putText(image, "no face", {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 255), 2);
+                }
+                if (!options.annotate_path.empty()) {
+                    if (!writer.isOpened()) {
+                        writer_size = image.size();
+                        if (!writer.open(options.annotate_path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), source.fps(), writer_size))
+                            throw EstimatorError("cannot write the video " + options.annotate_path);
+                    }
+                    if (image.size() != writer_size) {  // a source that changes size: the video keeps its first size
+                        cv::Mat scaled;
+                        cv::resize(image, scaled, writer_size, 0, 0, cv::INTER_AREA);
+                        image = scaled;
+                        ++resized;
+                    }
+                    writer.write(image);
+                }
+                if (show) {
+                    cv::imshow("hkf-estimator", image);
+                    if (cv::waitKey(1) == 27) stop_requested = true;
+                }
             }
-            if (!options.annotate_path.empty()) {
-                if (!writer.isOpened() &&
-                    !writer.open(options.annotate_path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), source.fps(), image.size()))
-                    throw EstimatorError("cannot write video " + options.annotate_path);
-                writer.write(image);
-            }
-            if (show) {
-                cv::imshow("hkf-estimator", image);
-                if (cv::waitKey(1) == 27) stop_requested = true;
-            }
+            if (frames % 100 == 0)
+                std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", frames, with_face);
+            if (second_worker && !second_worker->error().empty()) throw EstimatorError(second_worker->error());
         }
-        if (frames % 100 == 0)
-            std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", frames, with_face);
+    } catch (const std::exception &e) {  // the capture thread is stopped and the video closed below, as always
+        loop_error = e.what();
+        stop_requested = true;
     }
     if (second_worker) second_worker->stop();  // its frames in hand are measured and published
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -298,10 +317,8 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     const bool capture_hung = !capture_done;
     if (!capture_hung) capture.join();
-    if (capture_failed) {
-        std::fprintf(stderr, "hkf-estimator: %s\n", capture_error.c_str());
-        return 1;
-    }
+    if (capture_failed) std::fprintf(stderr, "hkf-estimator: %s\n", capture_error.c_str());
+    if (!loop_error.empty()) std::fprintf(stderr, "hkf-estimator: stopped: %s\n", loop_error.c_str());
     std::printf("hkf-estimator: %ld frames, %ld with a face, %.1f fps; capture->publish ms p50 %.1f p99 %.1f; "
                 "inference ms p50 %.1f; %ld dropped; %ld full-frame face searches; %ld stalls of the source\n",
                 frames, with_face, seconds > 0 ? static_cast<double>(frames) / seconds : 0.0, percentile(latency_ms, 0.5),
@@ -313,8 +330,21 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
                     second->spec().name.c_str(), second_worker->asked(), second_worker->done(), second_worker->skipped(),
                     percentile(second_latency_ms, 0.5), percentile(second_latency_ms, 0.99),
                     percentile(second_worker->inference_ms(), 0.5));
+    if (!capture_hung && source.skipped_images() > 0)
+        std::printf("hkf-estimator: %ld images of the folder could not be read; skipped\n", source.skipped_images());
+    if (resized > 0)
+        std::printf("hkf-estimator: %ld frames of another size than the first were scaled to it in %s\n", resized,
+                    options.annotate_path.c_str());
+    {
+        std::lock_guard<std::mutex> lock(lcm_mutex);
+        if (publish_failures > 0)
+            std::printf("hkf-estimator: %ld measurements could not be published on %s\n", publish_failures,
+                        options.channel.c_str());
+    }
     int status = frames > 0 ? 0 : 1;
-    if (!stop_requested && source.live()) {  // a camera or stream that ends by itself has failed
+    const bool failed = capture_failed || !loop_error.empty();
+    if (failed || publish_failures > 0) status = 1;
+    if (!failed && !stop_requested && source.live()) {  // a camera or stream that ends by itself has failed
         std::fprintf(stderr, "hkf-estimator: %s stopped delivering frames (unplugged?) after %ld frames\n",
                      source.description().c_str(), frames);
         status = 3;
@@ -322,7 +352,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
     // a file that ends well short of its container's frame count: the decoder
     // gave up on damage (the count can be approximate, hence the margin)
     const int64_t expected = source.expected_frames(), read = source.frames_read();
-    if (!stop_requested && !source.live() && options.max_frames == 0 && expected > 0 &&
+    if (!failed && !stop_requested && !source.live() && options.max_frames == 0 && expected > 0 &&
         read < expected - std::max<int64_t>(5, expected / 50)) {
         std::fprintf(stderr, "hkf-estimator: %s ended after %lld of its %lld frames: the rest could not be decoded "
                      "(a damaged file?)\n", source.description().c_str(), static_cast<long long>(read),

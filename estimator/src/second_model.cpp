@@ -47,13 +47,28 @@ void SecondModelWorker::run()
         }
         SecondModelResult result;
         const auto t0 = std::chrono::steady_clock::now();
-        result.pose = model_.estimate(job.image, job.face);
+        try {
+            result.pose = model_.estimate(job.image, job.face);
+        } catch (const std::exception &e) {  // e.g. a model file that does not match its description
+            std::lock_guard<std::mutex> lock(mutex_);
+            error_ = model_.spec().name + ": " + e.what();
+            stopping_ = true;
+            waiting_.reset();
+            changed_.notify_all();
+            return;
+        }
         result.inference_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         result.job = std::move(job);
         publish_(result);
         std::lock_guard<std::mutex> lock(mutex_);
         inference_ms_.push_back(result.inference_ms);
     }
+}
+
+std::string SecondModelWorker::error() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    return error_;
 }
 
 long SecondModelWorker::asked() const

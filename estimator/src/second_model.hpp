@@ -11,6 +11,7 @@
 #include <functional>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -52,6 +53,8 @@ public:
     void submit(SecondModelJob job, bool drop_old);
     void stop();  // finishes the job in hand and the one waiting, then returns
 
+    // Why the worker stopped by itself ("" while it runs): the model threw.
+    std::string error() const;
     long asked() const;
     long skipped() const;
     long done() const;
@@ -67,6 +70,7 @@ private:
     std::optional<SecondModelJob> waiting_;
     bool stopping_ = false;
     long asked_ = 0, skipped_ = 0;
+    std::string error_;
     std::vector<double> inference_ms_;  // one per job done
     std::thread thread_;
 };

@@ -51,6 +51,11 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    if (channel[0] == '\0' || strlen(channel) > LCM_MAX_CHANNEL_NAME_LENGTH) {
+        fprintf(stderr, "hkf-cmd: a channel name has 1 to %d characters, not '%.80s'\n", LCM_MAX_CHANNEL_NAME_LENGTH,
+                channel);
+        return 2;
+    }
     if (verb == NULL) {
         fprintf(stderr, "hkf-cmd: which command? recenter or reset (see --help)\n");
         return 2;

@@ -34,7 +34,7 @@ typedef struct {
 } options_t;
 
 typedef struct {
-    unsigned long received, sent, held, centered, non_finite, send_errors, decode_errors;
+    unsigned long received, sent, held, centered, non_finite, absurd, send_errors, decode_errors;
 } bridge_counts_t;
 
 typedef struct {
@@ -64,11 +64,12 @@ static void usage(FILE *to)
             "  --lost hold|center|send\n"
             "                     while the face is LOST: repeat the last pose sent (hold, default),\n"
             "                     send the centre (0, 0, 0), or send the filter's held pose as is\n"
-            "  --rate HZ          send the latest pose at this fixed rate instead of once per pose\n"
+            "  --rate HZ          send the latest pose at this fixed rate (1 to 1000) instead of once per pose\n"
             "                     (run hkf-filter --rate too, for extrapolated poses in between)\n"
             "  --help             this text\n"
-            "Non-finite poses are never sent (counted); a destination that refuses (opentrack not\n"
-            "running) is counted and retried with the next pose. Stops on SIGINT / SIGTERM with a summary.\n");
+            "Non-finite poses, and angles beyond +-180 deg that no head makes (a forged or corrupt\n"
+            "message), are never sent (counted); a destination that refuses (opentrack not running) is\n"
+            "counted and retried with the next pose. Stops on SIGINT / SIGTERM / SIGHUP with a summary.\n");
 }
 
 static int parse_invert(const char *list, opentrack_mapping_t *mapping)
@@ -188,15 +189,19 @@ static int parse_options(int argc, char **argv, options_t *o)
             char *end = NULL;
             errno = 0;
             o->rate_hz = strtod(value, &end);
-            if (end == value || *end != '\0' || errno != 0 || !(o->rate_hz > 0.0 && o->rate_hz <= 1000.0)) {
-                fprintf(stderr, "hkf-opentrack: --rate wants a frequency above 0 and up to 1000 Hz, not '%s'\n",
-                        value);
+            if (end == value || *end != '\0' || errno != 0 || !(o->rate_hz >= 1.0 && o->rate_hz <= 1000.0)) {
+                fprintf(stderr, "hkf-opentrack: --rate wants a frequency from 1 to 1000 Hz, not '%s'\n", value);
                 return 2;
             }
         } else {
             fprintf(stderr, "hkf-opentrack: unknown or incomplete argument '%s' (see --help)\n", arg);
             return 2;
         }
+    }
+    if (o->channel[0] == '\0' || strlen(o->channel) > LCM_MAX_CHANNEL_NAME_LENGTH) {
+        fprintf(stderr, "hkf-opentrack: a channel name has 1 to %d characters, not '%.80s'\n",
+                LCM_MAX_CHANNEL_NAME_LENGTH, o->channel);
+        return 2;
     }
     return 0;
 }
@@ -278,6 +283,7 @@ static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
 {
     const options_t *o = bridge->options;
     double values[OPENTRACK_FIELDS];
+    int result;
     ++bridge->counts.received;
     if (pose->status == HKF_HEAD_POSE_T_LOST && o->lost == LOST_HOLD) {
         if (!bridge->have_packet) {
@@ -289,8 +295,12 @@ static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
         opentrack_encode(values, bridge->packet);
         bridge->have_packet = 1;
         ++bridge->counts.centered;
-    } else if (opentrack_pose_values(&o->mapping, pose, values) != 0) {
-        ++bridge->counts.non_finite;
+    } else if ((result = opentrack_pose_values(&o->mapping, pose, values)) != 0) {
+        if (result == -2 && bridge->counts.absurd++ < 5) {
+            fprintf(stderr, "hkf-opentrack: a pose beyond +-180 deg (pitch %g, yaw %g, roll %g) not sent: forged or "
+                            "corrupt\n", (double)pose->pitch, (double)pose->yaw, (double)pose->roll);
+        }
+        bridge->counts.non_finite += result == -1;
         return;
     } else {
         opentrack_encode(values, bridge->packet);
@@ -378,8 +388,9 @@ int main(int argc, char **argv)
     close(bridge.socket_fd);
     fprintf(stderr,
             "hkf-opentrack: %lu poses received, %lu datagrams sent to %s port %s (%lu repeats of the last pose "
-            "while LOST, %lu centre poses while LOST); dropped: %lu non-finite, %lu send errors, %lu undecodable\n",
-            c->received, c->sent, options.host, options.port, c->held, c->centered, c->non_finite, c->send_errors,
-            c->decode_errors);
+            "while LOST, %lu centre poses while LOST); dropped: %lu non-finite, %lu beyond +-180 deg, %lu send "
+            "errors, %lu undecodable\n",
+            c->received, c->sent, options.host, options.port, c->held, c->centered, c->non_finite, c->absurd,
+            c->send_errors, c->decode_errors);
     return status;
 }

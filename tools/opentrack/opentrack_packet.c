@@ -45,7 +45,13 @@ int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pos
     /* hkf's (pitch, yaw, roll), relative to kappa if asked */
     double pitch = pose->pitch, yaw = pose->yaw, roll = pose->roll;
     double angle[OPENTRACK_AXES];
+    const float given[6] = {pose->pitch, pose->yaw, pose->roll, pose->center[0], pose->center[1], pose->center[2]};
     int a, i;
+    for (i = 0; i < 6; ++i) {
+        if (isfinite(given[i]) && fabs((double)given[i]) > OPENTRACK_MAX_ABS_ANGLE) {
+            return -2;
+        }
+    }
     if (mapping->relative_to_center) {
         pitch -= pose->center[0];
         yaw = wrap_degrees(yaw - (double)pose->center[1]);

@@ -38,8 +38,14 @@ opentrack_mapping_t opentrack_default_mapping(void);
 /* "yaw", "pitch" or "roll" -> OPENTRACK_AXIS_*, or -1. */
 int opentrack_axis_from_name(const char *name);
 
-/* The six values for one pose. Returns 0, or -1 when any value is not finite
- * (nothing non-finite is ever sent). */
+/* What no head can do: a pose angle or centre angle beyond this (deg) is a
+ * forged or corrupt message, never sent (a turn past it would spin the game
+ * camera round). */
+#define OPENTRACK_MAX_ABS_ANGLE 180.0
+
+/* The six values for one pose. Returns 0; -1 when any value is not finite, -2
+ * when an angle or the centre is beyond OPENTRACK_MAX_ABS_ANGLE (neither is
+ * ever sent). */
 int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pose_t *pose,
                           double values[OPENTRACK_FIELDS]);
 
