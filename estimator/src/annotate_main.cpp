@@ -7,7 +7,9 @@
 // Frames are matched to raw poses by the estimator's frame counter (seq = frame
 // index for a file read in full), raw poses to filtered ones by capture time
 // (head_pose_t.utime == head_pose_measurement_t.utime, not extrapolated).
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -27,6 +29,7 @@
 
 extern "C" {
 #include "lcm_log_reader.h"
+#include "safe_files.h"
 }
 
 namespace {
@@ -59,9 +62,9 @@ int fail(const std::string &message)
 template <typename T>
 bool read_channel(const std::string &path, const std::string &channel, std::vector<T> &out, std::string &error)
 {
-    FILE *f = std::fopen(path.c_str(), "rb");
+    FILE *f = safe_open_input(path.c_str(), "hkf-annotate");  // a regular file: a named pipe would block
     if (f == nullptr) {
-        error = "cannot open " + path + ": " + std::strerror(errno);
+        error = "cannot read " + path;
         return false;
     }
     lcm_log_reader_t reader;
@@ -157,6 +160,11 @@ int parse(int argc, char **argv, Options &o)
     return 0;
 }
 
+std::atomic<bool> stop_requested{false};
+extern "C" void on_stop_signal(int) { stop_requested = true; }
+
+int annotate(const Options &o);
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -167,6 +175,24 @@ int main(int argc, char **argv)
     case 2: return 2;
     default: break;
     }
+    for (const std::string *input : {&o.video, &o.raw_log, &o.filtered_log})
+        if (safe_same_file(o.out.c_str(), input->c_str()) || (!o.still_path.empty() && safe_same_file(o.still_path.c_str(), input->c_str())))
+            return fail("an output is also the input " + *input + "; refusing to write over it");
+    // SIGINT / SIGTERM / SIGHUP: stop between frames with the video closed (playable) and exit 1
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    std::signal(SIGHUP, on_stop_signal);
+    try {
+        return annotate(o);
+    } catch (const std::exception &e) {
+        return fail(e.what());
+    }
+}
+
+namespace {
+
+int annotate(const Options &o)
+{
     std::vector<hkf::head_pose_measurement_t> raws;
     std::vector<hkf::head_pose_t> filtered_poses;
     std::string error;
@@ -191,7 +217,7 @@ int main(int argc, char **argv)
     const int64_t first_seq = raw_by_seq.begin()->first;
     long frames = 0, with_raw = 0, with_filtered = 0;
     cv::Mat image;
-    for (int64_t index = 0; video.read(image) && !image.empty(); ++index) {
+    for (int64_t index = 0; !stop_requested && video.read(image) && !image.empty(); ++index) {
         const double t = static_cast<double>(index) / fps;
         TracePoint point{t, std::nullopt, std::nullopt};
         const auto r = raw_by_seq.find(first_seq + index);
@@ -229,8 +255,11 @@ int main(int argc, char **argv)
     if (o.still_index >= frames)
         return fail("--still " + std::to_string(o.still_index) + ": the video has only " + std::to_string(frames) + " frames");
     writer.release();
+    if (stop_requested) return fail("stopped by a signal after " + std::to_string(frames) + " frames; " + o.out + " is whole up to there");
     std::printf("hkf-annotate: %s: %ld frames, %ld with a raw pose, %ld with a filtered pose\n", o.out.c_str(), frames,
                 with_raw, with_filtered);
     if (with_raw == 0) return fail("no frame of " + o.video + " matched a raw pose (is it the video of " + o.raw_log + "?)");
     return 0;
 }
+
+}  // namespace

@@ -176,6 +176,7 @@ def main():
     stop_requested = []
     signal.signal(signal.SIGINT, lambda *_: stop_requested.append("SIGINT"))
     signal.signal(signal.SIGTERM, lambda *_: stop_requested.append("SIGTERM"))
+    signal.signal(signal.SIGHUP, lambda *_: stop_requested.append("SIGHUP"))  # the terminal closed
     monitor = Monitor(args.lcm_url)
     children, logs = [], {}
     for name, argv in commands(args):
