@@ -341,6 +341,82 @@ static void test_clock_corrupt_first_stamp(void **state)
     assert_true(node.last_utime == T0 + 19 * FRAME_US);
 }
 
+/* The wall clock steps back an hour on the tracking machine: the estimator's
+ * stamps and the node's arrival times step together, so the clock rule sees
+ * nothing, and every frame is older than the last one taken. Two frames are
+ * rejected as out of order, the third consistent one is followed (the stale
+ * rule), and the silence rule runs on the new arrival clock. (Before the
+ * stale rule: 0 poses after the step, and no LOST either.) */
+static void test_clock_steps_back_with_arrival(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    const int64_t back = 3600000000LL;
+    const int64_t coast_us = (int64_t)(1e6 * (double)config.settings.coast_time);
+    int i, published = 0;
+    (void)state;
+    assert_int_equal(feed(0, 10, 0), 10);
+    for (i = 10; i < 30; ++i) {
+        m = measurement(T0 + i * FRAME_US - back, 1, 0, 10, 0);
+        if (filter_node_receive(&node, &m, T0 + i * FRAME_US - back, &pose)) {
+            assert_true(pose.utime == m.utime && pose.status == HKF_HEAD_POSE_T_TRACKING);
+            ++published;
+        }
+    }
+    assert_int_equal(published, 20 - (FILTER_NODE_RESYNC_MESSAGES - 1));
+    assert_int_equal(node.counts.out_of_order, FILTER_NODE_RESYNC_MESSAGES - 1);
+    assert_int_equal(node.counts.clock_resyncs, 1);
+    assert_int_equal(node.counts.restarts, 1);
+    /* and an estimator that then falls silent is reported LOST coast_time later, on the new clock */
+    assert_true(filter_node_silence_due(&node) == T0 + 29 * FRAME_US - back + coast_us);
+    assert_int_equal(filter_node_silence(&node, T0 + 29 * FRAME_US - back + coast_us, &pose), 1);
+    assert_int_equal(pose.status, HKF_HEAD_POSE_T_LOST);
+}
+
+/* A forged datagram (LCM has no authentication) with the estimator's next seq
+ * and a stamp 4.9 s ahead is taken, as the clock rule allows 5 s; the real
+ * frames after it are older. Repeated every 10 frames, it must never hold the
+ * pose up for as long as coast_time: the longest run of frames without a
+ * published pose is two (the stale rule's), and every real frame after those
+ * is published. (Before: no real frame was published for 4.9 s.) */
+static void test_forged_stamp_ahead(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    const int64_t coast_us = (int64_t)(1e6 * (double)config.settings.coast_time);
+    int64_t last_published_arrival = 0, longest_wait = 0;
+    int i, real_published = 0, forged = 0;
+    (void)state;
+    next_seq = 0; /* the frames' seq below is their index */
+    assert_int_equal(feed(0, 10, 0), 10);
+    last_published_arrival = T0 + 9 * FRAME_US;
+    for (i = 10; i < 130; ++i) {
+        const int64_t arrival = T0 + i * FRAME_US;
+        if (i % 10 == 0) { /* the forgery, just before the real frame i: its seq, 4.9 s ahead, absurd angles */
+            m = measurement(arrival + 4900000, 1, 0, 170, 0);
+            m.seq = i;
+            --next_seq;
+            (void)filter_node_receive(&node, &m, arrival - 1000, &pose);
+            ++forged;
+        }
+        m = measurement(arrival, 1, 0, 10, 0);
+        m.seq = i;
+        if (filter_node_receive(&node, &m, arrival, &pose)) {
+            assert_true(pose.utime == arrival);
+            ++real_published;
+            if (arrival - last_published_arrival > longest_wait) {
+                longest_wait = arrival - last_published_arrival;
+            }
+            last_published_arrival = arrival;
+        }
+    }
+    /* per forgery: the real frame with its seq (another publisher's now), and two stale ones */
+    assert_int_equal(real_published, 120 - forged * (1 + FILTER_NODE_RESYNC_MESSAGES - 1));
+    assert_true(longest_wait <= (1 + FILTER_NODE_RESYNC_MESSAGES) * FRAME_US);
+    assert_true(longest_wait < coast_us);
+    assert_int_equal(node.counts.clock_resyncs, forged);
+}
+
 /* What is not a jump: a replay at 2x speed with a 3 s gap (capture steps twice
  * the arrival steps), and a one-frame reorder (still out of order). */
 static void test_clock_not_a_jump(void **state)
@@ -757,6 +833,8 @@ int main(void)
         cmocka_unit_test_setup(test_clock_jump_forward, setup),
         cmocka_unit_test_setup(test_clock_corrupt_first_stamp, setup),
         cmocka_unit_test_setup(test_clock_not_a_jump, setup),
+        cmocka_unit_test_setup(test_clock_steps_back_with_arrival, setup),
+        cmocka_unit_test_setup(test_forged_stamp_ahead, setup),
         cmocka_unit_test_setup(test_decode_checks_layout, setup),
         cmocka_unit_test_setup(test_two_publishers_not_mixed, setup),
         cmocka_unit_test_setup(test_publisher_restart_followed, setup),

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <cmocka.h>
 
@@ -38,6 +39,19 @@ static int same_settings(const hkf_settings_t *a, const hkf_settings_t *b)
     return memcmp(a, b, sizeof *a) == 0;
 }
 
+/* The first n models have the same names, curves and r_const (where they were set may differ). */
+static int same_models(const node_model_t *a, const node_model_t *b, int n)
+{
+    int i;
+    for (i = 0; i < n; ++i) {
+        if (strcmp(a[i].name, b[i].name) != 0 || memcmp(a[i].noise, b[i].noise, sizeof a[i].noise) != 0 ||
+            memcmp(a[i].r_const, b[i].r_const, sizeof a[i].r_const) != 0) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* The shipped file says what the built-in defaults say. */
 static void test_shipped_file_equals_defaults(void **state)
 {
@@ -57,7 +71,7 @@ static void test_shipped_file_equals_defaults(void **state)
     assert_memory_equal(from_file.models[2].noise, model_curves_mesh_pnp, sizeof from_file.models[2].noise);
     assert_string_equal(from_file.models[3].name, "whenet");
     assert_memory_equal(from_file.models[3].noise, model_curves_whenet, sizeof from_file.models[3].noise);
-    assert_memory_equal(from_file.models, defaults.models, sizeof defaults.models[0] * 4);
+    assert_true(same_models(from_file.models, defaults.models, 4));
 }
 
 static void test_overrides(void **state)
@@ -131,8 +145,114 @@ static void test_print_reads_back(void **state)
     assert_int_equal(node_config_read_file(&back, path, error, sizeof error), 0);
     assert_true(same_settings(&c.settings, &back.settings));
     assert_int_equal(back.model_count, 4);
-    assert_memory_equal(back.models, c.models, sizeof c.models[0] * 4);
+    assert_true(same_models(back.models, c.models, 4));
     remove(path);
+}
+
+/* Model names: one rule (node_model_name_valid) for [model NAME] sections,
+ * --set model.NAME.KEY and the message's limit: 1 to 31 letters, digits, '_'
+ * or '-'. A name --set accepts is one --print-config writes and --config
+ * reads back. (Before: --set took "a b", "a]", "a#" and a newline, which the
+ * printed config then could not read.) */
+static void test_model_names_one_rule(void **state)
+{
+    static const char *const bad[] = {"a b", "a]", "a#b", "a\nb", "a.b", "", "abcdefghijabcdefghijabcdefghijab"};
+    const char *const good = "Abc_def-0123456789abcdefghijklm"; /* 31 characters */
+    node_config_t c, back;
+    char assignment[128], path[64];
+    size_t i;
+    FILE *f;
+    (void)state;
+    node_config_defaults(&c);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        snprintf(assignment, sizeof assignment, "model.%s.noise.yaw = 7 4 0 30", bad[i]);
+        assert_int_equal(node_config_set(&c, assignment, error, sizeof error), -1);
+        assert_false(node_model_name_valid(bad[i]));
+    }
+    assert_int_equal(c.model_count, 4);
+    assert_int_equal((int)strlen(good), HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX);
+    snprintf(assignment, sizeof assignment, "model.%s.noise.yaw = 7 4 0 30", good);
+    assert_int_equal(node_config_set(&c, assignment, error, sizeof error), 0);
+    strcpy(path, "/tmp/hkf_config_names_XXXXXX");
+    f = fdopen(mkstemp(path), "w");
+    node_config_print(&c, f);
+    fclose(f);
+    node_config_defaults(&back);
+    assert_int_equal(node_config_read_file(&back, path, error, sizeof error), 0);
+    assert_int_equal(back.model_count, 5);
+    assert_string_equal(back.models[4].name, good);
+    assert_true(same_models(back.models, c.models, 5));
+    remove(path);
+    assert_int_equal(node_config_read_file(&back, write_temp("[model a#b]\n"), error, sizeof error), -1);
+    assert_int_equal(node_config_read_file(&back, write_temp("[model abcdefghijabcdefghijabcdefghijab]\n"), error,
+                                           sizeof error), -1);
+}
+
+/* Settings that parse but that hkf_init rejects are reported where they were
+ * given: FILE:LINE, or --set. (Before: "invalid settings: ..." alone.) */
+static void test_check_names_where(void **state)
+{
+    node_config_t c;
+    const char *path;
+    char where[80];
+    (void)state;
+    node_config_defaults(&c);
+    assert_int_equal(node_config_check(&c, error, sizeof error), 0);
+    path = write_temp("q_boost = 3\nlc_xi = 5\n");
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), 0);
+    assert_int_equal(node_config_check(&c, error, sizeof error), -1);
+    snprintf(where, sizeof where, "%s:2: lc_xi = 5", path);
+    assert_non_null(strstr(error, where));
+    node_config_defaults(&c);
+    assert_int_equal(node_config_set(&c, "r_min=200", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "r_max=100", error, sizeof error), 0);
+    assert_int_equal(node_config_check(&c, error, sizeof error), -1);
+    assert_non_null(strstr(error, "--set: r_min = 200"));
+    assert_non_null(strstr(error, "--set: r_max = 100"));
+    node_config_defaults(&c);
+    path = write_temp("[model mine]\nnoise.yaw = 1 2 3 -4\n");
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), 0);
+    assert_int_equal(node_config_check(&c, error, sizeof error), -1);
+    snprintf(where, sizeof where, "%s:2: noise.yaw = 1 2 3 -4", path);
+    assert_non_null(strstr(error, where));
+    assert_non_null(strstr(error, "'mine'"));
+}
+
+/* A value beyond the number type, NaN or infinite is said to be that (not
+ * "NaN or infinite" for 1e300); a NUL byte is not "line too long"; a named
+ * pipe is refused at once, not waited on. */
+static void test_values_and_files_reported_as_they_are(void **state)
+{
+    node_config_t c;
+    const char *path;
+    char fifo[64];
+    (void)state;
+    node_config_defaults(&c);
+    assert_int_equal(node_config_set(&c, "lc_theta=1e300", error, sizeof error), -1);
+    assert_non_null(strstr(error, "beyond the range"));
+    assert_int_equal(node_config_set(&c, "lc_theta=nan", error, sizeof error), -1);
+    assert_non_null(strstr(error, "NaN"));
+    assert_int_equal(node_config_set(&c, "process_noise=1 inf 1", error, sizeof error), -1);
+    assert_non_null(strstr(error, "infinite"));
+    assert_true(c.settings.lc_theta == hkf_default_settings.lc_theta); /* nothing changed */
+    path = write_temp("lc_xi = 0.5\n");
+    {
+        FILE *f = fopen(path, "ab");
+        assert_non_null(f);
+        fputs("lc_theta = 3", f);
+        fputc('\0', f);
+        fputs("\n", f);
+        fclose(f);
+    }
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), -1);
+    assert_non_null(strstr(error, ":2: a NUL byte"));
+    strcpy(fifo, "/tmp/hkf_config_fifo_XXXXXX");
+    assert_non_null(mkdtemp(fifo));
+    strcat(fifo, "/fifo");
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    assert_int_equal(node_config_read_file(&c, fifo, error, sizeof error), -1); /* returns: no writer is waited for */
+    assert_non_null(strstr(error, "not a regular file"));
+    remove(fifo);
 }
 
 int main(void)
@@ -142,6 +262,9 @@ int main(void)
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_print_reads_back),
+        cmocka_unit_test(test_model_names_one_rule),
+        cmocka_unit_test(test_check_names_where),
+        cmocka_unit_test(test_values_and_files_reported_as_they_are),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

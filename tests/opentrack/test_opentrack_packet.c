@@ -108,6 +108,26 @@ static void test_non_finite_refused(void **state)
     assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
 }
 
+/* A finite pose no head can make (a forged or corrupt HEAD_POSE: 6.8e37 deg,
+ * or a centre of 1000 deg) is refused, not sent to the game camera. ±180 is
+ * the limit: a pose at it is sent. */
+static void test_beyond_a_head_refused(void **state)
+{
+    const opentrack_mapping_t mapping = opentrack_default_mapping();
+    double values[OPENTRACK_FIELDS];
+    hkf_head_pose_t pose = pose_at(0.0f, 6.8e37f, 0.0f);
+    (void)state;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, values), -2);
+    pose = pose_at(-181.0f, 0.0f, 0.0f);
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, values), -2);
+    pose = pose_at(0.0f, 0.0f, 0.0f);
+    pose.center[2] = 1000.0f;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, values), -2);
+    pose = pose_at(180.0f, -180.0f, 180.0f);
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, values), 0);
+    assert_true(fabs(values[OPENTRACK_PITCH] - 180.0) < 1e-9);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -116,6 +136,7 @@ int main(void)
         cmocka_unit_test(test_relative_to_center),
         cmocka_unit_test(test_invert_and_scale),
         cmocka_unit_test(test_non_finite_refused),
+        cmocka_unit_test(test_beyond_a_head_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

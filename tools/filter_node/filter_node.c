@@ -39,6 +39,17 @@ int filter_node_decode(const void *data, int size, hkf_head_pose_measurement_t *
     return 0;
 }
 
+int filter_node_model_id_too_long(const void *data, int size)
+{
+    const unsigned char *bytes = data;
+    long length;
+    if (data == NULL || size < 28) {
+        return 0;
+    }
+    length = ((long)bytes[24] << 24) | ((long)bytes[25] << 16) | ((long)bytes[26] << 8) | bytes[27];
+    return length > NODE_MODEL_NAME_MAX && length <= size - 28;
+}
+
 int filter_node_init(filter_node_t *node, const node_config_t *config)
 {
     memset(node, 0, sizeof *node);

@@ -135,6 +135,11 @@ typedef struct {
  * hkf_head_pose_measurement_t_decode_cleanup), or -1 with nothing allocated. */
 int filter_node_decode(const void *data, int size, hkf_head_pose_measurement_t *m);
 
+/* 1 when a HEAD_POSE_RAW payload that did not decode carries a model id
+ * longer than head_pose_measurement_t.lcm allows (MODEL_NAME_MAX): the one
+ * mistake a user makes, so hkf-filter says it. */
+int filter_node_model_id_too_long(const void *data, int size);
+
 /* 0, or a hkf_result_t when the base settings are invalid. */
 int filter_node_init(filter_node_t *node, const node_config_t *config);
 

@@ -62,6 +62,7 @@ static void handle_measurement(filter_node_t *node, output_t *output, const void
     hkf_head_pose_t pose;
     if (filter_node_decode(data, size, &m) != 0) {
         ++node->counts.decode_errors;
+        output->report->long_model_ids += (unsigned long)filter_node_model_id_too_long(data, size);
         return;
     }
     /* extrapolated poses at the --rate ticks before this measurement, in capture time */

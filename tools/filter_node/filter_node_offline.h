@@ -26,6 +26,7 @@ typedef struct {
     long skipped_bytes;             /* damage between events, skipped */
     long cut_bytes;                 /* bytes at the end that are part of no whole event */
     unsigned long unknown_commands; /* commands with an unknown code, ignored */
+    unsigned long long_model_ids;   /* measurements not decoded: a model id over MODEL_NAME_MAX */
     unsigned long poses_written;
     int write_failed;               /* writing the output log failed (e.g. a full disk) */
     int csv_failed;                 /* writing the CSV failed */

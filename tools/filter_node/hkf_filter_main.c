@@ -199,20 +199,7 @@ static void print_summary(const filter_node_t *node, FILE *to)
             c->unknown_models, c->commands, c->silences, c->paired, c->unpaired);
 }
 
-/* Why a HEAD_POSE_RAW payload did not decode, when it is the one mistake a
- * user makes: an estimator's model id longer than the message allows. */
-static const char *decode_hint(const lcm_recv_buf_t *rbuf)
-{
-    const unsigned char *bytes = rbuf->data;
-    long length;
-    if (rbuf->data_size < 28) {
-        return "";
-    }
-    length = ((long)bytes[24] << 24) | ((long)bytes[25] << 16) | ((long)bytes[26] << 8) | bytes[27];
-    return length > NODE_MODEL_NAME_MAX && length < 65536
-               ? " (its model id is longer than the 31 bytes head_pose_measurement_t.lcm allows)"
-               : "";
-}
+#define LONG_MODEL_HINT " (its model id is longer than the 31 bytes head_pose_measurement_t.lcm allows)"
 
 static void report_decode_error(node_run_t *run, const char *channel, const char *hint)
 {
@@ -243,7 +230,8 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void
     hkf_head_pose_measurement_t m;
     hkf_head_pose_t pose;
     if (filter_node_decode(rbuf->data, (int)rbuf->data_size, &m) != 0) {
-        report_decode_error(run, channel, decode_hint(rbuf));
+        report_decode_error(run, channel,
+                            filter_node_model_id_too_long(rbuf->data, (int)rbuf->data_size) ? LONG_MODEL_HINT : "");
         return;
     }
     run->last_arrival_us = arrival_utime();
@@ -455,6 +443,9 @@ static int run_offline(node_run_t *run)
     if (run->node.counts.decode_errors > 0) {
         fprintf(stderr, "hkf-filter: %lu messages did not decode; counted and skipped\n",
                 run->node.counts.decode_errors);
+    }
+    if (report.long_model_ids > 0) {
+        fprintf(stderr, "hkf-filter: %lu of them%s\n", report.long_model_ids, LONG_MODEL_HINT);
     }
     if (report.unknown_commands > 0) {
         fprintf(stderr, "hkf-filter: %lu unknown commands ignored\n", report.unknown_commands);

@@ -1,0 +1,240 @@
+#!/usr/bin/env bash
+# The fault catalogue, part 3: a hostile review's command lines, files and
+# messages (issue 22), on real data - the raw poses of a real clip
+# (../shared/data/videos/d3.mp4) and real face images (AFLW2000). No command
+# line, file or message may make a program destroy or truncate data and exit
+# 0, abort, hang without saying so, or hold the pose up for longer than the
+# coast time. Each fault's outcome is in the README's reliability table.
+# usage: faults_hostile_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)
+python=$source/.venv/bin/python types=$build/lcmtypes/python
+estimator=$build/estimator/hkf-estimator filter=$build/tools/hkf-filter
+opentrack=$build/tools/hkf-opentrack cmd=$build/tools/hkf-cmd
+data=$source/../shared/data
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+[ -f "$data/videos/d3.mp4" ] || fail "missing $data/videos/d3.mp4 (the team's shared data)"
+# expect_exit CODE LABEL COMMAND...: runs it (30 s at most), wants exit CODE; its output in $work/out.txt
+expect_exit() {
+  local want=$1 label=$2 status=0
+  shift 2
+  timeout 30 "$@" >"$work/out.txt" 2>&1 || status=$?
+  [ "$status" = "$want" ] || { cat "$work/out.txt" >&2; fail "$label: exit $status (expected $want)"; }
+  echo "$label: exit $status; $(grep -v "measurements (" "$work/out.txt" | head -n 1)"
+}
+said() { grep -q -- "$1" "$work/out.txt" || { cat "$work/out.txt" >&2; fail "expected to be told '$1'"; }; }
+
+"$estimator" --source "$data/videos/d3.mp4" --max-frames 120 --lcm-url "file://$work/raw.lcmlog?mode=w" \
+  >"$work/estimate.txt" 2>&1 || fail "the estimator on the clip"
+frames=$(sed -n 's/^hkf-estimator: \([0-9]*\) frames,.* fps;.*/\1/p' "$work/estimate.txt")
+echo "the clip's raw poses: $frames frames"
+sum() { sha256sum "$1" | cut -d' ' -f1; }
+raw_sum=$(sum "$work/raw.lcmlog")
+
+echo "== 1. --offline never writes over its input"
+cd "$work"
+ln -s raw.lcmlog link.lcmlog
+expect_exit 1 "--offline IN IN" "$filter" --offline raw.lcmlog raw.lcmlog
+said "refusing to write over it"
+expect_exit 1 "--offline IN LINK-TO-IN" "$filter" --offline raw.lcmlog link.lcmlog
+expect_exit 1 "--offline IN ./IN" "$filter" --offline raw.lcmlog "$work/./raw.lcmlog"
+expect_exit 1 "--csv IN" "$filter" --offline raw.lcmlog out.lcmlog --csv raw.lcmlog
+[ ! -e out.lcmlog ] || fail "an output was created although the run was refused"
+expect_exit 1 "--csv OUT" "$filter" --offline raw.lcmlog out.lcmlog --csv out.lcmlog
+[ "$(sum raw.lcmlog)" = "$raw_sum" ] || fail "the input log changed"
+cd - >/dev/null
+
+echo "== 2. a full disk is an error, never success"
+expect_exit 1 "--offline IN /dev/full" "$filter" --offline "$work/raw.lcmlog" /dev/full
+said "error writing '/dev/full'"
+expect_exit 1 "--csv /dev/full" "$filter" --offline "$work/raw.lcmlog" "$work/ok.lcmlog" --csv /dev/full
+# a disk that fills midway: the file size limit (SIGXFSZ ignored, so write() fails with EFBIG)
+status=0
+(ulimit -f 4; trap '' XFSZ; exec "$filter" --offline "$work/raw.lcmlog" "$work/cut.lcmlog") >"$work/out.txt" 2>&1 || status=$?
+[ "$status" = 1 ] || { cat "$work/out.txt"; fail "a disk full midway: exit $status (expected 1)"; }
+grep -q "it is incomplete" "$work/out.txt" || fail "the cut output was not reported"
+echo "disk full midway: exit 1, $(stat -c %s "$work/cut.lcmlog") of $(stat -c %s "$work/ok.lcmlog") bytes, reported"
+
+# log_edit EDIT IN OUT: rewrites the raw log with one of the hostile edits below
+log_edit() {
+  "$python" - "$@" "$types" <<'PY'
+import sys
+import lcm
+edit, src, dst, types = sys.argv[1:5]
+sys.path.insert(0, types)
+from hkf import head_pose_measurement_t, tracker_command_t
+out = lcm.EventLog(dst, "w", overwrite=True)
+for e in lcm.EventLog(src, "r"):
+    m = head_pose_measurement_t.decode(e.data)
+    if edit == "step-back" and m.seq >= 60:  # the machine's clock steps back 1 h: stamps and arrivals together
+        m.utime -= 3600 * 10**6
+        out.write_event(e.timestamp - 3600 * 10**6, e.channel, m.encode())
+        continue
+    out.write_event(e.timestamp, e.channel, m.encode())
+    if edit == "forge" and m.seq in (30, 60, 90):  # a forged datagram: the next seq, a stamp 4.9 s ahead
+        f = head_pose_measurement_t.decode(e.data)
+        f.seq, f.utime, f.yaw = m.seq + 1, m.utime + 4900000, 170.0
+        out.write_event(e.timestamp + 1000, e.channel, f.encode())
+    if edit == "long-model" and m.seq == 10:
+        f = head_pose_measurement_t.decode(e.data)
+        f.model = "m" * 40
+        out.write_event(e.timestamp + 1, e.channel, f.encode())
+    if edit == "commands":
+        c = tracker_command_t()
+        c.utime, c.command = e.timestamp, 99
+        out.write_event(e.timestamp + 1, "HEAD_TRACKER_CMD", c.encode())
+out.close()
+PY
+}
+# answered OUT.lcmlog RAW.lcmlog: prints "answered frames, longest wait (ms) between poses on the arrival clock"
+answered() {
+  "$python" - "$1" "$2" "$types" <<'PY'
+import sys
+import lcm
+sys.path.insert(0, sys.argv[3])
+from hkf import head_pose_measurement_t, head_pose_t
+poses = [(e.timestamp, head_pose_t.decode(e.data)) for e in lcm.EventLog(sys.argv[1], "r")]
+poses = [(t, p) for t, p in poses if not p.extrapolated]
+raw = [head_pose_measurement_t.decode(e.data) for e in lcm.EventLog(sys.argv[2], "r")]
+real = {m.utime for m in raw if m.valid and m.yaw != 170.0 and len(m.model) < 32}
+stamps = [t for t, _ in poses]
+wait = max(b - a for a, b in zip(stamps, stamps[1:]))
+print(len({p.utime for _, p in poses} & real), round(wait / 1000))
+PY
+}
+
+echo "== 3. the clock steps back 1 h (stamps and arrival times together) after frame 60"
+log_edit step-back "$work/raw.lcmlog" "$work/back.lcmlog"
+expect_exit 0 "a clock stepped back" "$filter" --offline "$work/back.lcmlog" "$work/back_out.lcmlog"
+read -r got wait < <(answered "$work/back_out.lcmlog" "$work/back.lcmlog")
+read -r clean _ < <("$filter" --offline "$work/raw.lcmlog" "$work/clean_out.lcmlog" 2>/dev/null; answered "$work/clean_out.lcmlog" "$work/raw.lcmlog")
+echo "clock stepped back: $got of $clean frames with a face answered (clean log), longest wait ${wait} ms"
+[ "$got" -ge $((clean - 2)) ] || fail "after the clock stepped back only $got of $clean frames were filtered"
+
+echo "== 4. three forged datagrams (the next seq, a stamp 4.9 s ahead)"
+log_edit forge "$work/raw.lcmlog" "$work/forged.lcmlog"
+expect_exit 0 "forged datagrams" "$filter" --offline "$work/forged.lcmlog" "$work/forged_out.lcmlog"
+read -r got wait < <(answered "$work/forged_out.lcmlog" "$work/forged.lcmlog")
+echo "forged datagrams: $got of $clean real frames answered, longest wait between poses ${wait} ms"
+[ "$got" -ge $((clean - 9)) ] || fail "forged datagrams: only $got of $clean real frames filtered"
+[ "$wait" -lt 250 ] || fail "a forged datagram held the pose up for $wait ms (coast time 250 ms)"
+
+echo "== 5. the estimator ends every run with an error and exit 1 or 2, never an abort"
+expect_exit 2 "--annotate /nonexistent/o.mp4" "$estimator" --source "$data/videos/d3.mp4" --lcm-url memq:// --annotate /nonexistent/o.mp4
+expect_exit 2 "--annotate o.txt" "$estimator" --source "$data/videos/d3.mp4" --lcm-url memq:// --annotate "$work/o.txt"
+cp "$data/videos/d3.mp4" "$work/copy.mp4"
+expect_exit 2 "--annotate the source itself" "$estimator" --source "$work/copy.mp4" --lcm-url memq:// --annotate "$work/copy.mp4"
+[ "$(sum "$work/copy.mp4")" = "$(sum "$data/videos/d3.mp4")" ] || fail "the source video changed"
+expect_exit 1 "--source 99999999999" "$estimator" --source 99999999999 --lcm-url memq://
+ln -s loop1 "$work/loop2"
+ln -s loop2 "$work/loop1"
+expect_exit 1 "--source SYMLINK-LOOP" "$estimator" --source "$work/loop1" --lcm-url memq://
+mkdir "$work/specs"
+sed 's/^\(yaw_bins *= *[a-z]*\) 120/\1 66/' "$source/estimator/models/whenet.model" >"$work/specs/whenet_bins.model"
+expect_exit 1 "a model whose bins do not match the network" "$estimator" --source "$data/videos/d3.mp4" \
+  --lcm-url memq:// --max-frames 5 --model whenet_bins --spec-dir "$work/specs"
+said "the model description implies 66"
+said "^hkf-estimator: [0-9]* frames,"
+sed 's/^input .*/input = 100 100/' "$source/estimator/models/mesh_pnp.model" >"$work/specs/mesh_small.model"
+expect_exit 1 "a mesh whose input size does not match the network" "$estimator" --source "$data/videos/d3.mp4" \
+  --lcm-url memq:// --max-frames 5 --model mesh_small --spec-dir "$work/specs"
+said "^hkf-estimator: [0-9]* frames,"
+
+echo "== 6. a model id longer than the message allows: refused at start, explained at the filter"
+expect_exit 2 "--model of 33 characters" "$estimator" --source "$data/videos/d3.mp4" --lcm-url memq:// --model "$(printf 'm%.0s' $(seq 33))"
+said "1 to 31 letters"
+log_edit long-model "$work/raw.lcmlog" "$work/long.lcmlog"
+expect_exit 0 "a log with a 40-byte model id" "$filter" --offline "$work/long.lcmlog" "$work/long_out.lcmlog"
+said "1 messages did not decode"
+said "longer than the 31 bytes"
+
+echo "== 7. unknown commands are counted, not printed one by one"
+log_edit commands "$work/raw.lcmlog" "$work/commands.lcmlog"
+expect_exit 0 "$frames unknown commands" "$filter" --offline "$work/commands.lcmlog" "$work/commands_out.lcmlog"
+said "$frames unknown commands ignored"
+[ "$(grep -c "unknown command" "$work/out.txt")" -le 6 ] || fail "unknown commands flooded the terminal"
+
+echo "== 8. a channel name longer than LCM allows (63) is refused at start"
+long_channel=$(printf 'C%.0s' $(seq 64))
+expect_exit 2 "hkf-estimator --channel (64)" "$estimator" --source "$data/videos/d3.mp4" --lcm-url memq:// --channel "$long_channel"
+expect_exit 2 "hkf-filter --output-channel (64)" "$filter" --lcm-url memq:// --output-channel "$long_channel"
+expect_exit 2 "hkf-opentrack --channel (64)" "$opentrack" --lcm-url memq:// --channel "$long_channel"
+expect_exit 2 "hkf-cmd --channel (64)" "$cmd" recenter --lcm-url memq:// --channel "$long_channel"
+
+echo "== 9. SIGHUP (the terminal closed) stops like SIGTERM: summary, whole outputs"
+"$build/tools/hkf-simlog" --out "$work/hour.lcmlog" --seconds 3600 --seed 2 >/dev/null 2>&1
+"$filter" --offline "$work/hour.lcmlog" "$work/hour_out.lcmlog" --rate 10000 --csv "$work/hour.csv" >"$work/out.txt" 2>&1 &
+pid=$!
+sleep 1
+kill -HUP $pid
+status=0
+wait $pid || status=$?
+[ "$status" = 1 ] || fail "hkf-filter --offline after SIGHUP: exit $status (expected 1)"
+said "stopped by a signal"
+said "poses published"
+"$filter" --offline "$work/hour_out.lcmlog" "$work/again.lcmlog" --input-channel NONE 2>"$work/reread.txt"
+if grep -q "cut off\|damaged" "$work/reread.txt"; then fail "the output log is not whole after SIGHUP"; fi
+[ "$(tail -c 1 "$work/hour.csv" | od -An -c | tr -d ' ')" = '\n' ] || fail "the CSV is cut mid-line after SIGHUP"
+echo "hkf-filter --offline: SIGHUP -> exit 1, summary, log and CSV whole"
+"$estimator" --source "$data/videos/d3.mp4" --realtime --lcm-url memq:// --annotate "$work/hup.mp4" >"$work/out.txt" 2>&1 &
+pid=$!
+sleep 4
+kill -HUP $pid
+status=0
+wait $pid || status=$?
+[ "$status" = 0 ] || fail "hkf-estimator after SIGHUP: exit $status (expected 0)"
+said "^hkf-estimator: [0-9]* frames,"
+"$estimator" --source "$work/hup.mp4" --lcm-url memq:// >"$work/out.txt" 2>&1 || fail "the --annotate video after SIGHUP does not play"
+said "^hkf-estimator: [0-9]* frames,"
+echo "hkf-estimator: SIGHUP -> summary, the --annotate video plays ($(sed -n 's/^hkf-estimator: \([0-9]*\) frames,.* fps;.*/\1/p' "$work/out.txt") frames)"
+
+echo "== 10. a named pipe as an input is refused at once, not waited on"
+mkfifo "$work/fifo"
+expect_exit 2 "--config FIFO" "$filter" --config "$work/fifo" --print-config
+said "not a regular file"
+expect_exit 1 "--offline FIFO OUT" "$filter" --offline "$work/fifo" "$work/x.lcmlog"
+said "named pipe"
+expect_exit 1 "--offline IN FIFO (no reader)" "$filter" --offline "$work/raw.lcmlog" "$work/fifo"
+said "nothing reads"
+
+echo "== 11. numbers out of range are refused"
+expect_exit 2 "--region nan,nan,nan,nan" "$estimator" --source "$data/videos/d3.mp4" --lcm-url memq:// --region nan,nan,nan,nan
+expect_exit 2 "hkf-opentrack --rate 1e-300" "$opentrack" --lcm-url memq:// --rate 1e-300
+expect_exit 2 "hkf-filter --rate 1e-300" "$filter" --lcm-url memq:// --rate 1e-300
+
+echo "== 12-13. model names and config errors: one rule, FILE:LINE, the real reason"
+for name in 'a b' 'a]' 'a#' "$(printf 'a\nb')"; do
+  expect_exit 2 "--set model.'$name'.noise.yaw" "$filter" --set "model.$name.noise.yaw=7 4 0 30" --print-config
+done
+printf 'q_boost = 3000\nlc_xi = 5\n' >"$work/bad.conf"
+expect_exit 2 "lc_xi = 5 in a file" "$filter" --config "$work/bad.conf" --print-config
+said "bad.conf:2: lc_xi = 5"
+expect_exit 2 "--set lc_theta=1e300" "$filter" --set lc_theta=1e300 --print-config
+said "beyond the range"
+printf 'q_boost = 3000\nlc_xi\0 = 0.5\n' >"$work/nul.conf"
+expect_exit 2 "a NUL byte in a config" "$filter" --config "$work/nul.conf" --print-config
+said "nul.conf:2: a NUL byte"
+
+echo "== 15-17. image folders: frames of two sizes, an unreadable image, an image beyond the cap"
+mkdir "$work/images"
+for image in $(ls "$data/aflw2000/images" | head -n 4); do cp "$data/aflw2000/images/$image" "$work/images/"; done
+"$python" - "$work/images" <<'PY'
+import os
+import sys
+from PIL import Image
+folder = sys.argv[1]
+first = sorted(os.listdir(folder))[0]
+Image.open(f"{folder}/{first}").resize((300, 300)).save(f"{folder}/z_resized.jpg")  # another size than the first
+open(f"{folder}/b_broken.jpg", "wb").write(b"\xff\xd8\xff not a JPEG after all")  # unreadable
+Image.new("RGB", (20000, 16)).save(f"{folder}/c_large.png")                       # beyond the size cap
+PY
+expect_exit 0 "a folder with 5 good, 1 damaged and 1 oversized image, --annotate" "$estimator" --source "$work/images" \
+  --lcm-url memq:// --annotate "$work/images.mp4"
+said "^hkf-estimator: 5 frames,"
+said "2 images of the folder could not be read; skipped"
+said "1 frames of another size than the first were scaled"
+"$estimator" --source "$work/images.mp4" --lcm-url memq:// >"$work/out.txt" 2>&1 || fail "the --annotate video does not play"
+said "^hkf-estimator: 5 frames,"
+echo "faults_hostile_test: all checks passed"
