@@ -2,8 +2,11 @@
  * fuzz_node_config.c - libFuzzer target for hkf-filter's settings: arbitrary
  * bytes as a config file (node_config_read_file) and, line by line, as --set
  * assignments (node_config_set). Checks: a rejection always says why; an
- * accepted configuration prints, reads back and prints again to the same text
- * (what --print-config promises).
+ * accepted configuration (model names included: one rule for sections, --set
+ * and messages) prints, reads back to the same settings and model table, and
+ * prints again to the same text (what --print-config promises); the read-back
+ * configuration passes or fails node_config_check as the original does, and a
+ * failure always says why.
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -84,6 +87,21 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     check(print_to(&again, second, sizeof second) == length && memcmp(first, second, length) == 0,
           "the configuration read back prints differently");
+    check(memcmp(&again.settings, &config.settings, sizeof config.settings) == 0 &&
+              again.model_count == config.model_count && again.second_alone_from_yaw == config.second_alone_from_yaw,
+          "the configuration read back has other settings");
+    for (i = 0; i < (size_t)config.model_count; ++i) {
+        check(strcmp(again.models[i].name, config.models[i].name) == 0 && node_model_name_valid(config.models[i].name) &&
+                  memcmp(again.models[i].noise, config.models[i].noise, sizeof config.models[i].noise) == 0 &&
+                  memcmp(again.models[i].r_const, config.models[i].r_const, sizeof config.models[i].r_const) == 0,
+              "a model read back differs, or has a name the message cannot carry");
+    }
+    error[0] = '\0';
+    {
+        const int verdict = node_config_check(&config, error, sizeof error);
+        check(verdict == 0 || error[0] != '\0', "node_config_check failed without a message");
+        check(node_config_check(&again, second, sizeof second) == verdict, "the read-back config checks differently");
+    }
     unlink(path);
     return 0;
 }
