@@ -62,9 +62,10 @@ int fail(const std::string &message)
 template <typename T>
 bool read_channel(const std::string &path, const std::string &channel, std::vector<T> &out, std::string &error)
 {
-    FILE *f = safe_open_input(path.c_str(), "hkf-annotate");  // a regular file: a named pipe would block
+    char reason[600];
+    FILE *f = safe_open_input(path.c_str(), reason, sizeof reason);  // a regular file: a named pipe would block
     if (f == nullptr) {
-        error = "cannot read " + path;
+        error = reason;
         return false;
     }
     lcm_log_reader_t reader;

@@ -18,24 +18,24 @@ static const char *kind_of(mode_t mode)
          : S_ISBLK(mode) ? "a block device" : S_ISSOCK(mode) ? "a socket" : "not a regular file";
 }
 
-FILE *safe_open_input(const char *path, const char *program)
+FILE *safe_open_input(const char *path, char *error, size_t error_size)
 {
     struct stat st;
     FILE *f;
     /* O_NONBLOCK: opening a named pipe does not wait for a writer; fstat then tells what it is */
     const int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
-        fprintf(stderr, "%s: cannot read '%s': %s\n", program, path, strerror(errno));
+        snprintf(error, error_size, "cannot read '%s': %s", path, strerror(errno));
         return NULL;
     }
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        fprintf(stderr, "%s: '%s' is %s; give a regular file\n", program, path,
-                fstat(fd, &st) != 0 ? "unreadable" : kind_of(st.st_mode));
+        snprintf(error, error_size, "'%s' is %s, not a regular file", path,
+                 fstat(fd, &st) != 0 ? "unreadable" : kind_of(st.st_mode));
         close(fd);
         return NULL;
     }
     if (fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK) != 0 || (f = fdopen(fd, "rb")) == NULL) {
-        fprintf(stderr, "%s: cannot read '%s': %s\n", program, path, strerror(errno));
+        snprintf(error, error_size, "cannot read '%s': %s", path, strerror(errno));
         close(fd);
         return NULL;
     }

@@ -10,8 +10,8 @@
 
 /* Opens path for reading when it is a regular file; a named pipe, device or
  * folder is refused at once (opening a pipe with no writer would block for
- * ever). NULL with a message ("PROGRAM: ...") on stderr. */
-FILE *safe_open_input(const char *path, const char *program);
+ * ever). NULL with "'PATH' is a named pipe; ..." (or the system's reason) in error. */
+FILE *safe_open_input(const char *path, char *error, size_t error_size);
 
 /* 1 when a and b name one file: the same inode when both exist (through
  * links, "./", "..", hard links), or the same folder and name when they do not

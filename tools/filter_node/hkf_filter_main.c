@@ -396,13 +396,15 @@ static int run_offline(node_run_t *run)
     filter_node_offline_t offline;
     filter_node_offline_report_t report;
     const char *keep[3 + 8];
+    char error[600];
     lcm_log_writer_t out;
     FILE *in, *out_file;
     int status;
     /* the input first, as a regular file (a named pipe would block and cannot seek); then the
      * outputs, refusing any that is the input or another output: opening it would truncate it */
-    in = safe_open_input(o->offline_in, "hkf-filter");
+    in = safe_open_input(o->offline_in, error, sizeof error);
     if (in == NULL) {
+        fprintf(stderr, "hkf-filter: %s\n", error);
         return 1;
     }
     out_file = safe_open_output(o->offline_out, "wb", keep, paths_to_keep(o, o->offline_out, keep), "hkf-filter");

@@ -3,16 +3,14 @@
 #include "node_config.h"
 
 #include "model_curves.h"
+#include "safe_files.h"
 
 #include <ctype.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 typedef enum { KIND_REAL, KIND_REAL3, KIND_CURVE, KIND_NOISE_MODE, KIND_LOOP_CLOSURE, KIND_UINT } key_kind_t;
 
@@ -368,33 +366,9 @@ static int read_line(FILE *in, char *line, size_t size)
     return c == EOF && n == 0 ? 0 : 1;
 }
 
-/* The config file as a regular file, opened without blocking on a named pipe. */
-static FILE *open_config(const char *path, char *error, size_t error_size)
-{
-    struct stat st;
-    FILE *in;
-    const int fd = open(path, O_RDONLY | O_NONBLOCK);
-    if (fd < 0) {
-        snprintf(error, error_size, "%s: %s", path, strerror(errno));
-        return NULL;
-    }
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        snprintf(error, error_size, "%s: not a regular file (a named pipe, device or folder); give a config file",
-                 path);
-        close(fd);
-        return NULL;
-    }
-    in = fdopen(fd, "r");
-    if (in == NULL) {
-        snprintf(error, error_size, "%s: %s", path, strerror(errno));
-        close(fd);
-    }
-    return in;
-}
-
 int node_config_read_file(node_config_t *config, const char *path, char *error, size_t error_size)
 {
-    FILE *in = open_config(path, error, error_size);
+    FILE *in = safe_open_input(path, error, error_size); /* a named pipe is refused, not waited on */
     char line[512], model[NODE_MODEL_NAME_MAX + 1] = "";
     char message[400], origin[NODE_ORIGIN_MAX];
     int number = 0, in_model = 0, got;
