@@ -21,6 +21,47 @@ import truth_eval  # noqa: E402
 import truth_motion  # noqa: E402
 
 
+def check_position(build, frame, centre):
+    """The same frame zoomed and shifted along truth_motion.lean_trajectory -
+    position truth for the six-DOF issue: the estimator's face box moves with
+    the shift one for one and grows with the zoom (BlazeFace's box is not
+    exactly proportional to the face's size: the slope is printed, a fact for
+    a position taken from the box)."""
+    t, scale, shift = truth_motion.lean_trajectory(seed=9)
+    shift_px = np.column_stack([shift * frame.shape[1], np.zeros_like(shift)])
+    with tempfile.TemporaryDirectory() as work:
+        folder = os.path.join(work, "lean")
+        truth_clips.write_still_clip(folder, frame, centre, np.zeros_like(scale), seed=9, scale=scale, shift=shift_px)
+        log = os.path.join(work, "lean.lcmlog")
+        subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", folder, "--fps", "30",
+                        "--lcm-url", f"file://{log}?mode=w"], check=True, capture_output=True)
+        _, valid, _, centres = truth_eval.read_raw_with_boxes(log, os.path.join(build, "lcmtypes", "python"))
+        boxes = boxes_of(log, os.path.join(build, "lcmtypes", "python"))
+    n = min(len(valid), len(scale))
+    valid, scale, shift_px, centres, boxes = valid[:n], scale[:n], shift_px[:n], centres[:n], boxes[:n]
+    width = boxes[:, 2] - boxes[:, 0]
+    ratio = width[valid] / np.median(width[valid & (scale == 1.0)])
+    size_slope = np.polyfit(scale[valid], ratio, 1)[0]
+    size_r = np.corrcoef(scale[valid], ratio)[0, 1]
+    moved = centres[valid, 0] - centre[0]
+    shift_slope = np.polyfit(shift_px[valid, 0], moved, 1)[0]
+    print(f"position clip: {n} frames, zoom {scale.min():.2f}..{scale.max():.2f}, shift "
+          f"{shift_px[:, 0].min():+.0f}..{shift_px[:, 0].max():+.0f} px; face found in {100 * valid.mean():.0f} %; "
+          f"box width / unzoomed = {size_slope:.3f} x zoom (r = {size_r:.3f}); box centre moved {shift_slope:.3f} "
+          f"x the shift")
+    assert valid.mean() >= 0.98, "the face was lost in the position clip"
+    assert size_r >= 0.95 and 0.7 <= size_slope <= 1.1, "the face box does not grow with the zoom"
+    assert abs(shift_slope - 1.0) <= 0.08, "the face box does not move with the shift"
+
+
+def boxes_of(log, types):
+    import lcm
+    sys.path.insert(0, types)
+    from hkf import head_pose_measurement_t
+    return np.array([head_pose_measurement_t.decode(e.data).face_box for e in lcm.EventLog(log, "r")
+                     if e.channel == "HEAD_POSE_RAW"], float)
+
+
 def main():
     build, videos = sys.argv[1], sys.argv[2]
     video = os.path.join(videos, "d10.mp4")
@@ -54,6 +95,7 @@ def main():
     assert found >= 0.98, "the face was lost in the truth clip"
     assert abs(slope - 1.0) <= 0.03, f"roll follows the truth with slope {slope:.3f}, not 1"
     assert residual[2] <= 0.8, "roll strays from the computed truth"
+    check_position(build, frame, centres[4])
     assert (residual[:2] <= 1.2).all(), "pitch or yaw strays from the computed truth"
     assert residual[1] < naive[1], "the computed truth explains yaw no better than a constant"
 

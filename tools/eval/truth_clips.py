@@ -118,12 +118,15 @@ def write_jpeg(path, image):
         f.write(data.tobytes())
 
 
-def write_still_clip(folder, frame, centre, theta, seed):
-    """One real frame turned along theta (deg per frame): a folder of JPEGs."""
+def write_still_clip(folder, frame, centre, theta, seed, scale=None, shift=None):
+    """One real frame turned along theta (deg per frame) - and, for position,
+    zoomed by scale and moved by shift (px, per frame) - a folder of JPEGs."""
     os.makedirs(folder, exist_ok=True)
     rng = np.random.default_rng(seed)
     for i, angle in enumerate(theta):
-        write_jpeg(os.path.join(folder, f"{i:05d}.jpg"), render(frame, centre, angle, rng=rng))
+        s = 1.0 if scale is None else scale[i]
+        d = (0.0, 0.0) if shift is None else shift[i]
+        write_jpeg(os.path.join(folder, f"{i:05d}.jpg"), render(frame, centre, angle, s, d, rng=rng))
 
 
 def write_moving_clip(folder, frames, centres, theta, seed):

@@ -154,3 +154,24 @@ def moving_mask(trajectory, speed=10.0):
     """Frames where the truth moves faster than `speed` deg/s."""
     v = np.abs(np.gradient(trajectory.theta, trajectory.t))
     return v > speed
+
+
+def lean_trajectory(seed, fps=30.0, moves=6):
+    """Position truth for the six-DOF issue: a zoom (the face nearer or
+    farther: scale 0.75-1.35, i.e. a lean in or out) and a sideways shift (as
+    a fraction of the frame's width, within +-0.12), each changing by
+    minimum-jerk moves of 0.3-0.8 s between holds. Returns (t, scale, shift_x)."""
+    rng = np.random.default_rng(seed)
+    scale, shift = [1.0], [0.0]
+    for _ in range(moves):
+        hold = int(round(rng.uniform(0.5, 1.0) * fps))
+        scale += [scale[-1]] * hold
+        shift += [shift[-1]] * hold
+        n = int(round(rng.uniform(0.3, 0.8) * fps))
+        s = min_jerk(np.arange(1, n + 1) / n)
+        to_scale, to_shift = rng.uniform(0.75, 1.35), rng.uniform(-0.12, 0.12)
+        scale += list(scale[-1] + (to_scale - scale[-1]) * s)
+        shift += list(shift[-1] + (to_shift - shift[-1]) * s)
+    scale += [scale[-1]] * int(fps)
+    shift += [shift[-1]] * int(fps)
+    return np.arange(len(scale)) / fps, np.array(scale), np.array(shift)
