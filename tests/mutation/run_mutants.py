@@ -1,0 +1,202 @@
+#!/usr/bin/env python3
+"""Mutation testing (issue 25): plants each bug of a hand-written list, one at
+a time, in a scratch copy of the tree, rebuilds what it changed, and runs the
+tests that cover the changed file. A mutant the tests catch is *killed*; one
+they pass is a *survivor*, a gap in the tests (or an equivalent mutant, which
+must then be explained). The score is killed / (killed + survived).
+
+The list (tests/mutation/mutants.txt) holds blocks:
+    @ FILE | TESTS | what the bug does
+    - text in FILE (one or more lines), found exactly once
+    + what it becomes (one or more lines)
+FILE is relative to the project's root; TESTS a ctest -R regular expression; the three
+fields are separated by " | " (a bar with a space on each side).
+Blank lines and lines starting with # are ignored. To add a mutant, write such
+a block: a realistic single bug, as a reviewer would plant it (a wrong
+comparison, a lost wrap, an off-by-one, a skipped check), with a snippet that
+occurs once in the file. `--check` validates the list without building.
+
+usage: run_mutants.py [--list FILE] [--work DIR] [--only N[,N...] | --sample K] [--check]
+Needs a configured build of its own (made in WORK/build on the first run;
+only what a mutant touches is rebuilt after that). Exit 0 when every mutant
+was killed or the score reaches --min-score; 1 otherwise or on a broken list.
+"""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+class Mutant:
+    def __init__(self, number, path, tests, what, before, after, line):
+        self.number, self.path, self.tests, self.what = number, path, tests, what
+        self.before, self.after, self.line = before, after, line
+
+
+def parse(list_path):
+    mutants, errors = [], []
+    lines = open(list_path).read().split("\n")
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        if not line.strip() or line.startswith("#"):
+            i += 1
+            continue
+        start = i
+        parts = [p.strip() for p in line[2:].split(" | ", 2)] if line.startswith("@ ") else []
+        i += 1
+        before, after = [], []
+        while i < len(lines) and (lines[i].startswith("- ") or lines[i] == "-"):
+            before.append(lines[i][2:])
+            i += 1
+        while i < len(lines) and (lines[i].startswith("+ ") or lines[i] == "+"):
+            after.append(lines[i][2:])
+            i += 1
+        if len(parts) != 3 or not before or not after:
+            errors.append(f"{list_path}:{start + 1}: a mutant is '@ FILE | TESTS | what', then '- before' "
+                          f"lines, then '+ after' lines")
+            continue
+        mutants.append(Mutant(len(mutants) + 1, parts[0], parts[1], parts[2], "\n".join(before), "\n".join(after),
+                              start + 1))
+    return mutants, errors
+
+
+def validate(mutants, root):
+    errors = []
+    for m in mutants:
+        path = os.path.join(root, m.path)
+        if not os.path.exists(path):
+            errors.append(f"mutant {m.number} (line {m.line}): no file {m.path}")
+            continue
+        count = open(path).read().count(m.before)
+        if count != 1:
+            errors.append(f"mutant {m.number} (line {m.line}): '{m.before}' occurs {count} times in {m.path}")
+        if m.before == m.after:
+            errors.append(f"mutant {m.number} (line {m.line}): changes nothing")
+        try:
+            re.compile(m.tests)
+        except re.error as e:
+            errors.append(f"mutant {m.number} (line {m.line}): bad test expression: {e}")
+    return errors
+
+
+def scratch_copy(work):
+    """The tracked files (and the working tree's changes) in WORK/src, with the
+    set-up's models and Python and the team's data reachable as in the tree."""
+    src = os.path.join(work, "src")
+    files = subprocess.run(["git", "ls-files", "-co", "--exclude-standard"], cwd=ROOT, capture_output=True, text=True,
+                           check=True).stdout.split("\n")
+    for f in files:
+        if not f or not os.path.isfile(os.path.join(ROOT, f)):
+            continue
+        target = os.path.join(src, f)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        if not os.path.exists(target) or open(target, "rb").read() != open(os.path.join(ROOT, f), "rb").read():
+            shutil.copy2(os.path.join(ROOT, f), target)
+    for link in (".models", ".venv", ".third_party"):
+        if os.path.exists(os.path.join(ROOT, link)) and not os.path.lexists(os.path.join(src, link)):
+            os.symlink(os.path.join(ROOT, link), os.path.join(src, link))
+    shared = os.path.join(work, "shared")
+    if not os.path.lexists(shared):
+        os.symlink(os.path.abspath(os.path.join(ROOT, "..", "shared")), shared)
+    return src
+
+
+def build(build_dir, src):
+    if not os.path.exists(os.path.join(build_dir, "build.ninja")):
+        subprocess.run(["cmake", "-S", src, "-B", build_dir, "-G", "Ninja", "-DHKF_BUILD_BENCHMARKS=OFF"], check=True,
+                       capture_output=True)
+    result = subprocess.run(["cmake", "--build", build_dir, "-j", str(os.cpu_count() or 2)], capture_output=True,
+                            text=True)
+    return result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
+
+
+def run_tests(build_dir, tests, timeout):
+    result = subprocess.run(["ctest", "-R", tests, "-j", str(os.cpu_count() or 2), "--timeout", str(timeout),
+                             "--stop-on-failure"], cwd=build_dir, capture_output=True, text=True)
+    ran = re.search(r"tests passed, (\d+) tests failed out of (\d+)", result.stdout)
+    count = int(ran.group(2)) if ran else 0
+    return result.returncode == 0, count, result.stdout
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--list", default=os.path.join(ROOT, "tests", "mutation", "mutants.txt"))
+    parser.add_argument("--work", default=os.path.join(ROOT, "out", "mutate"))
+    parser.add_argument("--only", default="", help="comma-separated mutant numbers")
+    parser.add_argument("--sample", type=int, default=0, help="every K-th mutant only (a fixed sample)")
+    parser.add_argument("--check", action="store_true", help="validate the list, build and run nothing")
+    parser.add_argument("--min-score", type=float, default=1.0, help="exit 0 at this score or above")
+    parser.add_argument("--timeout", type=int, default=300, help="seconds per test")
+    args = parser.parse_args()
+    mutants, errors = parse(args.list)
+    errors += validate(mutants, ROOT)
+    if errors:
+        print("\n".join(errors), file=sys.stderr)
+        return 1
+    print(f"run_mutants: {len(mutants)} mutants in {os.path.relpath(args.list, ROOT)}, all valid", flush=True)
+    if args.check:
+        return 0
+    chosen = mutants
+    if args.only:
+        wanted = {int(n) for n in args.only.split(",")}
+        chosen = [m for m in mutants if m.number in wanted]
+    elif args.sample:
+        chosen = mutants[::args.sample]
+    work = os.path.abspath(args.work)
+    src = scratch_copy(work)
+    build_dir = os.path.join(work, "build")
+    ok, log = build(build_dir, src)
+    if not ok:
+        print(log, file=sys.stderr)
+        print("run_mutants: the unmutated tree does not build", file=sys.stderr)
+        return 1
+    baseline = "|".join(sorted({f"({m.tests})" for m in chosen}))
+    ok, count, log = run_tests(build_dir, baseline, args.timeout)
+    if not ok or count == 0:
+        print(log[-3000:], file=sys.stderr)
+        print("run_mutants: the tests fail (or none match) on the unmutated tree", file=sys.stderr)
+        return 1
+    print(f"run_mutants: baseline green ({count} tests); {len(chosen)} mutants to run", flush=True)
+    killed, survivors, stillborn = 0, [], []
+    started = time.time()
+    for m in chosen:
+        path = os.path.join(src, m.path)
+        original = open(path).read()
+        try:
+            with open(path, "w") as f:
+                f.write(original.replace(m.before, m.after, 1))
+            ok, log = build(build_dir, src)
+            if not ok:
+                stillborn.append(m)
+                verdict = "does not build (fix the list)"
+            else:
+                passed, count, log = run_tests(build_dir, m.tests, args.timeout)
+                if passed:
+                    survivors.append(m)
+                    verdict = f"SURVIVED {count} tests"
+                else:
+                    killed += 1
+                    failed = re.findall(r"\d+ - (\S+) \(", log)
+                    verdict = f"killed by {', '.join(failed[:3]) or 'the tests'}"
+        finally:
+            with open(path, "w") as f:
+                f.write(original)
+        print(f"[{m.number:3d}] {m.path}: {m.what}: {verdict} ({time.time() - started:.0f} s)", flush=True)
+    scored = killed + len(survivors)
+    score = killed / scored if scored else 0.0
+    print(f"run_mutants: {killed} of {scored} mutants killed: score {100 * score:.1f} %"
+          + (f"; {len(stillborn)} did not build" if stillborn else ""))
+    for m in survivors:
+        print(f"  survivor [{m.number}] {m.path} (line {m.line} of the list): {m.what}")
+    build(build_dir, src)  # leave the scratch build unmutated
+    return 0 if score >= args.min_score and not stillborn else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
