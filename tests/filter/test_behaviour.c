@@ -439,6 +439,120 @@ static void test_pair_with_one_model_missing(void **state)
     }
 }
 
+/* The pair with the gate on: when the first measurement is gated (an
+ * outlier) and the second accepted, the output's R is the second's alone -
+ * only accepted measurements are combined into 1 / (1/R1 + 1/R2); when the
+ * second is gated, the first's outcome stands with the first's R. */
+static void test_pair_with_the_gate(void **state)
+{
+    hkf_settings_t first = plain_settings(), second = plain_settings();
+    hkf_filter_t f, only_second, only_first;
+    hkf_output_t out, ref;
+    hkf_real_t good[3], outlier[3];
+    int a;
+    (void)state;
+    first.gate_sigma = R(4);
+    first.max_gate_rejections = 5u;
+    for (a = 0; a < HKF_AXES; ++a) {
+        second.r_const[a] = R(6);
+    }
+    track_turning_head(&f, &first, 0.0, 30);
+    only_second = f;
+    only_first = f;
+    set3(good, 0, 0.5, 0);
+    set3(outlier, 0, 60, 0);
+    assert_int_equal(hkf_update_pair(&f, outlier, good, &second, frame_dt, &out), HKF_OK);
+    assert_true(out.flags & HKF_FLAG_GATED);
+    assert_int_equal(hkf_update_pair(&only_second, NULL, good, &second, frame_dt, &ref), HKF_OK);
+    for (a = 0; a < HKF_AXES; ++a) {
+        assert_near(out.r[a], 6, TEST_TOL);                   /* not 1 / (1/2 + 1/6) = 1.5 */
+        assert_near(out.angle[a], D(ref.angle[a]), 10 * TEST_TOL); /* the second's update, after the prediction */
+    }
+    /* the second gated: the first's outcome, R included */
+    f = only_first;
+    assert_int_equal(hkf_update_pair(&f, good, outlier, &second, frame_dt, &out), HKF_OK);
+    assert_true(out.flags & HKF_FLAG_GATED);
+    assert_int_equal(hkf_update(&only_first, good, frame_dt, &ref), HKF_OK);
+    for (a = 0; a < HKF_AXES; ++a) {
+        assert_near(out.r[a], 2, TEST_TOL);
+        assert_near(out.angle[a], D(ref.angle[a]), TEST_TOL);
+    }
+}
+
+/* The coasting rule's boundary, with times exact in every build (0.25 =
+ * 2 x 0.125): LOST exactly when the time without a measurement reaches
+ * coast_time, COASTING just before. */
+static void test_coast_boundary_exact(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3];
+    (void)state;
+    s.coast_time = R(0.25);
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 1, 2, 3);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+    assert_int_equal(hkf_predict(&f, R(0.125), &out), HKF_OK);
+    assert_int_equal(out.status, HKF_STATUS_COASTING);
+    assert_int_equal(hkf_predict(&f, R(0.125), &out), HKF_OK);
+    assert_int_equal(out.status, HKF_STATUS_LOST);
+    /* re-acquiring checks dt as any update does: a bad one is an error that changes nothing */
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_update(&f, z, R(D(s.max_dt) * 2), &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_get_output(&f, &out), HKF_OK);
+    assert_int_equal(out.status, HKF_STATUS_LOST);
+    assert_int_equal(hkf_update(&f, z, R(0.125), &out), HKF_OK);
+    assert_true(out.flags & HKF_FLAG_REACQUIRED);
+    /* max_dt itself is a valid step, a hair more is not */
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, s.max_dt, &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(D(s.max_dt) + 0.01), &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_ERROR_DT_RANGE);
+}
+
+/* q_boost's step, by hand. From a still track (m = 0), one measurement y off
+ * the prediction: e = y^2 / S - 1, m = alpha e with alpha = dt / (dt +
+ * q_boost_time); the next predict uses q (1 + q_boost m). Checked through the
+ * variance of a prediction after it: p00 grows by the boosted q's dt^3 / 3 term
+ * on top of the unboosted filter's. */
+static void test_q_boost_by_hand(void **state)
+{
+    hkf_settings_t s = plain_settings(), plain;
+    hkf_filter_t fb, fp;
+    hkf_output_t ob, op, pb, pp;
+    hkf_real_t z[3];
+    const double dt = 0.125, boost = 2.0, time = 0.125, q = 12.0;
+    double S, e, m, alpha;
+    (void)state;
+    s.q_boost = R(boost);
+    s.q_boost_time = R(time);
+    s.process_noise[0] = s.process_noise[1] = s.process_noise[2] = R(q);
+    plain = s;
+    plain.q_boost = 0;
+    assert_int_equal(hkf_init(&fb, &s), HKF_OK);
+    assert_int_equal(hkf_init(&fp, &plain), HKF_OK);
+    set3(z, 0, 0, 0);
+    assert_int_equal(hkf_update(&fb, z, R(0), &ob), HKF_OK);
+    assert_int_equal(hkf_update(&fp, z, R(0), &op), HKF_OK);
+    /* the predicted p00 before the update: 4 + dt^2 8 + q dt^3 / 3; S = that + R (2) */
+    S = 4 + dt * dt * 8 + q * dt * dt * dt / 3 + 2;
+    set3(z, 0, 5, 0);
+    assert_int_equal(hkf_update(&fb, z, R(dt), &ob), HKF_OK);
+    assert_int_equal(hkf_update(&fp, z, R(dt), &op), HKF_OK);
+    assert_near(ob.angle[1], D(op.angle[1]), TEST_TOL); /* the boost acts on the next predict */
+    e = 25.0 / S - 1.0;
+    alpha = dt / (dt + time);
+    m = alpha * e;
+    assert_int_equal(hkf_predict(&fb, R(dt), &pb), HKF_OK);
+    assert_int_equal(hkf_predict(&fp, R(dt), &pp), HKF_OK);
+    /* the boosted q adds q boost m (dt^3 / 3) to the yaw variance; pitch (y = 0, e < 0) is not boosted */
+    assert_near(D(pb.variance[1]) - D(pp.variance[1]), q * boost * m * dt * dt * dt / 3, 20 * TEST_TOL);
+    assert_near(pb.variance[0], D(pp.variance[0]), TEST_TOL);
+    assert_true(m > 1.0); /* the case is a real boost, not a rounding */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -454,6 +568,9 @@ int main(void)
         cmocka_unit_test(test_pair_of_equals_is_half_r),
         cmocka_unit_test(test_pair_bad_input_changes_nothing),
         cmocka_unit_test(test_pair_with_one_model_missing),
+        cmocka_unit_test(test_pair_with_the_gate),
+        cmocka_unit_test(test_coast_boundary_exact),
+        cmocka_unit_test(test_q_boost_by_hand),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

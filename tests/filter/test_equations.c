@@ -244,6 +244,28 @@ static void test_loop_closure_across_yaw_seam(void **state)
     assert_near(a.angle[1], D(b.angle[1]), TEST_TOL);
 }
 
+/* Eq. 9 then Eq. 8 across the seam: the loop-closed measurement is wrapped
+ * before R is read off the curve. Centre 179, z = -179: closed to
+ * 179 + 0.618 x 2 = 180.236 = -179.764, where a yaw curve dipping at
+ * mu = 175 (sigma 10) is at its far value tau = 10 - not at its dip, where
+ * the unwrapped 180.236 would put it (R ~ 1.8). */
+static void test_loop_closure_then_r_across_the_seam(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_real_t start[3], z[3];
+    hkf_output_t out;
+    (void)state;
+    s.loop_closure = HKF_LOOP_CLOSURE_NORM;
+    s.lc_theta = R(2.5);
+    s.noise_mode = HKF_NOISE_ADAPTIVE;
+    s.noise[1] = table_curve(10, 9, 175, 10);
+    set3(start, 0, 179, 0);
+    set3(z, 0, -179, 0);
+    out = two_steps(&s, start, z);
+    assert_true(out.flags & HKF_FLAG_LOOP_CLOSURE);
+    assert_near(out.r[1], 10, 0.01);
+}
+
 /* Yaw through +-180: a head turning steadily at 40 deg/s from 100 deg, with
  * perfect measurements, is followed across the seam (at 2 s) without a
  * jump, and every published yaw is in [-180, 180); then back again. */
@@ -274,6 +296,145 @@ static void test_yaw_crosses_180(void **state)
     }
 }
 
+/* Eq. 1-3 from a P with cross terms (test_predict_eq1_to_3 starts from a
+ * diagonal one): the P after test_update_eq4_to_7's update,
+ *   P00 = 13 / 8.5, P01 = 11 / 8.5, P11 = 14 - 30.25 / 8.5,
+ * predicted dt = 0.25 s with q = 12:
+ *   p00 = P00 + 2 dt P01 + dt^2 P11 + q dt^3 / 3
+ *   p01 = P01 + dt P11 + q dt^2 / 2
+ * p00 shows in the predicted variance; p01 in the rate's gain p01 / (p00 + R)
+ * of an update 2 deg off the prediction, made from a copy of the same state. */
+static void test_predict_with_cross_terms(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f, copy;
+    hkf_output_t out, predicted;
+    hkf_real_t z[3];
+    const double P00 = 13.0 / 8.5, P01 = 11.0 / 8.5, P11 = 14.0 - 30.25 / 8.5, dt = 0.25, q = 12.0;
+    const double p00 = P00 + 2 * dt * P01 + dt * dt * P11 + q * dt * dt * dt / 3;
+    const double p01 = P01 + dt * P11 + q * dt * dt / 2;
+    int a;
+    (void)state;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 1, 2, 3);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+    set3(z, 4, 5, 6);
+    assert_int_equal(hkf_update(&f, z, R(0.5), &out), HKF_OK);
+    copy = f;
+    assert_int_equal(hkf_predict(&copy, R(dt), &predicted), HKF_OK);
+    for (a = 0; a < 3; ++a) {
+        assert_near(predicted.variance[a], p00, 4 * TEST_TOL);
+        assert_near(predicted.angle[a], D(out.angle[a]) + D(out.rate[a]) * dt, TEST_TOL);
+    }
+    set3(z, D(predicted.angle[0]) + 2, D(predicted.angle[1]) + 2, D(predicted.angle[2]) + 2);
+    assert_int_equal(hkf_update(&f, z, R(dt), &out), HKF_OK);
+    for (a = 0; a < 3; ++a) {
+        assert_near(out.angle[a], D(predicted.angle[a]) + 2 * p00 / (p00 + 2), 4 * TEST_TOL);
+        assert_near(out.rate[a], D(predicted.rate[a]) + 2 * p01 / (p00 + 2), 4 * TEST_TOL);
+    }
+}
+
+/* The yaw seam at exactly +-180 (and beyond, 540): angles are in [-180, 180),
+ * so a first measurement of +180 starts the track at -180, and so does its
+ * centre; 540 is the same direction. Extrapolation across the seam stays in
+ * range: 0.2 s ahead of 178.7 deg turning at +9 deg/s is -179.5, not +180.5. */
+static void test_yaw_at_exactly_180(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out, ahead;
+    hkf_real_t z[3], c[3];
+    int i;
+    (void)state;
+    for (i = 0; i < 3; ++i) {
+        const double yaw[3] = {180.0, 540.0, -180.0};
+        assert_int_equal(hkf_init(&f, &s), HKF_OK);
+        set3(z, 0, yaw[i], 0);
+        assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+        assert_near(out.angle[1], -180, TEST_TOL);
+        assert_int_equal(hkf_get_center(&f, c), HKF_OK);
+        assert_near(c[1], -180, TEST_TOL);
+    }
+    set3(c, 0, 180, 0); /* an explicit centre of +180 is -180 too */
+    assert_int_equal(hkf_set_center(&f, c), HKF_OK);
+    assert_int_equal(hkf_get_center(&f, c), HKF_OK);
+    assert_near(c[1], -180, TEST_TOL);
+    /* a head turning at 9 deg/s up to 178.7 deg, then extrapolated 0.2 s */
+    s.r_const[1] = R(0.01);
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    for (i = 0; i < 60; ++i) {
+        set3(z, 0, 178.7 - 9.0 * (59 - i) / 30.0, 0);
+        assert_int_equal(hkf_update(&f, z, R(i == 0 ? 0 : 1.0 / 30.0), &out), HKF_OK);
+    }
+    assert_near(out.angle[1], 178.7, 0.05);
+    assert_near(out.rate[1], 9, 0.2);
+    assert_int_equal(hkf_extrapolate(&f, R(0.2), &ahead), HKF_OK);
+    assert_true(D(ahead.angle[1]) >= -180 && D(ahead.angle[1]) < 180);
+    assert_near(yaw_diff(D(ahead.angle[1]), 178.7 + 1.8), 0, 0.1);
+}
+
+/* Every step keeps yaw in [-180, 180): a correction that pulls a still
+ * estimate at 179.5 towards a measurement of -179.5 (1 deg away, across the
+ * seam) lands at -179.x, not 180.x; a coasting head turning at 30 deg/s
+ * through the seam is predicted across it, in range. And the largest angle
+ * accepted, HKF_MAX_ABS_ANGLE (3600 = 10 turns), is accepted and wrapped. */
+static void test_every_step_wraps_yaw(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3];
+    int i;
+    (void)state;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 0, 179.5, 0);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+    set3(z, 0, -179.5, 0);
+    assert_int_equal(hkf_update(&f, z, R(1.0 / 64.0), &out), HKF_OK);
+    assert_true(D(out.angle[1]) >= -180 && D(out.angle[1]) < -179.5 + 1e-3);
+    /* coasting through the seam */
+    s.r_const[1] = R(0.01);
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    for (i = 0; i < 60; ++i) {
+        set3(z, 0, 170.0 + 30.0 * i / 30.0 - 59.0, 0);
+        assert_int_equal(hkf_update(&f, z, R(i == 0 ? 0 : 1.0 / 30.0), &out), HKF_OK);
+    }
+    for (i = 0; i < 12; ++i) { /* 0.4 s at 30 deg/s from 170: 182 = -178 */
+        assert_int_equal(hkf_predict(&f, R(1.0 / 30.0), &out), HKF_OK);
+        assert_true(D(out.angle[1]) >= -180 && D(out.angle[1]) < 180);
+    }
+    assert_near(yaw_diff(D(out.angle[1]), 182.0), 0, 0.3);
+    /* the range's endpoint */
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, -HKF_MAX_ABS_ANGLE, HKF_MAX_ABS_ANGLE, HKF_MAX_ABS_ANGLE);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+    assert_near(out.angle[1], 0, TEST_TOL);
+}
+
+/* Eq. 9's threshold is inclusive in both modes: a measurement exactly lc_theta
+ * from the centre is closed (numbers exact in every build: 3-4-5, 2). */
+static void test_loop_closure_at_exactly_theta(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_real_t start[3], z[3];
+    hkf_output_t out;
+    (void)state;
+    s.loop_closure = HKF_LOOP_CLOSURE_NORM;
+    s.lc_theta = R(5);
+    set3(start, 0, 0, 0);
+    set3(z, 3, -4, 0);
+    out = two_steps(&s, start, z);
+    assert_true(out.flags & HKF_FLAG_LOOP_CLOSURE);
+    s.loop_closure = HKF_LOOP_CLOSURE_PER_AXIS;
+    s.lc_theta = R(2);
+    set3(z, 0, 2, 9);
+    out = two_steps(&s, start, z);
+    assert_true(out.flags & HKF_FLAG_LOOP_CLOSURE);
+    set3(z, 9, 2.25, -9); /* no axis within 2 */
+    out = two_steps(&s, start, z);
+    assert_false(out.flags & HKF_FLAG_LOOP_CLOSURE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -286,6 +447,11 @@ int main(void)
         cmocka_unit_test(test_loop_closure_boundary),
         cmocka_unit_test(test_loop_closure_across_yaw_seam),
         cmocka_unit_test(test_yaw_crosses_180),
+        cmocka_unit_test(test_predict_with_cross_terms),
+        cmocka_unit_test(test_yaw_at_exactly_180),
+        cmocka_unit_test(test_every_step_wraps_yaw),
+        cmocka_unit_test(test_loop_closure_then_r_across_the_seam),
+        cmocka_unit_test(test_loop_closure_at_exactly_theta),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -126,6 +126,67 @@ static void test_init_rejects_each_bad_setting(void **state)
     }
 }
 
+/* Every documented range endpoint (hkf.h) is accepted: a range check one
+ * comparison too strict refuses a value the documentation promises. */
+static void edge_xi_0(hkf_settings_t *s) { s->lc_xi = 0; }
+static void edge_xi_1(hkf_settings_t *s) { s->lc_xi = R(1); }
+static void edge_theta_0(hkf_settings_t *s) { s->lc_theta = 0; }
+static void edge_theta_max(hkf_settings_t *s) { s->lc_theta = R(HKF_MAX_LC_THETA); }
+static void edge_q_0(hkf_settings_t *s) { s->process_noise[0] = s->process_noise[1] = s->process_noise[2] = 0; }
+static void edge_q_max(hkf_settings_t *s) { s->process_noise[1] = R(HKF_MAX_PROCESS_NOISE); }
+static void edge_r_range(hkf_settings_t *s) { s->r_min = R(HKF_MIN_VARIANCE); s->r_max = R(HKF_MAX_VARIANCE); }
+static void edge_r_equal(hkf_settings_t *s) { s->r_min = s->r_max = R(3); }
+static void edge_r_const_max(hkf_settings_t *s) { s->r_const[0] = R(HKF_MAX_VARIANCE); }
+static void edge_p0_max(hkf_settings_t *s) { s->p0_angle = s->p0_rate = R(HKF_MAX_VARIANCE); }
+static void edge_gate_max(hkf_settings_t *s) { s->gate_sigma = R(HKF_MAX_GATE_SIGMA); s->max_gate_rejections = 1u; }
+static void edge_gate_off(hkf_settings_t *s) { s->gate_sigma = 0; s->max_gate_rejections = 0u; }
+static void edge_coast_max(hkf_settings_t *s) { s->coast_time = R(HKF_MAX_TIME); }
+static void edge_max_dt_max(hkf_settings_t *s) { s->max_dt = R(HKF_MAX_TIME); }
+static void edge_boost_max(hkf_settings_t *s) { s->q_boost = R(HKF_MAX_Q_BOOST); s->q_boost_time = R(HKF_MAX_TIME); }
+static void edge_boost_0(hkf_settings_t *s) { s->q_boost = 0; s->q_boost_time = 0; }
+static void edge_sigma_min(hkf_settings_t *s) { s->noise[1] = table_curve(8, 4, 0, HKF_MIN_SIGMA); }
+static void edge_sigma_max(hkf_settings_t *s) { s->noise[1] = table_curve(8, 4, 0, HKF_MAX_SIGMA); }
+static void edge_mu_max(hkf_settings_t *s) { s->noise[1] = table_curve(8, 4, -HKF_MAX_ABS_ANGLE, 30); }
+
+static void test_init_accepts_every_endpoint(void **state)
+{
+    static const bad_setting_t table[] = {
+        {"lc_xi 0", edge_xi_0, HKF_OK},
+        {"lc_xi 1", edge_xi_1, HKF_OK},
+        {"lc_theta 0", edge_theta_0, HKF_OK},
+        {"lc_theta HKF_MAX_LC_THETA", edge_theta_max, HKF_OK},
+        {"process_noise 0", edge_q_0, HKF_OK},
+        {"process_noise HKF_MAX_PROCESS_NOISE", edge_q_max, HKF_OK},
+        {"r_min HKF_MIN_VARIANCE, r_max HKF_MAX_VARIANCE", edge_r_range, HKF_OK},
+        {"r_min = r_max", edge_r_equal, HKF_OK},
+        {"r_const HKF_MAX_VARIANCE", edge_r_const_max, HKF_OK},
+        {"p0 HKF_MAX_VARIANCE", edge_p0_max, HKF_OK},
+        {"gate HKF_MAX_GATE_SIGMA, 1 rejection", edge_gate_max, HKF_OK},
+        {"gate off, 0 rejections", edge_gate_off, HKF_OK},
+        {"coast_time HKF_MAX_TIME", edge_coast_max, HKF_OK},
+        {"max_dt HKF_MAX_TIME", edge_max_dt_max, HKF_OK},
+        {"q_boost HKF_MAX_Q_BOOST, q_boost_time HKF_MAX_TIME", edge_boost_max, HKF_OK},
+        {"q_boost 0, q_boost_time 0", edge_boost_0, HKF_OK},
+        {"sigma HKF_MIN_SIGMA", edge_sigma_min, HKF_OK},
+        {"sigma HKF_MAX_SIGMA", edge_sigma_max, HKF_OK},
+        {"mu -HKF_MAX_ABS_ANGLE", edge_mu_max, HKF_OK},
+    };
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof table / sizeof table[0]; ++i) {
+        hkf_settings_t s = hkf_default_settings;
+        hkf_filter_t f;
+        int result;
+        table[i].spoil(&s);
+        result = hkf_init(&f, &s);
+        if (result != table[i].expected) {
+            print_error("%s: hkf_init gave %d (%s), a documented value\n", table[i].what, result,
+                        hkf_result_string(result));
+            fail();
+        }
+    }
+}
+
 static void test_defaults_and_presets_are_valid(void **state)
 {
     hkf_settings_t s = hkf_default_settings;
@@ -240,6 +301,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_init_rejects_each_bad_setting),
         cmocka_unit_test(test_defaults_and_presets_are_valid),
+        cmocka_unit_test(test_init_accepts_every_endpoint),
         cmocka_unit_test(test_null_arguments),
         cmocka_unit_test(test_before_first_measurement),
         cmocka_unit_test(test_bad_input_leaves_state_untouched),

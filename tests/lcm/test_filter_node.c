@@ -50,7 +50,7 @@ static void test_poses_match_libhkf(void **state)
     sim_config_t sc = sim_default_config();
     sim_t sim;
     hkf_filter_t reference;
-    int known, i, published = 0;
+    int known, i, published = 0, coasting = 0, lost = 0;
     const hkf_settings_t s = node_config_for_model(&config, "fsanet", &known);
     (void)state;
     assert_true(known);
@@ -78,7 +78,15 @@ static void test_poses_match_libhkf(void **state)
             assert_true(pose.yaw == out.angle[1] && pose.pitch == out.angle[0] && pose.roll == out.angle[2]);
             assert_true(pose.yaw_rate == out.rate[1] && pose.variance[1] == out.variance[1] && pose.r[2] == out.r[2]);
             assert_true(pose.utime == utime);
-            assert_int_equal(pose.status, frame.valid ? HKF_HEAD_POSE_T_TRACKING : pose.status);
+            /* the reference's state, faces or not: TRACKING, COASTING, then LOST */
+            assert_int_equal(pose.status, out.status == HKF_STATUS_TRACKING   ? HKF_HEAD_POSE_T_TRACKING
+                                          : out.status == HKF_STATUS_COASTING ? HKF_HEAD_POSE_T_COASTING
+                                                                              : HKF_HEAD_POSE_T_LOST);
+            if (!frame.valid) {
+                assert_int_not_equal(pose.status, HKF_HEAD_POSE_T_TRACKING);
+                coasting += pose.status == HKF_HEAD_POSE_T_COASTING;
+                lost += pose.status == HKF_HEAD_POSE_T_LOST;
+            }
             assert_true(pose.seq == published);
             assert_false(pose.extrapolated);
         } else {
@@ -88,6 +96,7 @@ static void test_poses_match_libhkf(void **state)
     assert_int_equal(node.counts.received, 900);
     assert_int_equal(node.counts.published, (unsigned long)published);
     assert_true(node.counts.without_face > 0);
+    assert_true(coasting > 0 && lost > 0); /* the drive's face-less bursts reach both states */
 }
 
 /* No face: coast, and before the first face publish nothing. */
@@ -492,6 +501,79 @@ static void test_two_publishers_not_mixed(void **state)
     assert_int_equal(node.counts.other_publisher, 30);
 }
 
+/* The rules' boundaries, each stated: a clock step of 6 s is a jump (the
+ * limit is 5 s) and of 4 s is not; rejected stamps must also be in order to
+ * count as a new clock (three that go backwards are not followed); a seq step
+ * of exactly FILTER_NODE_MAX_SEQ_STEP continues the followed counter, one more
+ * is another publisher; a message with an angle beyond HKF_MAX_ABS_ANGLE is
+ * rejected before it can move the node's time reference. */
+static void test_rule_boundaries(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    int i;
+    (void)state;
+    next_seq = 0;
+    assert_int_equal(feed(0, 10, 0), 10);
+    m = measurement(T0 + 10 * FRAME_US + 6000000, 1, 0, 10, 0); /* 6 s ahead of its arrival */
+    assert_int_equal(filter_node_receive(&node, &m, T0 + 10 * FRAME_US, &pose), 0);
+    assert_int_equal(node.counts.clock_jumps, 1);
+    m = measurement(T0 + 11 * FRAME_US + 4000000, 1, 0, 10, 0); /* 4 s: a replay's pacing, not a jump */
+    assert_int_equal(filter_node_receive(&node, &m, T0 + 11 * FRAME_US, &pose), 1);
+    assert_int_equal(node.counts.clock_jumps, 1);
+    /* three stamps an hour ahead, each older than the one before: no new clock */
+    for (i = 0; i < 3; ++i) {
+        m = measurement(T0 + 3600000000LL - i * FRAME_US, 1, 0, 10, 0);
+        assert_int_equal(filter_node_receive(&node, &m, T0 + (12 + i) * FRAME_US + 4000000, &pose), 0);
+    }
+    assert_int_equal(node.counts.clock_resyncs, 0);
+    /* the seq boundary */
+    assert_int_equal(filter_node_init(&node, &config), 0);
+    next_seq = 0;
+    assert_int_equal(feed(0, 5, 0), 5);
+    m = measurement(T0 + 5 * FRAME_US, 1, 0, 10, 0);
+    m.seq = 4 + FILTER_NODE_MAX_SEQ_STEP;
+    assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1); /* frames dropped: still the same one */
+    m = measurement(T0 + 6 * FRAME_US, 1, 0, 10, 0);
+    m.seq = 4 + 2 * FILTER_NODE_MAX_SEQ_STEP + 1;
+    assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 0);
+    assert_int_equal(node.counts.other_publisher, 1);
+    /* an absurd angle does not move the time reference: the next real frame, older than it, is taken */
+    assert_int_equal(filter_node_init(&node, &config), 0);
+    next_seq = 0;
+    assert_int_equal(feed(0, 5, 0), 5);
+    m = measurement(T0 + 7 * FRAME_US, 1, 0, 4000, 0);
+    assert_int_equal(filter_node_receive(&node, &m, T0 + 5 * FRAME_US, &pose), 0);
+    assert_int_equal(node.counts.bad_values, 1);
+    m = measurement(T0 + 6 * FRAME_US, 1, 0, 10, 0);
+    assert_int_equal(filter_node_receive(&node, &m, T0 + 6 * FRAME_US, &pose), 1);
+    assert_int_equal(node.counts.out_of_order, 0);
+}
+
+/* RECENTER forgets the kept frames: a second model's measurement of a frame
+ * from before the command is not fused (it would redo frames on the old
+ * centre) but counted. */
+static void test_second_model_after_recenter(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    hkf_tracker_command_t command;
+    int i;
+    (void)state;
+    for (i = 0; i < 5; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    }
+    second = m;
+    second.model = "hopenet";
+    command.utime = 0;
+    command.command = HKF_TRACKER_COMMAND_T_RECENTER;
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    assert_int_equal(filter_node_receive(&node, &second, m.utime + 10000, &pose), 0);
+    assert_int_equal(node.counts.paired, 0);
+    assert_int_equal(node.counts.unpaired, 1);
+}
+
 /* The followed estimator restarts (its counter starts again at 0): after 1 s
  * of silence the node follows the new one; sooner, it does not. */
 static void test_publisher_restart_followed(void **state)
@@ -573,13 +655,13 @@ static void test_second_model_fused_into_its_frame(void **state)
     sim_t sim;
     hkf_filter_t reference, before;
     hkf_output_t ours, theirs;
-    int known, i, a, published = 0, second_only = 0; /* frames only the second model measured */
-    const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known);
-    const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known);
+    int known1, known2, i, a, published = 0, second_only = 0; /* frames only the second model measured */
+    const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known1);
+    const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known2);
     (void)state;
     node.align_frames = 0; /* the models' offset is another test's */
     config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
-    assert_true(known);
+    assert_true(known1 && known2);
     assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
     sim_init(&sim, &sc, 5u);
     for (i = 0; i < FRAMES; ++i) {
@@ -747,6 +829,74 @@ static void test_second_model_offset_aligned(void **state)
     assert_float_equal(node.second_offset[1], 3.0, 0.05);
 }
 
+/* The offset is a running mean from the first frame on: after 10 frames
+ * that both models measured 4 deg apart in pitch (and 3 in yaw), the node has
+ * learnt 4 (and -3), not a fraction of it on its way to the window. */
+static void test_second_model_offset_from_the_first_frames(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    int i;
+    (void)state;
+    for (i = 0; i < 10; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 2.0 + 0.3 * i, 5.0, 0.0);
+        second = m;
+        second.model = "hopenet";
+        second.pitch = m.pitch - 4.0f;
+        second.yaw = m.yaw + 3.0f;
+        (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+    }
+    assert_int_equal(node.second_offset_frames, 10);
+    assert_float_equal(node.second_offset[0], 4.0, 1e-4);
+    assert_float_equal(node.second_offset[1], -3.0, 1e-4);
+    /* at a large turn (the first model's |yaw| >= 25 deg) the first is not trusted: nothing is learnt there */
+    for (i = 10; i < 20; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 2.0, 40.0, 0.0);
+        second = m;
+        second.model = "hopenet";
+        second.pitch = m.pitch - 12.0f;
+        (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+    }
+    assert_int_equal(node.second_offset_frames, 10);
+    assert_float_equal(node.second_offset[0], 4.0, 1e-4);
+}
+
+/* Both models near the yaw seam (WHENet reports up to +-180): the head sways
+ * across it and the second model reads 2 deg further right, so their
+ * difference is -2 deg, whichever side of the seam each reading falls on. The
+ * offset learnt is -2 (not a mean of -2 and 358), and the fused yaw stays
+ * with the first model's, across the seam. */
+static void test_second_model_offset_across_the_seam(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose, first_alone;
+    filter_node_t alone;
+    double worst = 0.0;
+    int i;
+    (void)state;
+    config.second_alone_from_yaw = 180; /* fused at every yaw: the offset is learnt at the seam too */
+    assert_int_equal(filter_node_init(&node, &config), 0);
+    assert_int_equal(filter_node_init(&alone, &config), 0);
+    for (i = 0; i < 120; ++i) {
+        const double yaw = 179.0 + 2.0 * sin(0.2 * i); /* 177 .. 181 deg, i.e. across +-180 */
+        m = measurement(T0 + i * FRAME_US, 1, 0.0, yaw >= 180.0 ? yaw - 360.0 : yaw, 0.0);
+        second = m;
+        second.model = "hopenet";
+        second.yaw = (float)(yaw + 2.0 >= 180.0 ? yaw + 2.0 - 360.0 : yaw + 2.0);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
+        assert_int_equal(filter_node_receive(&alone, &m, m.utime + 2000, &first_alone), 1);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+        if (i >= 20) {
+            const double d = fabs(fmod(pose.yaw - first_alone.yaw + 540.0, 360.0) - 180.0);
+            worst = d > worst ? d : worst;
+        }
+    }
+    assert_float_equal(node.second_offset[1], -2.0, 1e-3);
+    assert_true(worst < 0.5); /* the fused track never leaves the first model's by more than noise would */
+}
+
 /* Where the first model measures a large turn (|yaw| >= pair_second_alone_from_yaw,
  * 25 deg), a frame the second model also measured takes the second's
  * measurement alone, with its own R; below, both are fused. The node's track
@@ -838,11 +988,15 @@ int main(void)
         cmocka_unit_test_setup(test_decode_checks_layout, setup),
         cmocka_unit_test_setup(test_two_publishers_not_mixed, setup),
         cmocka_unit_test_setup(test_publisher_restart_followed, setup),
+        cmocka_unit_test_setup(test_rule_boundaries, setup),
+        cmocka_unit_test_setup(test_second_model_after_recenter, setup),
         cmocka_unit_test_setup(test_silence_reported_lost, setup),
         cmocka_unit_test_setup(test_second_model_fused_into_its_frame, setup),
         cmocka_unit_test_setup(test_second_model_late_or_repeated_not_used, setup),
         cmocka_unit_test_setup(test_second_model_alone_starts_and_keeps_track, setup),
         cmocka_unit_test_setup(test_second_model_offset_aligned, setup),
+        cmocka_unit_test_setup(test_second_model_offset_from_the_first_frames, setup),
+        cmocka_unit_test_setup(test_second_model_offset_across_the_seam, setup),
         cmocka_unit_test_setup(test_second_model_alone_at_large_yaw, setup),
         cmocka_unit_test_setup(test_other_model_publisher_not_a_second, setup),
     };

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -22,16 +23,33 @@
 
 static char error[600];
 
+/* Temporary config files: each write_temp gets its own, all removed when the tests end. */
+static char temp_paths[32][64];
+static int temp_count;
+
 static const char *write_temp(const char *text)
 {
-    static char path[64];
+    char *path;
     FILE *f;
+    assert_true(temp_count < 32);
+    path = temp_paths[temp_count++];
     strcpy(path, "/tmp/hkf_config_test_XXXXXX");
     f = fdopen(mkstemp(path), "w");
     assert_non_null(f);
     fputs(text, f);
     fclose(f);
     return path;
+}
+
+static int remove_temp_files(void **state)
+{
+    int i;
+    (void)state;
+    for (i = 0; i < temp_count; ++i) {
+        remove(temp_paths[i]);
+    }
+    temp_count = 0;
+    return 0;
 }
 
 static int same_settings(const hkf_settings_t *a, const hkf_settings_t *b)
@@ -113,6 +131,9 @@ static void test_errors(void **state)
     assert_int_equal(node_config_set(&c, "lc_xi=abc", error, sizeof error), -1);
     assert_non_null(strstr(error, "lc_xi"));
     assert_int_equal(node_config_set(&c, "process_noise=1 2", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "lc_xi=0.5x", error, sizeof error), -1); /* trailing text */
+    assert_int_equal(node_config_set(&c, "process_noise=1 2 3 4", error, sizeof error), -1);
+    assert_true(c.settings.lc_xi == hkf_default_settings.lc_xi);
     assert_int_equal(node_config_set(&c, "noise_mode=fancy", error, sizeof error), -1);
     assert_non_null(strstr(error, "fancy"));
     assert_int_equal(node_config_set(&c, "max_gate_rejections=-1", error, sizeof error), -1);
@@ -253,6 +274,8 @@ static void test_values_and_files_reported_as_they_are(void **state)
     assert_int_equal(node_config_read_file(&c, fifo, error, sizeof error), -1); /* returns: no writer is waited for */
     assert_non_null(strstr(error, "not a regular file"));
     remove(fifo);
+    *strrchr(fifo, '/') = '\0';
+    rmdir(fifo);
 }
 
 int main(void)
@@ -266,5 +289,5 @@ int main(void)
         cmocka_unit_test(test_check_names_where),
         cmocka_unit_test(test_values_and_files_reported_as_they_are),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return cmocka_run_group_tests(tests, NULL, remove_temp_files);
 }
