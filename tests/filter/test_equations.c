@@ -355,6 +355,16 @@ static void test_yaw_at_exactly_180(void **state)
         assert_int_equal(hkf_get_center(&f, c), HKF_OK);
         assert_near(c[1], -180, TEST_TOL);
     }
+    for (i = 1; i <= 9; ++i) { /* every whole number of turns from +180 (and -180) is -180 */
+        assert_int_equal(hkf_init(&f, &s), HKF_OK);
+        set3(z, 0, 180.0 + 360.0 * i, 0);
+        assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+        assert_near(out.angle[1], -180, TEST_TOL);
+        assert_int_equal(hkf_init(&f, &s), HKF_OK);
+        set3(z, 0, -180.0 - 360.0 * i, 0);
+        assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK);
+        assert_near(out.angle[1], -180, TEST_TOL);
+    }
     set3(c, 0, 180, 0); /* an explicit centre of +180 is -180 too */
     assert_int_equal(hkf_set_center(&f, c), HKF_OK);
     assert_int_equal(hkf_get_center(&f, c), HKF_OK);

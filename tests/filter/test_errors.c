@@ -187,6 +187,26 @@ static void test_init_accepts_every_endpoint(void **state)
     }
 }
 
+#if TEST_HAS_NON_FINITE
+/* The error names what is wrong with a measurement: with one axis at the
+ * largest angle accepted and another NaN, it is the NaN (not the angle). */
+static void test_error_names_the_bad_axis(void **state)
+{
+    hkf_settings_t s = hkf_default_settings;
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3];
+    (void)state;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    z[0] = R(HKF_MAX_ABS_ANGLE);
+    z[1] = R(NAN);
+    z[2] = 0;
+    assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_ERROR_NON_FINITE);
+    z[1] = R(HKF_MAX_ABS_ANGLE + 1);
+    assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_ERROR_ANGLE_RANGE);
+}
+#endif
+
 static void test_defaults_and_presets_are_valid(void **state)
 {
     hkf_settings_t s = hkf_default_settings;
@@ -302,6 +322,9 @@ int main(void)
         cmocka_unit_test(test_init_rejects_each_bad_setting),
         cmocka_unit_test(test_defaults_and_presets_are_valid),
         cmocka_unit_test(test_init_accepts_every_endpoint),
+#if TEST_HAS_NON_FINITE
+        cmocka_unit_test(test_error_names_the_bad_axis),
+#endif
         cmocka_unit_test(test_null_arguments),
         cmocka_unit_test(test_before_first_measurement),
         cmocka_unit_test(test_bad_input_leaves_state_untouched),

@@ -69,6 +69,9 @@ static void test_relative_to_center(void **state)
     pose.yaw = -170.0f; /* at the centre: exactly zero */
     assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
     assert_true(v[OPENTRACK_YAW] == 0.0);
+    pose.center[1] = 170.0f; /* the short way round the other way: -170 - 170 = -340, i.e. +20 */
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(fabs(v[OPENTRACK_YAW] - 20.0) < 1e-9);
 }
 
 /* The user's invert and scale come after the mapping, on opentrack's axes. */
