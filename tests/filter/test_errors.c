@@ -60,6 +60,25 @@ static void curvature_200(hkf_settings_t *s) { s->noise[1] = table_curve(500, 40
 static void deep_floor(hkf_settings_t *s) { s->noise[1] = table_curve(10, 2000, 0, 100); }
 #endif
 
+/* hkf_init on the defaults spoiled by each row gives the row's result. */
+static void check_settings_table(const bad_setting_t *table, size_t rows)
+{
+    size_t i;
+    for (i = 0; i < rows; ++i) {
+        hkf_settings_t s = hkf_default_settings;
+        hkf_filter_t f;
+        int result;
+        table[i].spoil(&s);
+        result = hkf_init(&f, &s);
+        if (result != table[i].expected) {
+            print_error("%s: hkf_init gave %d (%s), expected %d (%s)\n", table[i].what, result,
+                        hkf_result_string(result), table[i].expected, hkf_result_string(table[i].expected));
+            fail();
+        }
+        assert_string_not_equal(hkf_result_string(result), "unknown hkf result code");
+    }
+}
+
 static void test_init_rejects_each_bad_setting(void **state)
 {
     static const bad_setting_t table[] = {
@@ -109,21 +128,8 @@ static void test_init_rejects_each_bad_setting(void **state)
         {"floor -1990 (fixed point: |floor| <= 1024)", deep_floor, HKF_ERROR_SETTING_CURVE},
 #endif
     };
-    size_t i;
     (void)state;
-    for (i = 0; i < sizeof table / sizeof table[0]; ++i) {
-        hkf_settings_t s = hkf_default_settings;
-        hkf_filter_t f;
-        int result;
-        table[i].spoil(&s);
-        result = hkf_init(&f, &s);
-        if (result != table[i].expected) {
-            print_error("%s: hkf_init gave %d (%s), expected %d\n", table[i].what, result,
-                        hkf_result_string(result), table[i].expected);
-            fail();
-        }
-        assert_string_not_equal(hkf_result_string(result), "unknown hkf result code");
-    }
+    check_settings_table(table, sizeof table / sizeof table[0]);
 }
 
 /* Every documented range endpoint (hkf.h) is accepted: a range check one
@@ -171,20 +177,8 @@ static void test_init_accepts_every_endpoint(void **state)
         {"sigma HKF_MAX_SIGMA", edge_sigma_max, HKF_OK},
         {"mu -HKF_MAX_ABS_ANGLE", edge_mu_max, HKF_OK},
     };
-    size_t i;
     (void)state;
-    for (i = 0; i < sizeof table / sizeof table[0]; ++i) {
-        hkf_settings_t s = hkf_default_settings;
-        hkf_filter_t f;
-        int result;
-        table[i].spoil(&s);
-        result = hkf_init(&f, &s);
-        if (result != table[i].expected) {
-            print_error("%s: hkf_init gave %d (%s), a documented value\n", table[i].what, result,
-                        hkf_result_string(result));
-            fail();
-        }
-    }
+    check_settings_table(table, sizeof table / sizeof table[0]);
 }
 
 #if TEST_HAS_NON_FINITE
