@@ -42,6 +42,7 @@ const char *const usage =
     "  (default 4) of pitch, yaw, roll: raw dots, filtered lines.\n"
     "  --still N OUT.png   also write annotated frame N (from 0) as a picture\n"
     "  --raw-channel NAME, --filtered-channel NAME   other channels (defaults above)\n"
+    "  --help, --version   this text; the version\n"
     "  exit 0: written; 1: an input is missing, unreadable or has no poses; 2: bad arguments\n";
 
 struct Options {
@@ -109,6 +110,10 @@ int parse(int argc, char **argv, Options &o)
         const std::string arg = argv[i];
         if (arg == "--help" || arg == "-h") {
             std::fputs(usage, stdout);
+            return 1;
+        }
+        if (arg == "--version") {
+            std::printf("hkf-annotate %s\n", HKF_VERSION);
             return 1;
         }
         if (arg == "--still") {

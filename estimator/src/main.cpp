@@ -112,7 +112,7 @@ void usage(std::ostream &out)
            "  --limit N          only the first N images\n"
            "  --models-dir DIR   converted models (default " HKF_DEFAULT_MODELS_DIR ", or $HKF_MODELS_DIR)\n"
            "  --spec-dir DIR     model descriptions (default " HKF_DEFAULT_SPEC_DIR ")\n"
-           "  --help             this text\n";
+           "  --help, --version  this text; the version\n";
 }
 
 // 0 = run, 1 = help shown, 2 = bad arguments
@@ -123,6 +123,10 @@ int parse(int argc, char **argv, Options &o)
         const std::string arg = argv[i];
         if (arg == "--help" || arg == "-h") {
             usage(std::cout);
+            return 1;
+        }
+        if (arg == "--version") {
+            std::cout << "hkf-estimator " << HKF_VERSION << "\n";
             return 1;
         }
         if (arg == "--realtime" || arg == "--show") {

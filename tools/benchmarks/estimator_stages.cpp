@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -41,6 +42,11 @@ static std::vector<double> time_each(const std::vector<cv::Mat> &frames, const s
 
 int main(int argc, char **argv)
 {
+    if (argc == 2 && (std::strcmp(argv[1], "--version") == 0 || std::strcmp(argv[1], "--help") == 0)) {
+        if (std::strcmp(argv[1], "--version") == 0) std::printf("hkf-bench-estimator %s\n", HKF_VERSION);
+        else std::printf("usage: hkf-bench-estimator VIDEO MODELS_DIR SPEC_DIR OUT_640x480_60fps.mp4\n");
+        return 0;
+    }
     if (argc != 5) {
         std::fprintf(stderr, "usage: hkf-bench-estimator VIDEO MODELS_DIR SPEC_DIR OUT_640x480_60fps.mp4\n");
         return 2;

@@ -83,6 +83,10 @@ int main(int argc, char **argv)
     hkf_head_pose_t_subscription_t *sub;
 
     for (a = 1; a < argc; ++a) {
+        if (strcmp(argv[a], "--version") == 0) {
+            printf("hkf-bench-latency %s\n", HKF_VERSION);
+            return 0;
+        }
         if (strcmp(argv[a], "--help") == 0) {
             printf("usage: hkf-bench-latency [--rate HZ] [--seconds S] [--lcm-url URL]\n"
                    "Publishes HEAD_POSE_RAW at HZ (default 30) for S s (default 10) to a running\n"

@@ -146,6 +146,10 @@ int main(int argc, char **argv)
     for (a = 1; a < argc; ++a) {
         const char *value = a + 1 < argc ? argv[a + 1] : NULL;
         int bad = 0;
+        if (strcmp(argv[a], "--version") == 0) {
+            printf("hkf-soak %s\n", HKF_VERSION);
+            return 0;
+        }
         if (strcmp(argv[a], "--help") == 0) {
             printf("usage: hkf-soak [--rate HZ] [--seconds S] [--interval S] [--watch-pid PID] [--csv FILE]\n"
                    "                [--lcm-url URL]\n"

@@ -221,6 +221,10 @@ NOINLINE void step_eigen(EigenFilter *k, const Input *in, float yaw_out[1])
 
 int main(int argc, char **argv)
 {
+    if (argc > 1 && std::strcmp(argv[1], "--version") == 0) {
+        std::printf("hkf-bench-update %s\n", HKF_VERSION);
+        return 0;
+    }
     if (argc > 1 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
         std::printf("usage: hkf-bench-update [STEPS]\n"
                     "Runs STEPS (default 20000) filter steps of a simulated drive through libhkf,\n"

@@ -26,7 +26,7 @@ static void usage(FILE *to)
             "  reset           forget the track and the centre; the next face starts anew\n"
             "  --lcm-url URL   LCM provider (default " DEFAULT_LCM_URL ")\n"
             "  --channel C     command channel (default HEAD_TRACKER_CMD)\n"
-            "  --help          this text\n");
+            "  --help          this text (--version: the version)\n");
 }
 
 int main(int argc, char **argv)
@@ -39,6 +39,9 @@ int main(int argc, char **argv)
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             usage(stdout);
+            return 0;
+        } else if (strcmp(argv[i], "--version") == 0) {
+            printf("hkf-cmd %s\n", HKF_VERSION);
             return 0;
         } else if (strcmp(argv[i], "--lcm-url") == 0 && i + 1 < argc) {
             lcm_url = argv[++i];

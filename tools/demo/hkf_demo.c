@@ -36,7 +36,7 @@ static void usage(FILE *to)
             "  --seconds S  length of the drive, 1..3600 s (default 60)\n"
             "  --seed N     random seed of the simulated noise (default 1)\n"
             "  --csv FILE   also write every frame: time, truth, raw and filtered angles\n"
-            "  --help       this text\n");
+            "  --help       this text (--version: the version)\n");
 }
 
 static int parse_number(const char *text, double low, double high, double *value)
@@ -59,6 +59,9 @@ static int parse_options(int argc, char **argv, demo_options_t *o)
         const int has_value = i + 1 < argc;
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             usage(stdout);
+            return 1;
+        } else if (strcmp(argv[i], "--version") == 0) {
+            printf("hkf-demo %s\n", HKF_VERSION);
             return 1;
         } else if (strcmp(argv[i], "--seconds") == 0 && has_value) {
             if (!parse_number(argv[++i], 1.0, 3600.0, &o->seconds)) {

@@ -88,7 +88,7 @@ static void usage(FILE *to)
             "  --print-config       print the effective settings and exit\n"
             "  --offline IN OUT     filter the log IN into the log OUT as fast as possible\n"
             "  --csv FILE           also write every published pose as CSV\n"
-            "  --help               this text\n"
+            "  --help, --version    this text; the version\n"
             "Stops on SIGINT / SIGTERM / SIGHUP (live) or at the end of IN (offline) with a summary.\n"
             "Exit status: 0; 1 when a file or LCM provider fails (a write that did not reach the disk\n"
             "included); 2 for bad arguments or settings.\n");
@@ -110,6 +110,9 @@ static int parse_options(int argc, char **argv, options_t *o)
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
             usage(stdout);
+            return 1;
+        } else if (strcmp(arg, "--version") == 0) {
+            printf("hkf-filter %s\n", HKF_VERSION);
             return 1;
         } else if (strcmp(arg, "--print-config") == 0) {
             o->print_config = 1;

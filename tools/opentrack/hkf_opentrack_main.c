@@ -66,7 +66,7 @@ static void usage(FILE *to)
             "                     send the centre (0, 0, 0), or send the filter's held pose as is\n"
             "  --rate HZ          send the latest pose at this fixed rate (1 to 1000) instead of once per pose\n"
             "                     (run hkf-filter --rate too, for extrapolated poses in between)\n"
-            "  --help             this text\n"
+            "  --help, --version  this text; the version\n"
             "Non-finite poses, and angles beyond +-180 deg that no head makes (a forged or corrupt\n"
             "message), are never sent (counted); a destination that refuses (opentrack not running) is\n"
             "counted and retried with the next pose. Stops on SIGINT / SIGTERM / SIGHUP with a summary.\n");
@@ -137,6 +137,9 @@ static int parse_options(int argc, char **argv, options_t *o)
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
             usage(stdout);
+            return 1;
+        } else if (strcmp(arg, "--version") == 0) {
+            printf("hkf-opentrack %s\n", HKF_VERSION);
             return 1;
         } else if (strcmp(arg, "--absolute") == 0) {
             o->mapping.relative_to_center = 0;

@@ -32,7 +32,7 @@ static void usage(FILE *to)
             "  --start-seq N     frame counter of the first frame (default 0)\n"
             "  --channel C       channel (default HEAD_POSE_RAW)\n"
             "  --truth CSV       also write the true pose of every frame\n"
-            "  --help            this text\n");
+            "  --help            this text (--version: the version)\n");
 }
 
 static int number_arg(const char *name, const char *text, double low, double high, double *value)
@@ -65,6 +65,10 @@ int main(int argc, char **argv)
         const char *value = i_arg + 1 < argc ? argv[i_arg + 1] : NULL;
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
             usage(stdout);
+            return 0;
+        }
+        if (strcmp(arg, "--version") == 0) {
+            printf("hkf-simlog %s\n", HKF_VERSION);
             return 0;
         }
         if (value == NULL) {

@@ -31,6 +31,8 @@ STATUS = {1: "TRACKING", 2: "COASTING", 3: "LOST"}
 def parse_args():
     p = argparse.ArgumentParser(prog="hkf-track", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "VERSION")) as f:
+        p.add_argument("--version", action="version", version=f"hkf-track {f.read().strip()}")
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--camera", metavar="N", help="camera index (0) or device (/dev/video0)")
     src.add_argument("--source", metavar="FILE", help="a video file or a folder of images instead of a camera")

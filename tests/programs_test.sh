@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Every program answers --help and --version (exit 0), the version being the
+# one in the VERSION file at the root.
+# usage: programs_test.sh BUILD_DIR SOURCE_DIR PYTHON
+set -euo pipefail
+build=$1 source=$2 python=$3
+version=$(head -n 1 "$source/VERSION")
+fail() { echo "FAIL: $*" >&2; exit 1; }
+programs=(tools/hkf-filter tools/hkf-opentrack tools/hkf-cmd tools/hkf-demo tools/hkf-simlog tools/hkf-spy
+          estimator/hkf-estimator estimator/hkf-annotate)
+for p in tools/benchmarks/hkf-soak tools/benchmarks/hkf-bench-latency tools/benchmarks/hkf-bench-update \
+         tools/benchmarks/hkf-bench-estimator; do
+  [ -x "$build/$p" ] && programs+=("$p")  # the benchmarks, where built
+done
+check() { # check NAME COMMAND...: --version prints "NAME VERSION" and --help a usage, both exit 0
+  local name=$1
+  shift
+  out=$("$@" --version) || fail "$name --version: exit $?"
+  [[ "$out" == "$name $version"* ]] || fail "$name --version printed '$out', not '$name $version'"
+  "$@" --help | grep -qi "usage" || fail "$name --help printed no usage"
+  echo "$out"
+}
+for p in "${programs[@]}"; do
+  check "$(basename "$p")" "$build/$p"
+done
+check hkf-track "$python" "$source/tools/track/hkf_track.py"
+echo "programs_test: ${#programs[@]} programs and hkf-track answer --help and --version $version"
