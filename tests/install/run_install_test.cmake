@@ -1,5 +1,6 @@
 # Installs hkf into a scratch prefix, then builds and runs a consumer with
-# find_package(hkf) and another with pkg-config. Run with cmake -P.
+# find_package(hkf) and another with pkg-config - the latter after the prefix
+# has been moved elsewhere (the installed files are relocatable). Run with cmake -P.
 set(prefix ${WORK_DIR}/prefix)
 file(REMOVE_RECURSE ${WORK_DIR})
 
@@ -21,6 +22,8 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/install/consumer -B ${WORK_DIR}/cons
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/consumer)
 run(${WORK_DIR}/consumer/consumer)
 
+file(RENAME ${prefix} ${WORK_DIR}/moved)
+set(prefix ${WORK_DIR}/moved)
 file(GLOB pc_dirs ${prefix}/lib*/pkgconfig ${prefix}/lib/*/pkgconfig)
 set(ENV{PKG_CONFIG_PATH} "${pc_dirs}")
 execute_process(COMMAND pkg-config --cflags --libs hkf OUTPUT_VARIABLE flags RESULT_VARIABLE result
