@@ -14,6 +14,12 @@ endfunction()
 
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/hkf -G ${GENERATOR} -DCMAKE_INSTALL_PREFIX=${prefix}
     -DHKF_BUILD_TESTS=OFF -DHKF_BUILD_TOOLS=OFF)
+# configured as a consumer would (no options): warnings are not errors there
+file(READ ${WORK_DIR}/hkf/build.ninja rules)
+string(FIND "${rules}" "-Werror" werror)
+if(NOT werror EQUAL -1)
+  message(FATAL_ERROR "-Werror reaches a consumer's build of hkf")
+endif()
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/hkf)
 run(${CMAKE_COMMAND} --install ${WORK_DIR}/hkf)
 

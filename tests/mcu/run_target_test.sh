@@ -38,7 +38,7 @@ fi
 # Cortex-M0 parts have little flash (16-256 KiB): built for size there, for speed elsewhere
 build_type=Release
 [ "$cpu" = cortex-m0 ] && build_type=MinSizeRel
-cmake -S "$source" -B "$work/build" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$source/cmake/arm-none-eabi.cmake" \
+cmake -S "$source" -B "$work/build" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$source/cmake/arm-none-eabi.cmake" -DHKF_WARNINGS_AS_ERRORS=ON \
   -DHKF_CPU="$cpu" -DHKF_REAL="${real/cmsis_dsp/float}" -DCMAKE_BUILD_TYPE=$build_type \
   -DHKF_MCU_SEQUENCE="$work/sequence.h" "${extra[@]}" >/dev/null \
   || fail "configuring the $cpu build"
