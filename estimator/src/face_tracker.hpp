@@ -29,7 +29,6 @@ public:
     std::optional<Face> track(const cv::Mat &frame, int64_t utime);
 
     long full_frame_searches() const { return full_frame_searches_; }
-    bool locked() const { return locked_; }
 
 private:
     std::optional<Face> nearest(const std::vector<Face> &faces, float max_distance) const;

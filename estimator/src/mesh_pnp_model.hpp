@@ -27,7 +27,6 @@ public:
     std::optional<HeadPose> estimate(const cv::Mat &frame, const Face &face) override;
 
     // The last estimate's landmarks, px in the frame.
-    const std::vector<cv::Point2f> &landmarks() const { return landmarks_; }
 
 private:
     ModelSpec spec_;

@@ -347,7 +347,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
     if (!failed && !stop_requested && source.live()) {  // a camera or stream that ends by itself has failed
         std::fprintf(stderr, "hkf-estimator: %s stopped delivering frames (unplugged?) after %ld frames\n",
                      source.description().c_str(), frames);
-        status = 3;
+        status = kExitSourceEnded;
     }
     // a file that ends well short of its container's frame count: the decoder
     // gave up on damage (the count can be approximate, hence the margin)
@@ -357,7 +357,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
         std::fprintf(stderr, "hkf-estimator: %s ended after %lld of its %lld frames: the rest could not be decoded "
                      "(a damaged file?)\n", source.description().c_str(), static_cast<long long>(read),
                      static_cast<long long>(expected));
-        status = 4;
+        status = kExitDamagedFile;
     }
     if (capture_hung) {
         std::fprintf(stderr, "hkf-estimator: %s is not responding; leaving it\n", source.description().c_str());

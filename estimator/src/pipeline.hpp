@@ -32,7 +32,11 @@ struct PipelineOptions {
     float second_from_yaw = 10.f;  // chosen on AFLW2000's even images (README: "Two models on one channel")
 };
 
-// Runs until the source ends (or SIGINT / SIGTERM); prints a summary.
+// The estimator's exit statuses beyond 0 (ran), 1 (an error) and 2 (bad arguments).
+constexpr int kExitSourceEnded = 3;  // a camera or stream stopped delivering frames by itself (unplugged)
+constexpr int kExitDamagedFile = 4;  // a video file ended well short of its frame count (the decoder gave up)
+
+// Runs until the source ends (or SIGINT / SIGTERM / SIGHUP); prints a summary.
 // second: nullptr, or a second model whose measurements go on the same
 // channel with the frame's seq and utime (hkf-filter fuses them).
 // Returns the process exit status; throws EstimatorError on set-up errors.

@@ -69,11 +69,6 @@ static HKF_ALWAYS_INLINE int check_angles(const hkf_real_t v[3])
     return HKF_OK;
 }
 
-/* Paper Eq. 1-3, per axis:
- *   x = F x                   angle += rate dt
- *   P = F P F' + Q            Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]]
- * (Q: continuous white-noise acceleration of density q.) The terms of Q are
- * formed as ((q dt) dt) dt so each product keeps its digits in fixed point. */
 /* The angle variance's growth over dt: (F P F' + Q)_00 - p00, with qdt = q dt. */
 static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, hkf_real_t qdt, hkf_real_t dt)
 {
@@ -102,6 +97,11 @@ static inline void process_noise_lanes(const hkf_filter_t *restrict f, hkf_real_
     }
 }
 
+/* Paper Eq. 1-3, per axis:
+ *   x = F x                   angle += rate dt
+ *   P = F P F' + Q            Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]]
+ * (Q: continuous white-noise acceleration of density q.) The terms of Q are
+ * formed as ((q dt) dt) dt so each product keeps its digits in fixed point. */
 static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
 {
     hkf_real_t q[HKF_LANES];
@@ -120,10 +120,7 @@ static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
 }
 
-/* Paper Eq. 9, loop closure: with d = z - kappa, if |d| <= theta_lc then
- * z = kappa + xi d  (= xi z + (1 - xi) kappa). |d| is the Euclidean norm over
- * the three axes (compared squared), or each axis alone in PER_AXIS mode.
- * Returns whether it moved the measurement. */
+/* The measurement into the axis lanes (the idle fourth lane 0). */
 static void load_lanes(hkf_real_t lanes[restrict HKF_LANES], const hkf_real_t z[restrict 3])
 {
     lanes[0] = z[0];
@@ -134,6 +131,10 @@ static void load_lanes(hkf_real_t lanes[restrict HKF_LANES], const hkf_real_t z[
 #endif
 }
 
+/* Paper Eq. 9, loop closure: with d = z - kappa, if |d| <= theta_lc then
+ * z = kappa + xi d  (= xi z + (1 - xi) kappa). |d| is the Euclidean norm over
+ * the three axes (compared squared), or each axis alone in PER_AXIS mode.
+ * Returns whether it moved the measurement. */
 static HKF_ALWAYS_INLINE int loop_closure(const hkf_filter_t *restrict f, const hkf_real_t z[restrict 3],
                         hkf_real_t zc[restrict HKF_LANES])
 {
@@ -234,7 +235,7 @@ hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
     return observation_noise(f, axis, x);
 }
 
-/* Step 5: the first measurement (or the first after LOST, or after too many
+/* The track's start: the first measurement (or the first after LOST, or after too many
  * gated ones) starts the track: angle = z, rate = 0, P = diag(p0). The
  * caller has put R at z (Eq. 8) in f->r: computed there, not in here, the
  * curve's stack frame does not stack on this one (Cortex-M0's budget). */

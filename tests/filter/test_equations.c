@@ -4,7 +4,7 @@
  */
 #include "test_support.h"
 
-/* Step 5: the first measurement starts the track: angle = z, rate = 0,
+/* The track's start: the first measurement starts it: angle = z, rate = 0,
  * P = diag(p0), centre = z. dt of the first call is ignored. */
 static void test_first_measurement_starts_track(void **state)
 {

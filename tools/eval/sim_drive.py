@@ -280,8 +280,7 @@ def main():
     with open(os.path.join(out, "sim_rmse.md"), "w") as f:
         f.write(text)
     print(text)
-    import sim_figures
-    sim_figures.draw(out, t, truth, glance, runs)
+    return out, t, truth, glance, runs  # for sim_figures.py, which draws them
 
 
 if __name__ == "__main__":

@@ -120,3 +120,7 @@ def draw(out, t, truth, glance, runs):
     with open(os.path.join(out, "sim_figures.md"), "w") as f:
         f.write(text)
     print(text)
+
+
+if __name__ == "__main__":  # the drive (sim_drive.py's tables, with its arguments), then its figures
+    draw(*sim_drive.main())

@@ -268,7 +268,7 @@ int hkf_update_pair(hkf_filter_t *f, const hkf_real_t z[3], const hkf_real_t z2[
                     hkf_real_t dt, hkf_output_t *out);
 
 /* No measurement this frame (face lost): predict dt s ahead. See the coasting
- * rule in hkf.c. Writes the prediction to out (which may be NULL). */
+ * rule at the top of libhkf/src/hkf_filter.c. Writes the prediction to out (which may be NULL). */
 int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out);
 
 /* The pose dt_ahead s after the last call, without changing the filter: for

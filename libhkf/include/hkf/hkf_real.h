@@ -23,7 +23,6 @@ typedef double hkf_real_t;
 #include <stdint.h>
 /* Q16.16: value = integer / 65536. Range +-32768, resolution 1.5e-5. */
 typedef int32_t hkf_real_t;
-#define HKF_REAL_ONE 65536
 /* A constant in Q16.16, rounded to nearest. Use it on constant expressions
  * only: the compiler then folds it, and no floating point reaches the target. */
 #define HKF_REAL_FROM(x) ((hkf_real_t)((x) * 65536.0 + ((x) >= 0 ? 0.5 : -0.5)))
