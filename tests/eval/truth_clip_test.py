@@ -23,7 +23,7 @@ import truth_motion  # noqa: E402
 
 def check_position(build, frame, centre):
     """The same frame zoomed and shifted along truth_motion.lean_trajectory -
-    position truth for the six-DOF issue: the estimator's face box moves with
+    position truth (head x, y, z): the estimator's face box moves with
     the shift one for one and grows with the zoom (BlazeFace's box is not
     exactly proportional to the face's size: the slope is printed, a fact for
     a position taken from the box)."""

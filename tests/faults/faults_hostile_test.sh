@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The fault catalogue, part 3: a hostile review's command lines, files and
-# messages (issue 22), on real data - the raw poses of a real clip
+# messages, on real data - the raw poses of a real clip
 # (../shared/data/videos/d3.mp4) and real face images (AFLW2000). No command
 # line, file or message may make a program destroy or truncate data and exit
 # 0, abort, hang without saying so, or hold the pose up for longer than the

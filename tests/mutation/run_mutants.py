@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mutation testing (issue 25): plants each bug of a hand-written list, one at
+"""Mutation testing: plants each bug of a hand-written list, one at
 a time, in a scratch copy of the tree, rebuilds what it changed, and runs the
 tests that cover the changed file. A mutant the tests catch is *killed*; one
 they pass is a *survivor*, a gap in the tests (or an equivalent mutant, which

@@ -1,4 +1,4 @@
-"""Truth clips from real faces (issue 24): a real video frame, or a whole real
+"""Truth clips from real faces: a real video frame, or a whole real
 clip, moved by a known in-plane transform on every frame, with fresh sensor
 noise and JPEG compression each time, written as a folder of images that
 `hkf-estimator --source DIR --fps F` reads as a camera would.
@@ -11,7 +11,7 @@ exactly theta for a face in the middle looking into the camera; otherwise the
 three angles move together, as truth_angles() computes from the face's own
 pose (the estimator's reading of the unturned face: its error enters the
 truth's changes only through products of small angles). Scale and shift (zoom
-and pan) are the same construction for position (the six-DOF issue); render()
+and pan) are the same construction for head position (x, y, z); render()
 takes all three.
 
 The sign: hkf's roll is positive with the head tilted to the driver's right

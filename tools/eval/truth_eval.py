@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Every filter against exact truth on real faces (issue 24).
+"""Every filter against exact truth on real faces.
 
 Truth clips: from each clip in ../shared/data/videos, two real frames - the
 most frontal and the most turned face the estimator found - each turned in the
@@ -47,7 +47,7 @@ import truth_motion  # noqa: E402
 
 FPS = 30.0
 ESTIMATOR = "mesh_pnp"  # the default model
-GOALS = {  # issue 24, on held-out clips
+GOALS = {  # what the filter should reach on held-out clips (the README states them)
     "rmse_ratio": 0.70,       # defaults' moving RMSE / best 1 euro's at equal jitter
     "jitter_share": 0.25,     # defaults' still jitter / raw's
     "overshoot_share": 0.05,  # of the move

@@ -1,4 +1,4 @@
-"""Metrics against exact truth (issue 24), for one axis (roll) of a filter's
+"""Metrics against exact truth (truth_eval.py), for one axis (roll) of a filter's
 output on a truth clip. Angles in degrees, times in seconds.
 
   RMSE moving / still   RMS error on frames where the truth moves faster than

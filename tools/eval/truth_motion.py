@@ -1,4 +1,4 @@
-"""Head motion with exact truth (issue 24): the angle a real face frame is
+"""Head motion with exact truth (truth_eval.py): the angle a real face frame is
 turned through, frame by frame, along trajectories a driver makes.
 
 A trajectory is theta(t) in degrees at the camera's frame rate, plus the list
@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-PEAK_SPEED_LIMIT = 300.0  # deg/s: the issue's fastest glance
+PEAK_SPEED_LIMIT = 300.0  # deg/s: the fastest glance a driver makes, as the trajectories use
 
 
 @dataclass
@@ -157,7 +157,7 @@ def moving_mask(trajectory, speed=10.0):
 
 
 def lean_trajectory(seed, fps=30.0, moves=6):
-    """Position truth for the six-DOF issue: a zoom (the face nearer or
+    """Position truth (for head position x, y, z): a zoom (the face nearer or
     farther: scale 0.75-1.35, i.e. a lean in or out) and a sideways shift (as
     a fraction of the frame's width, within +-0.12), each changing by
     minimum-jerk moves of 0.3-0.8 s between holds. Returns (t, scale, shift_x)."""
