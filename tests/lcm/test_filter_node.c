@@ -184,6 +184,23 @@ static void test_gap_restarts_track(void **state)
     assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
     assert_int_equal(node.counts.restarts, 1);
     assert_true(pose.yaw == -40.0f && pose.yaw_rate == 0.0f);
+    /* a gap of exactly max_dt (1 s) is a step like any other; a frame more is a gap */
+    m = measurement(T0 + 6000000, 1, 3, -38, 1);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_int_equal(node.counts.restarts, 1);
+    assert_true(pose.yaw > -40.0f && pose.yaw < -38.0f);
+    m = measurement(T0 + 7033333, 1, 3, -20, 1);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_int_equal(node.counts.restarts, 2);
+    assert_true(pose.yaw == -20.0f);
+    /* a frame without a face after a gap: no pose (no track), the restart counted; the next face starts one */
+    m = measurement(T0 + 9000000, 0, 0, 0, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 0);
+    assert_int_equal(node.counts.restarts, 3);
+    m = measurement(T0 + 9033333, 1, 1, 5, 1);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_int_equal(node.counts.restarts, 3);
+    assert_true(pose.yaw == 5.0f && pose.status == HKF_HEAD_POSE_T_TRACKING);
 }
 
 /* The measurement's model picks its curves; unknown models use the base ones. */

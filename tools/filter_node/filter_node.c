@@ -116,6 +116,16 @@ static void keep_frame(filter_node_t *node, const hkf_head_pose_measurement_t *m
     frame->before = node->filter;
 }
 
+/* The track starts again with the next measurement (a gap longer than
+ * max_dt, or a new clock): the filter reset, the restart counted, the kept
+ * frames forgotten. */
+static void restart_track(filter_node_t *node)
+{
+    hkf_reset(&node->filter);
+    ++node->counts.restarts;
+    forget_frames(node);
+}
+
 /* The newest kept frame's step failed: it never happened. */
 static void unkeep_newest(filter_node_t *node)
 {
@@ -155,6 +165,9 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
     }
     node->have_time = 1;
     node->last_utime = m->utime;
+    if (node->filter.status != HKF_STATUS_UNINITIALIZED && dt > node->config->settings.max_dt) {
+        restart_track(node); /* a gap longer than max_dt: the track starts again from this measurement */
+    }
 
     if (!m->valid) {
         ++node->counts.without_face;
@@ -164,14 +177,7 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
         }
         keep_frame(node, m, NULL, dt);
         result = hkf_predict(&node->filter, dt, &out);
-        if (result == HKF_ERROR_DT_RANGE) { /* a long gap: forget the track */
-            hkf_reset(&node->filter);
-            ++node->counts.restarts;
-            forget_frames(node);
-            keep_frame(node, m, NULL, dt);
-            return 0;
-        }
-        if (result != HKF_OK) { /* no track yet */
+        if (result != HKF_OK) { /* no track yet (or again, after a gap) */
             return 0;
         }
         fill_pose(node, &out, m->utime, pose);
@@ -196,13 +202,6 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
         const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
         keep_frame(node, m, z, dt);
         result = hkf_update(&node->filter, z, dt, &out);
-        if (result == HKF_ERROR_DT_RANGE) {
-            hkf_reset(&node->filter);
-            ++node->counts.restarts;
-            forget_frames(node);
-            keep_frame(node, m, z, dt);
-            result = hkf_update(&node->filter, z, dt, &out);
-        }
     }
     if (result != HKF_OK) {
         ++node->counts.bad_values;
@@ -260,10 +259,10 @@ static void resync_clock(filter_node_t *node)
 {
     ++node->counts.clock_resyncs;
     node->have_time = 0;
-    forget_frames(node);
     if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
-        hkf_reset(&node->filter);
-        ++node->counts.restarts;
+        restart_track(node);
+    } else {
+        forget_frames(node);
     }
 }
 
