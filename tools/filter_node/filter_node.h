@@ -105,6 +105,10 @@ typedef struct {
     const node_config_t *config;
     hkf_filter_t filter;
     char model[NODE_MODEL_NAME_MAX];  /* the model the filter is set up for */
+    /* Read by the runners (hkf_filter_main.c, filter_node_offline.c): have_time and
+     * last_utime (the --rate ticks), lost_published (the offline silence) and counts (the
+     * summary). The runners write one field only: counts.decode_errors, for what does not
+     * decode before it reaches the node. */
     int have_time;                    /* a measurement has been seen */
     int64_t last_utime;               /* its capture time */
     int64_t last_measurement_utime;   /* capture time of the last valid measurement used */
