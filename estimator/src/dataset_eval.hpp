@@ -29,7 +29,7 @@ struct EvalResult {
     long evaluated = 0;     // rows whose three label angles are within +-99 deg (the standard protocol)
     double mae[3] = {0, 0, 0};  // pitch, yaw, roll, deg
     double seconds = 0;     // time spent in the model
-    // The same by labelled |yaw| (issue 8's bins: 0-30, 30-60, 60-99 deg), over
+    // The same by labelled |yaw| (bins 0-30, 30-60, 60-99 deg: near frontal, turned, profile), over
     // the images within +-99 deg: found faces, and MAE per axis of those found.
     static constexpr int kYawBins = 3;
     static constexpr float kYawBinEdges[kYawBins + 1] = {0.f, 30.f, 60.f, 99.f};

@@ -1,4 +1,4 @@
-// second_model.hpp - a second head-pose model on its own thread (issue 8):
+// second_model.hpp - a second head-pose model on its own thread, for large turns:
 // the face mesh keeps the frame rate, and WHENet, ~30 ms a frame, measures the
 // frames where the mesh is weak - at large turns, or where it finds no face -
 // as fast as it can, on the other core. Its measurement carries the frame's

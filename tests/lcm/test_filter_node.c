@@ -957,9 +957,10 @@ static void test_second_model_alone_at_large_yaw(void **state)
 }
 
 /* Another estimator with another model on the channel, its counter behind and
- * its frames a little older than the followed one's (fault catalogue 5, WHENet
- * started a second after the mesh): another publisher, never taken for a late
- * second measurement - its seq and utime are no frame of the followed one. */
+ * its frames a little older than the followed one's (the fault catalogue's two
+ * estimators on one channel: WHENet started a second after the mesh): another
+ * publisher, never taken for a late second measurement - its seq and utime
+ * are no frame of the followed one. */
 static void test_other_model_publisher_not_a_second(void **state)
 {
     hkf_head_pose_measurement_t a, b;

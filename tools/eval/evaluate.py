@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """hkf against the filters a head-tracking user would pick, on the same raw
-pose logs (issue 7): still jitter, lag, centre hold (tools/eval/metrics.py) for
+pose logs: still jitter, lag, centre hold (tools/eval/metrics.py) for
 every setting of each filter's main parameter, so each filter traces a
 jitter-lag curve; the headline is the lag at equal still jitter.
 
@@ -52,7 +52,7 @@ Q_BOOST_SCALES = [0.0005, 0.001, 0.002, 0.005, 0.01, 0.02]
 Q_BOOST_VALUES = [30, 100, 300, 1000, 3000, 10000]
 # every filter compared, in the tables' order
 FILTER_NAMES = list(HKF_VARIANTS) + [Q_BOOST_NAME, "1 euro", "Accela", "EWMA"]
-GOAL_LAG_CUT = 0.30  # issue 7: the defaults lag at least 30 % less than the best 1 euro and Accela at equal jitter
+GOAL_LAG_CUT = 0.30  # the goal set for the filter on real clips: the defaults lag at least 30 % less than the best 1 euro and Accela at equal jitter
 # tune on these clips, report on the others (the README's split)
 TUNING_CLIPS = ["d0", "d3", "d9", "d11", "d14"]  # 274 still and 1,496 moving frames (mesh_pnp); the others 91 and 1,073
 ONE_EURO_MIN_CUTOFF = [0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
@@ -271,7 +271,7 @@ def report_split(rows, out):
 
 
 def defaults_check(curves, estimator):
-    """Issue 7's goal for the defaults as shipped, on these pooled curves: still jitter at most the 1 euro
+    """The real-clip goal for the defaults as shipped, on these pooled curves: still jitter at most the 1 euro
     filter's at its recommended tuning, and lag at least GOAL_LAG_CUT below the best 1 euro and Accela
     settings of the defaults' own jitter. Markdown lines."""
     mine = [c for c in curves if c["estimator"] == estimator]

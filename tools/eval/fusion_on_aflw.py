@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What fusing the two estimators would give on AFLW2000 (issue 8), per
+"""What fusing the two estimators would give on AFLW2000, per
 labelled |yaw| bin: faces found and mean MAE of pitch, yaw and roll, for each
 estimator alone, for choosing one by WHENet's yaw, for the measurement
 update hkf_update_pair makes of a single frame (inverse-variance weights,

@@ -1,4 +1,4 @@
-"""What a head-tracking user feels, measured on a filter's output (issue 7).
+"""What a head-tracking user feels, measured on a filter's output.
 
 All signals are arrays of shape (frames, 3) in degrees (pitch, yaw, roll), with
 the frame times t in seconds. The reference is the raw measurement smoothed

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A simulated drive with truth, measured through an empirical error model of
-our own estimators (issue 7, 2b), and the paper's figures on it (Figs. 6-8).
+our own estimators, and the paper's figures on it (Figs. 6-8).
 
 Error model, per estimator, all from our data:
 - bias and spread per axis as functions of the labelled yaw: the signed error
