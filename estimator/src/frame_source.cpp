@@ -20,11 +20,16 @@ int64_t wall_utime()
 
 namespace {
 
-// A frame larger than the documented cap is refused: OpenCV itself allows ~1 G pixels (3 GB).
+// Within the documented cap (OpenCV itself allows ~1 G pixels, 3 GB a frame).
+bool within_frame_cap(int width, int height)
+{
+    return width <= kMaxFrameSide && height <= kMaxFrameSide && static_cast<int64_t>(width) * height <= kMaxFramePixels;
+}
+
+// A video's frames beyond the cap are refused.
 void check_frame_size(int width, int height, const std::string &what)
 {
-    if (width > kMaxFrameSide || height > kMaxFrameSide ||
-        static_cast<int64_t>(width) * height > kMaxFramePixels)
+    if (!within_frame_cap(width, height))
         throw EstimatorError(what + " has " + std::to_string(width) + "x" + std::to_string(height) +
                              " px frames; hkf-estimator takes at most " + std::to_string(kMaxFramePixels) +
                              " px (8K UHD) and " + std::to_string(kMaxFrameSide) + " px a side");
@@ -86,9 +91,7 @@ bool FrameSource::read(Frame &frame)
             if (next_image_ >= images_.size()) return false;
             const std::string &path = images_[next_image_++];
             frame.image = cv::imread(path, cv::IMREAD_COLOR);
-            if (!frame.image.empty() && frame.image.cols <= kMaxFrameSide && frame.image.rows <= kMaxFrameSide &&
-                static_cast<int64_t>(frame.image.cols) * frame.image.rows <= kMaxFramePixels)
-                break;
+            if (!frame.image.empty() && within_frame_cap(frame.image.cols, frame.image.rows)) break;
             if (skipped_images_++ < 5)
                 std::fprintf(stderr, "hkf-estimator: cannot read the image %s (damaged, not an image, or larger than "
                              "%lld px); skipped\n", path.c_str(), static_cast<long long>(kMaxFramePixels));

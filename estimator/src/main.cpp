@@ -28,6 +28,8 @@
 #include "head_pose_estimator.hpp"
 #include "hkf/head_pose_measurement_t.hpp"
 
+#include "model_name.h"
+
 extern "C" {
 #include "safe_files.h"
 }
@@ -43,14 +45,6 @@ struct Options {
     hkf_estimator::DetectorRange range = hkf_estimator::DetectorRange::Short;
     hkf_estimator::DatasetCrop crop = hkf_estimator::DatasetCrop::Live;
 };
-
-// A model id as the message allows it (head_pose_measurement_t.lcm): 1 to 31
-// letters, digits, '_' or '-'. The same rule as hkf-filter's (node_config.h).
-bool valid_model_name(const std::string &name)
-{
-    return !name.empty() && name.size() <= static_cast<size_t>(hkf::head_pose_measurement_t::MODEL_NAME_MAX) &&
-           std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
-}
 
 // --annotate OUT: a video file name in a folder that exists and can be written,
 // and not the source. Checked before anything runs; "" or why not.
@@ -216,7 +210,7 @@ int parse(int argc, char **argv, Options &o)
         return 2;
     }
     for (const std::string *name : {&o.model, &o.second_model}) {
-        if ((name == &o.model || !name->empty()) && !valid_model_name(*name)) {
+        if ((name == &o.model || !name->empty()) && !model_name_valid(name->c_str())) {
             std::cerr << "hkf-estimator: a model name has 1 to " << hkf::head_pose_measurement_t::MODEL_NAME_MAX
                       << " letters, digits, '_' or '-' (the limit of head_pose_measurement_t.lcm), not '" << *name << "'\n";
             return 2;

@@ -15,6 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "model_name.h"
 #include "node_config.h"
 
 static void check(int condition, const char *what)
@@ -91,7 +92,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
               again.model_count == config.model_count && again.second_alone_from_yaw == config.second_alone_from_yaw,
           "the configuration read back has other settings");
     for (i = 0; i < (size_t)config.model_count; ++i) {
-        check(strcmp(again.models[i].name, config.models[i].name) == 0 && node_model_name_valid(config.models[i].name) &&
+        check(strcmp(again.models[i].name, config.models[i].name) == 0 && model_name_valid(config.models[i].name) &&
                   memcmp(again.models[i].noise, config.models[i].noise, sizeof config.models[i].noise) == 0 &&
                   memcmp(again.models[i].r_const, config.models[i].r_const, sizeof config.models[i].r_const) == 0,
               "a model read back differs, or has a name the message cannot carry");

@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "model_curves.h"
+#include "model_name.h"
 #include "node_config.h"
 
 #ifndef SHIPPED_CONFIG
@@ -170,7 +171,7 @@ static void test_print_reads_back(void **state)
     remove(path);
 }
 
-/* Model names: one rule (node_model_name_valid) for [model NAME] sections,
+/* Model names: one rule (model_name_valid) for [model NAME] sections,
  * --set model.NAME.KEY and the message's limit: 1 to 31 letters, digits, '_'
  * or '-'. A name --set accepts is one --print-config writes and --config
  * reads back. (Before: --set took "a b", "a]", "a#" and a newline, which the
@@ -188,7 +189,7 @@ static void test_model_names_one_rule(void **state)
     for (i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         snprintf(assignment, sizeof assignment, "model.%s.noise.yaw = 7 4 0 30", bad[i]);
         assert_int_equal(node_config_set(&c, assignment, error, sizeof error), -1);
-        assert_false(node_model_name_valid(bad[i]));
+        assert_false(model_name_valid(bad[i]));
     }
     assert_int_equal(c.model_count, 4);
     assert_int_equal((int)strlen(good), HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX);

@@ -15,20 +15,28 @@ static int setup_filter(filter_node_t *node, const char *model)
     return hkf_init(&node->filter, &s);
 }
 
+/* The wire layout: hash, utime, seq (8 bytes each), the model string as a
+ * big-endian int32 length with its NUL and the bytes, then valid (1),
+ * pitch, yaw, roll (4 each), face_box (16), detection_score (4), inference_us (8). */
+enum { MODEL_AT = 24, TAIL = 1 + 12 + 16 + 4 + 8 };
+
+/* The model string's claimed length (with its NUL); the payload has at least MODEL_AT + 4 bytes. */
+static long model_length(const unsigned char *bytes)
+{
+    return ((long)bytes[MODEL_AT] << 24) | ((long)bytes[MODEL_AT + 1] << 16) | ((long)bytes[MODEL_AT + 2] << 8) |
+           bytes[MODEL_AT + 3];
+}
+
 int filter_node_decode(const void *data, int size, hkf_head_pose_measurement_t *m)
 {
-    /* the wire layout: hash, utime, seq (8 bytes each), the model string as a
-     * big-endian int32 length with its NUL and the bytes, then valid (1),
-     * pitch, yaw, roll (4 each), face_box (16), detection_score (4), inference_us (8) */
-    enum { HEAD = 24, TAIL = 1 + 12 + 16 + 4 + 8 };
     const unsigned char *bytes = data;
     long length;
-    if (data == NULL || size < HEAD + 4 + 1 + TAIL) {
+    if (data == NULL || size < MODEL_AT + 4 + 1 + TAIL) {
         return -1;
     }
-    length = ((long)bytes[HEAD] << 24) | ((long)bytes[HEAD + 1] << 16) | ((long)bytes[HEAD + 2] << 8) | bytes[HEAD + 3];
-    if (length < 1 || length > NODE_MODEL_NAME_MAX || HEAD + 4 + length + TAIL != size ||
-        bytes[HEAD + 4 + length - 1] != '\0') {
+    length = model_length(bytes);
+    if (length < 1 || length > NODE_MODEL_NAME_MAX || MODEL_AT + 4 + length + TAIL != size ||
+        bytes[MODEL_AT + 4 + length - 1] != '\0') {
         return -1;
     }
     memset(m, 0, sizeof *m); /* so that a cleanup after a failed decode frees nothing it did not allocate */
@@ -41,13 +49,12 @@ int filter_node_decode(const void *data, int size, hkf_head_pose_measurement_t *
 
 int filter_node_model_id_too_long(const void *data, int size)
 {
-    const unsigned char *bytes = data;
     long length;
-    if (data == NULL || size < 28) {
+    if (data == NULL || size < MODEL_AT + 4) {
         return 0;
     }
-    length = ((long)bytes[24] << 24) | ((long)bytes[25] << 16) | ((long)bytes[26] << 8) | bytes[27];
-    return length > NODE_MODEL_NAME_MAX && length <= size - 28;
+    length = model_length(data);
+    return length > NODE_MODEL_NAME_MAX && length <= size - (MODEL_AT + 4);
 }
 
 int filter_node_init(filter_node_t *node, const node_config_t *config)
@@ -238,22 +245,6 @@ static int from_followed_publisher(filter_node_t *node, const hkf_head_pose_meas
     return 1;
 }
 
-/* Measurements the node's time reference rejects (clock rule, or older than
- * the last one taken) that agree with each other: later than the one before,
- * with a capture step that matches the arrival step. Returns 1 on the
- * FILTER_NODE_RESYNC_MESSAGES-th in a row: the reference is what was wrong. */
-static int rejected_stamps_agree(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
-{
-    const int consistent =
-        node->jump_count > 0 && m->utime > node->jump_utime &&
-        fabs(clock_skew_us(m->utime, arrival_utime, node->jump_utime, node->jump_arrival_utime)) <=
-            (double)FILTER_NODE_CLOCK_JUMP_US;
-    node->jump_count = consistent ? node->jump_count + 1 : 1;
-    node->jump_utime = m->utime;
-    node->jump_arrival_utime = arrival_utime;
-    return node->jump_count >= FILTER_NODE_RESYNC_MESSAGES;
-}
-
 /* The node follows a new capture clock: the track restarts as after a gap. */
 static void resync_clock(filter_node_t *node)
 {
@@ -266,40 +257,46 @@ static void resync_clock(filter_node_t *node)
     }
 }
 
-/* The clock rule: 0 when m's stamp disagrees with its arrival (a corrupt stamp,
- * or the first messages after a clock jump); 1 to go on. On the last of
- * FILTER_NODE_RESYNC_MESSAGES consistent ones the node follows the new clock. */
-static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
+/* A measurement the node's time reference rejects (clock rule, or older than
+ * the last one taken). FILTER_NODE_RESYNC_MESSAGES such in a row that agree
+ * with each other - each later than the one before, with a capture step that
+ * matches the arrival step - mean the reference is what was wrong: on the last
+ * of them the node follows the new clock and returns 1; before, 0. */
+static int follows_rejected_stamps(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
 {
-    if (!node->have_time ||
-        fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) <=
-            (double)FILTER_NODE_CLOCK_JUMP_US) {
-        return 1;
-    }
-    if (!rejected_stamps_agree(node, m, arrival_utime)) {
+    const int consistent =
+        node->jump_count > 0 && m->utime > node->jump_utime &&
+        fabs(clock_skew_us(m->utime, arrival_utime, node->jump_utime, node->jump_arrival_utime)) <=
+            (double)FILTER_NODE_CLOCK_JUMP_US;
+    node->jump_count = consistent ? node->jump_count + 1 : 1;
+    node->jump_utime = m->utime;
+    node->jump_arrival_utime = arrival_utime;
+    if (node->jump_count < FILTER_NODE_RESYNC_MESSAGES) {
         return 0;
     }
     resync_clock(node);
     return 1;
 }
 
+/* The clock rule: 0 when m's stamp disagrees with its arrival (a corrupt stamp,
+ * or the first messages after a clock jump); 1 to go on. */
+static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
+{
+    return !node->have_time ||
+           fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) <=
+               (double)FILTER_NODE_CLOCK_JUMP_US ||
+           follows_rejected_stamps(node, m, arrival_utime);
+}
+
 /* The stale rule: 0 when m is older than the last measurement taken (out of
- * order); 1 to go on. FILTER_NODE_RESYNC_MESSAGES such measurements in a row
- * that agree with each other mean the last one taken was the odd one out: a
- * forged stamp ahead of time, or a clock that stepped back together with the
- * receive clock (which the clock rule cannot see). The node then follows
- * them, so that no single message holds tracking up for longer than a few
- * frames. */
+ * order); 1 to go on. Older ones that agree with each other mean the last one
+ * taken was the odd one out: a forged stamp ahead of time, or a clock that
+ * stepped back together with the receive clock (which the clock rule cannot
+ * see). The node then follows them, so that no single message holds tracking
+ * up for longer than a few frames. */
 static int not_stale(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
 {
-    if (!node->have_time || m->utime >= node->last_utime) {
-        return 1;
-    }
-    if (!rejected_stamps_agree(node, m, arrival_utime)) {
-        return 0;
-    }
-    resync_clock(node);
-    return 1;
+    return !node->have_time || m->utime >= node->last_utime || follows_rejected_stamps(node, m, arrival_utime);
 }
 
 /* Two models on one channel: the index of the kept frame m is the second

@@ -202,7 +202,11 @@ static void print_summary(const filter_node_t *node, FILE *to)
             c->unknown_models, c->commands, c->silences, c->paired, c->unpaired);
 }
 
-#define LONG_MODEL_HINT " (its model id is longer than the 31 bytes head_pose_measurement_t.lcm allows)"
+#define STRING_OF(x) #x
+#define STRING_OF_VALUE(x) STRING_OF(x)
+#define LONG_MODEL_HINT                                                                                           \
+    " (its model id is longer than the " STRING_OF_VALUE(HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX)             \
+    " bytes head_pose_measurement_t.lcm allows)"
 
 static void report_decode_error(node_run_t *run, const char *channel, const char *hint)
 {
@@ -353,15 +357,14 @@ static int paths_to_keep(const options_t *o, const char *except, const char **ke
     return n;
 }
 
-/* --csv: opened (with its header) only once every other file is known to be another. */
+/* --csv, with its header (outputs_distinct has checked it is no other file of the run). */
 static int open_csv(node_run_t *run)
 {
     const options_t *o = run->options;
-    const char *keep[3 + 8];
     if (o->csv_path == NULL) {
         return 0;
     }
-    run->csv = safe_open_output(o->csv_path, "w", keep, paths_to_keep(o, o->csv_path, keep), "hkf-filter");
+    run->csv = safe_open_output(o->csv_path, "w", NULL, 0, "hkf-filter");
     if (run->csv == NULL) {
         return -1;
     }
@@ -398,19 +401,18 @@ static int run_offline(node_run_t *run)
     const options_t *o = run->options;
     filter_node_offline_t offline;
     filter_node_offline_report_t report;
-    const char *keep[3 + 8];
     char error[600];
     lcm_log_writer_t out;
     FILE *in, *out_file;
     int status;
     /* the input first, as a regular file (a named pipe would block and cannot seek); then the
-     * outputs, refusing any that is the input or another output: opening it would truncate it */
+     * outputs, which outputs_distinct has checked are neither the input nor each other */
     in = safe_open_input(o->offline_in, error, sizeof error);
     if (in == NULL) {
         fprintf(stderr, "hkf-filter: %s\n", error);
         return 1;
     }
-    out_file = safe_open_output(o->offline_out, "wb", keep, paths_to_keep(o, o->offline_out, keep), "hkf-filter");
+    out_file = safe_open_output(o->offline_out, "wb", NULL, 0, "hkf-filter");
     if (out_file == NULL) {
         fclose(in);
         return 1;

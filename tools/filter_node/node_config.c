@@ -3,6 +3,7 @@
 #include "node_config.h"
 
 #include "model_curves.h"
+#include "model_name.h"
 #include "safe_files.h"
 
 #include <ctype.h>
@@ -187,18 +188,6 @@ static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value
     return -1;
 }
 
-int node_model_name_valid(const char *name)
-{
-    size_t i;
-    for (i = 0; name[i] != '\0'; ++i) {
-        if (i >= HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX ||
-            !(isalnum((unsigned char)name[i]) || name[i] == '_' || name[i] == '-')) {
-            return 0;
-        }
-    }
-    return i > 0;
-}
-
 static node_model_t *find_or_add_model(node_config_t *config, const char *name, char *error, size_t error_size)
 {
     int i;
@@ -208,7 +197,7 @@ static node_model_t *find_or_add_model(node_config_t *config, const char *name, 
             return &config->models[i];
         }
     }
-    if (!node_model_name_valid(name)) {
+    if (!model_name_valid(name)) {
         snprintf(error, error_size, "a model name has 1 to %d letters, digits, '_' or '-', not '%.60s'",
                  HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX, name);
         return NULL;

@@ -43,11 +43,6 @@ typedef struct {
  * Table I curves (r_const = each curve's minimum). */
 void node_config_defaults(node_config_t *config);
 
-/* 1 when name is a valid model id: 1 to HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX
- * letters, digits, '_' or '-' (so that it reads back from --print-config and
- * fits the message). The one rule for config sections, --set and messages. */
-int node_model_name_valid(const char *name);
-
 /* Reads a config file (a regular file: a named pipe is refused, not waited
  * on) into config, on top of what it holds. On error writes "FILE:LINE: what"
  * into error and returns -1. */
