@@ -93,14 +93,14 @@ def estimate_folder(build, folder, log_path):
 
 
 class TruthClip:
-    """One clip: its name, source clip, kind, the truth (deg, per frame) and the raw measurements."""
+    """One clip: its name, source clip, kind, the truth (deg, per frame), the raw measurements
+    (capture stamps utime, frame times t) and the raw log they are in."""
 
-    def __init__(self, name, source, kind, trajectory, truth, t, valid, z, still, moving, to_truth):
+    def __init__(self, name, source, kind, trajectory, truth, log, utime, t, valid, z, still, moving, to_truth):
         self.name, self.source, self.kind = name, source, kind
-        self.trajectory, self.truth = trajectory, truth
-        self.t, self.valid, self.z = t, valid, z
+        self.trajectory, self.truth, self.log = trajectory, truth, log
+        self.utime, self.t, self.valid, self.z = utime, t, valid, z
         self.still, self.moving, self.to_truth = still, moving, to_truth
-        self.log = None
 
 
 def make_still_clips(build, out, clip, frames_per_clip, glances):
@@ -193,10 +193,8 @@ def load(spec, build, own_pose=None):
         still = np.zeros(n, dtype=bool)  # a real head is never exactly still
         to_truth = None  # no step metrics: the head's own motion goes on during a move
     speed = np.abs(np.gradient(np.nan_to_num(truth), t))
-    clip = TruthClip(label, source, kind, trajectory, truth, t, valid, z, still, speed > 10.0, to_truth)
-    clip.log = log_path
-    clip.utime = utime[:n]
-    return clip
+    return TruthClip(label, source, kind, trajectory, truth, log_path, utime[:n], t, valid, z, still, speed > 10.0,
+                     to_truth)
 
 
 def filter_output(build, clip, work, setting):
@@ -279,7 +277,7 @@ def table(rows, title):
     return "\n".join(lines) + "\n"
 
 
-def report(rows, clips, out):
+def report(rows, clips):
     held = {c.name for c in clips if c.source not in evaluate.TUNING_CLIPS and c.kind == "still frame"}
     tuned = {c.name for c in clips if c.source in evaluate.TUNING_CLIPS and c.kind == "still frame"}
     sections, summary = [], {}
@@ -327,7 +325,7 @@ def report(rows, clips, out):
     return text
 
 
-def moving_report(build, out, moving_clips, rows_by_clip, chosen):
+def moving_report(moving_clips, rows_by_clip, chosen):
     lines = ["### Real-motion variant: whole real clips turned along a trajectory", "",
              "| clip | frames | reference error (RMS of raw - its low-pass, unturned clip) | raw RMSE moving | "
              + " | ".join(f"{f} RMSE moving" for f, _ in chosen) + " |",
@@ -405,7 +403,7 @@ def main():
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
-    text = report([r for r in rows if r["kind"] == "still frame"], clips, out)
+    text = report([r for r in rows if r["kind"] == "still frame"], clips)
     held = [c for c in clips if c.source not in evaluate.TUNING_CLIPS] or clips
     pooled = pool([r for r in rows if r["clip"] in {c.name for c in held}])
     defaults = next(p for p in pooled if p["filter"] == evaluate.DEFAULTS_NAME)
@@ -414,7 +412,7 @@ def main():
         chosen = [(evaluate.DEFAULTS_NAME, (evaluate.DEFAULTS_NAME, "as shipped"))]
         if euro is not None:
             chosen.append((f"1 euro ({euro['setting']})", ("1 euro", euro["setting"])))
-        text += "\n" + moving_report(build, out, moving, rows_by_clip, chosen)
+        text += "\n" + moving_report(moving, rows_by_clip, chosen)
     with open(os.path.join(out, "truth", "truth.md"), "w") as f:
         f.write(text)
     print(text)
