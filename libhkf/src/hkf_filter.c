@@ -18,6 +18,13 @@
  *   hold the angle (and its variance) still. The next measurement re-acquires:
  *   the track restarts from it as from the first one, keeping the centre.
  *   A measurement the innovation gate rejects counts as a missing one.
+ *
+ * Noise calibration (settings.noise_time > 0, not in the paper; hkf.h): the
+ * filter measures each axis's frame-to-frame noise n (noise_estimate_update)
+ * and R and q follow it: R = n e(z) / e(mu) (calibrated_noise_lanes: the
+ * paper's Eq. 8 gives the pose-dependent factor, n the scale) and q =
+ * process_noise n (process_noise_lanes); q_boost follows a signed motion
+ * detector (motion_step) instead of the innovation's squared excess.
  */
 #include "hkf/hkf.h"
 #include "hkf_internal.h"
@@ -81,11 +88,22 @@ static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, h
  * the range every setting of q is checked against, so the boost never takes
  * the filter where no q could (found by fuzz_libhkf: an outlier's y^2 / S
  * of ~1e13 made q, then P, infinite). */
+static inline int calibrated(const hkf_filter_t *f)
+{
+    return HKF_SETTINGS(f)->noise_time > 0;
+}
+
 static inline void process_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t q[restrict HKF_LANES])
 {
     const hkf_real_t boost = HKF_SETTINGS(f)->q_boost;
     const hkf_real_t most = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
     int a;
+    if (calibrated(f)) { /* q = process_noise n; the motion boost is the update's (motion_step) */
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
+            q[a] = hkf_mul(HKF_Q(f, a), f->noise[a]);
+        }
+        return;
+    }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         q[a] = HKF_Q(f, a);
     }
@@ -120,11 +138,18 @@ static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
 }
 
-/* The measurement into the axis lanes (the idle fourth lane 0). */
+static inline hkf_real_t clamp(hkf_real_t x, hkf_real_t low, hkf_real_t high)
+{
+    x = x < low ? low : x;
+    return x > high ? high : x;
+}
+
+/* The measurement into the axis lanes (the idle fourth lane 0), yaw wrapped
+ * to [-180, 180): Eq. 8's R is read at the wrapped yaw (359 deg is -1 deg). */
 static void load_lanes(hkf_real_t lanes[restrict HKF_LANES], const hkf_real_t z[restrict 3])
 {
     lanes[0] = z[0];
-    lanes[1] = z[1];
+    lanes[1] = hkf_wrap180(z[1]);
     lanes[2] = z[2];
 #if HKF_LANES > 3 /* (HKF_AXES is an enum, unseen by the preprocessor) */
     lanes[3] = 0;
@@ -172,6 +197,18 @@ static HKF_ALWAYS_INLINE int loop_closure(const hkf_filter_t *restrict f, const 
     return closed;
 }
 
+/* Noise calibration, R = n e(z) / e(mu): the mode's R at the measured angles
+ * (Eq. 8, clamped: the pose-dependent factor) scaled by the measured noise n
+ * over the same R at the curve's centre, clamped again. */
+static HKF_ALWAYS_INLINE void calibrated_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t r[restrict HKF_LANES])
+{
+    const hkf_real_t low = HKF_SETTINGS(f)->r_min, high = HKF_SETTINGS(f)->r_max;
+    int a;
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        r[a] = clamp(hkf_divide(hkf_mul(r[a], f->noise[a]), f->r_centre[a]), low, high);
+    }
+}
+
 /* Paper Eq. 8, amplitude form:  e(x) = tau - lambda exp(-(x - mu)^2 / (2 sigma^2)).
  * The paper prints Eq. 8 with the normalising factor 1/(sqrt(2 pi) sigma),
  * but its Table I only makes sense without it (FSA-Net yaw: 7.64 - 4.11 =
@@ -182,12 +219,6 @@ static HKF_ALWAYS_INLINE int loop_closure(const hkf_filter_t *restrict f, const 
 static inline hkf_real_t noise_curve(const hkf_filter_t *restrict f, int lane, hkf_real_t x)
 {
     return hkf_add(HKF_NOISE_FLOOR(f, lane), hkf_curve_rise(f, lane, hkf_sub(x, HKF_MU(f, lane))));
-}
-
-static inline hkf_real_t clamp(hkf_real_t x, hkf_real_t low, hkf_real_t high)
-{
-    x = x < low ? low : x;
-    return x > high ? high : x;
 }
 
 /* R for every lane at the measured angles x: the mode is tested once, so
@@ -251,6 +282,8 @@ static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
         f->motion[a] = 0;
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(z[HKF_AXIS_YAW]);
+    load_lanes(f->last_z, z); /* the noise estimate's history restarts; its n is kept */
+    f->noise_history = 1u;
     if (f->center_source == CENTER_NONE) {
         for (a = 0; a < HKF_AXES; ++a) {
             f->center[a] = f->angle[a];
@@ -269,6 +302,7 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
     int a;
     f->time_since_measurement = hkf_add(f->time_since_measurement, dt);
     f->status = HKF_STATUS_COASTING;
+    f->noise_history = 0u; /* a missing frame breaks the second difference */
     if (f->time_since_measurement >= HKF_SETTINGS(f)->coast_time) {
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
             f->rate[a] = 0;
@@ -327,6 +361,14 @@ void hkf_reset(hkf_filter_t *f)
         f->r[a] = 0;
         f->motion[a] = 0;
     }
+    for (a = 0; a < HKF_LOOP_LANES; ++a) { /* n starts at e(mu), the estimator's error on a benchmark */
+        f->noise[a] = observation_noise(f, a, HKF_MU(f, a));
+        f->noise_power[a] = f->noise[a];
+        f->last_z[a] = 0;
+        f->last_step[a] = 0;
+        f->r_centre[a] = hkf_divisor(f->noise[a]);
+    }
+    f->noise_history = 0u;
     if (f->center_source != CENTER_EXPLICIT) {
         f->center_source = CENTER_NONE;
     }
@@ -382,6 +424,78 @@ static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_r
     f->status = HKF_STATUS_TRACKING;
 }
 
+/* Noise calibration's motion detector and the boost it drives, for this step
+ * (hkf.h): m += alpha (y - m) low-passes the innovation y; while the head is
+ * still y is white with variance S and m has variance S alpha / (2 - alpha),
+ * so e = m^2 (2 - alpha) / (alpha S) - motion_threshold is the evidence of a
+ * motion beyond chance (with (2 - alpha) / alpha = 1 + 2 time / dt). Where e
+ * > 0 this step's q becomes q (1 + q_boost e) (the extra is added to the
+ * predicted P, and S recomputed); elsewhere the rate decays with time
+ * constant rate_damping_time, so the filter stops with the head. */
+static HKF_ALWAYS_INLINE void motion_step(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
+                                          const hkf_real_t r[restrict HKF_LANES],
+                                          hkf_divisor_t inv_s[restrict HKF_LANES], hkf_real_t dt)
+{
+    const hkf_settings_t *s = HKF_SETTINGS(f);
+    const hkf_real_t most = HKF_REAL(10000.0), one = HKF_REAL(1.0);
+    const hkf_real_t ratio = hkf_divide(dt, hkf_divisor(hkf_add(dt, s->q_boost_time)));
+    const hkf_real_t alpha = ratio < one ? ratio : one;
+    const hkf_real_t spread = hkf_add(one, hkf_divide(hkf_add(s->q_boost_time, s->q_boost_time), hkf_divisor(dt)));
+    const hkf_real_t damping = s->rate_damping_time > 0
+                                   ? hkf_divide(dt, hkf_divisor(hkf_add(dt, s->rate_damping_time)))
+                                   : 0;
+    const hkf_real_t most_q = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
+    int a;
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        const hkf_real_t m = hkf_add(f->motion[a], hkf_mul(alpha, hkf_sub(y[a], f->motion[a])));
+        const hkf_real_t e = hkf_sub(hkf_divide(hkf_mul(hkf_mul(m, m), spread), inv_s[a]), s->motion_threshold);
+        const hkf_real_t excess = e > 0 ? (e < most ? e : most) : 0; /* NaN (0 inf) reads as none */
+        const hkf_real_t q = hkf_mul(hkf_mul(HKF_Q(f, a), f->noise[a]), hkf_mul(s->q_boost, excess));
+        const hkf_real_t qdt = hkf_mul(q < most_q ? q : most_q, dt);
+        f->motion[a] = m;
+        f->p00[a] = hkf_add(f->p00[a], angle_variance_growth(0, 0, qdt, dt));
+        f->p01[a] = hkf_add(f->p01[a], hkf_mul(hkf_mul(qdt, dt), HKF_REAL(0.5)));
+        f->p11[a] = hkf_add(f->p11[a], qdt);
+        f->rate[a] = hkf_sub(f->rate[a], hkf_mul(excess > 0 ? 0 : damping, f->rate[a]));
+        inv_s[a] = hkf_divisor(hkf_add(f->p00[a], r[a]));
+    }
+}
+
+/* Noise calibration's estimate of n per axis (hkf.h), from the raw
+ * measurement z after the update: d = (z - z_k-1) - (z_k-1 - z_k-2), yaw
+ * steps on the circle; power += beta (d^2 / 6 - power) with beta = dt / (dt
+ * + noise_time); n = power where that is lower, else n grows by at most
+ * (1 + noise_rise dt) towards it; n >= r_min. */
+static void noise_estimate_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt)
+{
+    const hkf_settings_t *s = HKF_SETTINGS(f);
+    hkf_real_t lanes[HKF_LANES], step[HKF_LANES];
+    int a;
+    load_lanes(lanes, z);
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        step[a] = hkf_sub(lanes[a], f->last_z[a]);
+    }
+    step[HKF_AXIS_YAW] = hkf_wrap180(step[HKF_AXIS_YAW]);
+    if (f->noise_history >= 2u) {
+        const hkf_real_t beta = hkf_divide(dt, hkf_divisor(hkf_add(dt, s->noise_time)));
+        const hkf_real_t rise = hkf_add(HKF_REAL(1.0), hkf_mul(s->noise_rise, dt));
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
+            const hkf_real_t d = hkf_sub(step[a], f->last_step[a]);
+            const hkf_real_t sample = hkf_mul(hkf_mul(d, d), HKF_REAL(0.16666666666666667));
+            const hkf_real_t power = hkf_add(f->noise_power[a], hkf_mul(beta, hkf_sub(sample, f->noise_power[a])));
+            const hkf_real_t grown = hkf_mul(f->noise[a], rise);
+            const hkf_real_t n = power < f->noise[a] ? power : grown < power ? grown : power;
+            f->noise_power[a] = power;
+            f->noise[a] = n > s->r_min ? n : s->r_min;
+        }
+    }
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        f->last_z[a] = lanes[a];
+        f->last_step[a] = step[a];
+    }
+    f->noise_history += f->noise_history < 2u ? 1u : 0u;
+}
+
 /* hkf_update's step for a measurement z whose Eq. 8 curves (and r_const,
  * r_min, r_max) are those of `noise`: f itself, or a second model's prepared
  * curves (hkf_update_pair when only the second model measured). z is checked. */
@@ -413,6 +527,9 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
         flags |= HKF_FLAG_LOOP_CLOSURE;
     }
     observation_noise_lanes(noise, y, r);                                 /* Eq. 8 */
+    if (calibrated(f)) {
+        calibrated_noise_lanes(f, r);                                     /* R = n e(z) / e(mu) */
+    }
     innovation(f, y, r, inv_s);
 
     /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
@@ -431,7 +548,11 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
         return HKF_OK;
     }
 
-    if (HKF_SETTINGS(f)->q_boost > 0) {
+    if (calibrated(f)) {
+        if (HKF_SETTINGS(f)->q_boost > 0 || HKF_SETTINGS(f)->rate_damping_time > 0) {
+            motion_step(f, y, r, inv_s, dt);
+        }
+    } else if (HKF_SETTINGS(f)->q_boost > 0) {
         /* m += alpha (e - m), alpha = dt / (dt + time) in [0, 1], e = y^2 / S - 1 within [0, 10^4]:
          * m stays within [0, 10^4] whatever the input (fuzz_libhkf: a reciprocal of a denormal
          * dt + time overflowed alpha, and m went to -inf) */
@@ -445,6 +566,9 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
         }
     }
     correct_axes(f, y, r, inv_s);
+    if (calibrated(f)) {
+        noise_estimate_update(f, z, dt);
+    }
     write_output(f, flags, out);
     return HKF_OK;
 }
@@ -497,6 +621,9 @@ int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], co
         first.flags |= HKF_FLAG_LOOP_CLOSURE;
     }
     observation_noise_lanes(&noise2, y, r);
+    if (calibrated(f)) {
+        calibrated_noise_lanes(f, r); /* its Eq. 8 scaled by the first model's measured noise */
+    }
     innovation(f, y, r, inv_s);
     if (gated(f, y, inv_s)) { /* the first's outcome stands */
         write_output(f, first.flags | HKF_FLAG_GATED, out);

@@ -65,6 +65,10 @@ const hkf_noise_curve_t hkf_noise_hopenet[3] = {
         .max_dt = HKF_REAL(1.0),                                                \
         .q_boost = HKF_REAL(boost),                                             \
         .q_boost_time = HKF_REAL(0.05),                                         \
+        .noise_time = HKF_REAL(0.0),                                            \
+        .noise_rise = HKF_REAL(0.0),                                            \
+        .motion_threshold = HKF_REAL(0.0),                                      \
+        .rate_damping_time = HKF_REAL(0.0),                                     \
     }
 
 const hkf_settings_t hkf_default_settings = HKF_SETTINGS_WITH(5.0, 10.0, 5.0, 3000.0);
@@ -88,7 +92,8 @@ static int all_finite(const hkf_real_t *v, int n)
 static int settings_finite(const hkf_settings_t *s)
 {
     const hkf_real_t scalars[] = {s->r_min, s->r_max, s->lc_xi, s->lc_theta, s->p0_angle, s->p0_rate,
-                                  s->gate_sigma, s->coast_time, s->max_dt, s->q_boost, s->q_boost_time};
+                                  s->gate_sigma, s->coast_time, s->max_dt, s->q_boost, s->q_boost_time,
+                                  s->noise_time, s->noise_rise, s->motion_threshold, s->rate_damping_time};
     int a;
     for (a = 0; a < HKF_AXES; ++a) {
         const hkf_noise_curve_t *c = &s->noise[a];
@@ -172,6 +177,12 @@ int hkf_settings_check(const hkf_settings_t *s)
     if (!(s->q_boost >= 0 && s->q_boost <= HKF_REAL_FROM(HKF_MAX_Q_BOOST) && s->q_boost_time >= 0 &&
           s->q_boost_time <= HKF_REAL_FROM(HKF_MAX_TIME))) {
         return HKF_ERROR_SETTING_Q_BOOST;
+    }
+    if (!(s->noise_time >= 0 && s->noise_time <= HKF_REAL_FROM(HKF_MAX_TIME) && s->rate_damping_time >= 0 &&
+          s->rate_damping_time <= HKF_REAL_FROM(HKF_MAX_TIME) && s->noise_rise >= 0 &&
+          s->noise_rise <= HKF_REAL_FROM(HKF_MAX_NOISE_RISE) && s->motion_threshold >= 0 &&
+          s->motion_threshold <= HKF_REAL_FROM(HKF_MAX_MOTION_THRESHOLD))) {
+        return HKF_ERROR_SETTING_CALIBRATION;
     }
     return HKF_OK;
 }

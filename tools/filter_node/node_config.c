@@ -45,6 +45,10 @@ static const config_key_t keys[] = {
     {"max_dt", KIND_REAL, FIELD(max_dt), "s; a longer gap restarts the track"},
     {"q_boost", KIND_REAL, FIELD(q_boost), "motion-driven q: q (1 + q_boost m), 0 = off (the paper)"},
     {"q_boost_time", KIND_REAL, FIELD(q_boost_time), "s; time constant of m, the innovation's excess"},
+    {"noise_time", KIND_REAL, FIELD(noise_time), "s; noise calibration's time constant, 0 = off (the paper)"},
+    {"noise_rise", KIND_REAL, FIELD(noise_rise), "1/s; how fast the noise estimate may rise"},
+    {"motion_threshold", KIND_REAL, FIELD(motion_threshold), "calibrated motion detector's threshold"},
+    {"rate_damping_time", KIND_REAL, FIELD(rate_damping_time), "s; the rate's decay while still, 0 = never"},
 };
 #define KEY_COUNT (sizeof keys / sizeof keys[0])
 typedef char origin_slots_fit[KEY_COUNT + 1 <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys and the pair key */
@@ -435,6 +439,7 @@ static const char *const *keys_of_result(int result)
     static const char *const coast[] = {"coast_time", NULL};
     static const char *const max_dt[] = {"max_dt", NULL};
     static const char *const boost[] = {"q_boost", "q_boost_time", NULL};
+    static const char *const calibration[] = {"noise_time", "noise_rise", "motion_threshold", "rate_damping_time", NULL};
     static const char *const none[] = {NULL};
     switch (result) {
     case HKF_ERROR_SETTING_NOISE_MODE: return noise_mode;
@@ -451,6 +456,7 @@ static const char *const *keys_of_result(int result)
     case HKF_ERROR_SETTING_COAST_TIME: return coast;
     case HKF_ERROR_SETTING_MAX_DT: return max_dt;
     case HKF_ERROR_SETTING_Q_BOOST: return boost;
+    case HKF_ERROR_SETTING_CALIBRATION: return calibration;
     default: return none;
     }
 }

@@ -53,7 +53,9 @@ typedef enum {
     HKF_ERROR_SETTING_COAST_TIME = -31,  /* coast_time outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_MAX_DT = -32,      /* max_dt outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
-    HKF_ERROR_SETTING_Q_BOOST = -34      /* q_boost outside [0, HKF_MAX_Q_BOOST] or q_boost_time outside [0, HKF_MAX_TIME] */
+    HKF_ERROR_SETTING_Q_BOOST = -34,     /* q_boost outside [0, HKF_MAX_Q_BOOST] or q_boost_time outside [0, HKF_MAX_TIME] */
+    HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time or rate_damping_time outside [0, HKF_MAX_TIME], noise_rise outside
+                                            [0, HKF_MAX_NOISE_RISE] or motion_threshold outside [0, HKF_MAX_MOTION_THRESHOLD] */
 } hkf_result_t;
 
 /* A short English description of a hkf_result_t, for logs. Never NULL. */
@@ -84,7 +86,9 @@ const char *hkf_result_string(int result);
 #define HKF_MAX_LC_THETA 360     /* deg */
 #define HKF_MAX_GATE_SIGMA 1000
 #endif
-#define HKF_MAX_TIME 10          /* s: max_dt, coast_time, q_boost_time */
+#define HKF_MAX_TIME 10          /* s: max_dt, coast_time, q_boost_time, noise_time, rate_damping_time */
+#define HKF_MAX_NOISE_RISE 100   /* 1/s: noise_rise */
+#define HKF_MAX_MOTION_THRESHOLD 10000
 #define HKF_MAX_Q_BOOST 16384    /* q_boost */
 /* q_boost raises q to at most this, or to q itself where q is larger: the
  * same in every build (fixed point's whole range), so that a float, double
@@ -161,6 +165,27 @@ typedef struct {
      * the boosted q is at most HKF_MAX_BOOSTED_PROCESS_NOISE (or q). */
     hkf_real_t q_boost;
     hkf_real_t q_boost_time;       /* s */
+    /* Noise calibration (not in the paper; noise_time 0 = off, the paper's filter).
+     * The filter measures each axis's frame-to-frame noise n from the measurements
+     * (the second difference d = z_k - 2 z_k-1 + z_k-2 cancels a constant-velocity
+     * motion, and E[d^2] = 6 n for white noise): d^2 / 6 low-passed with time
+     * constant noise_time gives the noise power; the estimate n follows the power
+     * down at once and up by at most a factor (1 + noise_rise dt) per step, so a
+     * head's motion (which raises the power) does not pass for noise.
+     * With it on, the two parts of R multiply (libhkf/src/hkf_filter.c):
+     *   R = n e(z) / e(mu)    n: this camera's noise; e(z) / e(mu): Eq. 8's
+     *                         dependence on the pose (1 at the curve's centre)
+     *   q = process_noise n   process_noise is then in 1/s^3 (per deg^2 of noise)
+     * and q_boost follows a motion detector on that basis: m, the innovation
+     * low-passed with time constant q_boost_time, against the spread it has when
+     * the head is still (S alpha / (2 - alpha)); beyond motion_threshold the
+     * excess e raises q to q (1 + q_boost e) for this step; at or below it the
+     * rate decays with time constant rate_damping_time (0 = never), so a stop
+     * does not overshoot. */
+    hkf_real_t noise_time;         /* s */
+    hkf_real_t noise_rise;         /* 1/s */
+    hkf_real_t motion_threshold;   /* in units of the still detector's variance */
+    hkf_real_t rate_damping_time;  /* s */
 } hkf_settings_t;
 
 /* The defaults: the paper's filter (adaptive R with the FSA-Net curves of
@@ -227,7 +252,14 @@ typedef struct {
     hkf_real_t p00[HKF_LANES], p01[HKF_LANES], p11[HKF_LANES];
     hkf_real_t r[HKF_LANES];
     hkf_real_t center[HKF_LANES];
-    hkf_real_t motion[HKF_LANES];       /* m of q_boost: the low-passed innovation excess */
+    hkf_real_t motion[HKF_LANES];       /* m of q_boost: the low-passed innovation excess (calibrated: the low-passed innovation) */
+    /* noise calibration (hkf_settings_t.noise_time) */
+    hkf_real_t noise[HKF_LANES];        /* n: the frame-to-frame noise estimate, deg^2 */
+    hkf_real_t noise_power[HKF_LANES];  /* d^2 / 6 low-passed, deg^2 */
+    hkf_real_t last_z[HKF_LANES];       /* the last measurement */
+    hkf_real_t last_step[HKF_LANES];    /* the last measurement's step from the one before */
+    hkf_real_t r_centre[HKF_LANES];     /* e(mu), R at the curves' centre, as hkf_math.h's divisor */
+    unsigned noise_history;             /* measurements in a row behind last_z and last_step (0..2) */
     hkf_real_t time_since_measurement;
     unsigned gate_rejections;
     int center_source;           /* none, from the first measurement, or explicit */
