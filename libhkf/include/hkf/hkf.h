@@ -196,6 +196,11 @@ extern const hkf_settings_t hkf_default_settings;
 /* The paper's filter alone: the same with q 500 / 1000 / 500 and q_boost 0
  * (the defaults before the evaluation on real head motion). */
 extern const hkf_settings_t hkf_paper_settings;
+/* The defaults with noise calibration on (noise_time 0.3 s): q = 0.3 n per
+ * s^3, q_boost 300 on the signed motion detector (q_boost_time 0.2 s,
+ * motion_threshold 32), rate damping 0.3 s; chosen leaving one real clip out
+ * at a time (tools/eval/leave_one_out.py). */
+extern const hkf_settings_t hkf_calibrated_settings;
 
 /* Noise curves of the paper's Table I, per axis (pitch, yaw, roll). Table I
  * prints roll to three significant digits, which loses tau - lambda (the

@@ -1,0 +1,206 @@
+/*
+ * test_calibration.c - noise calibration (hkf.h, settings.noise_time): the
+ * frame-noise estimate n, what it does to R and q, the signed motion detector
+ * with its rate damping; and Eq. 8 read at the wrapped yaw.
+ */
+#include "test_support.h"
+
+#include "head_motion_sim.h"
+
+static const double frame_s = 1.0 / 30.0;
+
+/* hkf_calibrated_settings with R = n (constant mode: no pose factor), no loop closure. */
+static hkf_settings_t calibrated_settings(void)
+{
+    hkf_settings_t s = hkf_calibrated_settings;
+    s.noise_mode = HKF_NOISE_CONSTANT;
+    s.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    s.r_min = R(0.001);
+    return s;
+}
+
+/* Runs `frames` frames of yaw = truth(t) + sigma N(0, 1) (pitch and roll likewise, at 0)
+ * and returns the last R of yaw, which is n in constant mode. With `jitter`, also the
+ * RMS frame-to-frame change of the output's yaw over the last half. */
+static double run_still(const hkf_settings_t *s, double sigma, double rate, int frames, unsigned seed,
+                        double *jitter)
+{
+    hkf_filter_t f;
+    hkf_output_t out;
+    sim_rng_t rng;
+    double sum = 0.0, prev = 0.0;
+    int i, counted = 0;
+    assert_int_equal(hkf_init(&f, s), HKF_OK);
+    sim_rng_seed(&rng, seed);
+    for (i = 0; i < frames; ++i) {
+        hkf_real_t z[3];
+        const double truth = rate * frame_s * i;
+        set3(z, sigma * sim_rng_gaussian(&rng), truth + sigma * sim_rng_gaussian(&rng), sigma * sim_rng_gaussian(&rng));
+        assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+        if (i > frames / 2) {
+            const double step = D(out.angle[1]) - prev - rate * frame_s;
+            sum += step * step;
+            ++counted;
+        }
+        prev = D(out.angle[1]);
+    }
+    if (jitter != NULL) {
+        *jitter = sqrt(sum / counted);
+    }
+    return D(out.r[1]);
+}
+
+/* White frame noise of sigma: n settles near sigma^2 (the floor tracker reads the
+ * low-passed power's lower envelope, so somewhat below: within 0.4-1.1 sigma^2),
+ * the same on a head turning at constant speed (the second difference cancels it),
+ * and scales with sigma^2. */
+static void test_noise_estimate_follows_the_noise(void **state)
+{
+    const hkf_settings_t s = calibrated_settings();
+    const double still = run_still(&s, 0.3, 0.0, 600, 1u, NULL);
+    const double turning = run_still(&s, 0.3, 20.0, 600, 1u, NULL);
+    const double noisier = run_still(&s, 0.6, 0.0, 600, 1u, NULL);
+    (void)state;
+    print_message("n: %.4f still, %.4f turning at 20 deg/s (sigma^2 0.09); %.4f at sigma 0.6 (0.36)\n", still,
+                  turning, noisier);
+    assert_true(still > 0.4 * 0.09 && still < 1.1 * 0.09);
+    assert_true(turning > 0.4 * 0.09 && turning < 1.1 * 0.09);
+    assert_true(noisier / still > 0.7 * 4.0 && noisier / still < 1.3 * 4.0);
+}
+
+/* The point of calibration: the still output's jitter is the same share of the
+ * raw noise whatever the camera's noise (R and q scale together). */
+static void test_jitter_share_holds_with_more_noise(void **state)
+{
+    const hkf_settings_t s = calibrated_settings();
+    double j1, j2;
+    (void)state;
+    run_still(&s, 0.3, 0.0, 900, 2u, &j1);
+    run_still(&s, 0.6, 0.0, 900, 2u, &j2);
+    print_message("still jitter %.4f at sigma 0.3, %.4f at sigma 0.6: share %.3f vs %.3f\n", j1, j2, j1 / 0.3,
+                  j2 / 0.6);
+    assert_true(j1 / 0.3 < 0.5); /* it filters */
+    assert_near_at(j2 / 0.6, j1 / 0.3, 0.25 * j1 / 0.3, "jitter share at twice the noise", __FILE__, __LINE__);
+}
+
+/* A head that turns at 60 deg/s for 0.5 s and stops: the calibrated filter
+ * follows (less error during the turn than without the motion detector) and with
+ * rate damping overshoots the stop by less than without it. */
+static void test_motion_detector_and_damping(void **state)
+{
+    hkf_settings_t with = calibrated_settings(), no_boost, no_damping;
+    hkf_filter_t fw, fb, fd;
+    hkf_output_t ow, ob, od;
+    sim_rng_t rng;
+    double turn_w = 0.0, turn_b = 0.0, over_w = 0.0, over_d = 0.0;
+    int i;
+    (void)state;
+    no_boost = with;
+    no_boost.q_boost = 0;
+    no_damping = with;
+    no_damping.rate_damping_time = 0;
+    assert_int_equal(hkf_init(&fw, &with), HKF_OK);
+    assert_int_equal(hkf_init(&fb, &no_boost), HKF_OK);
+    assert_int_equal(hkf_init(&fd, &no_damping), HKF_OK);
+    sim_rng_seed(&rng, 3u);
+    for (i = 0; i < 300; ++i) {
+        const double t = i * frame_s;
+        const double truth = t < 5.0 ? 0.0 : t < 5.5 ? 60.0 * (t - 5.0) : 30.0;
+        hkf_real_t z[3];
+        set3(z, 0, truth + 0.3 * sim_rng_gaussian(&rng), 0);
+        assert_int_equal(hkf_update(&fw, z, R(frame_s), &ow), HKF_OK);
+        assert_int_equal(hkf_update(&fb, z, R(frame_s), &ob), HKF_OK);
+        assert_int_equal(hkf_update(&fd, z, R(frame_s), &od), HKF_OK);
+        if (t >= 5.0 && t < 5.5) {
+            turn_w += fabs(truth - D(ow.angle[1]));
+            turn_b += fabs(truth - D(ob.angle[1]));
+        }
+        if (t >= 5.5 && t < 6.5) {
+            over_w = fmax(over_w, D(ow.angle[1]) - 30.0);
+            over_d = fmax(over_d, D(od.angle[1]) - 30.0);
+        }
+    }
+    print_message("turn error %.1f vs %.1f deg summed without the detector; overshoot %.2f vs %.2f deg without damping\n",
+                  turn_w, turn_b, over_w, over_d);
+    assert_true(turn_w < 0.5 * turn_b);
+    assert_true(over_w < over_d);
+}
+
+/* Eq. 8 is read at the wrapped yaw: a yaw of 359 deg is -1 deg, near the curve's
+ * centre, not on its tail (FSA-Net yaw: ~3.5 deg at the centre, ~7.6 far out). */
+static void test_yaw_r_read_wrapped(void **state)
+{
+    hkf_settings_t s = hkf_paper_settings;
+    hkf_filter_t f359, fm1;
+    hkf_output_t o359, om1;
+    hkf_real_t z[3];
+    int i;
+    (void)state;
+    s.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    assert_int_equal(hkf_init(&f359, &s), HKF_OK);
+    assert_int_equal(hkf_init(&fm1, &s), HKF_OK);
+    for (i = 0; i < 3; ++i) { /* the track's start, then two updates */
+        set3(z, 0, 359, 0);
+        assert_int_equal(hkf_update(&f359, z, R(frame_s), &o359), HKF_OK);
+        set3(z, 0, -1, 0);
+        assert_int_equal(hkf_update(&fm1, z, R(frame_s), &om1), HKF_OK);
+        assert_near_at(D(o359.r[1]), D(om1.r[1]), 1e-3, "R of yaw 359 vs -1", __FILE__, __LINE__);
+    }
+    assert_true(D(o359.r[1]) < 4.0);
+}
+
+/* Off (noise_time 0), the new settings change nothing: the paper's filter bit for bit. */
+static void test_off_is_the_paper(void **state)
+{
+    hkf_settings_t a = hkf_paper_settings, b = hkf_paper_settings;
+    hkf_filter_t fa, fb;
+    hkf_output_t oa, ob;
+    int i;
+    (void)state;
+    b.noise_rise = R(5);
+    b.motion_threshold = R(3);
+    b.rate_damping_time = R(0.1);
+    assert_int_equal(hkf_init(&fa, &a), HKF_OK);
+    assert_int_equal(hkf_init(&fb, &b), HKF_OK);
+    for (i = 0; i < 60; ++i) {
+        hkf_real_t z[3];
+        set3(z, 0.5 * i, 2.0 * i, -0.3 * i);
+        assert_int_equal(hkf_update(&fa, z, R(frame_s), &oa), HKF_OK);
+        assert_int_equal(hkf_update(&fb, z, R(frame_s), &ob), HKF_OK);
+        assert_memory_equal(oa.angle, ob.angle, sizeof oa.angle);
+        assert_memory_equal(oa.variance, ob.variance, sizeof oa.variance);
+    }
+}
+
+/* Out-of-range calibration settings are refused by name. */
+static void test_calibration_settings_checked(void **state)
+{
+    hkf_filter_t f;
+    hkf_settings_t s;
+    (void)state;
+    s = hkf_calibrated_settings;
+    s.noise_time = R(-1);
+    assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
+    s = hkf_default_settings;
+    s.noise_rise = R(200);
+    assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
+    s = hkf_default_settings;
+    s.motion_threshold = R(-0.5);
+    assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
+    s = hkf_default_settings;
+    s.rate_damping_time = R(11);
+    assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_noise_estimate_follows_the_noise),
+        cmocka_unit_test(test_jitter_share_holds_with_more_noise),
+        cmocka_unit_test(test_motion_detector_and_damping),
+        cmocka_unit_test(test_yaw_r_read_wrapped),
+        cmocka_unit_test(test_off_is_the_paper),
+        cmocka_unit_test(test_calibration_settings_checked),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
