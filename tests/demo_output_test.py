@@ -9,7 +9,7 @@ import subprocess
 import sys
 
 ROWS = ["raw measurements", "standard KF (constant R)", "adaptive KF (Eq. 8)", "adaptive KF + loop closure",
-        "hkf defaults (+ q_boost)"]
+        "hkf defaults (calibrated)"]
 
 
 def main():

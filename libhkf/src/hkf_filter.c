@@ -430,8 +430,10 @@ static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_r
  * so e = m^2 (2 - alpha) / (alpha S) - motion_threshold is the evidence of a
  * motion beyond chance (with (2 - alpha) / alpha = 1 + 2 time / dt). Where e
  * > 0 this step's q becomes q (1 + q_boost e) (the extra is added to the
- * predicted P, and S recomputed); elsewhere the rate decays with time
- * constant rate_damping_time, so the filter stops with the head. */
+ * predicted P, and S recomputed); below still_threshold the rate decays,
+ * with time constant rate_damping_time up to half of it and less and less
+ * above, so the filter stops with the head. Both are continuous in the
+ * evidence: no decision flips on rounding. */
 static HKF_ALWAYS_INLINE void motion_step(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
                                           const hkf_real_t r[restrict HKF_LANES],
                                           hkf_divisor_t inv_s[restrict HKF_LANES], hkf_real_t dt)
@@ -441,22 +443,31 @@ static HKF_ALWAYS_INLINE void motion_step(hkf_filter_t *restrict f, const hkf_re
     const hkf_real_t ratio = hkf_divide(dt, hkf_divisor(hkf_add(dt, s->q_boost_time)));
     const hkf_real_t alpha = ratio < one ? ratio : one;
     const hkf_real_t spread = hkf_add(one, hkf_divide(hkf_add(s->q_boost_time, s->q_boost_time), hkf_divisor(dt)));
-    const hkf_real_t damping = s->rate_damping_time > 0
+    const hkf_real_t damping = s->rate_damping_time > 0 && s->still_threshold > 0
                                    ? hkf_divide(dt, hkf_divisor(hkf_add(dt, s->rate_damping_time)))
                                    : 0;
+    const hkf_divisor_t still = hkf_divisor(s->still_threshold > 0 ? s->still_threshold : one);
     const hkf_real_t most_q = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         const hkf_real_t m = hkf_add(f->motion[a], hkf_mul(alpha, hkf_sub(y[a], f->motion[a])));
-        const hkf_real_t e = hkf_sub(hkf_divide(hkf_mul(hkf_mul(m, m), spread), inv_s[a]), s->motion_threshold);
-        const hkf_real_t excess = e > 0 ? (e < most ? e : most) : 0; /* NaN (0 inf) reads as none */
-        const hkf_real_t q = hkf_mul(hkf_mul(HKF_Q(f, a), f->noise[a]), hkf_mul(s->q_boost, excess));
+        const hkf_real_t evidence = hkf_divide(hkf_mul(hkf_mul(m, m), spread), inv_s[a]);
+        const hkf_real_t e = hkf_sub(evidence, s->motion_threshold);
+        const hkf_real_t positive = e > 0 ? e : 0; /* NaN (0 inf) reads as none */
+        const hkf_real_t excess = positive < most ? positive : most;
+        /* calm: 1 up to half still_threshold, then down to 0 at it */
+        const hkf_real_t ramp = hkf_sub(HKF_REAL(2.0), hkf_divide(hkf_add(evidence, evidence), still));
+        const hkf_real_t below_one = ramp < one ? ramp : one;
+        const hkf_real_t calm = below_one > 0 ? below_one : 0;
+        const hkf_real_t decay = hkf_mul(damping, calm);
+        /* ((q n) q_boost) e: a product that saturates Q16.16 is beyond the cap below anyway */
+        const hkf_real_t q = hkf_mul(hkf_mul(hkf_mul(HKF_Q(f, a), f->noise[a]), s->q_boost), excess);
         const hkf_real_t qdt = hkf_mul(q < most_q ? q : most_q, dt);
         f->motion[a] = m;
         f->p00[a] = hkf_add(f->p00[a], angle_variance_growth(0, 0, qdt, dt));
         f->p01[a] = hkf_add(f->p01[a], hkf_mul(hkf_mul(qdt, dt), HKF_REAL(0.5)));
         f->p11[a] = hkf_add(f->p11[a], qdt);
-        f->rate[a] = hkf_sub(f->rate[a], hkf_mul(excess > 0 ? 0 : damping, f->rate[a]));
+        f->rate[a] = hkf_sub(f->rate[a], hkf_mul(decay, f->rate[a]));
         inv_s[a] = hkf_divisor(hkf_add(f->p00[a], r[a]));
     }
 }
@@ -483,8 +494,8 @@ static void noise_estimate_update(hkf_filter_t *restrict f, const hkf_real_t z[r
             const hkf_real_t d = hkf_sub(step[a], f->last_step[a]);
             const hkf_real_t sample = hkf_mul(hkf_mul(d, d), HKF_REAL(0.16666666666666667));
             const hkf_real_t power = hkf_add(f->noise_power[a], hkf_mul(beta, hkf_sub(sample, f->noise_power[a])));
-            const hkf_real_t grown = hkf_mul(f->noise[a], rise);
-            const hkf_real_t n = power < f->noise[a] ? power : grown < power ? grown : power;
+            const hkf_real_t grown = hkf_mul(f->noise[a], rise); /* >= n: so min(grown, power) is power where that is lower */
+            const hkf_real_t n = grown < power ? grown : power;
             f->noise_power[a] = power;
             f->noise[a] = n > s->r_min ? n : s->r_min;
         }

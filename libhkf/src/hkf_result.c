@@ -28,7 +28,7 @@ const char *hkf_result_string(int result)
     case HKF_ERROR_SETTING_Q_BOOST: return "q_boost is not in [0, HKF_MAX_Q_BOOST], or q_boost_time not in [0, HKF_MAX_TIME] s";
     case HKF_ERROR_SETTING_CALIBRATION:
         return "noise_time or rate_damping_time is not in [0, HKF_MAX_TIME] s, noise_rise not in [0, 100] 1/s, "
-               "or motion_threshold not in [0, 10000]";
+               "or motion_threshold or still_threshold not in [0, 10000]";
     default: return "unknown hkf result code";
     }
 }

@@ -228,6 +228,7 @@ static void test_constant_vs_adaptive_r(void **state)
     constant.noise_mode = HKF_NOISE_CONSTANT;
     constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
     adaptive.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    constant.noise_time = adaptive.noise_time = 0; /* R from the settings alone (the paper's) */
     assert_int_equal(hkf_init(&fc, &constant), HKF_OK);
     assert_int_equal(hkf_init(&fa, &adaptive), HKF_OK);
     sim_rng_seed(&rng, 3u);
@@ -266,6 +267,7 @@ static void test_q_boost_still_and_moving(void **state)
     (void)state;
     plain.loop_closure = HKF_LOOP_CLOSURE_OFF;
     plain.noise_mode = HKF_NOISE_CONSTANT;
+    plain.noise_time = 0; /* q_boost on the paper's R (without noise calibration) */
     plain.process_noise[1] = R(10);
     plain.q_boost = 0;
     boosted = plain;

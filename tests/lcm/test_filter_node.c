@@ -840,8 +840,8 @@ static void test_second_model_offset_aligned(void **state)
     }
     print_message("mean offset from the first model's track, pitch / yaw: aligned %.3f / %.3f deg, unaligned "
                   "%.3f / %.3f deg\n", bias_aligned[0], bias_aligned[1], bias_unaligned[0], bias_unaligned[1]);
-    assert_true(fabs(bias_aligned[0]) < 0.2 && fabs(bias_aligned[1]) < 0.2);
-    assert_true(bias_unaligned[0] > 0.75 && bias_unaligned[1] < -0.75); /* where R weighs them: fsanet vs hopenet */
+    assert_true(fabs(bias_aligned[0]) < 0.1 && fabs(bias_aligned[1]) < 0.1);
+    assert_true(bias_unaligned[0] > 0.3 && bias_unaligned[1] < -0.3); /* where R weighs them: fsanet vs hopenet */
     assert_float_equal(node.second_offset[0], -4.0, 0.05);
     assert_float_equal(node.second_offset[1], 3.0, 0.05);
 }
@@ -911,7 +911,10 @@ static void test_second_model_offset_across_the_seam(void **state)
         }
     }
     assert_float_equal(node.second_offset[1], -2.0, 1e-3);
-    assert_true(worst < 0.5); /* the fused track never leaves the first model's by more than noise would */
+    print_message("largest distance from the first model's track: %.3f deg\n", worst);
+    /* the fused track stays with the first model's: a seam error would put it 2 deg (the offset) or a turn
+     * away; what remains is the dynamics of a halved R (0.59 deg on this noise-free turn) */
+    assert_true(worst < 1.0);
 }
 
 /* Where the first model measures a large turn (|yaw| >= pair_second_alone_from_yaw,

@@ -270,7 +270,7 @@ int main(int argc, char **argv)
     }
 
     /* The paper's baseline, the paper's adaptive R, the paper's full filter, and libhkf's
-     * defaults (the full filter with the motion-driven process noise). */
+     * defaults (Eq. 8 with noise calibration and the motion detector). */
     for (k = 0; k < FILTERS; ++k) {
         settings[k] = hkf_paper_settings;
     }
@@ -284,7 +284,7 @@ int main(int argc, char **argv)
     scores[0].name = "standard KF (constant R)";
     scores[1].name = "adaptive KF (Eq. 8)";
     scores[2].name = "adaptive KF + loop closure";
-    scores[3].name = "hkf defaults (+ q_boost)";
+    scores[3].name = "hkf defaults (calibrated)";
 
     score_raw(frames, n, &raw);
     for (k = 0; k < FILTERS; ++k) {

@@ -8,7 +8,8 @@ swept on the left-out clip itself (their best setting there: a fair sweep, and
 an advantage to them). The worst left-out clip decides.
 
 The choosing rule, on the tuning clips: among the settings whose still jitter is
-at most SHARE_GOAL of raw on every judged tuning clip, the one with the lowest
+at most TUNING_SHARE of raw on every judged tuning clip (a margin below the goal,
+SHARE_GOAL), the one with the lowest
 worst lag ratio (hkf's lag over the 1 euro filter's at hkf's jitter, on the 1
 euro front of that clip). A clip is judged where it has enough frames for both
 figures (MIN_STILL_PAIRS still pairs, MIN_MOVING moving frames); the others are
@@ -39,24 +40,26 @@ import peer_filters  # noqa: E402
 ROOT = evaluate.ROOT
 ESTIMATOR = "mesh_pnp"  # the default estimator
 SHARE_GOAL = 0.25       # still jitter at most this share of raw
+TUNING_SHARE = 0.20     # chosen with a margin: at most this share on every tuning clip (see choose)
 LAG_GOAL = 0.70         # lag at most this share of the best 1 euro's at equal jitter
 NOISE_GOAL = 0.20       # the share changes by at most this with x1.5 and x2 noise
-MIN_STILL_PAIRS = 30
+MIN_STILL_PAIRS = 25
 MIN_MOVING = 40
 NOISE_FACTORS = [1.0, 1.5, 2.0]
 # hkf with noise calibration: every combination is one setting
 CALIBRATED = {
-    "process_noise": [0.1, 0.3],            # 1/s^3 (times the measured noise)
-    "q_boost": [100, 300, 1000],
+    "process_noise": [1.0],                 # 1/s^3 (times the measured noise); 0.01-3 swept before, 1 won
+    "q_boost": [1000, 3000],
     "q_boost_time": [0.1, 0.2, 0.4],
-    "motion_threshold": [8, 16, 32],
-    "rate_damping_time": [0.1, 0.3],
+    "motion_threshold": [128, 256],
+    "still_threshold": [8, 16, 32],
+    "rate_damping_time": [0.1, 0.3, 1.0],
     "loop_closure": ["off", "norm"],
 }
 CALIBRATED_FIXED = ["noise_time=0.3", "noise_rise=0.2", "noise_mode=adaptive"]
-# libhkf's hkf_calibrated_settings as hkf-filter options
-CALIBRATED_SHIPPED = CALIBRATED_FIXED + ["process_noise=0.3 0.3 0.3", "q_boost=300", "q_boost_time=0.2",
-                                         "motion_threshold=32", "rate_damping_time=0.3", "loop_closure=norm"]
+# the defaults of hkf 0.1 (q_boost on the innovation's excess over Eq. 8's R, no calibration), for comparison
+PREVIOUS_DEFAULTS = ["noise_time=0", "process_noise=5 10 5", "q_boost=3000", "q_boost_time=0.05", "loop_closure=norm",
+                     "noise_mode=adaptive"]
 ONE_EURO_MIN_CUTOFF = [0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0]
 ONE_EURO_BETA = [0.0, 0.001, 0.003, 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 1.0, 2.0, 3.0]
 ACCELA_SMOOTHING = evaluate.ACCELA_SMOOTHING
@@ -140,7 +143,9 @@ def ratios(clip, m):
 
 
 def choose(clips, names, grid_size):
-    """The setting index chosen on these clips (the rule in the module's text), and its worst ratio."""
+    """The setting index chosen on these clips (the rule in the module's text). The share is held to
+    TUNING_SHARE, not SHARE_GOAL, on the tuning clips: a setting at the goal's very limit there lands beyond
+    it on a new clip (measured: chosen at <= 25 % on three clips, 25 % on d14, and 1.13x its 1 euro lag)."""
     best, best_key = None, None
     for k in range(grid_size):
         shares, lags = [], []
@@ -148,7 +153,7 @@ def choose(clips, names, grid_size):
             share, ratio, _ = ratios(clips[name], clips[name]["hkf"][k])
             shares.append(share)
             lags.append(ratio)
-        key = (max(shares) > SHARE_GOAL, max(lags) if max(shares) <= SHARE_GOAL else max(shares))
+        key = (max(shares) > TUNING_SHARE, max(lags) if max(shares) <= TUNING_SHARE else max(shares))
         if best_key is None or key < best_key:
             best, best_key = k, key
     return best
@@ -168,6 +173,12 @@ def main():
     work = os.path.join(folder, "work")
     os.makedirs(work, exist_ok=True)
     grid = calibrated_grid()
+    clips = measure_all(build, out, types, work, grid)
+    report(clips, grid, folder, build, types, work)
+
+
+def measure_all(build, out, types, work, grid):
+    """Per clip: its raw log and poses, the raw, hkf (every grid setting and the defaults), 1 euro and Accela metrics."""
     clips = {}
     for path in evaluate.clips():
         started = time.time()
@@ -183,6 +194,11 @@ def main():
         clips[name] = clip
         log(f"{name}: {len(grid)} hkf settings, {len(clip['euro'])} 1 euro, {len(clip['accela'])} Accela "
             f"({time.time() - started:.0f} s)")
+    return clips
+
+
+def report(clips, grid, folder, build, types, work):
+    """The leave-one-out and noise tables (printed and written to folder) and the figure."""
     with open(os.path.join(folder, "loo_sweep.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["clip", "setting", "jitter", "lag_ms", "raw_jitter", "still_pairs", "moving"])
@@ -239,7 +255,7 @@ def main():
     noise_lines = ["Noise robustness: white noise added to the raw poses (frame noise x1.5 and x2 of the clip's "
                    "own); still jitter as a share of raw, and its largest change from x1.\n",
                    "| settings | clip | x1 | x1.5 | x2 | largest change |", "| --- | --- | ---: | ---: | ---: | ---: |"]
-    for label, options in (("defaults as shipped", []), ("hkf_calibrated_settings", CALIBRATED_SHIPPED)):
+    for label, options in (("defaults as shipped", []), ("hkf 0.1 defaults", PREVIOUS_DEFAULTS)):
         worst_change = 0.0
         for i, name in enumerate(names):
             c = clips[name]

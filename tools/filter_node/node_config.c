@@ -49,6 +49,7 @@ static const config_key_t keys[] = {
     {"noise_rise", KIND_REAL, FIELD(noise_rise), "1/s; how fast the noise estimate may rise"},
     {"motion_threshold", KIND_REAL, FIELD(motion_threshold), "calibrated motion detector's threshold"},
     {"rate_damping_time", KIND_REAL, FIELD(rate_damping_time), "s; the rate's decay while still, 0 = never"},
+    {"still_threshold", KIND_REAL, FIELD(still_threshold), "calibrated motion detector: still below this"},
 };
 #define KEY_COUNT (sizeof keys / sizeof keys[0])
 typedef char origin_slots_fit[KEY_COUNT + 1 <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys and the pair key */
@@ -439,7 +440,8 @@ static const char *const *keys_of_result(int result)
     static const char *const coast[] = {"coast_time", NULL};
     static const char *const max_dt[] = {"max_dt", NULL};
     static const char *const boost[] = {"q_boost", "q_boost_time", NULL};
-    static const char *const calibration[] = {"noise_time", "noise_rise", "motion_threshold", "rate_damping_time", NULL};
+    static const char *const calibration[] = {"noise_time",        "noise_rise",      "motion_threshold",
+                                              "rate_damping_time", "still_threshold", NULL};
     static const char *const none[] = {NULL};
     switch (result) {
     case HKF_ERROR_SETTING_NOISE_MODE: return noise_mode;

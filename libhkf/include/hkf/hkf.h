@@ -55,7 +55,8 @@ typedef enum {
     HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
     HKF_ERROR_SETTING_Q_BOOST = -34,     /* q_boost outside [0, HKF_MAX_Q_BOOST] or q_boost_time outside [0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time or rate_damping_time outside [0, HKF_MAX_TIME], noise_rise outside
-                                            [0, HKF_MAX_NOISE_RISE] or motion_threshold outside [0, HKF_MAX_MOTION_THRESHOLD] */
+                                            [0, HKF_MAX_NOISE_RISE], motion_threshold or still_threshold outside
+                                            [0, HKF_MAX_MOTION_THRESHOLD] */
 } hkf_result_t;
 
 /* A short English description of a hkf_result_t, for logs. Never NULL. */
@@ -179,28 +180,28 @@ typedef struct {
      * and q_boost follows a motion detector on that basis: m, the innovation
      * low-passed with time constant q_boost_time, against the spread it has when
      * the head is still (S alpha / (2 - alpha)); beyond motion_threshold the
-     * excess e raises q to q (1 + q_boost e) for this step; at or below it the
-     * rate decays with time constant rate_damping_time (0 = never), so a stop
-     * does not overshoot. */
+     * excess e raises q to q (1 + q_boost e) for this step; below
+     * still_threshold (the head still) the rate decays, with time constant
+     * rate_damping_time (0 = never) up to half of it and less and less
+     * above, so a stop does not overshoot; between the two the filter runs
+     * with its plain q. */
     hkf_real_t noise_time;         /* s */
     hkf_real_t noise_rise;         /* 1/s */
     hkf_real_t motion_threshold;   /* in units of the still detector's variance */
     hkf_real_t rate_damping_time;  /* s */
+    hkf_real_t still_threshold;    /* same units as motion_threshold */
 } hkf_settings_t;
 
-/* The defaults: the paper's filter (adaptive R with the FSA-Net curves of
- * Table I, loop closure xi = 0.618, theta = 2 deg), gate off, with a small
- * q raised by motion (q 5 / 10 / 5, q_boost 3000), chosen on real head
- * motion (README, "How it compares"). */
+/* The defaults: the paper's adaptive R (Eq. 8, FSA-Net curves of Table I)
+ * with noise calibration (noise_time 0.3 s, noise_rise 0.2 per s): q = 1.0 n
+ * per s^3, q_boost 3000 on the signed motion detector (q_boost_time 0.1 s,
+ * motion_threshold 128, still_threshold 32), rate damping 0.3 s, loop closure
+ * off, gate off; chosen leaving one real clip out at a time (README, "Noise
+ * calibration, one clip left out"). */
 extern const hkf_settings_t hkf_default_settings;
-/* The paper's filter alone: the same with q 500 / 1000 / 500 and q_boost 0
- * (the defaults before the evaluation on real head motion). */
+/* The paper's filter alone: adaptive R, loop closure (xi 0.618, theta 2 deg),
+ * q 500 / 1000 / 500 deg^2/s^3, no calibration, q_boost or damping. */
 extern const hkf_settings_t hkf_paper_settings;
-/* The defaults with noise calibration on (noise_time 0.3 s): q = 0.3 n per
- * s^3, q_boost 300 on the signed motion detector (q_boost_time 0.2 s,
- * motion_threshold 32), rate damping 0.3 s; chosen leaving one real clip out
- * at a time (tools/eval/leave_one_out.py). */
-extern const hkf_settings_t hkf_calibrated_settings;
 
 /* Noise curves of the paper's Table I, per axis (pitch, yaw, roll). Table I
  * prints roll to three significant digits, which loses tau - lambda (the
