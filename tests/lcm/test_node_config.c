@@ -119,6 +119,20 @@ static void test_overrides(void **state)
     assert_true(s.lc_theta == 3.5f);
     s = node_config_for_model(&c, "nobody", &known);
     assert_false(known);
+    /* a model's own settings beyond its curves: only that model's, the rest from the base */
+    assert_int_equal(node_config_set(&c, "model.whenet.process_noise = 2 3 4", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "model.whenet.loop_closure = off", error, sizeof error), 0);
+    s = node_config_for_model(&c, "whenet", &known);
+    assert_true(s.process_noise[0] == 2.0f && s.process_noise[2] == 4.0f);
+    assert_int_equal(s.loop_closure, HKF_LOOP_CLOSURE_OFF);
+    assert_true(s.noise[1].mu == 0.5f); /* its curves kept */
+    assert_true(s.lc_theta == 3.5f);    /* the base's where it sets nothing */
+    assert_int_equal(node_config_set(&c, "lc_theta = 4", error, sizeof error), 0);
+    s = node_config_for_model(&c, "whenet", &known);
+    assert_true(s.lc_theta == 4.0f && s.process_noise[1] == 3.0f); /* a later base change reaches it */
+    s = node_config_for_model(&c, "mesh_pnp", &known);
+    assert_true(s.process_noise[0] == 1.0f);
+    assert_int_equal(s.loop_closure, HKF_LOOP_CLOSURE_PER_AXIS);
 }
 
 /* Errors name the key, the value, and in files the line. */
@@ -139,7 +153,8 @@ static void test_errors(void **state)
     assert_non_null(strstr(error, "fancy"));
     assert_int_equal(node_config_set(&c, "max_gate_rejections=-1", error, sizeof error), -1);
     assert_int_equal(node_config_set(&c, "lc_theta", error, sizeof error), -1);
-    assert_int_equal(node_config_set(&c, "model.x.lc_theta=1", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "model.x.bogus=1", error, sizeof error), -1);
+    assert_non_null(strstr(error, "bogus"));
     assert_int_equal(node_config_read_file(&c, write_temp("lc_xi = 0.5\n\nbogus line\n"), error, sizeof error), -1);
     assert_non_null(strstr(error, ":3:"));
     assert_int_equal(node_config_read_file(&c, write_temp("[modle x]\n"), error, sizeof error), -1);
@@ -158,6 +173,7 @@ static void test_print_reads_back(void **state)
     node_config_defaults(&c);
     assert_int_equal(node_config_set(&c, "lc_xi=0.25", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "model.whenet.r_const=1 2 3", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "model.whenet.q_boost=100", error, sizeof error), 0);
     strcpy(path, "/tmp/hkf_config_print_XXXXXX");
     f = fdopen(mkstemp(path), "w");
     node_config_print(&c, f);
@@ -168,6 +184,11 @@ static void test_print_reads_back(void **state)
     assert_true(same_settings(&c.settings, &back.settings));
     assert_int_equal(back.model_count, 4);
     assert_true(same_models(back.models, c.models, 4));
+    {
+        int known;
+        const hkf_settings_t a = node_config_for_model(&c, "whenet", &known), b = node_config_for_model(&back, "whenet", &known);
+        assert_true(same_settings(&a, &b) && b.q_boost == 100.0f);
+    }
     remove(path);
 }
 
@@ -238,6 +259,12 @@ static void test_check_names_where(void **state)
     snprintf(where, sizeof where, "%s:2: noise.yaw = 1 2 3 -4", path);
     assert_non_null(strstr(error, where));
     assert_non_null(strstr(error, "'mine'"));
+    node_config_defaults(&c); /* a model's own key, named where it was set */
+    path = write_temp("[model mine]\nnoise_time = 20\n");
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), 0);
+    assert_int_equal(node_config_check(&c, error, sizeof error), -1);
+    snprintf(where, sizeof where, "%s:2: noise_time = 20", path);
+    assert_non_null(strstr(error, where));
 }
 
 /* A value beyond the number type, NaN or infinite is said to be that (not

@@ -84,7 +84,7 @@ static void usage(FILE *to)
             "  --rate HZ            also publish poses extrapolated to this rate between measurements\n"
             "  --config FILE        settings file (see tools/filter_node/hkf-filter.conf)\n"
             "  --set KEY=VALUE      override one setting (repeatable), e.g. --set lc_theta=3,\n"
-            "                       --set model.whenet.noise.yaw='7 4 0 30'\n"
+            "                       --set model.whenet.noise.yaw='7 4 0 30' (any key, for one model)\n"
             "  --print-config       print the effective settings and exit\n"
             "  --offline IN OUT     filter the log IN into the log OUT as fast as possible\n"
             "  --csv FILE           also write every published pose as CSV\n"

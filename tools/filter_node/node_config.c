@@ -53,6 +53,7 @@ static const config_key_t keys[] = {
 };
 #define KEY_COUNT (sizeof keys / sizeof keys[0])
 typedef char origin_slots_fit[KEY_COUNT + 1 <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys and the pair key */
+typedef char own_keys_fit[KEY_COUNT <= 32 ? 1 : -1];                     /* a bit per key in node_model_t.own_keys */
 
 static const char *const noise_mode_names[] = {"constant", "adaptive", "adaptive_squared"};
 static const char *const loop_closure_names[] = {"off", "norm", "per_axis"};
@@ -225,37 +226,70 @@ static void set_origin(char *slot, const char *origin)
 }
 
 /* A model's keys: noise.pitch, noise.yaw, noise.roll (0-2) and r_const (3). */
-static int model_key_slot(const char *key_name)
+/* Every model entry has its curves and r_const; any other key it may set too. */
+static int model_always_owns(const config_key_t *key)
 {
-    return strcmp(key_name, "r_const") == 0 ? 3 : strcmp(key_name, "noise.pitch") == 0 ? 0
-         : strcmp(key_name, "noise.yaw") == 0 ? 1 : strcmp(key_name, "noise.roll") == 0 ? 2 : -1;
+    return key->kind == KIND_CURVE || strcmp(key->name, "r_const") == 0;
 }
 
-/* A model entry has only the noise curves and r_const of the settings. */
+static size_t key_size(const config_key_t *key)
+{
+    switch (key->kind) {
+    case KIND_REAL: return sizeof(hkf_real_t);
+    case KIND_REAL3: return 3 * sizeof(hkf_real_t);
+    case KIND_CURVE: return sizeof(hkf_noise_curve_t);
+    case KIND_NOISE_MODE: return sizeof(hkf_noise_mode_t);
+    case KIND_LOOP_CLOSURE: return sizeof(int);
+    case KIND_UINT: return sizeof(unsigned);
+    }
+    return 0;
+}
+
+static int model_owns(const node_model_t *m, const config_key_t *key)
+{
+    return model_always_owns(key) || (m->own_keys >> (key - keys) & 1ul) != 0;
+}
+
+/* The base settings with a model's curves, r_const and own keys. */
+static hkf_settings_t settings_of_model(const node_config_t *config, const node_model_t *m)
+{
+    hkf_settings_t s = config->settings;
+    size_t k;
+    memcpy(s.noise, m->noise, sizeof s.noise);
+    memcpy(s.r_const, m->r_const, sizeof s.r_const);
+    for (k = 0; k < KEY_COUNT; ++k) {
+        if (!model_always_owns(&keys[k]) && (m->own_keys >> k & 1ul) != 0) {
+            memcpy((char *)&s + keys[k].offset, (const char *)&m->own + keys[k].offset, key_size(&keys[k]));
+        }
+    }
+    return s;
+}
+
 static int set_model_key(node_config_t *config, const char *model, const char *key_name, const char *value,
                          const char *origin, char *error, size_t error_size)
 {
     const config_key_t *key = find_key(key_name);
-    const int slot = model_key_slot(key_name);
     node_model_t *m;
     hkf_settings_t scratch;
-    if (key == NULL || slot < 0) {
-        snprintf(error, error_size, "a model sets noise.pitch, noise.yaw, noise.roll or r_const, not '%s'", key_name);
+    if (key == NULL) {
+        snprintf(error, error_size, "unknown key '%s' for a model (--print-config lists them)", key_name);
         return -1;
     }
     m = find_or_add_model(config, model, error, error_size);
     if (m == NULL) {
         return -1;
     }
-    scratch = config->settings;
-    memcpy(scratch.noise, m->noise, sizeof m->noise);
-    memcpy(scratch.r_const, m->r_const, sizeof m->r_const);
+    scratch = settings_of_model(config, m);
     if (set_key(&scratch, key, value, error, error_size) != 0) {
         return -1;
     }
     memcpy(m->noise, scratch.noise, sizeof m->noise);
     memcpy(m->r_const, scratch.r_const, sizeof m->r_const);
-    set_origin(m->origin[slot], origin);
+    if (!model_always_owns(key)) {
+        memcpy((char *)&m->own + key->offset, (const char *)&scratch + key->offset, key_size(key));
+        m->own_keys |= 1ul << (key - keys);
+    }
+    set_origin(m->origin[key - keys], origin);
     return 0;
 }
 
@@ -471,15 +505,11 @@ static void describe_origins(const node_config_t *config, const node_model_t *mo
                              size_t size)
 {
     const char *const *names = keys_of_result(result);
-    hkf_settings_t s = config->settings;
-    if (model != NULL) {
-        memcpy(s.noise, model->noise, sizeof s.noise);
-        memcpy(s.r_const, model->r_const, sizeof s.r_const);
-    }
+    const hkf_settings_t s = model != NULL ? settings_of_model(config, model) : config->settings;
     for (; *names != NULL; ++names) {
         const config_key_t *key = find_key(*names);
-        const int slot = model_key_slot(*names);
-        const char *origin = model != NULL && slot >= 0 ? model->origin[slot] : config->origin[key - keys];
+        const char *origin = model != NULL && model_owns(model, key) ? model->origin[key - keys]
+                                                                      : config->origin[key - keys];
         char value[160];
         const size_t used = strlen(text);
         if (origin[0] == '\0') {
@@ -516,18 +546,15 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
 
 hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known)
 {
-    hkf_settings_t s = config->settings;
     int i;
     *known = 0;
     for (i = 0; i < config->model_count; ++i) {
         if (strcmp(config->models[i].name, model) == 0) {
-            memcpy(s.noise, config->models[i].noise, sizeof s.noise);
-            memcpy(s.r_const, config->models[i].r_const, sizeof s.r_const);
             *known = 1;
-            break;
+            return settings_of_model(config, &config->models[i]);
         }
     }
-    return s;
+    return config->settings;
 }
 
 /* The shortest text that reads back as the same hkf_real_t. */
@@ -587,12 +614,10 @@ void node_config_print(const node_config_t *config, FILE *out)
             "deg; two models on one channel: the second alone where the first's |yaw| >= this");
     for (m = 0; m < config->model_count; ++m) {
         const node_model_t *model = &config->models[m];
-        hkf_settings_t s = config->settings;
-        memcpy(s.noise, model->noise, sizeof s.noise);
-        memcpy(s.r_const, model->r_const, sizeof s.r_const);
+        const hkf_settings_t s = settings_of_model(config, model);
         fprintf(out, "\n[model %s]\n", model->name);
         for (i = 0; i < KEY_COUNT; ++i) {
-            if (keys[i].kind == KIND_CURVE || strcmp(keys[i].name, "r_const") == 0) {
+            if (model_owns(model, &keys[i])) {
                 print_key(&s, &keys[i], out);
             }
         }

@@ -22,7 +22,11 @@ typedef struct {
     char name[NODE_MODEL_NAME_MAX];  /* the measurement's `model` field */
     hkf_noise_curve_t noise[3];      /* its Eq. 8 curves: pitch, yaw, roll */
     hkf_real_t r_const[3];           /* its constant R, deg^2 */
-    char origin[4][NODE_ORIGIN_MAX]; /* where noise.pitch/yaw/roll and r_const were set ("": built in) */
+    /* Any other setting may be the model's own (e.g. its process_noise): own_keys has bit k where
+     * the k-th key of node_config.c's table is, and own holds its value; the rest come from the base. */
+    hkf_settings_t own;
+    unsigned long own_keys;
+    char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* per key, where this model's value was set ("": built in) */
 } node_model_t;
 
 typedef struct {
@@ -57,7 +61,7 @@ int node_config_set(node_config_t *config, const char *assignment, char *error, 
  * offending settings were given. */
 int node_config_check(const node_config_t *config, char *error, size_t error_size);
 
-/* The settings for a model id: its table entry's curves over the base settings. */
+/* The settings for a model id: its table entry's curves and own keys over the base settings. */
 hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known);
 
 /* Writes the configuration in the config-file format (reads back the same). */
