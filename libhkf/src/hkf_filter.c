@@ -98,9 +98,11 @@ static inline void process_noise_lanes(const hkf_filter_t *restrict f, hkf_real_
     const hkf_real_t boost = HKF_SETTINGS(f)->q_boost;
     const hkf_real_t most = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
     int a;
-    if (calibrated(f)) { /* q = process_noise n; the motion boost is the update's (motion_step) */
+    if (calibrated(f)) { /* q = process_noise n, capped as the boost is; the motion boost is the update's (motion_step) */
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            q[a] = hkf_mul(HKF_Q(f, a), f->noise[a]);
+            const hkf_real_t scaled = hkf_mul(HKF_Q(f, a), f->noise[a]);
+            const hkf_real_t cap = HKF_Q(f, a) > most ? HKF_Q(f, a) : most;
+            q[a] = scaled < cap ? scaled : cap;
         }
         return;
     }
@@ -142,6 +144,14 @@ static inline hkf_real_t clamp(hkf_real_t x, hkf_real_t low, hkf_real_t high)
 {
     x = x < low ? low : x;
     return x > high ? high : x;
+}
+
+/* A low-pass's step weight dt / (dt + time), at most 1: in float the reciprocal of a denormal
+ * dt + time overflows (found by fuzz_libhkf), and the weight would be infinite. */
+static inline hkf_real_t step_weight(hkf_real_t dt, hkf_real_t time)
+{
+    const hkf_real_t ratio = hkf_divide(dt, hkf_divisor(hkf_add(dt, time)));
+    return ratio < HKF_REAL(1.0) ? ratio : HKF_REAL(1.0);
 }
 
 /* The measurement into the axis lanes (the idle fourth lane 0), yaw wrapped
@@ -440,12 +450,9 @@ static HKF_ALWAYS_INLINE void motion_step(hkf_filter_t *restrict f, const hkf_re
 {
     const hkf_settings_t *s = HKF_SETTINGS(f);
     const hkf_real_t most = HKF_REAL(10000.0), one = HKF_REAL(1.0);
-    const hkf_real_t ratio = hkf_divide(dt, hkf_divisor(hkf_add(dt, s->q_boost_time)));
-    const hkf_real_t alpha = ratio < one ? ratio : one;
+    const hkf_real_t alpha = step_weight(dt, s->q_boost_time);
     const hkf_real_t spread = hkf_add(one, hkf_divide(hkf_add(s->q_boost_time, s->q_boost_time), hkf_divisor(dt)));
-    const hkf_real_t damping = s->rate_damping_time > 0 && s->still_threshold > 0
-                                   ? hkf_divide(dt, hkf_divisor(hkf_add(dt, s->rate_damping_time)))
-                                   : 0;
+    const hkf_real_t damping = s->rate_damping_time > 0 && s->still_threshold > 0 ? step_weight(dt, s->rate_damping_time) : 0;
     const hkf_divisor_t still = hkf_divisor(s->still_threshold > 0 ? s->still_threshold : one);
     const hkf_real_t most_q = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
     int a;
@@ -488,7 +495,7 @@ static void noise_estimate_update(hkf_filter_t *restrict f, const hkf_real_t z[r
     }
     step[HKF_AXIS_YAW] = hkf_wrap180(step[HKF_AXIS_YAW]);
     if (f->noise_history >= 2u) {
-        const hkf_real_t beta = hkf_divide(dt, hkf_divisor(hkf_add(dt, s->noise_time)));
+        const hkf_real_t beta = step_weight(dt, s->noise_time);
         const hkf_real_t rise = hkf_add(HKF_REAL(1.0), hkf_mul(s->noise_rise, dt));
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
             const hkf_real_t d = hkf_sub(step[a], f->last_step[a]);
@@ -568,8 +575,7 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
          * m stays within [0, 10^4] whatever the input (fuzz_libhkf: a reciprocal of a denormal
          * dt + time overflowed alpha, and m went to -inf) */
         const hkf_real_t most = HKF_REAL(10000.0);
-        const hkf_real_t ratio = hkf_divide(dt, hkf_divisor(hkf_add(dt, HKF_SETTINGS(f)->q_boost_time)));
-        const hkf_real_t alpha = ratio < HKF_REAL(1.0) ? ratio : HKF_REAL(1.0);
+        const hkf_real_t alpha = step_weight(dt, HKF_SETTINGS(f)->q_boost_time);
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
             const hkf_real_t e = hkf_sub(hkf_divide(hkf_mul(y[a], y[a]), inv_s[a]), HKF_REAL(1.0));
             const hkf_real_t excess = e > 0 ? (e < most ? e : most) : 0;

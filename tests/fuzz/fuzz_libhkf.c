@@ -85,7 +85,7 @@ static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
 {
     const hkf_real_t v = take_real(in);
     const int axis = field % 3;
-    switch ((field / 3) % 17) {
+    switch ((field / 3) % 19) {
     case 0: s->process_noise[axis] = v; break;
     case 1: s->r_const[axis] = v; break;
 #if defined(HKF_REAL_FIXED)
@@ -107,6 +107,10 @@ static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
     case 13: s->max_dt = v; break;
     case 14: s->noise_mode = (hkf_noise_mode_t)(int)(field % 5) - 1; break;
     case 15: axis == 0 ? (void)(s->q_boost_time = v) : (void)(s->q_boost = v); break;
+    case 16: /* noise calibration */
+        axis == 0 ? (void)(s->noise_time = v) : axis == 1 ? (void)(s->noise_rise = v) : (void)(s->motion_threshold = v);
+        break;
+    case 17: axis == 0 ? (void)(s->rate_damping_time = v) : (void)(s->still_threshold = v); break;
     default: s->loop_closure = (int)(field % 5) - 1; s->max_gate_rejections = field % 4u; break;
     }
 }
