@@ -83,16 +83,16 @@ static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, h
     return hkf_add(cross, hkf_mul(hkf_mul(qdt, dt), hkf_mul(dt, HKF_REAL(0.33333333333333333))));
 }
 
-/* q per lane: the setting, or with q_boost on, q (1 + q_boost m) (hkf.h),
- * at most HKF_MAX_BOOSTED_PROCESS_NOISE (or q, where q is larger): within
- * the range every setting of q is checked against, so the boost never takes
- * the filter where no q could (found by fuzz_libhkf: an outlier's y^2 / S
- * of ~1e13 made q, then P, infinite). */
 static inline int calibrated(const hkf_filter_t *f)
 {
     return HKF_SETTINGS(f)->noise_time > 0;
 }
 
+/* q per lane: the setting, or with q_boost on, q (1 + q_boost m) (hkf.h), or
+ * calibrated, q n; at most HKF_MAX_BOOSTED_PROCESS_NOISE (or q, where q is
+ * larger): within the range every setting of q is checked against, so the
+ * boost never takes the filter where no q could (found by fuzz_libhkf: an
+ * outlier's y^2 / S of ~1e13 made q, then P, infinite). */
 static inline void process_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t q[restrict HKF_LANES])
 {
     const hkf_real_t boost = HKF_SETTINGS(f)->q_boost;
@@ -324,13 +324,11 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
     }
 }
 
-int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
+/* hkf_init's first half: the settings checked and kept, their Eq. 8 curves
+ * prepared; all hkf_update_pair needs of the second model's. */
+static int prepare_settings(hkf_filter_t *f, const hkf_settings_t *s)
 {
-    int a, result;
-    if (f == 0 || s == 0) {
-        return HKF_ERROR_NULL_ARGUMENT;
-    }
-    result = hkf_settings_check(s);
+    int a, result = hkf_settings_check(s);
     if (result != HKF_OK) {
         return result;
     }
@@ -349,6 +347,21 @@ int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
             hkf_curve_flat(f, a, s->r_min);
         }
 #endif
+    }
+    return HKF_OK;
+}
+
+int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
+{
+    int a, result;
+    if (f == 0 || s == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = prepare_settings(f, s);
+    if (result != HKF_OK) {
+        return result;
+    }
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
         f->center[a] = 0;
     }
     f->center_source = CENTER_NONE;
@@ -615,7 +628,7 @@ int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], co
         return HKF_ERROR_NULL_ARGUMENT;
     }
     /* everything about the second measurement is checked before the state changes */
-    result = hkf_init(&noise2, second);
+    result = prepare_settings(&noise2, second);
     if (result == HKF_OK && z2 != 0) {
         result = check_angles(z2);
     }

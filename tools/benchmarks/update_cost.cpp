@@ -4,7 +4,7 @@
  *
  *   step_libhkf_paper     hkf_update, adaptive R (Eq. 8) + loop closure (Eq. 9)
  *   step_libhkf_constant  hkf_update, constant R, no loop closure
- *   step_libhkf_defaults  hkf_update with hkf_default_settings (the paper's + q_boost)
+ *   step_libhkf_defaults  hkf_update with hkf_default_settings (noise calibration, motion detector)
  *   step_libhkf_pair      hkf_update_pair: the paper's filter, a second estimator's measurement
  *                         with Hopenet's curves (two measurements, not the same work)
  *   step_opencv           cv::KalmanFilter(6, 3): predict + correct

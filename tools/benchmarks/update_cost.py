@@ -17,7 +17,7 @@ import tempfile
 STEPS = [
     ("step_libhkf_paper", "libhkf hkf_update: adaptive R (Eq. 8) + loop closure (Eq. 9)"),
     ("step_libhkf_constant", "libhkf hkf_update: constant R, no loop closure"),
-    ("step_libhkf_defaults", "libhkf hkf_update: the defaults (adaptive R + loop closure + q_boost)"),
+    ("step_libhkf_defaults", "libhkf hkf_update: the defaults (noise calibration, motion detector)"),
     ("step_libhkf_pair", "libhkf hkf_update_pair: two estimators' measurements, each with its own Eq. 8 curves"),
     ("step_eigen", "Eigen fixed-size 6-state filter, same work"),
     ("step_opencv", "cv::KalmanFilter(6, 3) predict + correct, same work"),
