@@ -48,26 +48,24 @@ const hkf_noise_curve_t hkf_noise_hopenet[3] = {
     .max_dt = HKF_REAL(1.0)
 
 /* Defaults: noise calibration on (hkf.h): R = n e(z) / e(mu), q = 1.0 n per
- * s^3, the signed motion detector (q_boost 3000, q_boost_time 0.1 s,
- * motion_threshold 128, still_threshold 32) and rate damping 0.3 s;
- * noise_time 0.3 s, noise_rise 0.2 per s; loop closure off. Chosen on the
- * five real clips that give both a still jitter and a lag, and checked
- * leaving each out in turn (tools/eval/leave_one_out.py, `./run eval`; README
- * "Noise calibration, one clip left out"): on every left-out clip the still
- * jitter is <= 22 % of raw and the lag <= 0.69x the best 1 euro setting's at
- * that jitter. Loop closure (Eq. 9) is off: four of the five folds chose it
- * off. */
+ * s^3, the signed motion detector driving the angle's random walk (q_boost
+ * 100 per s, q_boost_time 0.2 s, motion_threshold 128, still_threshold 64)
+ * and rate damping 0.1 s; noise_time 0.3 s, noise_rise 0.2 per s; loop
+ * closure off. Chosen on the five real clips that give both a still jitter
+ * and a lag, and checked leaving each out in turn (tools/eval/leave_one_out.py,
+ * `./run eval`; README "Noise calibration, one clip left out"), and on exact
+ * truth (README "Truth by construction"). */
 const hkf_settings_t hkf_default_settings = {
     HKF_PAPER_BASE,
     .process_noise = {HKF_REAL(1.0), HKF_REAL(1.0), HKF_REAL(1.0)},
     .loop_closure = HKF_LOOP_CLOSURE_OFF,
-    .q_boost = HKF_REAL(3000.0),
-    .q_boost_time = HKF_REAL(0.1),
+    .q_boost = HKF_REAL(100.0),
+    .q_boost_time = HKF_REAL(0.2),
     .noise_time = HKF_REAL(0.3),
     .noise_rise = HKF_REAL(0.2),
     .motion_threshold = HKF_REAL(128.0),
-    .rate_damping_time = HKF_REAL(0.3),
-    .still_threshold = HKF_REAL(32.0),
+    .rate_damping_time = HKF_REAL(0.1),
+    .still_threshold = HKF_REAL(64.0),
 };
 
 /* The paper's filter alone: loop closure on (xi 0.618, theta 2 deg), q by

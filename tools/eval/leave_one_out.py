@@ -49,10 +49,10 @@ NOISE_FACTORS = [1.0, 1.5, 2.0]
 # hkf with noise calibration: every combination is one setting
 CALIBRATED = {
     "process_noise": [1.0],                 # 1/s^3 (times the measured noise); 0.01-3 swept before, 1 won
-    "q_boost": [1000, 3000],
-    "q_boost_time": [0.1, 0.2, 0.4],
-    "motion_threshold": [128, 256],
-    "still_threshold": [8, 16, 32],
+    "q_boost": [10, 30, 100],               # 1/s: the angle's random walk, n q_boost per unit of excess
+    "q_boost_time": [0.05, 0.1, 0.2],
+    "motion_threshold": [32, 64, 128, 256],
+    "still_threshold": [16, 32, 64],
     "rate_damping_time": [0.1, 0.3, 1.0],
     "loop_closure": ["off", "norm"],
 }

@@ -51,7 +51,7 @@ CENTRE_RADIUS = 5.0
 # (name, yaw, pitch, hold s) of the glances a driver makes
 GLANCES = [("left mirror", -40.0, -5.0, 0.8), ("right mirror", 50.0, -5.0, 0.8), ("rear-view mirror", 25.0, 8.0, 0.7),
            ("dashboard", 0.0, -20.0, 0.6), ("left shoulder", -80.0, 0.0, 0.6), ("right shoulder", 85.0, 0.0, 0.6)]
-DEFAULTS = "hkf defaults (adaptive R + loop closure + q_boost)"
+DEFAULTS = "hkf defaults (calibrated)"
 PAPER = "hkf paper (adaptive R + loop closure)"
 PAPER_CONSTANT_R = "hkf paper, constant R"
 PAPER_ADAPTIVE_R = "hkf paper, adaptive R"

@@ -43,7 +43,7 @@ static const config_key_t keys[] = {
     {"max_gate_rejections", KIND_UINT, FIELD(max_gate_rejections), "gated measurements in a row before restarting"},
     {"coast_time", KIND_REAL, FIELD(coast_time), "s without a face before the track is LOST"},
     {"max_dt", KIND_REAL, FIELD(max_dt), "s; a longer gap restarts the track"},
-    {"q_boost", KIND_REAL, FIELD(q_boost), "motion-driven q: q (1 + q_boost e), 0 = off (the paper)"},
+    {"q_boost", KIND_REAL, FIELD(q_boost), "motion boost: q (1 + q_boost e); calibrated: the angle's walk n q_boost e per s; 0 = off (the paper)"},
     {"q_boost_time", KIND_REAL, FIELD(q_boost_time), "s; time constant of the motion detector"},
     {"noise_time", KIND_REAL, FIELD(noise_time), "s; noise calibration's time constant, 0 = off (the paper)"},
     {"noise_rise", KIND_REAL, FIELD(noise_rise), "1/s; how fast the noise estimate may rise"},

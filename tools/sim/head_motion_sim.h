@@ -3,10 +3,11 @@
  *
  * The built-in input of the demo and the source of test and replay data: a
  * scripted drive (looking ahead, mirror glances, a shoulder check, nods and
- * tilts) sampled by a camera, with the errors a deep head-pose estimator makes:
- * white noise whose size follows the FSA-Net error curves of the paper's
- * Table I, a slowly drifting bias, occasional outliers, and bursts of frames
- * without a face. Seeded and deterministic. Angles in degrees (pitch, yaw,
+ * tilts) sampled by a camera, with the errors a deep head-pose estimator makes,
+ * sized by the FSA-Net error curves of the paper's Table I: as measured on our
+ * real clips (a little white frame noise, the rest a bias that follows the
+ * pose), or as hkf 0.1 assumed (much white noise, a drifting bias, outliers);
+ * and bursts of frames without a face. Seeded and deterministic. Angles in degrees (pitch, yaw,
  * roll), times in seconds.
  */
 #ifndef HEAD_MOTION_SIM_H
@@ -28,9 +29,20 @@ double sim_rng_gaussian(sim_rng_t *rng);  /* N(0, 1) */
  * sim_script_period() seconds). */
 void sim_head_pose(double t, double pose[3]);
 double sim_script_period(void);
+/* 1 if the scripted head turns slower than 1 deg/s at time t. */
+int sim_head_still(double t);
+
+/* How the simulated estimator errs (head_motion_sim.c says where each figure comes from). */
+typedef enum {
+    SIM_ERRORS_MEASURED = 0, /* as our estimators measure on real clips: white frame noise of 0.25 deg,
+                                the rest of the FSA-Net-sized error a bias that follows the pose */
+    SIM_ERRORS_ASSUMED = 1   /* hkf 0.1's assumption: 30 % of the error variance white, the rest a bias
+                                drifting over 1 s whatever the pose */
+} sim_error_model_t;
 
 typedef struct {
     double fps;              /* camera frames per second */
+    int error_model;         /* a sim_error_model_t */
     double noise_scale;      /* 1 = FSA-Net-like error; 0 = perfect measurements */
     double outlier_rate;     /* probability of an outlier frame */
     double dropout_rate;     /* probability that a burst without a face starts */
@@ -38,8 +50,11 @@ typedef struct {
     double frame_jitter_s;   /* standard deviation of the capture-time jitter, s */
 } sim_config_t;
 
-/* 30 fps, FSA-Net-like noise, 0.5 % outliers, rare dropouts up to 0.4 s. */
+/* 30 fps, the measured error model with FSA-Net-sized errors, no outliers,
+ * rare dropouts up to 0.4 s. */
 sim_config_t sim_default_config(void);
+/* The same with hkf 0.1's assumed errors: 30 % white, 0.5 % outliers. */
+sim_config_t sim_assumed_config(void);
 
 typedef struct {
     double time;        /* capture time, s */
@@ -49,11 +64,17 @@ typedef struct {
     int still;          /* 1: the true head is not moving */
 } sim_frame_t;
 
+enum { SIM_BIAS_WAVES = 4 };
+
 typedef struct {
     sim_config_t config;
     sim_rng_t rng;
     long frame;
     double bias[3];
+    /* the measured model's bias field: per axis, a sum of plane waves over the pose */
+    double wave_direction[3][SIM_BIAS_WAVES][3];
+    double wave_number[3][SIM_BIAS_WAVES]; /* rad per deg */
+    double wave_phase[3][SIM_BIAS_WAVES];
     int dropout_frames_left;
 } sim_t;
 

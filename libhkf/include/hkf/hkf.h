@@ -95,7 +95,7 @@ const char *hkf_result_string(int result);
  * same in every build (fixed point's whole range), so that a float, double
  * and fixed-point filter give the same output. (On the real clips a cap of
  * 1e6 instead changes the lag by 1-2 ms.) */
-#define HKF_MAX_BOOSTED_PROCESS_NOISE 16384 /* deg^2/s^3 */
+#define HKF_MAX_BOOSTED_PROCESS_NOISE 16384 /* deg^2/s^3; calibrated: the angle's random walk, deg^2/s */
 
 /* Measurements beyond this magnitude are rejected (HKF_ERROR_ANGLE_RANGE):
  * no head pose is that large, and it keeps every value inside the range of
@@ -180,11 +180,13 @@ typedef struct {
      * and q_boost follows a motion detector on that basis: m, the innovation
      * low-passed with time constant q_boost_time, against the spread it has when
      * the head is still (S alpha / (2 - alpha)); beyond motion_threshold the
-     * excess e raises q to q (1 + q_boost e) for this step; below
-     * still_threshold (the head still) the rate decays, with time constant
-     * rate_damping_time (0 = never) up to half of it and less and less
-     * above, so a stop does not overshoot; between the two the filter runs
-     * with its plain q. */
+     * excess e gives the angle a random walk of n q_boost e per s (q_boost is
+     * then in 1/s) for this step: the previous frame's excess in full, this
+     * frame's adding at most R (a one-frame blip is trusted about half);
+     * below still_threshold (the head still) the rate decays, with time
+     * constant rate_damping_time (0 = never) up to half of it and less and
+     * less above, so a stop does not overshoot; between the two the filter
+     * runs with its plain q. */
     hkf_real_t noise_time;         /* s */
     hkf_real_t noise_rise;         /* 1/s */
     hkf_real_t motion_threshold;   /* in units of the still detector's variance */
@@ -194,10 +196,11 @@ typedef struct {
 
 /* The defaults: the paper's adaptive R (Eq. 8, FSA-Net curves of Table I)
  * with noise calibration (noise_time 0.3 s, noise_rise 0.2 per s): q = 1.0 n
- * per s^3, q_boost 3000 on the signed motion detector (q_boost_time 0.1 s,
- * motion_threshold 128, still_threshold 32), rate damping 0.3 s, loop closure
- * off, gate off; chosen leaving one real clip out at a time (README, "Noise
- * calibration, one clip left out"). */
+ * per s^3, the signed motion detector driving the angle's random walk
+ * (q_boost 100 per s, q_boost_time 0.2 s, motion_threshold 128,
+ * still_threshold 64), rate damping 0.1 s, loop closure off, gate off; chosen
+ * leaving one real clip out at a time (README, "Noise calibration, one clip
+ * left out"). */
 extern const hkf_settings_t hkf_default_settings;
 /* The paper's filter alone: adaptive R, loop closure (xi 0.618, theta 2 deg),
  * q 500 / 1000 / 500 deg^2/s^3, no calibration, q_boost or damping. */
