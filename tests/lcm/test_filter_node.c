@@ -676,7 +676,7 @@ static void test_second_model_fused_into_its_frame(void **state)
     const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known1);
     const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known2);
     (void)state;
-    node.align_frames = 0; /* the models' offset is another test's */
+    node.second.align_frames = 0; /* the models' offset is another test's */
     config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
     assert_true(known1 && known2);
     assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
@@ -817,7 +817,7 @@ static void test_second_model_offset_aligned(void **state)
     (void)state;
     assert_int_equal(filter_node_init(&alone, &config), 0);
     assert_int_equal(filter_node_init(&unaligned, &config), 0);
-    unaligned.align_frames = 0;
+    unaligned.second.align_frames = 0;
     for (i = 0; i < 400; ++i) {
         hkf_head_pose_t p_alone, p_unaligned;
         const double pitch = 5.0 * sin(0.05 * i), yaw = 20.0 * sin(0.03 * i), noise = 0.5 * sin(1.7 * i);
@@ -844,8 +844,8 @@ static void test_second_model_offset_aligned(void **state)
     /* unaligned, the second model pulls the track by its weight, R1 / (R1 + R2) of its offset: in pitch it is
      * visible (0.23 deg of 4 with the defaults); in yaw hopenet's curve leaves it next to none */
     assert_true(bias_unaligned[0] > 0.15 && bias_unaligned[0] > 5.0 * fabs(bias_aligned[0]));
-    assert_float_equal(node.second_offset[0], -4.0, 0.05);
-    assert_float_equal(node.second_offset[1], 3.0, 0.05);
+    assert_float_equal(node.second.offset[0], -4.0, 0.05);
+    assert_float_equal(node.second.offset[1], 3.0, 0.05);
 }
 
 /* The offset is a running mean from the first frame on: after 10 frames
@@ -866,9 +866,9 @@ static void test_second_model_offset_from_the_first_frames(void **state)
         (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
         assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
     }
-    assert_int_equal(node.second_offset_frames, 10);
-    assert_float_equal(node.second_offset[0], 4.0, 1e-4);
-    assert_float_equal(node.second_offset[1], -3.0, 1e-4);
+    assert_int_equal(node.second.offset_frames, 10);
+    assert_float_equal(node.second.offset[0], 4.0, 1e-4);
+    assert_float_equal(node.second.offset[1], -3.0, 1e-4);
     /* at a large turn (the first model's |yaw| >= 25 deg) the first is not trusted: nothing is learnt there */
     for (i = 10; i < 20; ++i) {
         m = measurement(T0 + i * FRAME_US, 1, 2.0, 40.0, 0.0);
@@ -878,8 +878,8 @@ static void test_second_model_offset_from_the_first_frames(void **state)
         (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
         assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
     }
-    assert_int_equal(node.second_offset_frames, 10);
-    assert_float_equal(node.second_offset[0], 4.0, 1e-4);
+    assert_int_equal(node.second.offset_frames, 10);
+    assert_float_equal(node.second.offset[0], 4.0, 1e-4);
 }
 
 /* Both models near the yaw seam (WHENet reports up to +-180): the head sways
@@ -912,7 +912,7 @@ static void test_second_model_offset_across_the_seam(void **state)
             worst = d > worst ? d : worst;
         }
     }
-    assert_float_equal(node.second_offset[1], -2.0, 1e-3);
+    assert_float_equal(node.second.offset[1], -2.0, 1e-3);
     print_message("largest distance from the first model's track: %.3f deg\n", worst);
     /* the fused track stays with the first model's: a seam error would put it 2 deg (the offset) or a turn
      * away; what remains is the dynamics of a halved R (0.59 deg on this noise-free turn) */
@@ -933,7 +933,7 @@ static void test_second_model_alone_at_large_yaw(void **state)
     const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known);
     const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known);
     (void)state;
-    node.align_frames = 0;
+    node.second.align_frames = 0;
     assert_float_equal(config.second_alone_from_yaw, 25.0, 0.0);
     assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
     for (i = 0; i < 60; ++i) {

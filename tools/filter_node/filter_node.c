@@ -61,7 +61,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
 {
     memset(node, 0, sizeof *node);
     node->config = config;
-    node->align_frames = FILTER_NODE_ALIGN_FRAMES;
+    second_model_init(&node->second);
     return setup_filter(node, "");
 }
 
@@ -96,33 +96,6 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
     ++node->counts.published;
 }
 
-/* The kept frames (for a late second measurement): forgotten on a restart. */
-static void forget_frames(filter_node_t *node)
-{
-    node->frame_count = 0;
-}
-
-/* Keeps this frame's step, about to be made on node->filter: z (NULL: no face), dt. */
-static void keep_frame(filter_node_t *node, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3], hkf_real_t dt)
-{
-    filter_node_frame_t *frame;
-    node->frame_newest = (node->frame_newest + 1) % FILTER_NODE_PAIR_FRAMES;
-    if (node->frame_count < FILTER_NODE_PAIR_FRAMES) {
-        ++node->frame_count;
-    }
-    frame = &node->frames[node->frame_newest];
-    memset(frame, 0, sizeof *frame);
-    frame->seq = m->seq;
-    frame->utime = m->utime;
-    strncpy(frame->model, m->model ? m->model : "", sizeof frame->model - 1);
-    frame->valid = z != NULL;
-    if (z != NULL) {
-        memcpy(frame->z, z, sizeof frame->z);
-    }
-    frame->dt = dt;
-    frame->before = node->filter;
-}
-
 /* The track starts again with the next measurement (a gap longer than
  * max_dt, or a new clock): the filter reset, the restart counted, the kept
  * frames forgotten. */
@@ -130,16 +103,7 @@ static void restart_track(filter_node_t *node)
 {
     hkf_reset(&node->filter);
     ++node->counts.restarts;
-    forget_frames(node);
-}
-
-/* The newest kept frame's step failed: it never happened. */
-static void unkeep_newest(filter_node_t *node)
-{
-    if (node->frame_count > 0) {
-        --node->frame_count;
-        node->frame_newest = (node->frame_newest + FILTER_NODE_PAIR_FRAMES - 1) % FILTER_NODE_PAIR_FRAMES;
-    }
+    second_model_forget_frames(&node->second);
 }
 
 static int finite_angles(const hkf_head_pose_measurement_t *m)
@@ -180,9 +144,9 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
         ++node->counts.without_face;
         if (node->filter.status == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
             strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model) == HKF_OK) {
-            forget_frames(node); /* no track yet: the filter is this model's, should a second model start one here */
+            second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
         }
-        keep_frame(node, m, NULL, dt);
+        second_model_keep_frame(&node->second, m, NULL, dt, &node->filter);
         result = hkf_predict(&node->filter, dt, &out);
         if (result != HKF_OK) { /* no track yet (or again, after a gap) */
             return 0;
@@ -198,7 +162,7 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
         if (setup_filter(node, m->model ? m->model : "") != HKF_OK) {
             return 0; /* cannot happen: the config was validated at start */
         }
-        forget_frames(node);
+        second_model_forget_frames(&node->second);
     }
     {
         int known;
@@ -207,12 +171,12 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
     }
     {
         const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
-        keep_frame(node, m, z, dt);
+        second_model_keep_frame(&node->second, m, z, dt, &node->filter);
         result = hkf_update(&node->filter, z, dt, &out);
     }
     if (result != HKF_OK) {
         ++node->counts.bad_values;
-        unkeep_newest(node);
+        second_model_unkeep_newest(&node->second);
         return 0;
     }
     node->last_measurement_utime = m->utime;
@@ -253,7 +217,7 @@ static void resync_clock(filter_node_t *node)
     if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
         restart_track(node);
     } else {
-        forget_frames(node);
+        second_model_forget_frames(&node->second);
     }
 }
 
@@ -299,137 +263,17 @@ static int not_stale(filter_node_t *node, const hkf_head_pose_measurement_t *m, 
     return !node->have_time || m->utime >= node->last_utime || follows_rejected_stamps(node, m, arrival_utime);
 }
 
-/* Two models on one channel: the index of the kept frame m is the second
- * measurement of (same seq and utime, another model), or -1. */
-static int frame_of_second(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
-{
-    int i;
-    for (i = 0; i < node->frame_count; ++i) {
-        const int index = (node->frame_newest + FILTER_NODE_PAIR_FRAMES - i) % FILTER_NODE_PAIR_FRAMES;
-        const filter_node_frame_t *frame = &node->frames[index];
-        if (frame->seq == m->seq && frame->utime == m->utime) {
-            return strncmp(frame->model, m->model ? m->model : "", sizeof frame->model) != 0 ? index : -1;
-        }
-    }
-    return -1;
-}
-
-static int frame_id_slot(int64_t seq)
-{
-    return (int)((uint64_t)seq % FILTER_NODE_FRAME_IDS);
-}
-
-/* A second model's measurement of a frame already passed, too old for the kept
- * frames: its seq and utime are those of one of the followed publisher's last
- * frames, its model another. (Another publisher's seq and utime are not.) */
-static int late_second(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
-{
-    const int slot = frame_id_slot(m->seq);
-    return node->have_stream && node->frame_ids[slot].seq == m->seq && node->frame_ids[slot].utime == m->utime &&
-           m->utime != 0 && strncmp(node->model, m->model ? m->model : "", sizeof node->model) != 0;
-}
-
-/* Where the first model measures a large turn, the second's measurement is taken alone. */
-static int first_set_aside(const filter_node_t *node, const filter_node_frame_t *frame)
-{
-    return frame->valid && fabs((double)frame->z[HKF_AXIS_YAW]) >= (double)node->config->second_alone_from_yaw;
-}
-
-/* One kept frame's step on f, as the node made it, with the frame's second
- * measurement if it has one. */
-static int redo_step(const filter_node_t *node, hkf_filter_t *f, const filter_node_frame_t *frame)
-{
-    int result;
-    if (frame->paired) {
-        int known;
-        const hkf_settings_t second = node_config_for_model(node->config, frame->second_model, &known);
-        const int first = frame->valid && !first_set_aside(node, frame);
-        return hkf_update_pair(f, first ? frame->z : NULL, frame->z2, &second, frame->dt, NULL);
-    }
-    if (frame->valid) {
-        return hkf_update(f, frame->z, frame->dt, NULL);
-    }
-    result = hkf_predict(f, frame->dt, NULL);
-    return result == HKF_ERROR_NOT_INITIALIZED ? HKF_OK : result; /* no track yet, as the node found */
-}
-
-/* deg in [-180, 180) */
-static double wrap180(double angle)
-{
-    return angle - 360.0 * floor((angle + 180.0) / 360.0);
-}
-
-/* The frame's second measurement (frame->z2) moved onto the first model's
- * frame: plus the running mean of (first - second) over the frames both
- * measured, updated with this frame's difference when the first measured it too. */
-static void align_second(filter_node_t *node, filter_node_frame_t *frame)
-{
-    int a;
-    if (strncmp(node->second_model, frame->second_model, sizeof node->second_model) != 0) {
-        /* another second model: start over */
-        strncpy(node->second_model, frame->second_model, sizeof node->second_model - 1);
-        node->second_offset_frames = 0;
-        memset(node->second_offset, 0, sizeof node->second_offset);
-    }
-    /* learnt only where the first model is trusted (where the two are fused): at a large turn the
-     * mesh's own error is what the second model is there to avoid */
-    if (frame->valid && node->align_frames > 0 && !first_set_aside(node, frame)) {
-        const long n = node->second_offset_frames < node->align_frames ? node->second_offset_frames + 1
-                                                                       : node->align_frames;
-        for (a = 0; a < 3; ++a) {
-            double difference = (double)frame->z[a] - (double)frame->z2[a];
-            if (a == HKF_AXIS_YAW) {
-                difference = wrap180(difference);
-            }
-            node->second_offset[a] += (hkf_real_t)((difference - (double)node->second_offset[a]) / (double)n);
-        }
-        node->second_offset_frames = n;
-    }
-    for (a = 0; a < 3; ++a) {
-        double v = (double)frame->z2[a] + (double)node->second_offset[a];
-        if (a == HKF_AXIS_YAW) {
-            v = wrap180(v);
-        }
-        frame->z2[a] =
-            (hkf_real_t)(v < HKF_MAX_ABS_ANGLE ? (v > -HKF_MAX_ABS_ANGLE ? v : -HKF_MAX_ABS_ANGLE) : HKF_MAX_ABS_ANGLE);
-    }
-}
-
-/* Fuses m, the second measurement of kept frame `index`: that frame's step
- * again with both (hkf_update_pair), then the steps of the frames after it. */
+/* Fuses m, the second measurement of kept frame `index` (second_model_fuse), and counts it. */
 static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
 {
-    hkf_filter_t f, before[FILTER_NODE_PAIR_FRAMES];
-    filter_node_frame_t *frame = &node->frames[index];
-    const int count = (node->frame_newest - index + FILTER_NODE_PAIR_FRAMES) % FILTER_NODE_PAIR_FRAMES + 1;
-    int i, known;
-    if (frame->paired) { /* one second measurement per frame */
+    int known;
+    if (!second_model_fuse(&node->second, node->config, index, m, &node->filter, &known)) {
         ++node->counts.unpaired;
         return;
     }
-    frame->paired = 1;
-    strncpy(frame->second_model, m->model ? m->model : "", sizeof frame->second_model - 1);
-    frame->z2[0] = m->pitch;
-    frame->z2[1] = m->yaw;
-    frame->z2[2] = m->roll;
-    align_second(node, frame);
-    f = frame->before;
-    for (i = 0; i < count; ++i) {
-        before[i] = f;
-        if (redo_step(node, &f, &node->frames[(index + i) % FILTER_NODE_PAIR_FRAMES]) != HKF_OK) {
-            frame->paired = 0; /* cannot happen (the steps were made before, z2 is checked): nothing changes */
-            ++node->counts.unpaired;
-            return;
-        }
-    }
-    for (i = 1; i < count; ++i) {
-        node->frames[(index + i) % FILTER_NODE_PAIR_FRAMES].before = before[i];
-    }
-    node->filter = f;
     if (m->utime > node->last_measurement_utime) {
         node->last_measurement_utime = m->utime;
     }
-    (void)node_config_for_model(node->config, frame->second_model, &known);
     node->counts.unknown_models += !known;
     ++node->counts.paired;
 }
@@ -439,9 +283,10 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
 {
     const int64_t previous_utime = node->last_utime;
     const int had_time = node->have_time;
-    const int second_of = frame_of_second(node, m);
+    const int second_of = second_model_frame_of(&node->second, m);
     int publish;
-    if (second_of >= 0 || late_second(node, m)) { /* a second model's measurement of a frame taken */
+    if (second_of >= 0 || (node->have_stream && second_model_too_late(&node->second, m, node->model))) {
+        /* a second model's measurement of a frame taken */
         ++node->counts.received;
         if (m->valid && !finite_angles(m)) {
             ++node->counts.bad_values;
@@ -467,11 +312,7 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
         ++node->counts.out_of_order;
         return 0;
     }
-    {
-        const int slot = frame_id_slot(m->seq);
-        node->frame_ids[slot].seq = m->seq;
-        node->frame_ids[slot].utime = m->utime;
-    }
+    second_model_note_frame(&node->second, m->seq, m->utime);
     publish = filter_node_measurement(node, m, pose);
     if (node->have_time && (!had_time || node->last_utime != previous_utime)) {
         /* taken: the new time reference */
@@ -540,12 +381,12 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
     switch (command->command) {
     case HKF_TRACKER_COMMAND_T_RECENTER:
         ++node->counts.commands;
-        forget_frames(node); /* a late second measurement would redo frames on the old centre */
+        second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;
-        forget_frames(node);
+        second_model_forget_frames(&node->second);
         (void)setup_filter(node, node->model);
         return 0;
     default:

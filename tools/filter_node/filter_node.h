@@ -62,6 +62,7 @@
 #include "hkf_head_pose_t.h"
 #include "hkf_tracker_command_t.h"
 #include "node_config.h"
+#include "second_model.h"
 
 typedef struct {
     unsigned long received;        /* measurements handled */
@@ -83,24 +84,6 @@ typedef struct {
     unsigned long commands;        /* commands applied */
 } filter_node_counts_t;
 
-#define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
-#define FILTER_NODE_ALIGN_FRAMES 60 /* frames both models measured that the second's offset averages */
-#define FILTER_NODE_FRAME_IDS 512   /* (seq, utime) of the followed publisher's last frames: a second measurement
-                                       too late to fuse is told from another publisher's by them */
-
-/* One frame's filter step, kept so that a second model's measurement of it can
- * be fused afterwards. */
-typedef struct {
-    int64_t seq, utime;                      /* the frame */
-    char model[NODE_MODEL_NAME_MAX];         /* the first model (the filter's) */
-    int valid;                               /* the first model measured z */
-    hkf_real_t z[3], dt;
-    int paired;                              /* a second model measured z2: */
-    char second_model[NODE_MODEL_NAME_MAX];
-    hkf_real_t z2[3];
-    hkf_filter_t before;                     /* the filter before this frame's step */
-} filter_node_frame_t;
-
 typedef struct {
     const node_config_t *config;
     hkf_filter_t filter;
@@ -120,15 +103,7 @@ typedef struct {
     int64_t jump_utime, jump_arrival_utime; /* the last of them */
     int64_t lost_published;           /* LOST poses published in the current silence */
     int64_t seq;
-    filter_node_frame_t frames[FILTER_NODE_PAIR_FRAMES]; /* the last frames' steps, a ring */
-    int frame_count, frame_newest;
-    struct {
-        int64_t seq, utime;
-    } frame_ids[FILTER_NODE_FRAME_IDS];     /* by seq modulo FILTER_NODE_FRAME_IDS */
-    long align_frames;                      /* FILTER_NODE_ALIGN_FRAMES (0: no alignment) */
-    char second_model[NODE_MODEL_NAME_MAX]; /* the second model the offset is for */
-    hkf_real_t second_offset[3];            /* first minus second, deg, running mean */
-    long second_offset_frames;              /* frames it has averaged */
+    second_model_t second;            /* the kept frames and the second model's offset (second_model.h) */
     filter_node_counts_t counts;
 } filter_node_t;
 

@@ -1,0 +1,78 @@
+/*
+ * second_model.h - two models on one channel, the node's side (filter_node.h
+ * states the rules): the last frames' filter steps kept in a ring, a second
+ * model's measurement of one of them fused there (hkf_update_pair) and the
+ * frames after it redone, and the second model moved onto the first's frame
+ * by the running mean of their difference.
+ */
+#ifndef SECOND_MODEL_H
+#define SECOND_MODEL_H
+
+#include <stdint.h>
+
+#include "hkf/hkf.h"
+#include "hkf_head_pose_measurement_t.h"
+#include "node_config.h"
+
+#define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
+#define FILTER_NODE_ALIGN_FRAMES 60 /* frames both models measured that the second's offset averages */
+#define FILTER_NODE_FRAME_IDS 512   /* (seq, utime) of the followed publisher's last frames: a second measurement
+                                       too late to fuse is told from another publisher's by them */
+
+/* One frame's filter step, kept so that a second model's measurement of it can
+ * be fused afterwards. */
+typedef struct {
+    int64_t seq, utime;                      /* the frame */
+    char model[NODE_MODEL_NAME_MAX];         /* the first model (the filter's) */
+    int valid;                               /* the first model measured z */
+    hkf_real_t z[3], dt;
+    int paired;                              /* a second model measured z2: */
+    char second_model[NODE_MODEL_NAME_MAX];
+    hkf_real_t z2[3];
+    hkf_filter_t before;                     /* the filter before this frame's step */
+} second_model_frame_t;
+
+typedef struct {
+    second_model_frame_t frames[FILTER_NODE_PAIR_FRAMES]; /* the last frames' steps, a ring */
+    int frame_count, frame_newest;
+    struct {
+        int64_t seq, utime;
+    } frame_ids[FILTER_NODE_FRAME_IDS];     /* by seq modulo FILTER_NODE_FRAME_IDS */
+    long align_frames;                      /* FILTER_NODE_ALIGN_FRAMES (0: no alignment) */
+    char model[NODE_MODEL_NAME_MAX];        /* the second model the offset is for */
+    hkf_real_t offset[3];                   /* first minus second, deg, running mean */
+    long offset_frames;                     /* frames it has averaged */
+} second_model_t;
+
+/* Empty, aligning over FILTER_NODE_ALIGN_FRAMES. */
+void second_model_init(second_model_t *s);
+
+/* Forgets the kept frames (a restart, a command, a new clock); the offset stays. */
+void second_model_forget_frames(second_model_t *s);
+
+/* Keeps the step about to be made on `before` for frame m: z (NULL: no face), dt. */
+void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3],
+                             hkf_real_t dt, const hkf_filter_t *before);
+
+/* The newest kept frame's step failed: it never happened. */
+void second_model_unkeep_newest(second_model_t *s);
+
+/* Notes a frame of the followed publisher (to tell a too-late second measurement). */
+void second_model_note_frame(second_model_t *s, int64_t seq, int64_t utime);
+
+/* The index of the kept frame whose second measurement m is (same seq and
+ * utime, another model), or -1. */
+int second_model_frame_of(const second_model_t *s, const hkf_head_pose_measurement_t *m);
+
+/* 1 when m is a second model's measurement of a followed frame already
+ * passed, too old for the kept frames (first_model: the filter's). */
+int second_model_too_late(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model);
+
+/* Fuses m, the second measurement of kept frame `index`, into *filter: that
+ * frame's step again with both, then the steps of the frames after it.
+ * Returns 1 when fused, 0 when not (the frame already has one); *known is
+ * whether the second model is in the table. */
+int second_model_fuse(second_model_t *s, const node_config_t *config, int index, const hkf_head_pose_measurement_t *m,
+                      hkf_filter_t *filter, int *known);
+
+#endif /* SECOND_MODEL_H */
