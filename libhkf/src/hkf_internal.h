@@ -26,15 +26,16 @@ int hkf_settings_check(const hkf_settings_t *s);
 #endif
 
 /* Where the filter finds its settings and the per-lane values the axis loops
- * read: the float and double builds keep a copy and lane arrays (contiguous,
- * for SIMD); the fixed-point build reads the caller's settings, to save RAM. */
+ * read: every build keeps its own copy of the settings (hkf_init); the float
+ * and double builds also keep lane arrays (contiguous, for SIMD), the
+ * fixed-point build reads the copy, to save RAM. */
 #if defined(HKF_REAL_FIXED)
-#define HKF_SETTINGS(f) ((f)->settings)
-#define HKF_KEEP_SETTINGS(f, s) ((f)->settings = (s))
-#define HKF_Q(f, a) ((f)->settings->process_noise[a])
-#define HKF_R_CONST(f, a) ((f)->settings->r_const[a])
-#define HKF_MU(f, a) ((f)->settings->noise[a].mu)
-#define HKF_NOISE_FLOOR(f, a) ((f)->settings->noise[a].floor)
+#define HKF_SETTINGS(f) (&(f)->settings)
+#define HKF_KEEP_SETTINGS(f, s) ((f)->settings = *(s))
+#define HKF_Q(f, a) ((f)->settings.process_noise[a])
+#define HKF_R_CONST(f, a) ((f)->settings.r_const[a])
+#define HKF_MU(f, a) ((f)->settings.noise[a].mu)
+#define HKF_NOISE_FLOOR(f, a) ((f)->settings.noise[a].floor)
 #else
 #define HKF_SETTINGS(f) (&(f)->settings)
 #define HKF_KEEP_SETTINGS(f, s) ((f)->settings = *(s))

@@ -91,7 +91,7 @@ hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
     const uint64_t au = (uint64_t)hkf_abs(u);
     const uint64_t w = (au * f->inv_width[lane]) >> 17; /* |u| / (sqrt(2) sigma), Q.30 */
     if (w < ((uint64_t)1 << 30)) { /* v < 1: curvature u^2 g(v) */
-        const int64_t cu = hkf_saturate(((int64_t)f->settings->noise[lane].curvature_q24 * (int64_t)au + (1 << 23)) >> 24);
+        const int64_t cu = hkf_saturate(((int64_t)f->settings.noise[lane].curvature_q24 * (int64_t)au + (1 << 23)) >> 24);
         const int64_t cu2 = hkf_saturate((cu * (int64_t)au) >> 16);
         return hkf_saturate((cu2 * hkf_g30((uint32_t)((w * w) >> 30))) >> 30);
     } else {
@@ -109,7 +109,7 @@ hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
             }
             e30 = (uint32_t)e;
         }
-        return hkf_saturate(((int64_t)curve_lambda(&f->settings->noise[lane]) * (int64_t)(((1u << 30) - e30 + 8192u) >> 14) +
+        return hkf_saturate(((int64_t)curve_lambda(&f->settings.noise[lane]) * (int64_t)(((1u << 30) - e30 + 8192u) >> 14) +
                              32768) >> 16);
     }
 }

@@ -32,13 +32,12 @@
 
 #if defined(HKF_REAL_FIXED)
 #define FUZZ_NAME "fuzz_libhkf_fixed"
-#define SETTINGS_OF(f) ((f)->settings) /* the fixed-point filter keeps a pointer */
 #define MIN_VARIANCE 0                 /* Q16.16 may round a variance to 0 (q = 0) */
 #else
 #define FUZZ_NAME "fuzz_libhkf"
-#define SETTINGS_OF(f) (&(f)->settings)
 #define MIN_VARIANCE 0 + 1e-300        /* float and double: strictly positive */
 #endif
+#define SETTINGS_OF(f) (&(f)->settings) /* hkf_init's copy, in every build */
 
 typedef struct {
     const uint8_t *data;

@@ -245,12 +245,11 @@ typedef struct {
 #define HKF_LANES 4
 #endif
 typedef struct {
+    hkf_settings_t settings;            /* hkf_init's copy */
 #if defined(HKF_REAL_FIXED)
-    const hkf_settings_t *settings;     /* the caller's, by reference (see hkf_init) */
     /* what Eq. 8 derives from the curves */
     uint32_t inv_width[HKF_LANES];      /* 1 / (sqrt(2) sigma), Q1.31 */
 #else
-    hkf_settings_t settings;
     /* per-lane copies of the settings the axis loops read */
     hkf_real_t q[HKF_LANES], r_const[HKF_LANES];
     hkf_real_t mu[HKF_LANES], lambda[HKF_LANES];
@@ -275,10 +274,9 @@ typedef struct {
     hkf_status_t status;
 } hkf_filter_t;
 
-/* Validates the settings and starts an empty filter (no track yet). The
- * float and double builds copy *s. The fixed-point build keeps a pointer to
- * it (128 B of RAM per filter instead of 252): there *s must stay valid and
- * unchanged while the filter is used - in firmware, a const in flash. */
+/* Validates the settings and starts an empty filter (no track yet). Every
+ * build copies *s: it may be a temporary, and changing it later changes
+ * nothing (to change the settings, call hkf_init again). */
 int hkf_init(hkf_filter_t *f, const hkf_settings_t *s);
 
 /* Forgets the track (and a centre not set by hkf_set_center); keeps the settings. */
