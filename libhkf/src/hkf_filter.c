@@ -541,6 +541,35 @@ static void noise_estimate_update(hkf_filter_t *restrict f, const hkf_real_t z[r
     f->noise_history += f->noise_history < 2u ? 1u : 0u;
 }
 
+/* The track starts (again) from z, with R from `noise`'s curves (lanes: the
+ * caller's scratch, so the step's stack does not grow). */
+static HKF_ALWAYS_INLINE void restart_from(hkf_filter_t *f, const hkf_filter_t *noise, const hkf_real_t z[restrict 3],
+                                           hkf_real_t lanes[restrict HKF_LANES], unsigned flags,
+                                           hkf_output_t *restrict out)
+{
+    load_lanes(lanes, z);
+    observation_noise_lanes(noise, lanes, f->r);
+    start_track(f, z);
+    write_output(f, flags | HKF_FLAG_REACQUIRED, out);
+}
+
+/* hkf 0.1's motion estimate (q_boost without calibration): m += alpha (e - m),
+ * alpha = dt / (dt + time) in [0, 1], e = y^2 / S - 1 within [0, 10^4]: m stays
+ * within [0, 10^4] whatever the input (fuzz_libhkf: a reciprocal of a denormal
+ * dt + time overflowed alpha, and m went to -inf). */
+static HKF_ALWAYS_INLINE void innovation_excess_step(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
+                                                     const hkf_divisor_t inv_s[restrict HKF_LANES], hkf_real_t dt)
+{
+    const hkf_real_t most = HKF_REAL(10000.0);
+    const hkf_real_t alpha = step_weight(dt, HKF_SETTINGS(f)->q_boost_time);
+    int a;
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        const hkf_real_t e = hkf_sub(hkf_divide(hkf_mul(y[a], y[a]), inv_s[a]), HKF_REAL(1.0));
+        const hkf_real_t excess = e > 0 ? (e < most ? e : most) : 0;
+        f->motion[a] = hkf_add(f->motion[a], hkf_mul(alpha, hkf_sub(excess, f->motion[a])));
+    }
+}
+
 /* hkf_update's step for a measurement z whose Eq. 8 curves (and r_const,
  * r_min, r_max) are those of `noise`: f itself, or a second model's prepared
  * curves (hkf_update_pair when only the second model measured). z is checked. */
@@ -550,16 +579,13 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
     hkf_real_t y[HKF_LANES], r[HKF_LANES]; /* y holds the loop-closed measurement, then the innovation */
     hkf_divisor_t inv_s[HKF_LANES];
     unsigned flags = 0;
-    int a, result;
+    int result;
     if (f->status == HKF_STATUS_UNINITIALIZED || f->status == HKF_STATUS_LOST) {
         /* the first measurement (dt ignored), or the first after LOST */
         if (f->status == HKF_STATUS_LOST && (result = check_dt(f, dt)) != HKF_OK) {
             return result;
         }
-        load_lanes(y, z);
-        observation_noise_lanes(noise, y, f->r);
-        start_track(f, z);
-        write_output(f, HKF_FLAG_REACQUIRED, out);
+        restart_from(f, noise, z, y, 0, out);
         return HKF_OK;
     }
     result = check_dt(f, dt);
@@ -581,10 +607,7 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
      * exceeds gate_sigma; after max_gate_rejections in a row, believe it. */
     if (gated(f, y, inv_s)) {
         if (f->gate_rejections >= HKF_SETTINGS(f)->max_gate_rejections) {
-            load_lanes(y, z);
-            observation_noise_lanes(noise, y, f->r);
-            start_track(f, z);
-            write_output(f, HKF_FLAG_GATED | HKF_FLAG_REACQUIRED, out);
+            restart_from(f, noise, z, y, HKF_FLAG_GATED, out);
         } else {
             count_missing(f, dt);
             f->gate_rejections += 1u;
@@ -598,18 +621,9 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
             motion_step(f, y, r, inv_s, dt);
         }
     } else if (HKF_SETTINGS(f)->q_boost > 0) {
-        /* m += alpha (e - m), alpha = dt / (dt + time) in [0, 1], e = y^2 / S - 1 within [0, 10^4]:
-         * m stays within [0, 10^4] whatever the input (fuzz_libhkf: a reciprocal of a denormal
-         * dt + time overflowed alpha, and m went to -inf) */
-        const hkf_real_t most = HKF_REAL(10000.0);
-        const hkf_real_t alpha = step_weight(dt, HKF_SETTINGS(f)->q_boost_time);
-        for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            const hkf_real_t e = hkf_sub(hkf_divide(hkf_mul(y[a], y[a]), inv_s[a]), HKF_REAL(1.0));
-            const hkf_real_t excess = e > 0 ? (e < most ? e : most) : 0;
-            f->motion[a] = hkf_add(f->motion[a], hkf_mul(alpha, hkf_sub(excess, f->motion[a])));
-        }
+        innovation_excess_step(f, y, inv_s, dt);
     }
-    correct_axes(f, y, r, inv_s);
+    correct_axes(f, y, r, inv_s);                                         /* Eq. 6-7 */
     if (calibrated(f)) {
         noise_estimate_update(f, z, dt);
     }

@@ -113,12 +113,12 @@ static int finite_angles(const hkf_head_pose_measurement_t *m)
            fabsf(m->roll) <= HKF_MAX_ABS_ANGLE;
 }
 
-int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
+/* The order, duplicate and value rules on m's capture time and angles; when m
+ * is taken, *dt is its step from the last one (0 for the first) and a gap
+ * longer than max_dt has restarted the track. Returns 0 when m is rejected. */
+static int take_time(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t *dt)
 {
-    hkf_output_t out;
-    hkf_real_t dt = 0;
-    int result;
-    ++node->counts.received;
+    *dt = 0;
     if (node->have_time && m->utime < node->last_utime) {
         ++node->counts.out_of_order;
         return 0;
@@ -132,29 +132,40 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
         return 0;
     }
     if (node->have_time) {
-        dt = (hkf_real_t)(((double)m->utime - (double)node->last_utime) * 1e-6);
+        *dt = (hkf_real_t)(((double)m->utime - (double)node->last_utime) * 1e-6);
     }
     node->have_time = 1;
     node->last_utime = m->utime;
-    if (node->filter.status != HKF_STATUS_UNINITIALIZED && dt > node->config->settings.max_dt) {
+    if (node->filter.status != HKF_STATUS_UNINITIALIZED && *dt > node->config->settings.max_dt) {
         restart_track(node); /* a gap longer than max_dt: the track starts again from this measurement */
     }
+    return 1;
+}
 
-    if (!m->valid) {
-        ++node->counts.without_face;
-        if (node->filter.status == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
-            strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model) == HKF_OK) {
-            second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
-        }
-        second_model_keep_frame(&node->second, m, NULL, dt, &node->filter);
-        result = hkf_predict(&node->filter, dt, &out);
-        if (result != HKF_OK) { /* no track yet (or again, after a gap) */
-            return 0;
-        }
-        fill_pose(node, &out, m->utime, pose);
-        return 1;
+/* A frame without a face: the filter coasts (hkf_predict). */
+static int coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t dt, hkf_head_pose_t *pose)
+{
+    hkf_output_t out;
+    ++node->counts.without_face;
+    if (node->filter.status == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
+        strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model) == HKF_OK) {
+        second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
+    second_model_keep_frame(&node->second, m, NULL, dt, &node->filter);
+    if (hkf_predict(&node->filter, dt, &out) != HKF_OK) { /* no track yet (or again, after a gap) */
+        return 0;
+    }
+    fill_pose(node, &out, m->utime, pose);
+    return 1;
+}
 
+/* A measurement: the filter set up for its model (a change of model restarts
+ * the track with the new curves), then hkf_update. */
+static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t dt, hkf_head_pose_t *pose)
+{
+    const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
+    hkf_output_t out;
+    int known;
     if (strncmp(m->model ? m->model : "", node->model, sizeof node->model) != 0) {
         if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
             ++node->counts.restarts;
@@ -164,17 +175,10 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
         }
         second_model_forget_frames(&node->second);
     }
-    {
-        int known;
-        (void)node_config_for_model(node->config, node->model, &known);
-        node->counts.unknown_models += !known;
-    }
-    {
-        const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
-        second_model_keep_frame(&node->second, m, z, dt, &node->filter);
-        result = hkf_update(&node->filter, z, dt, &out);
-    }
-    if (result != HKF_OK) {
+    (void)node_config_for_model(node->config, node->model, &known);
+    node->counts.unknown_models += !known;
+    second_model_keep_frame(&node->second, m, z, dt, &node->filter);
+    if (hkf_update(&node->filter, z, dt, &out) != HKF_OK) {
         ++node->counts.bad_values;
         second_model_unkeep_newest(&node->second);
         return 0;
@@ -182,6 +186,16 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
     node->last_measurement_utime = m->utime;
     fill_pose(node, &out, m->utime, pose);
     return 1;
+}
+
+int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
+{
+    hkf_real_t dt;
+    ++node->counts.received;
+    if (!take_time(node, m, &dt)) {
+        return 0;
+    }
+    return m->valid ? update(node, m, dt, pose) : coast(node, m, dt, pose);
 }
 
 /* Capture-clock step minus arrival-clock step, in double: stamps may be anything. */
