@@ -4,15 +4,14 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "bench_clock.h"
+#include "arguments.h"
 
 #include <sys/select.h>
 #include <time.h>
 
 int64_t bench_wall_utime(void)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+    return clock_wall_us();
 }
 
 void bench_handle_until(lcm_t *lcm, int64_t until)

@@ -18,6 +18,7 @@
 
 #include <lcm/lcm.h>
 
+#include "arguments.h"
 #include "bench_clock.h"
 #include "head_motion_sim.h"
 #include "hkf_head_pose_measurement_t.h"
@@ -121,13 +122,6 @@ static long rss_kib(long pid)
     return kib;
 }
 
-static int parse_number(const char *text, double low, double high, double *value)
-{
-    char *end = NULL;
-    *value = strtod(text, &end);
-    return end != text && *end == '\0' && *value >= low && *value <= high ? 0 : -1;
-}
-
 int main(int argc, char **argv)
 {
     static soak_t soak;
@@ -161,13 +155,13 @@ int main(int argc, char **argv)
         } else if (value == NULL) {
             bad = 1;
         } else if (strcmp(argv[a], "--rate") == 0) {
-            bad = parse_number(value, 1.0, 20000.0, &rate);
+            bad = !argument_number(value, 1.0, 20000.0, &rate);
         } else if (strcmp(argv[a], "--seconds") == 0) {
-            bad = parse_number(value, 1.0, 7 * 86400.0, &seconds);
+            bad = !argument_number(value, 1.0, 7 * 86400.0, &seconds);
         } else if (strcmp(argv[a], "--interval") == 0) {
-            bad = parse_number(value, 0.1, 3600.0, &interval_s);
+            bad = !argument_number(value, 0.1, 3600.0, &interval_s);
         } else if (strcmp(argv[a], "--watch-pid") == 0) {
-            bad = parse_number(value, 1.0, 4194304.0, &pid);
+            bad = !argument_number(value, 1.0, 4194304.0, &pid);
         } else if (strcmp(argv[a], "--csv") == 0) {
             csv_path = value;
         } else if (strcmp(argv[a], "--lcm-url") == 0) {

@@ -8,10 +8,10 @@
 
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
 #include <lcm/lcm.h>
 
+#include "arguments.h"
 #include "hkf_tracker_command_t.h"
 
 #define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
@@ -33,7 +33,6 @@ int main(int argc, char **argv)
 {
     const char *lcm_url = DEFAULT_LCM_URL, *channel = "HEAD_TRACKER_CMD", *verb = NULL;
     hkf_tracker_command_t command;
-    struct timespec now;
     lcm_t *lcm;
     int i, result;
     for (i = 1; i < argc; ++i) {
@@ -71,8 +70,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "hkf-cmd: unknown command '%s': recenter or reset\n", verb);
         return 2;
     }
-    clock_gettime(CLOCK_REALTIME, &now);
-    command.utime = (int64_t)now.tv_sec * 1000000 + now.tv_nsec / 1000;
+    command.utime = clock_wall_us();
     lcm = lcm_create(lcm_url);
     if (lcm == NULL) {
         fprintf(stderr, "hkf-cmd: cannot open LCM provider '%s'\n", lcm_url);

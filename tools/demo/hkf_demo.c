@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "arguments.h"
 #include "hkf/hkf.h"
 #include "head_motion_sim.h"
 
@@ -50,14 +51,6 @@ static void usage(FILE *to)
             "  --help       this text (--version: the version)\n");
 }
 
-static int parse_number(const char *text, double low, double high, double *value)
-{
-    char *end = NULL;
-    errno = 0;
-    *value = strtod(text, &end);
-    return errno == 0 && end != text && *end == '\0' && *value >= low && *value <= high;
-}
-
 /* 0 = run, 1 = help shown, 2 = bad arguments (reported) */
 static int parse_options(int argc, char **argv, demo_options_t *o)
 {
@@ -76,12 +69,12 @@ static int parse_options(int argc, char **argv, demo_options_t *o)
             printf("hkf-demo %s\n", HKF_VERSION);
             return 1;
         } else if (strcmp(argv[i], "--seconds") == 0 && has_value) {
-            if (!parse_number(argv[++i], 1.0, 3600.0, &o->seconds)) {
+            if (!argument_number(argv[++i], 1.0, 3600.0, &o->seconds)) {
                 fprintf(stderr, "hkf-demo: --seconds wants a number from 1 to 3600, not '%s'\n", argv[i]);
                 return 2;
             }
         } else if (strcmp(argv[i], "--seed") == 0 && has_value) {
-            if (!parse_number(argv[++i], 0.0, 4294967295.0, &v) || v != floor(v)) {
+            if (!argument_number(argv[++i], 0.0, 4294967295.0, &v) || v != floor(v)) {
                 fprintf(stderr, "hkf-demo: --seed wants a whole number from 0 to 4294967295, not '%s'\n", argv[i]);
                 return 2;
             }

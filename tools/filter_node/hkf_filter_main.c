@@ -15,6 +15,7 @@
 
 #include <lcm/lcm.h>
 
+#include "arguments.h"
 #include "filter_node.h"
 #include "filter_node_offline.h"
 #include "lcm_log_writer.h"
@@ -47,17 +48,10 @@ typedef struct {
     unsigned long unknown_commands, publish_errors, csv_errors;
 } node_run_t;
 
-static int64_t clock_utime(clockid_t clock)
-{
-    struct timespec ts;
-    clock_gettime(clock, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-}
-
 /* The capture clock, for the latency a pose reports. */
 static int64_t wall_utime(void)
 {
-    return clock_utime(CLOCK_REALTIME);
+    return clock_wall_us();
 }
 
 /* The receive clock of the live node: arrivals, silence, --rate ticks. It
@@ -65,7 +59,7 @@ static int64_t wall_utime(void)
  * in the estimator's stamps alone, where the clock rule sees it. */
 static int64_t arrival_utime(void)
 {
-    return clock_utime(CLOCK_MONOTONIC);
+    return clock_monotonic_us();
 }
 
 static void usage(FILE *to)
@@ -132,10 +126,7 @@ static int parse_options(int argc, char **argv, options_t *o)
         } else if (strcmp(arg, "--command-channel") == 0) {
             o->command_channel = argv[++i];
         } else if (strcmp(arg, "--rate") == 0) {
-            char *end = NULL;
-            errno = 0;
-            o->rate_hz = strtod(argv[++i], &end);
-            if (end == argv[i] || *end != '\0' || errno != 0 || !(o->rate_hz >= 0.1 && o->rate_hz <= 10000.0)) {
+            if (!argument_number(argv[++i], 0.1, 10000.0, &o->rate_hz)) {
                 fprintf(stderr, "hkf-filter: --rate wants a frequency from 0.1 to 10000 Hz, not '%s'\n", argv[i]);
                 return 2;
             }

@@ -18,6 +18,8 @@
 
 #include <lcm/lcm.h>
 
+#include "arguments.h"
+
 #include "lcm_wait.h"
 #include "opentrack_packet.h"
 
@@ -189,10 +191,7 @@ static int parse_options(int argc, char **argv, options_t *o)
                 return 2;
             }
         } else if (strcmp(arg, "--rate") == 0) {
-            char *end = NULL;
-            errno = 0;
-            o->rate_hz = strtod(value, &end);
-            if (end == value || *end != '\0' || errno != 0 || !(o->rate_hz >= 1.0 && o->rate_hz <= 1000.0)) {
+            if (!argument_number(value, 1.0, 1000.0, &o->rate_hz)) {
                 fprintf(stderr, "hkf-opentrack: --rate wants a frequency from 1 to 1000 Hz, not '%s'\n", value);
                 return 2;
             }
@@ -328,19 +327,12 @@ static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
     hkf_head_pose_t_decode_cleanup(&pose);
 }
 
-static int64_t monotonic_us(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-}
-
 static int run(bridge_t *bridge)
 {
     const options_t *o = bridge->options;
     lcm_t *lcm = lcm_create(o->lcm_url);
     const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
-    int64_t next_tick = monotonic_us() + tick_us;
+    int64_t next_tick = clock_monotonic_us() + tick_us;
     int status = 0;
     if (lcm == NULL) {
         fprintf(stderr, "hkf-opentrack: cannot open LCM provider '%s'\n", o->lcm_url);
@@ -353,17 +345,17 @@ static int run(bridge_t *bridge)
     lcm_wait_stop_on_signals();
     fprintf(stderr, "hkf-opentrack: %s on %s -> opentrack at %s port %s\n", o->channel, o->lcm_url, o->host, o->port);
     while (!lcm_wait_stop_requested()) {
-        if (lcm_wait_and_handle(lcm, lcm_wait_time(tick_us > 0 ? next_tick : 0, monotonic_us()), "hkf-opentrack") < 0) {
+        if (lcm_wait_and_handle(lcm, lcm_wait_time(tick_us > 0 ? next_tick : 0, clock_monotonic_us()), "hkf-opentrack") < 0) {
             status = 1;
             break;
         }
-        if (tick_us > 0 && monotonic_us() >= next_tick) {
+        if (tick_us > 0 && clock_monotonic_us() >= next_tick) {
             if (bridge->have_packet) {
                 send_packet(bridge);
             }
             next_tick += tick_us;
-            if (next_tick < monotonic_us()) {
-                next_tick = monotonic_us() + tick_us; /* fell behind: no burst to catch up */
+            if (next_tick < clock_monotonic_us()) {
+                next_tick = clock_monotonic_us() + tick_us; /* fell behind: no burst to catch up */
             }
         }
     }

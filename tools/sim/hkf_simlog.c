@@ -12,6 +12,7 @@
 
 #include <lcm/lcm.h>
 
+#include "arguments.h"
 #include "head_motion_sim.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "lcm_log_writer.h"
@@ -37,10 +38,7 @@ static void usage(FILE *to)
 
 static int number_arg(const char *name, const char *text, double low, double high, double *value)
 {
-    char *end = NULL;
-    errno = 0;
-    *value = strtod(text, &end);
-    if (end == text || *end != '\0' || errno != 0 || !(*value >= low && *value <= high)) {
+    if (!argument_number(text, low, high, value)) {
         fprintf(stderr, "hkf-simlog: %s wants a number from %g to %g, not '%s'\n", name, low, high, text);
         return 0;
     }

@@ -1,0 +1,20 @@
+/*
+ * arguments.h - what every program's command line shares: a number option
+ * read whole and checked against its range, and the clocks the programs stamp
+ * and wait with.
+ */
+#ifndef ARGUMENTS_H
+#define ARGUMENTS_H
+
+#include <stdint.h>
+
+/* 1 when all of text is a number (strtod's syntax, not out of range) within
+ * [low, high]: *value holds it; else 0 (the caller says what it wanted). */
+int argument_number(const char *text, double low, double high, double *value);
+
+/* Microseconds: the wall clock (capture stamps, as the estimator writes them)
+ * and the monotonic clock (waits and arrival times). */
+int64_t clock_wall_us(void);
+int64_t clock_monotonic_us(void);
+
+#endif /* ARGUMENTS_H */
