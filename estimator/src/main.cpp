@@ -36,10 +36,34 @@ extern "C" {
 
 namespace {
 
+// The data an installed hkf-estimator ships with, <prefix>/share/hkf/SUB beside
+// <prefix>/bin, found from the program's own location so that the prefix may
+// move; "" when there is none (the build tree: the compile-time folders).
+std::string installed_data(const char *sub)
+{
+    std::error_code error;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error) return "";
+    const std::filesystem::path data = self.parent_path().parent_path() / "share" / "hkf" / sub;
+    return std::filesystem::is_directory(data, error) ? data.string() : "";
+}
+
+std::string default_models_dir()
+{
+    const std::string installed = installed_data("models");
+    return installed.empty() ? HKF_DEFAULT_MODELS_DIR : installed;
+}
+
+std::string default_spec_dir()
+{
+    const std::string installed = installed_data("specs");
+    return installed.empty() ? HKF_DEFAULT_SPEC_DIR : installed;
+}
+
 struct Options {
     std::string dataset, model = "mesh_pnp", predictions;  // the default keeps up with 60 fps
     std::string second_model;  // --second-model: none by default
-    std::string models_dir = HKF_DEFAULT_MODELS_DIR, spec_dir = HKF_DEFAULT_SPEC_DIR;
+    std::string models_dir = default_models_dir(), spec_dir = default_spec_dir();
     long limit = 0;
     hkf_estimator::PipelineOptions pipeline;
     hkf_estimator::DetectorRange range = hkf_estimator::DetectorRange::Short;
@@ -104,8 +128,9 @@ void usage(std::ostream &out)
            "  --model NAME       mesh_pnp (default: keeps up with 60 fps) or whenet (more accurate at\n"
            "                     large angles, ~30 ms a frame): a description in the model folder\n"
            "  --limit N          only the first N images\n"
-           "  --models-dir DIR   converted models (default " HKF_DEFAULT_MODELS_DIR ", or $HKF_MODELS_DIR)\n"
-           "  --spec-dir DIR     model descriptions (default " HKF_DEFAULT_SPEC_DIR ")\n"
+           "  --models-dir DIR   converted models (default "
+        << default_models_dir() << ", or $HKF_MODELS_DIR)\n"
+           "  --spec-dir DIR     model descriptions (default " << default_spec_dir() << ")\n"
            "  --help, --version  this text; the version\n";
 }
 

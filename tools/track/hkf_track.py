@@ -28,11 +28,24 @@ DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
 STATUS = {1: "TRACKING", 2: "COASTING", 3: "LOST"}
 
 
+def installed():
+    """True for an installed hkf-track (cmake --install): the programs beside it."""
+    return os.access(os.path.join(HERE, "hkf-filter"), os.X_OK)
+
+
+def read_version():
+    """The VERSION file: the source tree's, or the one installed in share/hkf."""
+    for path in (os.path.join(ROOT, "VERSION"), os.path.join(HERE, os.pardir, "share", "hkf", "VERSION")):
+        if os.path.exists(path):
+            with open(path) as f:
+                return f.read().strip()
+    return "unknown"
+
+
 def parse_args():
     p = argparse.ArgumentParser(prog="hkf-track", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "VERSION")) as f:
-        p.add_argument("--version", action="version", version=f"hkf-track {f.read().strip()}")
+    p.add_argument("--version", action="version", version=f"hkf-track {read_version()}")
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--camera", metavar="N", help="camera index (0) or device (/dev/video0)")
     src.add_argument("--source", metavar="FILE", help="a video file or a folder of images instead of a camera")
@@ -49,9 +62,13 @@ def parse_args():
     p.add_argument("--opentrack-args", default="", help="more hkf-opentrack options, e.g. '--invert yaw'")
     p.add_argument("--lcm-url", default=DEFAULT_URL, help=f"LCM provider for all of them (default {DEFAULT_URL})")
     p.add_argument("--seconds", type=float, default=0.0, help="stop after this long (default: Ctrl-C)")
-    p.add_argument("--build", default=os.path.join(ROOT, "build"), help="where the programs were built")
-    p.add_argument("--logs", default=os.path.join(ROOT, "out", "track"), help="folder for the programs' logs")
+    p.add_argument("--build", default=None,
+                   help="where the programs were built (default: installed beside hkf-track, else ./build)")
+    p.add_argument("--logs", default=None,
+                   help="folder for the programs' logs (default out/track in the source tree, or ./hkf-track-logs)")
     args = p.parse_args()
+    if args.logs is None:
+        args.logs = os.path.join(os.getcwd(), "hkf-track-logs") if installed() else os.path.join(ROOT, "out", "track")
     if args.source is not None and not os.path.exists(args.source):
         p.error(f"--source: no such file or folder: {args.source}")
     if args.rate is not None and not 0.0 < args.rate <= 10000.0:
@@ -61,9 +78,18 @@ def parse_args():
     return args
 
 
+def layout(args):
+    """(folder of hkf-filter and hkf-opentrack, of hkf-estimator, of the Python message types): the
+    build tree (--build, or ./build), or, for an installed hkf-track, its own bin and share/hkf."""
+    if args.build is None and installed():
+        return HERE, HERE, os.path.join(HERE, os.pardir, "share", "hkf", "python")
+    build = args.build or os.path.join(ROOT, "build")
+    return os.path.join(build, "tools"), os.path.join(build, "estimator"), os.path.join(build, "lcmtypes", "python")
+
+
 def commands(args):
     """(name, argv) of each program, in start order: the consumers first, so no pose is missed."""
-    tools, url = os.path.join(args.build, "tools"), args.lcm_url
+    (tools, estimator, _), url = layout(args), args.lcm_url
     out = []
     if args.opentrack:
         out.append(("hkf-opentrack", [os.path.join(tools, "hkf-opentrack"), "--lcm-url", url, "--host",
@@ -75,7 +101,7 @@ def commands(args):
     if args.rate:
         flt += ["--rate", str(args.rate)]
     out.append(("hkf-filter", flt))
-    est = [os.path.join(args.build, "estimator", "hkf-estimator"), "--source",
+    est = [os.path.join(estimator, "hkf-estimator"), "--source",
            args.camera if args.camera is not None else args.source, "--lcm-url", url]
     if args.realtime:
         est.append("--realtime")
@@ -169,7 +195,7 @@ def stop(children, logs):
 
 def main():
     args = parse_args()
-    sys.path.insert(0, os.path.join(args.build, "lcmtypes", "python"))
+    sys.path.insert(0, layout(args)[2])
     for _, argv in commands(args):
         if not os.access(argv[0], os.X_OK):
             print(f"hkf-track: {argv[0]} is missing: build first (./run build)", file=sys.stderr)
