@@ -105,7 +105,8 @@ void usage(std::ostream &out)
            "  --source SRC       a camera (0, /dev/video0), a video file, or a folder of images\n"
            "  --realtime         pace a file at its frame rate (default: as fast as possible)\n"
            "  --fps F            frame rate of an image folder (default 30)\n"
-           "  --detector R       short (faces within ~2 m, default) or full range\n"
+           "  --detector R       short (BlazeFace, faces within ~2 m, default), full (BlazeFace up to\n"
+           "                     ~5 m) or retina (RetinaFace: near and far faces, and profiles)\n"
            "  --region X,Y,W,H   only faces whose centre is in this region (px) are taken\n"
            "  --annotate OUT.mp4 write the video with face box and pose axes (raw thin, filtered thick)\n"
            "  --show             also show it in a window (needs a display)\n"
@@ -174,11 +175,13 @@ int parse(int argc, char **argv, Options &o)
             }
             o.pipeline.max_frames = static_cast<long>(number);
         } else if (arg == "--detector") {
-            if (value != "short" && value != "full") {
-                std::cerr << "hkf-estimator: --detector is short or full, not '" << value << "'\n";
+            if (value != "short" && value != "full" && value != "retina") {
+                std::cerr << "hkf-estimator: --detector is short, full or retina, not '" << value << "'\n";
                 return 2;
             }
-            o.range = value == "short" ? hkf_estimator::DetectorRange::Short : hkf_estimator::DetectorRange::Full;
+            o.range = value == "short"  ? hkf_estimator::DetectorRange::Short
+                      : value == "full" ? hkf_estimator::DetectorRange::Full
+                                        : hkf_estimator::DetectorRange::Retina;
         } else if (arg == "--region") {
             float x, y, w, h;
             char extra;

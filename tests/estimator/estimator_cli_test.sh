@@ -69,7 +69,7 @@ expect_error "limit" "$est" --dataset "$data" --predictions "$work/x.csv" --limi
 expect_error "needs --predictions" "$est" --dataset "$data"
 expect_error "crop is live or labels" "$est" --dataset "$data" --predictions "$work/x.csv" --crop boxes
 expect_error "either --source SRC or --dataset DIR" "$est" --limit 3
-expect_error "detector is short or full" "$est" --source x --detector medium
+expect_error "detector is short, full or retina" "$est" --source x --detector medium
 expect_error "region wants" "$est" --source x --region 1,2,3
 "$est" --help | grep -q "usage: hkf-estimator" || fail "--help"
 echo "estimator_cli_test: all checks passed"

