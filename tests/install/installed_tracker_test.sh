@@ -24,7 +24,8 @@ elif [ "$mode" = deb ]; then
   (cd "$work" && cpack -G DEB --config "$build/CPackConfig.cmake" -B "$work/package" >"$work/cpack.txt" 2>&1) \
     || { cat "$work/cpack.txt"; fail "cpack -G DEB"; }
   deb=$(ls "$work"/package/*.deb)
-  dpkg-deb --info "$deb" | grep -q "Depends:.*liblcm" || fail "the package does not depend on LCM's library"
+  dpkg-deb --info "$deb" >"$work/info.txt" || fail "dpkg-deb --info"
+  grep -q "Depends:.*liblcm" "$work/info.txt" || { cat "$work/info.txt"; fail "the package does not depend on LCM's library"; }
   dpkg-deb -x "$deb" "$work/root" || fail "dpkg-deb -x"
   root=$work/root/usr
   echo "package: $(basename "$deb"), $(du -k "$deb" | cut -f1) KB"
@@ -33,13 +34,17 @@ else
 fi
 
 cd "$work"  # neither the source nor the build tree
+# (each output to a file first: grep -q may stop reading early, and under pipefail the writer's SIGPIPE would fail)
 for program in hkf-estimator hkf-filter hkf-opentrack hkf-cmd hkf-demo hkf-simlog hkf-annotate hkf-spy; do
-  "$root/bin/$program" --version | grep -q "^$program " || fail "$program --version"
+  "$root/bin/$program" --version >"$work/version.txt" || fail "$program --version"
+  grep -q "^$program " "$work/version.txt" || fail "$program --version: $(cat "$work/version.txt")"
 done
-PATH="$source/.venv/bin:$PATH" "$root/bin/hkf-track" --version | grep -q "^hkf-track " || fail "hkf-track --version"
-"$root/bin/hkf-spy" --print-class-path | grep -q "$root/bin/../share/hkf/java/hkf_lcmtypes.jar" \
-  || fail "hkf-spy does not use the installed jar"
-"$root/bin/hkf-estimator" --help | grep -q "default $root/share/hkf/models" || fail "the estimator does not find its installed models"
+PATH="$source/.venv/bin:$PATH" "$root/bin/hkf-track" --version >"$work/version.txt" || fail "hkf-track --version"
+grep -q "^hkf-track " "$work/version.txt" || fail "hkf-track --version: $(cat "$work/version.txt")"
+"$root/bin/hkf-spy" --print-class-path >"$work/class_path.txt" || fail "hkf-spy --print-class-path"
+grep -q "$root/bin/../share/hkf/java/hkf_lcmtypes.jar" "$work/class_path.txt" || fail "hkf-spy does not use the installed jar"
+"$root/bin/hkf-estimator" --help >"$work/help.txt" || fail "hkf-estimator --help"
+grep -q "default $root/share/hkf/models" "$work/help.txt" || fail "the estimator does not find its installed models"
 "$root/bin/hkf-estimator" --source "$clip" --max-frames 60 --lcm-url "file://$work/raw.lcmlog?mode=w" >"$work/estimator.txt" 2>&1 \
   || { cat "$work/estimator.txt"; fail "the installed estimator on $clip"; }
 "$root/bin/hkf-filter" --config "$root/share/hkf/hkf-filter.conf" --offline "$work/raw.lcmlog" "$work/poses.lcmlog" \
