@@ -4,7 +4,6 @@
  * face; seeded, so the same arguments give the same bytes. The input of the
  * log-replay tests and of demos without a camera.
  */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
