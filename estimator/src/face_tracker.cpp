@@ -24,6 +24,18 @@ std::optional<Face> FaceTracker::nearest(const std::vector<Face> &faces, float m
     return best;
 }
 
+// The face in `roi` nearest the last one, within half a face size of it.
+std::optional<Face> FaceTracker::search_region(FaceDetector &detector, const cv::Mat &frame, const cv::Rect &roi, float size) const
+{
+    std::vector<Face> faces = detector.detect(frame(roi));
+    for (Face &f : faces) {
+        f.box.x += static_cast<float>(roi.x);
+        f.box.y += static_cast<float>(roi.y);
+        for (auto &k : f.keypoints) k += cv::Point2f(static_cast<float>(roi.x), static_cast<float>(roi.y));
+    }
+    return nearest(faces, 0.5f * size);
+}
+
 std::optional<Face> FaceTracker::track(const cv::Mat &frame, int64_t utime)
 {
     const cv::Rect2f whole(0.f, 0.f, static_cast<float>(frame.cols), static_cast<float>(frame.rows));
@@ -36,19 +48,11 @@ std::optional<Face> FaceTracker::track(const cv::Mat &frame, int64_t utime)
         const cv::Rect2f roi_f = cv::Rect2f(c.x - half, c.y - half, 2 * half, 2 * half) & whole;
         const cv::Rect roi(cv::Point(static_cast<int>(roi_f.x), static_cast<int>(roi_f.y)),
                            cv::Point(static_cast<int>(roi_f.br().x), static_cast<int>(roi_f.br().y)));
-        if (roi.width > 8 && roi.height > 8) {
-            std::vector<Face> faces = detector_.detect(frame(roi));
-            for (Face &f : faces) {
-                f.box.x += static_cast<float>(roi.x);
-                f.box.y += static_cast<float>(roi.y);
-                for (auto &k : f.keypoints) k += cv::Point2f(static_cast<float>(roi.x), static_cast<float>(roi.y));
-            }
-            found = nearest(faces, 0.5f * size);
-        }
+        if (roi.width > 8 && roi.height > 8) found = search_region(*detectors_.region, frame, roi, size);
     }
     if (!found) {
         ++full_frame_searches_;
-        std::vector<Face> faces = detector_.detect(frame);
+        std::vector<Face> faces = detectors_.search->detect(frame);
         if (!settings_.region.empty()) {
             std::vector<Face> inside;
             for (const Face &f : faces)

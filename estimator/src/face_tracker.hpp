@@ -2,7 +2,8 @@
 //
 // With no track, the whole frame is searched and the largest face (inside the
 // optional region) is taken. With a track, only a region around the face is
-// searched, and the face there nearest the last one is kept. The tracker
+// searched (BlazeFace follows a face there to profile: turn_sequence_test.py),
+// and the face there nearest the last one is kept. The tracker
 // never hops: a face far from the locked one is ignored, and once the locked
 // face is lost only a face near its last place is taken, until
 // reacquire_any_after has passed without it.
@@ -22,9 +23,17 @@ struct TrackerSettings {
     float acquire_score = 0.75f;        // detection score needed to start a track
 };
 
+// The detectors a tracker uses (not owned; one may serve in several places).
+struct TrackerDetectors {
+    FaceDetector *search;  // the whole frame: at the start and to re-acquire
+    FaceDetector *region;  // the region around the tracked face, every frame
+};
+
 class FaceTracker {
 public:
-    FaceTracker(FaceDetector &detector, TrackerSettings settings) : detector_(detector), settings_(settings) {}
+    FaceTracker(TrackerDetectors detectors, TrackerSettings settings) : detectors_(detectors), settings_(settings) {}
+    // one detector everywhere
+    FaceTracker(FaceDetector &detector, TrackerSettings settings) : FaceTracker(TrackerDetectors{&detector, &detector}, settings) {}
 
     std::optional<Face> track(const cv::Mat &frame, int64_t utime);
 
@@ -32,8 +41,9 @@ public:
 
 private:
     std::optional<Face> nearest(const std::vector<Face> &faces, float max_distance) const;
+    std::optional<Face> search_region(FaceDetector &detector, const cv::Mat &frame, const cv::Rect &roi, float size) const;
 
-    FaceDetector &detector_;
+    TrackerDetectors detectors_;
     TrackerSettings settings_;
     bool locked_ = false;
     Face last_;

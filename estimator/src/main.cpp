@@ -66,7 +66,7 @@ struct Options {
     std::string models_dir = default_models_dir(), spec_dir = default_spec_dir();
     long limit = 0;
     hkf_estimator::PipelineOptions pipeline;
-    hkf_estimator::DetectorRange range = hkf_estimator::DetectorRange::Short;
+    std::string detector = "retina";
     hkf_estimator::DatasetCrop crop = hkf_estimator::DatasetCrop::Live;
 };
 
@@ -100,13 +100,15 @@ void usage(std::ostream &out)
 {
     out << "usage: hkf-estimator --source SRC [options]        camera / video / images -> LCM\n"
            "       hkf-estimator --dataset DIR --predictions OUT.csv [--model NAME] [--limit N]\n"
-           "Finds the driver's face (BlazeFace), estimates its head pose and publishes\n"
+           "Finds the driver's face, estimates its head pose and publishes\n"
            "hkf.head_pose_measurement_t on HEAD_POSE_RAW for every frame (valid = false: no face).\n"
            "  --source SRC       a camera (0, /dev/video0), a video file, or a folder of images\n"
            "  --realtime         pace a file at its frame rate (default: as fast as possible)\n"
            "  --fps F            frame rate of an image folder (default 30)\n"
-           "  --detector R       short (BlazeFace, faces within ~2 m, default), full (BlazeFace up to\n"
-           "                     ~5 m) or retina (RetinaFace: near and far faces, and profiles)\n"
+           "  --detector R       the search for a face: retina (default: RetinaFace finds near and\n"
+           "                     far faces and profiles, then BlazeFace follows the face), short\n"
+           "                     (BlazeFace only, faces within ~2 m) or full\n"
+           "                     (BlazeFace only, up to ~5 m)\n"
            "  --region X,Y,W,H   only faces whose centre is in this region (px) are taken\n"
            "  --annotate OUT.mp4 write the video with face box and pose axes (raw thin, filtered thick)\n"
            "  --show             also show it in a window (needs a display)\n"
@@ -179,9 +181,7 @@ int parse(int argc, char **argv, Options &o)
                 std::cerr << "hkf-estimator: --detector is short, full or retina, not '" << value << "'\n";
                 return 2;
             }
-            o.range = value == "short"  ? hkf_estimator::DetectorRange::Short
-                      : value == "full" ? hkf_estimator::DetectorRange::Full
-                                        : hkf_estimator::DetectorRange::Retina;
+            o.detector = value;
         } else if (arg == "--region") {
             float x, y, w, h;
             char extra;
@@ -278,11 +278,20 @@ int main(int argc, char **argv)
     }
     try {
         const std::unique_ptr<HeadPoseEstimator> model = make_estimator(load_model_spec(o.spec_dir, o.model, o.models_dir));
-        FaceDetector detector(o.models_dir, o.range);
+        // retina: RetinaFace searches the frame (near, far and turned faces), BlazeFace short
+        // range follows the face in the region around it
+        const DetectorRange search_range = o.detector == "short"  ? DetectorRange::Short
+                                           : o.detector == "full" ? DetectorRange::Full
+                                                                  : DetectorRange::Retina;
+        FaceDetector detector(o.models_dir, search_range);
+        std::unique_ptr<FaceDetector> region;
+        if (search_range == DetectorRange::Retina && !o.pipeline.source.empty())
+            region = std::make_unique<FaceDetector>(o.models_dir, DetectorRange::Short);
         if (!o.pipeline.source.empty()) {
             std::unique_ptr<HeadPoseEstimator> second;
             if (!o.second_model.empty()) second = make_estimator(load_model_spec(o.spec_dir, o.second_model, o.models_dir));
-            return run_pipeline(*model, detector, o.pipeline, second.get());
+            const TrackerDetectors detectors{&detector, region ? region.get() : &detector};
+            return run_pipeline(*model, detectors, o.pipeline, second.get());
         }
         std::ofstream predictions(o.predictions);
         if (!predictions) throw EstimatorError("cannot write " + o.predictions);

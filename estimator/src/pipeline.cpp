@@ -130,7 +130,7 @@ hkf::head_pose_measurement_t measurement_message(int64_t utime, int64_t seq, con
 
 }  // namespace
 
-int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const PipelineOptions &options,
+int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const PipelineOptions &options,
                  HeadPoseEstimator *second)
 {
     FrameSource source(options.source, options.fps_for_images);
@@ -139,7 +139,7 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
     FilteredPose filtered;
     if (!options.annotate_path.empty() || options.show)
         lcm_subscribe(lcm.getUnderlyingLCM(), options.filtered_channel.c_str(), on_filtered_pose, &filtered);
-    FaceTracker tracker(detector, options.tracker);
+    FaceTracker tracker(detectors, options.tracker);
     cv::VideoWriter writer;
     cv::Size writer_size;
     bool show = options.show;
@@ -150,6 +150,12 @@ int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const Pipelin
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     std::signal(SIGHUP, on_signal);  // the terminal closed: stop with the summary and a whole --annotate video
+
+    // OpenCV DNN's first forward pass of a network costs several of the next: spent
+    // here, before capture starts, not on the first frames of a camera
+    const cv::Mat blank(480, 640, CV_8UC3, cv::Scalar(128, 128, 128));
+    detectors.search->detect(blank);
+    if (detectors.region != detectors.search) detectors.region->detect(blank);
 
     const bool drop_old = source.live() || options.realtime;
     LatestFrame slot;

@@ -40,7 +40,7 @@ constexpr int kExitDamagedFile = 4;  // a video file ended well short of its fra
 // second: nullptr, or a second model whose measurements go on the same
 // channel with the frame's seq and utime (hkf-filter fuses them).
 // Returns the process exit status; throws EstimatorError on set-up errors.
-int run_pipeline(HeadPoseEstimator &model, FaceDetector &detector, const PipelineOptions &options,
+int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const PipelineOptions &options,
                  HeadPoseEstimator *second = nullptr);
 
 }  // namespace hkf_estimator

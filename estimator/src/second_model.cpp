@@ -3,6 +3,10 @@
 
 #include <chrono>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 namespace hkf_estimator {
 
 SecondModelWorker::SecondModelWorker(HeadPoseEstimator &model, std::function<void(const SecondModelResult &)> publish)
@@ -35,6 +39,9 @@ void SecondModelWorker::stop()
 
 void SecondModelWorker::run()
 {
+    // below the frame loop in the scheduler: on a busy machine the first model's
+    // frames keep their pace and the second's measurements come later (Linux: per thread)
+    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kNiceness);
     for (;;) {
         SecondModelJob job;
         {

@@ -61,6 +61,7 @@ public:
     std::vector<double> inference_ms() const;
 
 private:
+    static constexpr int kNiceness = 10;  // the worker thread's nice value (the frame loop's: 0)
     void run();
 
     HeadPoseEstimator &model_;

@@ -1,5 +1,5 @@
 // hkf-bench-estimator - per-stage cost of the estimator on 640x480 frames, in
-// OpenCV DNN: BlazeFace on the whole frame, the tracked search (a region
+// OpenCV DNN: BlazeFace and RetinaFace on the whole frame, the tracked search (a region
 // around the face), and each head-pose model. Also writes those frames as a
 // 60 fps video, for timing the whole process as a 60 fps camera would feed it.
 // usage: hkf-bench-estimator VIDEO MODELS_DIR SPEC_DIR OUT_640x480_60fps.mp4
@@ -76,6 +76,9 @@ int main(int argc, char **argv)
                 CV_VERSION, cv::getNumThreads());
     std::printf("| stage | p50 ms | p99 ms | frames/s at p50 |\n| --- | ---: | ---: | ---: |\n");
     report("BlazeFace short range, whole frame", time_each(frames, [&](const cv::Mat &m) { detector.detect(m); }));
+    FaceDetector retina(argv[2], DetectorRange::Retina);  // the default search: start and re-acquire
+    report("RetinaFace, whole frame (the search at start and re-acquire)",
+           time_each(frames, [&](const cv::Mat &m) { retina.detect(m); }));
     size_t i = 0;
     report("tracked face search (region around the face)", time_each(frames, [&](const cv::Mat &m) {
                faces[i] = tracker.track(m, static_cast<int64_t>(i) * 16667).value_or(Face{});
