@@ -86,13 +86,16 @@ std::optional<Face> labelled_face(const HeadPoseEstimator &model, FaceDetector &
     return best;
 }
 
-// The live path on one image: a fresh tracker's first frame (the whole image searched, the
-// largest face scoring at least the acquire score taken). `wrong` is set when that face is
+// The live path on one image, as a fresh tracker sees a still face: its first frame (the
+// whole image searched, the largest face scoring at least the acquire score taken), then
+// its second (that face followed in the region around it, as on every frame after; the
+// whole image again if the region's detector misses it). `wrong` is set when that face is
 // not the labelled one (its centre more than half the labelled box's size from the box's).
-std::optional<Face> live_face(FaceDetector &detector, const cv::Mat &image, const cv::Rect2f &box, bool &wrong)
+std::optional<Face> live_face(TrackerDetectors detectors, const cv::Mat &image, const cv::Rect2f &box, bool &wrong)
 {
-    FaceTracker tracker(detector, TrackerSettings{});
+    FaceTracker tracker(detectors, TrackerSettings{});
     std::optional<Face> face = tracker.track(image, 0);
+    if (face) face = tracker.track(image, 33333);
     wrong = false;
     if (!face) return face;
     const cv::Point2f d = cv::Point2f(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2) -
@@ -106,7 +109,7 @@ std::optional<Face> live_face(FaceDetector &detector, const cv::Mat &image, cons
 
 }  // namespace
 
-EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, DatasetCrop crop, const std::string &dir, long limit,
+EvalResult evaluate_dataset(HeadPoseEstimator &model, TrackerDetectors detectors, DatasetCrop crop, const std::string &dir, long limit,
                             std::ostream &predictions, const std::function<void(long, long)> &progress)
 {
     const std::vector<LabelRow> rows = read_labels(dir + "/labels.csv");
@@ -129,8 +132,8 @@ EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, Da
         if (in_protocol) ++result.bin_images[bin];
         const auto start = std::chrono::steady_clock::now();
         bool wrong = false;
-        std::optional<Face> face = crop == DatasetCrop::Live ? live_face(detector, image, row.box, wrong)
-                                                             : labelled_face(model, detector, image, row.box);
+        std::optional<Face> face = crop == DatasetCrop::Live ? live_face(detectors, image, row.box, wrong)
+                                                             : labelled_face(model, *detectors.region, image, row.box);
         result.wrong_face += wrong;
         const std::optional<HeadPose> estimate = face ? model.estimate(image, *face) : std::nullopt;
         result.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

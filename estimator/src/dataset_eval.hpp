@@ -12,12 +12,14 @@
 #include <string>
 
 #include "face_detector.hpp"
+#include "face_tracker.hpp"
 #include "head_pose_estimator.hpp"
 
 namespace hkf_estimator {
 
 enum class DatasetCrop {
-    Live,    // the live path: FaceTracker on the whole image (its first frame), then the model
+    Live,    // the live path: FaceTracker on the image as on a still face's first two frames
+             // (the whole image searched, then the face followed in its region), then the model
     Labels,  // the labelled face box (or the detected face nearest it, for a model that needs keypoints)
 };
 
@@ -43,7 +45,7 @@ struct EvalResult {
 // "image,pitch_deg,yaw_deg,roll_deg" (hkf convention) to predictions, and
 // reports progress through progress(done, total). Throws EstimatorError on a
 // missing or malformed labels.csv.
-EvalResult evaluate_dataset(HeadPoseEstimator &model, FaceDetector &detector, DatasetCrop crop, const std::string &dir, long limit,
+EvalResult evaluate_dataset(HeadPoseEstimator &model, TrackerDetectors detectors, DatasetCrop crop, const std::string &dir, long limit,
                             std::ostream &predictions, const std::function<void(long, long)> &progress);
 
 }  // namespace hkf_estimator

@@ -60,9 +60,13 @@ std::string default_spec_dir()
     return installed.empty() ? HKF_DEFAULT_SPEC_DIR : installed;
 }
 
+constexpr const char *kDefaultSecondModel = "whenet";
+
 struct Options {
     std::string dataset, model = "mesh_pnp", predictions;  // the default keeps up with 60 fps
-    std::string second_model;  // --second-model: none by default
+    // --second-model: by default WHENet beside the mesh (kDefaultSecondModel); "none": the first alone
+    std::string second_model;
+    bool second_model_given = false;
     std::string models_dir = default_models_dir(), spec_dir = default_spec_dir();
     long limit = 0;
     hkf_estimator::PipelineOptions pipeline;
@@ -115,15 +119,17 @@ void usage(std::ostream &out)
            "  --lcm-url URL      default udpm://239.255.76.67:7667?ttl=0 (stays on this host)\n"
            "  --channel C        default HEAD_POSE_RAW\n"
            "  --max-frames N     stop after N frames\n"
-           "  --second-model NAME  also run this model (e.g. whenet) on its own thread where the first\n"
-           "                     finds no pose on the tracked face or measures a large yaw; its\n"
-           "                     measurements go on the same channel with the frame's seq and time,\n"
-           "                     and hkf-filter fuses both (README: \"Two models on one channel\")\n"
+           "  --second-model NAME  also run this model on its own thread where the first finds no\n"
+           "                     pose on the tracked face or measures a large yaw (default whenet;\n"
+           "                     none: the first model alone); its measurements go on the same\n"
+           "                     channel with the frame's seq and time, and hkf-filter fuses both\n"
+           "                     (README: \"Two models on one channel\")\n"
            "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 10; 0: every frame)\n"
            "--dataset mode evaluates a head-pose model on a labelled image set laid out like\n"
            "../shared/data/aflw2000 (labels.csv and images/): finds each face the way live video\n"
-           "does (the detector on the whole image, the largest face; one away from the labelled\n"
-           "face counts as not found), writes image,pitch_deg,yaw_deg,roll_deg (hkf angle\n"
+           "does (the search on the whole image takes the largest face, then the face is followed\n"
+           "in the region around it as on a still face's next frame; a face away from the labelled\n"
+           "one counts as not found), writes image,pitch_deg,yaw_deg,roll_deg (hkf angle\n"
            "convention) and prints the MAE per axis, and found faces and MAE per labelled |yaw| bin,\n"
            "over the images whose three angles are within +-99 deg.\n"
            "  --crop live|labels live (default), or the labelled face box as the benchmark's crops\n"
@@ -199,7 +205,10 @@ int parse(int argc, char **argv, Options &o)
                 return 2;
             }
             o.crop = value == "live" ? hkf_estimator::DatasetCrop::Live : hkf_estimator::DatasetCrop::Labels;
-        } else if (arg == "--second-model") o.second_model = value;
+        } else if (arg == "--second-model") {
+            o.second_model = value == "none" ? "" : value;
+            o.second_model_given = true;
+        }
         else if (arg == "--second-from-yaw") {
             double v;
             if (!parse_number(value, 0.0, 180.0, v)) {
@@ -228,6 +237,9 @@ int parse(int argc, char **argv, Options &o)
         std::cerr << "hkf-estimator: give either --source SRC or --dataset DIR (see --help)\n";
         return 2;
     }
+    // the default pipeline: WHENet beside the mesh on video (README: "The default pipeline");
+    // a dataset run measures one model, and WHENet as the first model needs no second
+    if (!o.second_model_given && o.dataset.empty() && o.model != kDefaultSecondModel) o.second_model = kDefaultSecondModel;
     if (!o.dataset.empty() && !o.second_model.empty()) {
         std::cerr << "hkf-estimator: --second-model is for --source; on a dataset run each model and fuse their "
                      "predictions with tools/eval/fusion_on_aflw.py (see --help)\n";
@@ -285,18 +297,17 @@ int main(int argc, char **argv)
                                                                   : DetectorRange::Retina;
         FaceDetector detector(o.models_dir, search_range);
         std::unique_ptr<FaceDetector> region;
-        if (search_range == DetectorRange::Retina && !o.pipeline.source.empty())
-            region = std::make_unique<FaceDetector>(o.models_dir, DetectorRange::Short);
+        if (search_range == DetectorRange::Retina) region = std::make_unique<FaceDetector>(o.models_dir, DetectorRange::Short);
+        const TrackerDetectors detectors{&detector, region ? region.get() : &detector};
         if (!o.pipeline.source.empty()) {
             std::unique_ptr<HeadPoseEstimator> second;
             if (!o.second_model.empty()) second = make_estimator(load_model_spec(o.spec_dir, o.second_model, o.models_dir));
-            const TrackerDetectors detectors{&detector, region ? region.get() : &detector};
             return run_pipeline(*model, detectors, o.pipeline, second.get());
         }
         std::ofstream predictions(o.predictions);
         if (!predictions) throw EstimatorError("cannot write " + o.predictions);
         auto last = std::chrono::steady_clock::now();
-        const EvalResult r = evaluate_dataset(*model, detector, o.crop, o.dataset, o.limit, predictions, [&](long done, long total) {
+        const EvalResult r = evaluate_dataset(*model, detectors, o.crop, o.dataset, o.limit, predictions, [&](long done, long total) {
             const auto now = std::chrono::steady_clock::now();
             if (done == total || now - last > std::chrono::seconds(2)) {
                 std::cerr << "hkf-estimator: " << done << "/" << total << " images\n";

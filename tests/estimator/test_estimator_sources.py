@@ -35,7 +35,8 @@ def check(condition, what):
 
 
 def run(src, *extra):
-    """Runs the estimator on src; returns (exit code, output, measurements)."""
+    """Runs the estimator on src; returns (exit code, output, the first model's measurements:
+    one per frame; the second model's, on the same channel, are second_model_test.sh's)."""
     log = os.path.join(work, "out.lcmlog")
     if os.path.exists(log):
         os.unlink(log)
@@ -43,7 +44,9 @@ def run(src, *extra):
                        capture_output=True, text=True, timeout=600)
     messages = []
     if os.path.exists(log):
-        messages = [head_pose_measurement_t.decode(e.data) for e in lcm.EventLog(log, "r") if e.channel == "HEAD_POSE_RAW"]
+        first = extra[extra.index("--model") + 1] if "--model" in extra else "mesh_pnp"
+        messages = [m for m in (head_pose_measurement_t.decode(e.data) for e in lcm.EventLog(log, "r") if e.channel == "HEAD_POSE_RAW")
+                    if m.model == first]
     return p.returncode, p.stdout + p.stderr, messages
 
 

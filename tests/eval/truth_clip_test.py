@@ -34,7 +34,7 @@ def check_position(build, frame, centre):
         truth_clips.write_still_clip(folder, frame, centre, np.zeros_like(scale), seed=9, scale=scale, shift=shift_px)
         log = os.path.join(work, "lean.lcmlog")
         subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", folder, "--fps", "30",
-                        "--lcm-url", f"file://{log}?mode=w"], check=True, capture_output=True)
+                        "--second-model", "none", "--lcm-url", f"file://{log}?mode=w"], check=True, capture_output=True)
         _, valid, _, centres = truth_eval.read_raw_with_boxes(log, os.path.join(build, "lcmtypes", "python"))
         boxes = boxes_of(log, os.path.join(build, "lcmtypes", "python"))
     n = min(len(valid), len(scale))
@@ -69,7 +69,7 @@ def main():
         # where the face is: the estimator on the first frames of the clip
         first = os.path.join(work, "first.lcmlog")
         subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", video, "--max-frames", "5",
-                        "--lcm-url", f"file://{first}?mode=w"], check=True, capture_output=True)
+                        "--second-model", "none", "--lcm-url", f"file://{first}?mode=w"], check=True, capture_output=True)
         _, valid, _, centres = truth_eval.read_raw_with_boxes(first, os.path.join(build, "lcmtypes", "python"))
         assert valid[4], "no face in frame 4 of d10.mp4"
         frame = truth_clips.read_frames(video, [4])[0]
@@ -78,7 +78,7 @@ def main():
         truth_clips.write_still_clip(folder, frame, centres[4], trajectory.theta, seed=5)
         log = os.path.join(work, "clip.lcmlog")
         subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", folder, "--fps", "30",
-                        "--lcm-url", f"file://{log}?mode=w"], check=True, capture_output=True)
+                        "--second-model", "none", "--lcm-url", f"file://{log}?mode=w"], check=True, capture_output=True)
         _, valid, z, _ = truth_eval.read_raw_with_boxes(log, os.path.join(build, "lcmtypes", "python"))
     theta = trajectory.theta[:len(z)]
     found = valid.mean()

@@ -26,7 +26,8 @@ expect_exit() {
 }
 said() { grep -q -- "$1" "$work/out.txt" || { cat "$work/out.txt" >&2; fail "expected to be told '$1'"; }; }
 
-"$estimator" --source "$data/videos/d3.mp4" --max-frames 120 --lcm-url "file://$work/raw.lcmlog?mode=w" \
+# one model: a measurement per frame (the cases below count them)
+"$estimator" --source "$data/videos/d3.mp4" --max-frames 120 --second-model none --lcm-url "file://$work/raw.lcmlog?mode=w" \
   >"$work/estimate.txt" 2>&1 || fail "the estimator on the clip"
 frames=$(sed -n 's/^hkf-estimator: \([0-9]*\) frames,.* fps;.*/\1/p' "$work/estimate.txt")
 echo "the clip's raw poses: $frames frames"
@@ -134,14 +135,14 @@ expect_exit 1 "--source SYMLINK-LOOP" "$estimator" --source "$work/loop1" --lcm-
 mkdir "$work/specs"
 sed 's/^\(yaw_bins *= *[a-z]*\) 120/\1 66/' "$source/estimator/models/whenet.model" >"$work/specs/whenet_bins.model"
 expect_exit 1 "a model whose bins do not match the network" "$estimator" --source "$data/videos/d3.mp4" \
-  --lcm-url memq:// --max-frames 5 --model whenet_bins --spec-dir "$work/specs"
+  --lcm-url memq:// --max-frames 5 --second-model none --model whenet_bins --spec-dir "$work/specs"
 said "the model description implies 66"
 said "^hkf-estimator: [0-9]* frames,"
 sed 's/^input .*/input = 100 100/' "$source/estimator/models/mesh_pnp.model" >"$work/specs/mesh_small.model"
 # OpenCV DNN then asks for an absurd allocation: malloc returns NULL and OpenCV throws, which is
 # what this checks; AddressSanitizer's allocator would abort there unless told to return NULL too
 ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}allocator_may_return_null=1 expect_exit 1 "a mesh whose input size does not match the network" "$estimator" --source "$data/videos/d3.mp4" \
-  --lcm-url memq:// --max-frames 5 --model mesh_small --spec-dir "$work/specs"
+  --lcm-url memq:// --max-frames 5 --second-model none --model mesh_small --spec-dir "$work/specs"
 said "^hkf-estimator: [0-9]* frames,"
 
 echo "== 6. a model id longer than the message allows: refused at start, explained at the filter"

@@ -25,14 +25,19 @@ echo
 echo
 echo "## The whole process on 640x480 video paced at 60 fps (--realtime)"
 for model in whenet mesh_pnp; do
-  printf '%s: ' "$model"
-  "$build/estimator/hkf-estimator" --source "$work/640x480_60fps.mp4" --realtime --model "$model" --lcm-url memq:// 2>/dev/null
+  printf '%s alone: ' "$model"
+  "$build/estimator/hkf-estimator" --source "$work/640x480_60fps.mp4" --realtime --model "$model" --second-model none \
+    --lcm-url memq:// 2>/dev/null
 done
 # mesh_pnp with WHENet on the second thread: asked for every frame (the worst
 # case: a driver turned beyond the threshold the whole time), and as by default
-# (|yaw| >= 10 deg or no mesh pose; this clip stays within about 15 deg)
+# (the default pipeline: |yaw| >= 10 deg or no mesh pose; this clip stays within about 15 deg)
 for from_yaw in 0 10; do
   echo "mesh_pnp + --second-model whenet --second-from-yaw $from_yaw:"
   "$build/estimator/hkf-estimator" --source "$work/640x480_60fps.mp4" --realtime --model mesh_pnp --second-model whenet \
     --second-from-yaw "$from_yaw" --lcm-url memq:// 2>/dev/null
 done
+echo
+echo "## Re-acquire: the face leaves and comes back (tools/benchmarks/reacquire.py)"
+"$root/.venv/bin/python" "$root/tools/benchmarks/reacquire.py" "$build" "$root/../shared/data/videos/d3.mp4" \
+  "$models/testdata/no_face.mp4" 3

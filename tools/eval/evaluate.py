@@ -93,7 +93,7 @@ def raw_log(build, out, clip, estimator):
         os.makedirs(os.path.dirname(path), exist_ok=True)
         started = time.time()
         result = subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", clip, "--model",
-                                 estimator, "--lcm-url", f"file://{path}.part?mode=w"],
+                                 estimator, "--second-model", "none", "--lcm-url", f"file://{path}.part?mode=w"],
                                 capture_output=True, text=True)
         if result.returncode != 0:
             fail(f"hkf-estimator on {clip} ({estimator}) exited {result.returncode}: {result.stderr.strip()}")

@@ -84,7 +84,7 @@ def estimate_folder(build, folder, log_path):
     if os.path.exists(log_path):
         return log_path
     result = subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", folder, "--fps", f"{FPS:g}",
-                             "--model", ESTIMATOR, "--lcm-url", f"file://{log_path}.part?mode=w"],
+                             "--model", ESTIMATOR, "--second-model", "none", "--lcm-url", f"file://{log_path}.part?mode=w"],
                             capture_output=True, text=True)
     if result.returncode != 0:
         evaluate.fail(f"hkf-estimator on {folder} exited {result.returncode}: {result.stderr.strip()[-400:]}")

@@ -13,6 +13,7 @@ import argparse
 import collections
 import ctypes
 import os
+import re
 import select
 import shlex
 import signal
@@ -51,9 +52,11 @@ def parse_args():
     src.add_argument("--source", metavar="FILE", help="a video file or a folder of images instead of a camera")
     p.add_argument("--realtime", action="store_true", help="pace a file at its frame rate, like a camera")
     p.add_argument("--model", help="head-pose model for hkf-estimator (mesh_pnp, whenet)")
-    p.add_argument("--detector", choices=["short", "full"], help="face detector range for hkf-estimator")
+    p.add_argument("--detector", choices=["retina", "short", "full"],
+                   help="hkf-estimator's face search (default retina: near, far and turned faces)")
     p.add_argument("--second-model", metavar="NAME",
-                   help="hkf-estimator also runs this model (whenet) at large turns; hkf-filter fuses both")
+                   help="the model hkf-estimator runs beside the first at large turns (default whenet; none: the "
+                        "first alone); hkf-filter fuses both")
     p.add_argument("--config", metavar="FILE", help="hkf-filter settings file")
     p.add_argument("--rate", type=float, metavar="HZ", help="hkf-filter also publishes extrapolated poses at HZ")
     p.add_argument("--opentrack", action="store_true", help="also run hkf-opentrack")
@@ -186,10 +189,12 @@ def stop(children, logs):
                 proc.kill()
                 proc.wait()
         codes[name] = proc.returncode
-    for name, _ in children:
+    for name, _ in children:  # each program's summary: its last count line, and its last line
         with open(logs[name]) as f:
             lines = [l.rstrip("\n") for l in f if l.strip()]
-        print(lines[-1] if lines else f"{name}: (no output)")
+        counts = [l for l in lines if re.match(re.escape(name) + r": \d+ ", l)]
+        for line in dict.fromkeys(counts[-1:] + lines[-1:]) or [f"{name}: (no output)"]:
+            print(line)
     return codes
 
 
