@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "head_rotation.hpp"
 #include "network_outputs.hpp"
 #include "onnx_network.hpp"
 
@@ -34,8 +35,13 @@ std::optional<HeadPose> AngleBinsModel::estimate(const cv::Mat &frame, const Fac
 {
     const cv::Rect crop = face_crop_rect(face.box, spec_.crop_margin, frame.size());
     if (crop.empty()) return std::nullopt;
-    const HeadPose pose = estimate_crop(frame(crop));
+    HeadPose pose = estimate_crop(frame(crop));
     if (!std::isfinite(pose.pitch) || !std::isfinite(pose.yaw) || !std::isfinite(pose.roll)) return std::nullopt;
+    // no landmarks: the position from the box and an average face (head_position.hpp)
+    const cv::Vec3d nose = rotation_from_pose(pose) * cv::Vec3d(0.0, 0.0, -1.0);
+    const HeadPosition p = position_from_box(face.box, frame.size(), focal_from_fov(frame.size(), position_settings_.fov_deg),
+                                             position_settings_.box_face_width_cm, nose, position_settings_.pivot_cm);
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f) pose.position = p;
     return pose;
 }
 

@@ -10,12 +10,16 @@
 #include <opencv2/core.hpp>
 
 #include "face_detector.hpp"
+#include "head_position.hpp"
 #include "model_spec.hpp"
 
 namespace hkf_estimator {
 
 struct HeadPose {
+    HeadPose() = default;
+    HeadPose(float pitch_deg, float yaw_deg, float roll_deg) : pitch(pitch_deg), yaw(yaw_deg), roll(roll_deg) {}
     float pitch = 0.f, yaw = 0.f, roll = 0.f;  // deg, hkf convention (README: "Angle convention")
+    std::optional<HeadPosition> position;      // cm, camera frame (head_position.hpp)
 };
 
 class HeadPoseEstimator {
@@ -26,6 +30,12 @@ public:
     virtual bool needs_keypoints() const = 0;
     // The pose of the face in frame (BGR); nullopt when the model finds no face there.
     virtual std::optional<HeadPose> estimate(const cv::Mat &frame, const Face &face) = 0;
+
+    // The camera and head the position is measured with (--fov, --pivot).
+    void set_position_settings(const PositionSettings &settings) { position_settings_ = settings; }
+
+protected:
+    PositionSettings position_settings_;
 };
 
 // The estimator a description names: angle_bins or landmarks_pnp. Throws EstimatorError.

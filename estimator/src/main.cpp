@@ -70,6 +70,7 @@ struct Options {
     std::string models_dir = default_models_dir(), spec_dir = default_spec_dir();
     long limit = 0;
     hkf_estimator::PipelineOptions pipeline;
+    hkf_estimator::PositionSettings position;  // --fov, --pivot
     std::string detector = "retina";
     hkf_estimator::DatasetCrop crop = hkf_estimator::DatasetCrop::Live;
 };
@@ -124,7 +125,9 @@ void usage(std::ostream &out)
            "                     none: the first model alone); its measurements go on the same\n"
            "                     channel with the frame's seq and time, and hkf-filter fuses both\n"
            "                     (README: \"Two models on one channel\")\n"
-           "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 10; 0: every frame)\n"
+           "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 10; 0: every frame)\n"           "  --fov DEG          the camera's diagonal field of view, for the head's position (default\n"
+           "                     56; unknown: a gain on the distance, README \"Head position\")\n"
+           "  --pivot CM         the point the head turns about, CM behind the nose tip (default 10)\n"
            "--dataset mode evaluates a head-pose model on a labelled image set laid out like\n"
            "../shared/data/aflw2000 (labels.csv and images/): finds each face the way live video\n"
            "does (the search on the whole image takes the largest face, then the face is followed\n"
@@ -216,6 +219,16 @@ int parse(int argc, char **argv, Options &o)
                 return 2;
             }
             o.pipeline.second_from_yaw = static_cast<float>(v);
+        } else if (arg == "--fov") {
+            if (!parse_number(value, 10.0, 170.0, o.position.fov_deg)) {
+                std::cerr << "hkf-estimator: --fov wants the camera's diagonal field of view, 10 to 170 deg, not '" << value << "'\n";
+                return 2;
+            }
+        } else if (arg == "--pivot") {
+            if (!parse_number(value, 0.0, 30.0, o.position.pivot_cm)) {
+                std::cerr << "hkf-estimator: --pivot wants cm behind the nose tip, 0 to 30, not '" << value << "'\n";
+                return 2;
+            }
         } else if (arg == "--dataset") o.dataset = value;
         else if (arg == "--model") o.model = value;
         else if (arg == "--predictions") o.predictions = value;
@@ -290,6 +303,7 @@ int main(int argc, char **argv)
     }
     try {
         const std::unique_ptr<HeadPoseEstimator> model = make_estimator(load_model_spec(o.spec_dir, o.model, o.models_dir));
+        model->set_position_settings(o.position);
         // retina: RetinaFace searches the frame (near, far and turned faces), BlazeFace short
         // range follows the face in the region around it
         const DetectorRange search_range = o.detector == "short"  ? DetectorRange::Short
@@ -301,7 +315,10 @@ int main(int argc, char **argv)
         const TrackerDetectors detectors{&detector, region ? region.get() : &detector};
         if (!o.pipeline.source.empty()) {
             std::unique_ptr<HeadPoseEstimator> second;
-            if (!o.second_model.empty()) second = make_estimator(load_model_spec(o.spec_dir, o.second_model, o.models_dir));
+            if (!o.second_model.empty()) {
+                second = make_estimator(load_model_spec(o.spec_dir, o.second_model, o.models_dir));
+                second->set_position_settings(o.position);
+            }
             return run_pipeline(*model, detectors, o.pipeline, second.get());
         }
         std::ofstream predictions(o.predictions);

@@ -45,6 +45,9 @@ MeshPnpModel::MeshPnpModel(ModelSpec spec) : spec_(std::move(spec))
 {
     net_ = load_onnx_network(spec_.file, {spec_.landmarks_output, spec_.flag_output});
     canonical_ = read_canonical(spec_.canonical, spec_.landmarks);
+    rigid_ = rigid_points(canonical_);
+    for (int i : rigid_) rigid_canonical_.push_back(canonical_[static_cast<size_t>(i)]);
+    for (const cv::Point3f &p : canonical_) front_z_ = std::max(front_z_, p.z);
 }
 
 std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face &face)
@@ -88,6 +91,18 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     pose.yaw *= spec_.signs[1];
     pose.roll *= spec_.signs[2];
     if (!std::isfinite(pose.pitch) || !std::isfinite(pose.yaw) || !std::isfinite(pose.roll)) return std::nullopt;
+
+    // the position: the rigid upper face fitted with the camera of --fov, moved to the pivot
+    const double fov_focal = focal_from_fov(frame.size(), position_settings_.fov_deg);
+    const cv::Matx33d fov_camera(fov_focal, 0, frame.cols / 2.0, 0, fov_focal, frame.rows / 2.0, 0, 0, 1);
+    std::vector<cv::Point2f> rigid_landmarks;
+    for (int i : rigid_) rigid_landmarks.push_back(landmarks_[static_cast<size_t>(i)]);
+    cv::Vec3d rigid_rvec, rigid_tvec;
+    if (cv::solvePnP(rigid_canonical_, rigid_landmarks, fov_camera, cv::noArray(), rigid_rvec, rigid_tvec, false,
+                     cv::SOLVEPNP_SQPNP)) {
+        const HeadPosition p = position_from_fit(rigid_rvec, rigid_tvec, front_z_, position_settings_.pivot_cm);
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f) pose.position = p;
+    }
     return pose;
 }
 

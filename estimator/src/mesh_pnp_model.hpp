@@ -6,7 +6,8 @@
 // back to the frame, are matched to a canonical 3D face with cv::solvePnP
 // (SQPNP: plain ITERATIVE can return the mirrored solution). The rotation
 // relative to a face looking into the camera is the head pose. Independent of
-// any angle-regression network.
+// any angle-regression network. The position: a second fit, of the rigid upper
+// face alone, with the focal length of --fov (head_position.hpp).
 #pragma once
 
 #include <vector>
@@ -26,13 +27,14 @@ public:
     bool needs_keypoints() const override { return true; }
     std::optional<HeadPose> estimate(const cv::Mat &frame, const Face &face) override;
 
-    // The last estimate's landmarks, px in the frame.
-
 private:
     ModelSpec spec_;
     cv::dnn::Net net_;
     std::vector<cv::Point3f> canonical_;
-    std::vector<cv::Point2f> landmarks_;
+    std::vector<cv::Point2f> landmarks_;  // the last estimate's, px in the frame
+    std::vector<cv::Point3f> rigid_canonical_;  // the rigid upper face, for the position
+    std::vector<int> rigid_;
+    float front_z_ = 0.f;  // cm: the canonical face's front-most point (the nose tip)
 };
 
 }  // namespace hkf_estimator

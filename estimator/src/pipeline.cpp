@@ -275,6 +275,11 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
                     char text[96];
                     std::snprintf(text, sizeof text, "raw p %.1f y %.1f r %.1f", pose.pitch, pose.yaw, pose.roll);
                     cv::putText(image, text, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
+                    if (pose.position) {  // not in the messages yet: shown here
+                        std::snprintf(text, sizeof text, "head x %.1f y %.1f z %.1f cm", pose.position->x, pose.position->y,
+                                      pose.position->z);
+                        cv::putText(image, text, {10, 75}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
+                    }
                     std::lock_guard<std::mutex> lock(filtered.mutex);
                     if (filtered.have) {
                         draw_pose_axes(image, filtered.pose, c, 0.8f * face->box.width, 5);
