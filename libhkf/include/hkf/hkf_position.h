@@ -1,0 +1,81 @@
+/*
+ * hkf_position.h - the head's position filtered as the angles are.
+ *
+ * Per axis (x, y, z in cm: camera frame, README "Head position") a
+ * constant-velocity Kalman filter with the same closed-form 2x2 step as the
+ * angles: state (position, rate), white-acceleration process noise q, and an
+ * observation noise R of its own per axis, scaled per measurement (a model
+ * that measures position coarsely - from a face box - gives a larger scale).
+ * Static memory, no allocation; float, double or Q16.16 like the rest of
+ * libhkf. Separate from hkf_filter_t: firmware that tracks rotation only
+ * does not link it (its size does not change).
+ *
+ *     hkf_position_filter_t p;
+ *     hkf_position_settings_t s;
+ *     hkf_position_default_settings(&s);
+ *     if (hkf_position_init(&p, &s) != HKF_OK) ...
+ *     hkf_position_update(&p, xyz, HKF_REAL(1.0), dt, &out);   // each frame with a position
+ *     hkf_position_predict(&p, dt, &out);                      // a frame without one
+ */
+#ifndef HKF_POSITION_H
+#define HKF_POSITION_H
+
+#include "hkf/hkf.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { HKF_POSITION_X = 0, HKF_POSITION_Y = 1, HKF_POSITION_Z = 2 };
+
+/* The ranges hkf_position_init and the updates accept. */
+#define HKF_MAX_ABS_POSITION 1000      /* cm: a measurement beyond is refused (HKF_ERROR_ANGLE_RANGE) */
+#define HKF_MAX_POSITION_SCALE 1000    /* the largest R scale of one measurement */
+
+typedef struct {
+    hkf_real_t process_noise[3];      /* cm^2/s^3: q, white acceleration noise density, per axis */
+    hkf_real_t measurement_noise[3];  /* cm^2: R per axis for a measurement of scale 1 */
+    hkf_real_t p0_rate;               /* (cm/s)^2: the rate's variance when a track starts */
+    hkf_real_t max_dt;                /* s: a longer gap between updates restarts the track */
+} hkf_position_settings_t;
+
+typedef struct {
+    hkf_position_settings_t settings;
+    hkf_real_t x[3], v[3];            /* cm, cm/s */
+    hkf_real_t p00[3], p01[3], p11[3]; /* covariance of (x, v) per axis */
+    hkf_real_t center[3];             /* cm: the centre position (first measurement, or hkf_position_recenter) */
+    int started;                      /* a measurement has started the track */
+} hkf_position_filter_t;
+
+typedef struct {
+    hkf_real_t position[3];  /* cm */
+    hkf_real_t rate[3];      /* cm/s */
+    hkf_real_t variance[3];  /* cm^2 */
+} hkf_position_output_t;
+
+/* Defaults measured on the estimator's mesh position (README "Head position"). */
+void hkf_position_default_settings(hkf_position_settings_t *s);
+
+/* Checks the settings (HKF_ERROR_SETTING_*) and clears the track. */
+int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s);
+
+/* Forgets the track and the centre; the next measurement starts anew. */
+void hkf_position_reset(hkf_position_filter_t *f);
+
+/* Predicts by dt (s) and takes the measurement z (cm) with R = r_scale x the
+ * setting's R. The first measurement, or one after a gap beyond max_dt,
+ * starts the track there (and sets the centre the first time). */
+int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
+                        hkf_position_output_t *out);
+
+/* Predicts by dt (s) without a measurement. */
+int hkf_position_predict(hkf_position_filter_t *f, hkf_real_t dt, hkf_position_output_t *out);
+
+/* The centre := the current position (a recentre; with the angles', hkf_recenter). */
+int hkf_position_recenter(hkf_position_filter_t *f);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* HKF_POSITION_H */

@@ -1,0 +1,180 @@
+/*
+ * test_position.c - libhkf's position filter (hkf/hkf_position.h): the
+ * closed-form step against the Kalman equations worked in double here, a
+ * lean followed without bias, noise smoothed, coarse measurements trusted
+ * less, recentre and restart, and every error path leaving the filter as it
+ * was. Built for float, double and Q16.16.
+ */
+#include "test_support.h"
+
+#include "hkf/hkf_position.h"
+
+static const double frame_s = 1.0 / 60.0;
+
+static hkf_position_filter_t started_filter(double x, double y, double z)
+{
+    hkf_position_settings_t s;
+    hkf_position_filter_t f;
+    const hkf_real_t at[3] = {R(x), R(y), R(z)};
+    hkf_position_default_settings(&s);
+    assert_int_equal(hkf_position_init(&f, &s), HKF_OK);
+    assert_int_equal(hkf_position_update(&f, at, R(1.0), R(frame_s), NULL), HKF_OK);
+    return f;
+}
+
+/* One predict + update against the equations in double: F = [[1, dt], [0, 1]],
+ * Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]], H = [1, 0]. */
+static void test_step_matches_equations(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_filter(1.0, -2.0, 60.0);
+    const double z[3] = {1.5, -2.2, 61.0};
+    const hkf_real_t zr[3] = {R(z[0]), R(z[1]), R(z[2])};
+    double x[3], v[3], p00[3], p01[3], p11[3];
+    hkf_position_output_t out;
+    int a, k;
+    for (k = 0; k < 3; ++k) { /* a few steps so the covariance is not the start's */
+        const hkf_real_t same[3] = {R(1.0), R(-2.0), R(60.0)};
+        assert_int_equal(hkf_position_update(&f, same, R(1.0), R(frame_s), NULL), HKF_OK);
+    }
+    for (a = 0; a < 3; ++a) {
+        x[a] = D(f.x[a]), v[a] = D(f.v[a]), p00[a] = D(f.p00[a]), p01[a] = D(f.p01[a]), p11[a] = D(f.p11[a]);
+    }
+    assert_int_equal(hkf_position_update(&f, zr, R(4.0), R(frame_s), &out), HKF_OK);
+    for (a = 0; a < 3; ++a) {
+        const double q = D(f.settings.process_noise[a]), r = 4.0 * D(f.settings.measurement_noise[a]), dt = frame_s;
+        const double xp = x[a] + v[a] * dt;
+        const double a00 = p00[a] + 2 * dt * p01[a] + dt * dt * p11[a] + q * dt * dt * dt / 3;
+        const double a01 = p01[a] + dt * p11[a] + q * dt * dt / 2, a11 = p11[a] + q * dt;
+        const double s = a00 + r, k0 = a00 / s, k1 = a01 / s, y = z[a] - xp;
+        assert_true(fabs(D(out.position[a]) - (xp + k0 * y)) < 2 * TEST_TOL);
+        assert_true(fabs(D(out.rate[a]) - (v[a] + k1 * y)) < 50 * TEST_TOL);
+        assert_true(fabs(D(out.variance[a]) - a00 * r / s) < 2 * TEST_TOL + 1e-3 * a00);
+        assert_true(fabs(D(f.p11[a]) - (a11 - k1 * a01)) < 50 * TEST_TOL + 1e-3 * a11);
+    }
+}
+
+/* A lean of 10 cm in z over 0.5 s, measured with 0.5 cm of noise at 60 Hz:
+ * the output arrives within 1 cm of the end and is far smoother than the input. */
+static void test_lean_followed_noise_smoothed(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0);
+    hkf_position_output_t out;
+    double raw_jitter = 0, out_jitter = 0, last_raw = 60, last_out = 60;
+    int i;
+    unsigned seed = 7;
+    for (i = 1; i <= 120; ++i) {
+        const double t = i * frame_s;
+        const double truth = 60.0 - 10.0 * (t < 0.5 ? t / 0.5 : 1.0);
+        double noise;
+        hkf_real_t z[3];
+        seed = seed * 1103515245u + 12345u;
+        noise = ((double)((seed >> 8) & 0xffff) / 65536.0 - 0.5) * 1.7; /* ~0.5 cm standard deviation */
+        z[0] = R(0.0), z[1] = R(0.0), z[2] = R(truth + noise);
+        assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), &out), HKF_OK);
+        if (i > 90 && i <= 120) { /* still at 50 cm after the lean */
+            raw_jitter += (truth + noise - last_raw) * (truth + noise - last_raw);
+            out_jitter += (D(out.position[2]) - last_out) * (D(out.position[2]) - last_out);
+        }
+        last_raw = truth + noise;
+        last_out = D(out.position[2]);
+        if (i == 90) {
+            assert_true(fabs(D(out.position[2]) - 50.0) < 1.0);
+        }
+    }
+    print_message("position: frame-to-frame RMS raw %.3f cm, filtered %.3f cm\n", sqrt(raw_jitter / 30), sqrt(out_jitter / 30));
+    assert_true(out_jitter < 0.25 * raw_jitter);
+}
+
+/* A measurement with a larger R scale moves the output less. */
+static void test_coarse_measurement_trusted_less(void **state)
+{
+    (void)state;
+    hkf_position_filter_t fine = started_filter(0.0, 0.0, 60.0), coarse = fine;
+    const hkf_real_t z[3] = {R(2.0), R(0.0), R(60.0)};
+    hkf_position_output_t a, b;
+    assert_int_equal(hkf_position_update(&fine, z, R(1.0), R(frame_s), &a), HKF_OK);
+    assert_int_equal(hkf_position_update(&coarse, z, R(25.0), R(frame_s), &b), HKF_OK);
+    assert_true(D(a.position[0]) > D(b.position[0]) + 0.1);
+    assert_true(D(b.position[0]) > 0.0);
+}
+
+/* The centre is the first measurement, then the position at a recentre; a reset forgets it. */
+static void test_center_recenter_reset(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_filter(3.0, 4.0, 55.0);
+    const hkf_real_t moved[3] = {R(8.0), R(4.0), R(50.0)};
+    int i;
+    assert_true(fabs(D(f.center[0]) - 3.0) < TEST_TOL && fabs(D(f.center[2]) - 55.0) < TEST_TOL);
+    for (i = 0; i < 120; ++i) {
+        assert_int_equal(hkf_position_update(&f, moved, R(1.0), R(frame_s), NULL), HKF_OK);
+    }
+    assert_int_equal(hkf_position_recenter(&f), HKF_OK);
+    assert_true(fabs(D(f.center[0]) - 8.0) < 0.05 && fabs(D(f.center[2]) - 50.0) < 0.05);
+    hkf_position_reset(&f);
+    assert_int_equal(hkf_position_recenter(&f), HKF_ERROR_NOT_INITIALIZED);
+    assert_int_equal(hkf_position_predict(&f, R(frame_s), NULL), HKF_ERROR_NOT_INITIALIZED);
+}
+
+/* A gap beyond max_dt restarts the track at the measurement. */
+static void test_gap_restarts(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0);
+    const hkf_real_t far[3] = {R(20.0), R(-5.0), R(80.0)};
+    hkf_position_output_t out;
+    assert_int_equal(hkf_position_update(&f, far, R(1.0), R(2.0), &out), HKF_OK);
+    assert_true(fabs(D(out.position[0]) - 20.0) < TEST_TOL && fabs(D(out.position[2]) - 80.0) < TEST_TOL);
+    assert_true(fabs(D(out.rate[2])) < TEST_TOL);
+}
+
+/* Bad settings get their code; bad input its code, the filter untouched. */
+static void test_errors(void **state)
+{
+    (void)state;
+    hkf_position_settings_t s;
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0), before;
+    const hkf_real_t beyond[3] = {R(0.0), R(0.0), R(2000.0)};
+    const hkf_real_t fine[3] = {R(0.0), R(0.0), R(60.0)};
+    hkf_position_default_settings(&s);
+    s.process_noise[1] = R(-1.0);
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_PROCESS_NOISE);
+    hkf_position_default_settings(&s);
+    s.measurement_noise[2] = 0;
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_R_CONST);
+    hkf_position_default_settings(&s);
+    s.max_dt = 0;
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_MAX_DT);
+    assert_int_equal(hkf_position_init(NULL, &s), HKF_ERROR_NULL_ARGUMENT);
+
+    f = started_filter(0.0, 0.0, 60.0);
+    before = f;
+    assert_int_equal(hkf_position_update(&f, beyond, R(1.0), R(frame_s), NULL), HKF_ERROR_ANGLE_RANGE);
+    assert_int_equal(hkf_position_update(&f, fine, R(0.5), R(frame_s), NULL), HKF_ERROR_SETTING_R_CONST);
+    assert_int_equal(hkf_position_update(&f, NULL, R(1.0), R(frame_s), NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_position_predict(&f, R(0.0), NULL), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_position_predict(&f, R(-1.0), NULL), HKF_ERROR_DT_RANGE);
+#if TEST_HAS_NON_FINITE
+    {
+        const hkf_real_t nan_z[3] = {R(0.0), R(NAN), R(60.0)};
+        assert_int_equal(hkf_position_update(&f, nan_z, R(1.0), R(frame_s), NULL), HKF_ERROR_NON_FINITE);
+        assert_int_equal(hkf_position_predict(&f, R(NAN), NULL), HKF_ERROR_NON_FINITE);
+    }
+#endif
+    assert_memory_equal(&f, &before, sizeof f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_step_matches_equations),
+        cmocka_unit_test(test_lean_followed_noise_smoothed),
+        cmocka_unit_test(test_coarse_measurement_trusted_less),
+        cmocka_unit_test(test_center_recenter_reset),
+        cmocka_unit_test(test_gap_restarts),
+        cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
