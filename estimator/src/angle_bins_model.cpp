@@ -41,7 +41,10 @@ std::optional<HeadPose> AngleBinsModel::estimate(const cv::Mat &frame, const Fac
     const cv::Vec3d nose = rotation_from_pose(pose) * cv::Vec3d(0.0, 0.0, -1.0);
     const HeadPosition p = position_from_box(face.box, frame.size(), focal_from_fov(frame.size(), position_settings_.fov_deg),
                                              position_settings_.box_face_width_cm, nose, position_settings_.pivot_cm);
-    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f) pose.position = p;
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f) {
+        pose.position = p;
+        pose.has_position = true;
+    }
     return pose;
 }
 

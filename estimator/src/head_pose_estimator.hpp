@@ -19,7 +19,8 @@ struct HeadPose {
     HeadPose() = default;
     HeadPose(float pitch_deg, float yaw_deg, float roll_deg) : pitch(pitch_deg), yaw(yaw_deg), roll(roll_deg) {}
     float pitch = 0.f, yaw = 0.f, roll = 0.f;  // deg, hkf convention (README: "Angle convention")
-    std::optional<HeadPosition> position;      // cm, camera frame (head_position.hpp)
+    bool has_position = false;                 // the model measured the position:
+    HeadPosition position;                     // cm, camera frame (head_position.hpp)
 };
 
 class HeadPoseEstimator {

@@ -101,7 +101,10 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     if (cv::solvePnP(rigid_canonical_, rigid_landmarks, fov_camera, cv::noArray(), rigid_rvec, rigid_tvec, false,
                      cv::SOLVEPNP_SQPNP)) {
         const HeadPosition p = position_from_fit(rigid_rvec, rigid_tvec, front_z_, position_settings_.pivot_cm);
-        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f) pose.position = p;
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f) {
+            pose.position = p;
+            pose.has_position = true;
+        }
     }
     return pose;
 }

@@ -125,6 +125,12 @@ hkf::head_pose_measurement_t measurement_message(int64_t utime, int64_t seq, con
         m.face_box[3] = face->box.br().y;
     }
     m.inference_us = static_cast<int64_t>(inference_ms * 1000.0);
+    m.x = m.y = m.z = 0.f;  // z = 0: no position
+    if (face && pose.has_position) {
+        m.x = pose.position.x;
+        m.y = pose.position.y;
+        m.z = pose.position.z;
+    }
     return m;
 }
 
@@ -275,9 +281,9 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
                     char text[96];
                     std::snprintf(text, sizeof text, "raw p %.1f y %.1f r %.1f", pose.pitch, pose.yaw, pose.roll);
                     cv::putText(image, text, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
-                    if (pose.position) {  // not in the messages yet: shown here
-                        std::snprintf(text, sizeof text, "head x %.1f y %.1f z %.1f cm", pose.position->x, pose.position->y,
-                                      pose.position->z);
+                    if (pose.has_position) {
+                        std::snprintf(text, sizeof text, "head x %.1f y %.1f z %.1f cm", pose.position.x, pose.position.y,
+                                      pose.position.z);
                         cv::putText(image, text, {10, 75}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
                     }
                     std::lock_guard<std::mutex> lock(filtered.mutex);

@@ -58,6 +58,14 @@ void hkf_position_reset(hkf_position_filter_t *f)
         f->x[a] = f->v[a] = f->p00[a] = f->p01[a] = f->p11[a] = f->center[a] = 0;
     }
     f->started = 0;
+    f->centered = 0;
+}
+
+void hkf_position_restart(hkf_position_filter_t *f)
+{
+    if (f != NULL) {
+        f->started = 0;
+    }
 }
 
 static void write_output(const hkf_position_filter_t *f, hkf_position_output_t *out)
@@ -126,11 +134,12 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
             f->p00[a] = hkf_mul(f->settings.measurement_noise[a], r_scale);
             f->p01[a] = 0;
             f->p11[a] = f->settings.p0_rate;
-            if (!f->started) {
+            if (!f->centered) {
                 f->center[a] = z[a];
             }
         }
         f->started = 1;
+        f->centered = 1;
         write_output(f, out);
         return HKF_OK;
     }

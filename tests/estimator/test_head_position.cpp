@@ -97,8 +97,8 @@ int main(int argc, char **argv)
             if (index % 20 != 0) continue;  // 5 frames a clip, 0.7 s apart
             const std::optional<Face> face = face_in(frame);
             const std::optional<HeadPose> base = face ? mesh->estimate(frame, *face) : std::nullopt;
-            if (!base || !base->position) continue;  // no truth to compare against
-            const HeadPosition p = base->position.value();
+            if (!base || !base->has_position) continue;  // no truth to compare against
+            const HeadPosition p = base->position;
             const double focal = focal_from_fov(frame.size(), at_face.fov_deg);
             clip_distance.push_back(p.z);
             (tuning(clip) ? box_width_tuning : box_width_others)
@@ -108,18 +108,18 @@ int main(int argc, char **argv)
                 const std::optional<Face> f = face_in(image);
                 const std::optional<HeadPose> pose = f ? mesh->estimate(image, *f) : std::nullopt;
                 ++rendered;
-                if (!pose || !pose->position) continue;
+                if (!pose || !pose->has_position) continue;
                 ++positioned;
-                clip_z.push_back(100.0 * std::fabs(pose->position->z - p.z / s) / (p.z / s));
+                clip_z.push_back(100.0 * std::fabs(pose->position.z - p.z / s) / (p.z / s));
             }
             for (double d : shifts) {
                 const cv::Mat image = render(frame, 1.0, d);
                 const std::optional<Face> f = face_in(image);
                 const std::optional<HeadPose> pose = f ? mesh->estimate(image, *f) : std::nullopt;
                 ++rendered;
-                if (!pose || !pose->position) continue;
+                if (!pose || !pose->has_position) continue;
                 ++positioned;
-                clip_x.push_back(std::fabs(pose->position->x - (p.x + d * p.z / focal)));
+                clip_x.push_back(std::fabs(pose->position.x - (p.x + d * p.z / focal)));
             }
         }
         std::printf("| %s | %zu | %.2f / %.2f | %.2f | %.0f |\n", clip, clip_distance.size(), quantile(clip_z, 0.5),
@@ -154,8 +154,8 @@ int main(int argc, char **argv)
             if (!face || index % 3 != 0) continue;
             const std::optional<HeadPose> pose = mesh->estimate(frame, *face);
             const std::optional<HeadPose> boxed = whenet->estimate(frame, *face);
-            if (pose && pose->position && boxed && boxed->position)
-                box_z_errors.push_back(100.0 * std::fabs(boxed->position->z - pose->position->z) / pose->position->z);
+            if (pose && pose->has_position && boxed && boxed->has_position)
+                box_z_errors.push_back(100.0 * std::fabs(boxed->position.z - pose->position.z) / pose->position.z);
         }
     }
     std::printf("box fallback (WHENet's face box, 13.3 cm): z error against the mesh's, clips other than d0 and d3: "

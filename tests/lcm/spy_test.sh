@@ -16,7 +16,7 @@ done
 echo "spy_test: class path checked"
 
 # lcm-spy itself, started by hkf-spy under a virtual display in a private
-# network namespace, must find the three hkf types.
+# network namespace, must find the five hkf types (hkf 0.1's two too, for its logs).
 if [ "$(id -u)" = 0 ] && command -v Xvfb >/dev/null && unshare --net true 2>/dev/null; then
   out=$(mktemp)
   "$(dirname "$0")/../../tools/lcm-netns" bash -c '
@@ -26,7 +26,7 @@ if [ "$(id -u)" = 0 ] && command -v Xvfb >/dev/null && unshare --net true 2>/dev
     sleep 5
     kill $spy $xvfb 2>/dev/null; wait 2>/dev/null' _ "$spy" "$out" || true
   cat "$out"
-  grep -q "Found 3 LCM types" "$out" || { echo "FAIL: lcm-spy did not find the 3 hkf types" >&2; rm -f "$out"; exit 1; }
+  grep -q "Found 5 LCM types" "$out" || { echo "FAIL: lcm-spy did not find the 5 hkf types (3, and hkf 0.1's two)" >&2; rm -f "$out"; exit 1; }
   rm -f "$out"
 else
   echo "(lcm-spy start-up not checked: needs root, unshare and Xvfb)"

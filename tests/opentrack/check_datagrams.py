@@ -30,8 +30,10 @@ def expected_packets(poses, lost, absolute, invert, scale):
                 roll -= p.center[2]
             # opentrack's convention: yaw and pitch as ours, roll negated
             angles = {"yaw": yaw, "pitch": pitch, "roll": -roll}
-            values = [0.0, 0.0, 0.0] + [(-angles[a] if a in invert else angles[a]) * scale.get(a, 1.0)
-                                        for a in ("yaw", "pitch", "roll")]
+            # the position: hkf's camera frame is opentrack's x, y, z
+            place = {a: getattr(p, a) - (0.0 if absolute else p.position_center[i]) for i, a in enumerate("xyz")}
+            values = ([(-place[a] if a in invert else place[a]) * scale.get(a, 1.0) for a in "xyz"] +
+                      [(-angles[a] if a in invert else angles[a]) * scale.get(a, 1.0) for a in ("yaw", "pitch", "roll")])
             if not all(math.isfinite(v) for v in values):
                 continue  # never sent
         last = struct.pack("<6d", *values)

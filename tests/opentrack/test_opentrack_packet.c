@@ -90,8 +90,32 @@ static void test_invert_and_scale(void **state)
     assert_true(v[OPENTRACK_YAW] == 30.0);
     assert_true(v[OPENTRACK_PITCH] == -20.0);
     assert_true(v[OPENTRACK_ROLL] == 30.0);
-    assert_int_equal(opentrack_axis_from_name("x"), -1);
+    assert_int_equal(opentrack_axis_from_name("x"), OPENTRACK_AXIS_X);
+    assert_int_equal(opentrack_axis_from_name("w"), -1);
     assert_int_equal(opentrack_axis_from_name(""), -1);
+}
+
+/* The position: hkf's x, y, z as opentrack's, minus the centre position unless
+ * absolute, then --invert and --scale; beyond 1000 cm refused. */
+static void test_position(void **state)
+{
+    opentrack_mapping_t mapping = opentrack_default_mapping();
+    hkf_head_pose_t pose = pose_at(0.0f, 0.0f, 0.0f);
+    double v[OPENTRACK_FIELDS];
+    (void)state;
+    pose.x = 3.0f, pose.y = -2.0f, pose.z = 55.0f;
+    pose.position_center[0] = 1.0f, pose.position_center[1] = 1.0f, pose.position_center[2] = 60.0f;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_X] == 2.0 && v[OPENTRACK_Y] == -3.0 && v[OPENTRACK_Z] == -5.0);
+    mapping.invert[OPENTRACK_AXIS_Z] = 1;
+    mapping.scale[OPENTRACK_AXIS_X] = 2.0;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_X] == 4.0 && v[OPENTRACK_Y] == -3.0 && v[OPENTRACK_Z] == 5.0);
+    mapping.relative_to_center = 0;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_X] == 6.0 && v[OPENTRACK_Z] == -55.0);
+    pose.z = 1500.0f;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), -2);
 }
 
 /* Nothing non-finite is ever produced: a NaN or infinite angle or centre is refused. */
@@ -138,6 +162,7 @@ int main(void)
         cmocka_unit_test(test_convention),
         cmocka_unit_test(test_relative_to_center),
         cmocka_unit_test(test_invert_and_scale),
+        cmocka_unit_test(test_position),
         cmocka_unit_test(test_non_finite_refused),
         cmocka_unit_test(test_beyond_a_head_refused),
     };

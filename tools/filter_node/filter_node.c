@@ -17,8 +17,9 @@ static int setup_filter(filter_node_t *node, const char *model)
 
 /* The wire layout: hash, utime, seq (8 bytes each), the model string as a
  * big-endian int32 length with its NUL and the bytes, then valid (1),
- * pitch, yaw, roll (4 each), face_box (16), detection_score (4), inference_us (8). */
-enum { MODEL_AT = 24, TAIL = 1 + 12 + 16 + 4 + 8 };
+ * pitch, yaw, roll (4 each), face_box (16), detection_score (4), inference_us (8),
+ * and since hkf 0.2 x, y, z (4 each). */
+enum { MODEL_AT = 24, TAIL_V1 = 1 + 12 + 16 + 4 + 8, TAIL = TAIL_V1 + 12 };
 
 /* The model string's claimed length (with its NUL); the payload has at least MODEL_AT + 4 bytes. */
 static long model_length(const unsigned char *bytes)
@@ -27,19 +28,52 @@ static long model_length(const unsigned char *bytes)
            bytes[MODEL_AT + 3];
 }
 
+/* hkf 0.1's message (head_pose_measurement_v1_t: no position) as a 0.2 one, z = 0. */
+static int decode_v1(const void *data, int size, hkf_head_pose_measurement_t *m)
+{
+    hkf_head_pose_measurement_v1_t old;
+    memset(&old, 0, sizeof old);
+    if (hkf_head_pose_measurement_v1_t_decode(data, 0, size, &old) != size) {
+        hkf_head_pose_measurement_v1_t_decode_cleanup(&old);
+        return -1;
+    }
+    m->utime = old.utime;
+    m->seq = old.seq;
+    m->model = old.model; /* taken over: freed by hkf_head_pose_measurement_t_decode_cleanup */
+    m->valid = old.valid;
+    m->pitch = old.pitch;
+    m->yaw = old.yaw;
+    m->roll = old.roll;
+    memcpy(m->face_box, old.face_box, sizeof m->face_box);
+    m->detection_score = old.detection_score;
+    m->inference_us = old.inference_us;
+    m->x = m->y = m->z = 0.f;
+    return 0;
+}
+
 int filter_node_decode(const void *data, int size, hkf_head_pose_measurement_t *m)
 {
     const unsigned char *bytes = data;
     long length;
-    if (data == NULL || size < MODEL_AT + 4 + 1 + TAIL) {
+    int v1;
+    if (data == NULL || size < MODEL_AT + 4 + 1 + TAIL_V1) {
         return -1;
     }
     length = model_length(bytes);
-    if (length < 1 || length > NODE_MODEL_NAME_MAX || MODEL_AT + 4 + length + TAIL != size ||
-        bytes[MODEL_AT + 4 + length - 1] != '\0') {
+    if (length < 1 || length > NODE_MODEL_NAME_MAX || bytes[MODEL_AT + 4 + length - 1] != '\0') {
+        return -1;
+    }
+    if (MODEL_AT + 4 + length + TAIL == size) {
+        v1 = 0;
+    } else if (MODEL_AT + 4 + length + TAIL_V1 == size) {
+        v1 = 1;
+    } else {
         return -1;
     }
     memset(m, 0, sizeof *m); /* so that a cleanup after a failed decode frees nothing it did not allocate */
+    if (v1) {
+        return decode_v1(data, size, m);
+    }
     if (hkf_head_pose_measurement_t_decode(data, 0, size, m) != size) { /* e.g. another type's hash */
         hkf_head_pose_measurement_t_decode_cleanup(m);
         return -1;
@@ -59,10 +93,54 @@ int filter_node_model_id_too_long(const void *data, int size)
 
 int filter_node_init(filter_node_t *node, const node_config_t *config)
 {
+    hkf_position_settings_t position;
     memset(node, 0, sizeof *node);
     node->config = config;
     second_model_init(&node->second);
+    hkf_position_default_settings(&position);
+    if (hkf_position_init(&node->position, &position) != HKF_OK) {
+        return HKF_ERROR_SETTING_R_CONST; /* cannot happen: libhkf's own defaults */
+    }
     return setup_filter(node, "");
+}
+
+/* The filtered position at capture time utime: the last one taken moved on by its
+ * rate (as the angles, up to coast_time ahead), held with rate 0 when LOST. */
+static void fill_position(const filter_node_t *node, int64_t utime, int lost, hkf_head_pose_t *pose)
+{
+    const hkf_position_filter_t *p = &node->position;
+    const double ahead = ((double)utime - (double)node->position_utime) * 1e-6;
+    const double step = lost || ahead < 0.0 ? 0.0 : ahead > (double)node->config->settings.coast_time
+                                                        ? (double)node->config->settings.coast_time : ahead;
+    float *position[3] = {&pose->x, &pose->y, &pose->z}, *rate[3] = {&pose->x_rate, &pose->y_rate, &pose->z_rate};
+    int a;
+    if (!p->started) {
+        return; /* all 0: no position measured yet */
+    }
+    for (a = 0; a < 3; ++a) {
+        *position[a] = (float)((double)p->x[a] + (double)p->v[a] * step);
+        *rate[a] = lost ? 0.f : (float)p->v[a];
+        pose->position_variance[a] = (float)p->p00[a];
+        pose->position_center[a] = (float)p->center[a];
+    }
+}
+
+/* A measurement's position (z > 0: measured) into the position filter. */
+static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
+{
+    const hkf_real_t z[3] = {m->x, m->y, m->z};
+    const int mesh = m->model != NULL && strcmp(m->model, FILTER_NODE_MESH_MODEL) == 0;
+    const double dt = node->position.started ? ((double)m->utime - (double)node->position_utime) * 1e-6 : 0.02;
+    if (!(m->z > 0.f) || !isfinite(m->x) || !isfinite(m->y) || !isfinite(m->z) || !(dt > 0.0)) {
+        return;
+    }
+    if (dt > (double)node->position.settings.max_dt) {
+        hkf_position_restart(&node->position);
+    }
+    if (hkf_position_update(&node->position, z, mesh ? 1.0f : FILTER_NODE_BOX_POSITION_R_SCALE,
+                            node->position.started ? (hkf_real_t)dt : 0.02f, NULL) == HKF_OK) {
+        node->position_utime = m->utime;
+    }
 }
 
 static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utime, hkf_head_pose_t *pose)
@@ -93,6 +171,7 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
     pose->loop_closure_active = (out->flags & HKF_FLAG_LOOP_CLOSURE) != 0;
     pose->extrapolated = (out->flags & HKF_FLAG_EXTRAPOLATED) != 0;
     pose->latency_us = 0;
+    fill_position(node, utime, out->status == HKF_STATUS_LOST, pose);
     ++node->counts.published;
 }
 
@@ -102,6 +181,7 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
 static void restart_track(filter_node_t *node)
 {
     hkf_reset(&node->filter);
+    hkf_position_restart(&node->position);
     ++node->counts.restarts;
     second_model_forget_frames(&node->second);
 }
@@ -184,6 +264,7 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
         return 0;
     }
     node->last_measurement_utime = m->utime;
+    take_position(node, m);
     fill_pose(node, &out, m->utime, pose);
     return 1;
 }
@@ -397,10 +478,12 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         ++node->counts.commands;
         second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
+        (void)hkf_position_recenter(&node->position);
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;
         second_model_forget_frames(&node->second);
+        hkf_position_reset(&node->position);
         (void)setup_filter(node, node->model);
         return 0;
     default:

@@ -51,6 +51,13 @@
  *   FILTER_NODE_ALIGN_FRAMES frames both measured, so that the pose does not
  *   step when the second model comes and goes, and the first's innovations
  *   do not read the gap as motion (q_boost).
+ * - position (hkf 0.2): a measurement's x, y, z (z > 0: measured) go through
+ *   libhkf's position filter (hkf/hkf_position.h), with R scaled by
+ *   FILTER_NODE_BOX_POSITION_R_SCALE for a model that measures position from
+ *   the face box (any but the face mesh); a second model's positions are not
+ *   used. The pose carries the filtered position, extrapolated to its time
+ *   like the angles (held while LOST), and its centre; RECENTER sets the
+ *   centre, RESET forgets it, a restart keeps it.
  */
 #ifndef FILTER_NODE_H
 #define FILTER_NODE_H
@@ -58,7 +65,9 @@
 #include <stdint.h>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
+#include "hkf_head_pose_measurement_v1_t.h"
 #include "hkf_head_pose_t.h"
 #include "hkf_tracker_command_t.h"
 #include "node_config.h"
@@ -104,10 +113,13 @@ typedef struct {
     int64_t lost_published;           /* LOST poses published in the current silence */
     int64_t seq;
     second_model_t second;            /* the kept frames and the second model's offset (second_model.h) */
+    hkf_position_filter_t position;   /* the head's position: the followed model's measurements (z > 0) */
+    int64_t position_utime;           /* capture time of the last position taken */
     filter_node_counts_t counts;
 } filter_node_t;
 
-/* Decodes a HEAD_POSE_RAW payload, checking its layout first: LCM 1.3.1's
+/* Decodes a HEAD_POSE_RAW payload - hkf 0.2's, or hkf 0.1's without the position
+ * (head_pose_measurement_v1_t: x, y, z then 0) - checking its layout first: LCM 1.3.1's
  * generated decoder mallocs a string of whatever length the message claims
  * (up to 2 GB), leaks it when a later field is short, and does not require the
  * terminating NUL. Returns 0 with *m decoded (free with
@@ -121,6 +133,11 @@ int filter_node_model_id_too_long(const void *data, int size);
 
 /* 0, or a hkf_result_t when the base settings are invalid. */
 int filter_node_init(filter_node_t *node, const node_config_t *config);
+
+/* R of a position measured from the face box (head_position.hpp: z within ~4 % of the mesh's,
+ * median, against the mesh's ~0.5 %): 25 x the mesh's (5 x the standard deviation). */
+#define FILTER_NODE_BOX_POSITION_R_SCALE 25.0f
+#define FILTER_NODE_MESH_MODEL "mesh_pnp" /* the model whose position is the mesh fit's */
 
 #define FILTER_NODE_CLOCK_JUMP_US 5000000LL /* 5 s: more than any gap a replay's pacing hides */
 #define FILTER_NODE_RESYNC_MESSAGES 3

@@ -51,17 +51,18 @@ static void usage(FILE *to)
     fprintf(to,
             "usage: hkf-opentrack [options]\n"
             "Sends every filtered head pose (hkf.head_pose_t) to opentrack's \"UDP over network\"\n"
-            "input: one datagram of six little-endian doubles x, y, z (cm, always 0), yaw, pitch,\n"
-            "roll (deg), roll's sign flipped to opentrack's convention.\n"
+            "input: one datagram of six little-endian doubles x, y, z (cm: hkf's head position, x right,\n"
+            "y up, z away from the camera), yaw, pitch, roll (deg), roll's sign flipped to opentrack's\n"
+            "convention.\n"
             "  --lcm-url URL      LCM provider (default " DEFAULT_LCM_URL ")\n"
             "  --channel C        filtered poses (default HEAD_POSE)\n"
             "  --host H           opentrack's address (default 127.0.0.1)\n"
             "  --port P           opentrack's UDP port (default 4242)\n"
             "  --bind P           send from this local UDP port (default: any free one)\n"
-            "  --absolute         send the absolute angles; by default the pose minus hkf's centre\n"
-            "                     pose, so 'hkf-cmd recenter' re-zeroes the game camera\n"
-            "  --invert AXIS      flip yaw, pitch or roll (repeatable, or a list: yaw,roll)\n"
-            "  --scale AXIS=K     multiply yaw, pitch or roll by K (repeatable), e.g. --scale yaw=1.5\n"
+            "  --absolute         send the absolute pose; by default the pose minus hkf's centre pose\n"
+            "                     and centre position, so 'hkf-cmd recenter' re-zeroes the game camera\n"
+            "  --invert AXIS      flip yaw, pitch, roll, x, y or z (repeatable, or a list: yaw,z)\n"
+            "  --scale AXIS=K     multiply yaw, pitch, roll, x, y or z by K (repeatable), e.g. --scale yaw=1.5\n"
             "  --lost hold|center|send\n"
             "                     while the face is LOST: repeat the last pose sent (hold, default),\n"
             "                     send the centre (0, 0, 0), or send the filter's held pose as is\n"
@@ -169,12 +170,12 @@ static int parse_options(int argc, char **argv, options_t *o)
             }
         } else if (strcmp(arg, "--invert") == 0) {
             if (parse_invert(value, &o->mapping) != 0) {
-                fprintf(stderr, "hkf-opentrack: --invert wants yaw, pitch or roll (or a list), not '%s'\n", value);
+                fprintf(stderr, "hkf-opentrack: --invert wants yaw, pitch, roll, x, y or z (or a list), not '%s'\n", value);
                 return 2;
             }
         } else if (strcmp(arg, "--scale") == 0) {
             if (parse_scale(value, &o->mapping) != 0) {
-                fprintf(stderr, "hkf-opentrack: --scale wants AXIS=K (yaw, pitch or roll; K from -100 to 100), "
+                fprintf(stderr, "hkf-opentrack: --scale wants AXIS=K (yaw, pitch, roll, x, y or z; K from -100 to 100), "
                                 "not '%s'\n", value);
                 return 2;
             }
@@ -298,8 +299,9 @@ static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
         ++bridge->counts.centered;
     } else if ((result = opentrack_pose_values(&o->mapping, pose, values)) != 0) {
         if (result == -2 && bridge->counts.absurd++ < 5) {
-            fprintf(stderr, "hkf-opentrack: a pose beyond +-180 deg (pitch %g, yaw %g, roll %g) not sent: forged or "
-                            "corrupt\n", (double)pose->pitch, (double)pose->yaw, (double)pose->roll);
+            fprintf(stderr, "hkf-opentrack: a pose beyond +-180 deg or +-1000 cm (pitch %g, yaw %g, roll %g; x %g, y %g, "
+                            "z %g cm) not sent: forged or corrupt\n", (double)pose->pitch, (double)pose->yaw,
+                    (double)pose->roll, (double)pose->x, (double)pose->y, (double)pose->z);
         }
         bridge->counts.non_finite += result == -1;
         return;
@@ -316,7 +318,7 @@ static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     bridge_t *bridge = user;
     hkf_head_pose_t pose;
-    if (hkf_head_pose_t_decode(rbuf->data, 0, (int)rbuf->data_size, &pose) < 0) {
+    if (opentrack_decode_pose(rbuf->data, (int)rbuf->data_size, &pose) != 0) {
         if (bridge->counts.decode_errors++ < 5) {
             fprintf(stderr, "hkf-opentrack: a message on %s did not decode; counted and skipped\n", channel);
         }

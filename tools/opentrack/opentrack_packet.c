@@ -19,7 +19,7 @@ opentrack_mapping_t opentrack_default_mapping(void)
 
 int opentrack_axis_from_name(const char *name)
 {
-    static const char *const names[OPENTRACK_AXES] = {"yaw", "pitch", "roll"};
+    static const char *const names[OPENTRACK_AXES] = {"yaw", "pitch", "roll", "x", "y", "z"};
     int a;
     for (a = 0; a < OPENTRACK_AXES; ++a) {
         if (strcmp(name, names[a]) == 0) {
@@ -44,13 +44,20 @@ int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pos
 {
     /* hkf's (pitch, yaw, roll), relative to kappa if asked */
     double pitch = pose->pitch, yaw = pose->yaw, roll = pose->roll;
-    double angle[OPENTRACK_AXES];
+    double angle[3];
     const float given[6] = {pose->pitch, pose->yaw, pose->roll, pose->center[0], pose->center[1], pose->center[2]};
+    const float place[6] = {pose->x, pose->y, pose->z, pose->position_center[0], pose->position_center[1],
+                            pose->position_center[2]};
+    double position[3];
     int a, i;
     for (i = 0; i < 6; ++i) {
-        if (isfinite(given[i]) && fabs((double)given[i]) > OPENTRACK_MAX_ABS_ANGLE) {
+        if ((isfinite(given[i]) && fabs((double)given[i]) > OPENTRACK_MAX_ABS_ANGLE) ||
+            (isfinite(place[i]) && fabs((double)place[i]) > OPENTRACK_MAX_ABS_POSITION)) {
             return -2;
         }
+    }
+    for (i = 0; i < 3; ++i) { /* hkf's camera frame is opentrack's x, y, z */
+        position[i] = (double)place[i] - (mapping->relative_to_center ? (double)place[3 + i] : 0.0);
     }
     if (mapping->relative_to_center) {
         pitch -= pose->center[0];
@@ -61,15 +68,45 @@ int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pos
     angle[OPENTRACK_AXIS_YAW] = yaw;
     angle[OPENTRACK_AXIS_PITCH] = pitch;
     angle[OPENTRACK_AXIS_ROLL] = -roll;
-    values[OPENTRACK_X] = values[OPENTRACK_Y] = values[OPENTRACK_Z] = 0.0;
-    for (a = 0; a < OPENTRACK_AXES; ++a) {
+    for (a = 0; a < 3; ++a) {
         values[OPENTRACK_YAW + a] = (mapping->invert[a] ? -angle[a] : angle[a]) * mapping->scale[a];
+        values[OPENTRACK_X + a] =
+            (mapping->invert[OPENTRACK_AXIS_X + a] ? -position[a] : position[a]) * mapping->scale[OPENTRACK_AXIS_X + a];
     }
     for (i = 0; i < OPENTRACK_FIELDS; ++i) {
         if (!isfinite(values[i])) {
             return -1;
         }
     }
+    return 0;
+}
+
+int opentrack_decode_pose(const void *data, int size, hkf_head_pose_t *pose)
+{
+    hkf_head_pose_v1_t old;
+    if (hkf_head_pose_t_decode(data, 0, size, pose) >= 0) {
+        return 0;
+    }
+    if (hkf_head_pose_v1_t_decode(data, 0, size, &old) < 0) {
+        return -1;
+    }
+    memset(pose, 0, sizeof *pose);
+    pose->utime = old.utime;
+    pose->measurement_utime = old.measurement_utime;
+    pose->seq = old.seq;
+    pose->status = old.status;
+    pose->pitch = old.pitch;
+    pose->yaw = old.yaw;
+    pose->roll = old.roll;
+    pose->pitch_rate = old.pitch_rate;
+    pose->yaw_rate = old.yaw_rate;
+    pose->roll_rate = old.roll_rate;
+    memcpy(pose->variance, old.variance, sizeof pose->variance);
+    memcpy(pose->r, old.r, sizeof pose->r);
+    memcpy(pose->center, old.center, sizeof pose->center);
+    pose->loop_closure_active = old.loop_closure_active;
+    pose->extrapolated = old.extrapolated;
+    pose->latency_us = old.latency_us;
     return 0;
 }
 

@@ -3,8 +3,13 @@
  * network" input (opentrack's tracker-udp), free of any transport.
  *
  * The datagram: six IEEE-754 doubles, little-endian, 48 bytes, in opentrack's
- * axis order x, y, z (cm), yaw, pitch, roll (deg). hkf estimates no head
- * position, so x, y, z are 0.
+ * axis order x, y, z (cm), yaw, pitch, roll (deg).
+ *
+ * Position (hkf 0.2; README "Head position"): hkf's camera frame, x to the
+ * image's right, y up, z away from the camera, sent as it is (opentrack's x,
+ * y, z), relative to hkf's centre position unless --absolute; 0 until the
+ * filter has a position. Whether a game moves its camera forward for +z or
+ * for -z varies: --invert z.
  *
  * Angle convention. hkf (README "Angle convention"): pitch > 0 nose up,
  * yaw > 0 nose to the driver's right, roll > 0 right ear down. opentrack's
@@ -19,35 +24,44 @@
 #define OPENTRACK_PACKET_H
 
 #include "hkf_head_pose_t.h"
+#include "hkf_head_pose_v1_t.h"
 
 #define OPENTRACK_PACKET_SIZE 48
 enum { OPENTRACK_X = 0, OPENTRACK_Y, OPENTRACK_Z, OPENTRACK_YAW, OPENTRACK_PITCH, OPENTRACK_ROLL, OPENTRACK_FIELDS };
 
-/* Which angle axis a user option names; the index into the arrays below. */
-enum { OPENTRACK_AXIS_YAW = 0, OPENTRACK_AXIS_PITCH = 1, OPENTRACK_AXIS_ROLL = 2, OPENTRACK_AXES = 3 };
+/* Which axis a user option names; the index into the arrays below. */
+enum {
+    OPENTRACK_AXIS_YAW = 0, OPENTRACK_AXIS_PITCH = 1, OPENTRACK_AXIS_ROLL = 2,
+    OPENTRACK_AXIS_X = 3, OPENTRACK_AXIS_Y = 4, OPENTRACK_AXIS_Z = 5, OPENTRACK_AXES = 6
+};
 
 typedef struct {
     int relative_to_center;       /* send pose - centre (kappa), so RECENTER re-zeroes the game camera */
-    int invert[OPENTRACK_AXES];   /* flip the sign of yaw, pitch, roll after the convention mapping */
+    int invert[OPENTRACK_AXES];   /* flip the sign of yaw, pitch, roll (after the convention mapping), x, y, z */
     double scale[OPENTRACK_AXES]; /* then multiply */
 } opentrack_mapping_t;
 
 /* Relative to the centre, no inversion, scale 1. */
 opentrack_mapping_t opentrack_default_mapping(void);
 
-/* "yaw", "pitch" or "roll" -> OPENTRACK_AXIS_*, or -1. */
+/* "yaw", "pitch", "roll", "x", "y" or "z" -> OPENTRACK_AXIS_*, or -1. */
 int opentrack_axis_from_name(const char *name);
 
 /* What no head can do: a pose angle or centre angle beyond this (deg) is a
  * forged or corrupt message, never sent (a turn past it would spin the game
  * camera round). */
 #define OPENTRACK_MAX_ABS_ANGLE 180.0
+#define OPENTRACK_MAX_ABS_POSITION 1000.0 /* cm: libhkf's HKF_MAX_ABS_POSITION */
 
 /* The six values for one pose. Returns 0; -1 when any value is not finite, -2
- * when an angle or the centre is beyond OPENTRACK_MAX_ABS_ANGLE (neither is
- * ever sent). */
+ * when an angle or the centre is beyond OPENTRACK_MAX_ABS_ANGLE, or the position
+ * or its centre beyond OPENTRACK_MAX_ABS_POSITION (neither is ever sent). */
 int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pose_t *pose,
                           double values[OPENTRACK_FIELDS]);
+
+/* Decodes a HEAD_POSE payload: hkf 0.2's, or hkf 0.1's (head_pose_v1_t, its position
+ * then 0). Returns 0, or -1 when it is neither. */
+int opentrack_decode_pose(const void *data, int size, hkf_head_pose_t *pose);
 
 /* The six values as the 48 bytes on the wire (little-endian, whatever the host). */
 void opentrack_encode(const double values[OPENTRACK_FIELDS], unsigned char packet[OPENTRACK_PACKET_SIZE]);

@@ -45,6 +45,7 @@ typedef struct {
     hkf_real_t p00[3], p01[3], p11[3]; /* covariance of (x, v) per axis */
     hkf_real_t center[3];             /* cm: the centre position (first measurement, or hkf_position_recenter) */
     int started;                      /* a measurement has started the track */
+    int centered;                     /* the centre is set (a restart keeps it; a reset clears it) */
 } hkf_position_filter_t;
 
 typedef struct {
@@ -62,9 +63,12 @@ int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s
 /* Forgets the track and the centre; the next measurement starts anew. */
 void hkf_position_reset(hkf_position_filter_t *f);
 
+/* Forgets the track but keeps the centre (a new clock, a change of estimator). */
+void hkf_position_restart(hkf_position_filter_t *f);
+
 /* Predicts by dt (s) and takes the measurement z (cm) with R = r_scale x the
  * setting's R. The first measurement, or one after a gap beyond max_dt,
- * starts the track there (and sets the centre the first time). */
+ * starts the track there (and sets the centre if none is set). */
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out);
 
