@@ -26,10 +26,13 @@ start_logger() { lcm-logger -q -f --lcm-url "$url" "$work/$1.lcmlog" & logger=$!
 stop_logger() { sleep 0.3; kill -INT "$logger"; wait "$logger" || true; }
 start_filter() { "$filter" --lcm-url "$url" 2>"$work/$1.txt" & node=$!; pids+=("$node"); sleep 0.3; }
 stop_filter() { kill -TERM "$node"; wait "$node" || fail "hkf-filter did not stop cleanly"; grep -q "poses published" "$work/$1.txt" || fail "no summary from hkf-filter"; }
+# The estimator runs the face mesh alone here: a second model finishes the frame in hand when
+# the estimator stops (up to ~0.5 s under the sanitizers), which the node would rightly count
+# as one more silence; the second model has its own test (hkf.estimator.second_model).
 estimate() { # estimate NAME SOURCE [options]: in the background, its output in NAME.txt
   local name=$1 src=$2
   shift 2
-  "$estimator" --source "$src" --lcm-url "$url" "$@" >"$work/$name.txt" 2>&1 &
+  "$estimator" --source "$src" --second-model none --lcm-url "$url" "$@" >"$work/$name.txt" 2>&1 &
   est=$!
   pids+=("$est")
 }
@@ -68,7 +71,7 @@ rm -f "$work/camera" && mkfifo "$work/camera"
 "$stream" "$videos/d3.mp4" "$work/camera" --frames 90 2>"$work/camera2.txt" &
 pids+=("$!")
 status=0
-timeout 30 "$estimator" --source "$work/camera" --lcm-url "$url" >"$work/unplug.txt" 2>&1 || status=$?
+timeout 30 "$estimator" --source "$work/camera" --second-model none --lcm-url "$url" >"$work/unplug.txt" 2>&1 || status=$?
 grep -v "^\[" "$work/unplug.txt" | tail -2
 [ "$status" = 3 ] || fail "the estimator after its camera was unplugged: exit $status (expected 3)"
 grep -q "stopped delivering frames (unplugged?) after [0-9]* frames" "$work/unplug.txt" || fail "the unplug was not reported"
