@@ -24,7 +24,9 @@
 #include <opencv2/videoio.hpp>
 
 #include "hkf/head_pose_measurement_t.hpp"
+#include "hkf/head_pose_measurement_v1_t.hpp"
 #include "hkf/head_pose_t.hpp"
+#include "hkf/head_pose_v1_t.hpp"
 #include "pose_drawing.hpp"
 
 extern "C" {
@@ -59,6 +61,44 @@ int fail(const std::string &message)
     return 1;
 }
 
+// A message of hkf 0.2, or of hkf 0.1 (the *_v1_t types: no position, which stays 0); false
+// when it is neither.
+bool decode_message(hkf::head_pose_measurement_t &m, const void *data, int size)
+{
+    if (m.decode(data, 0, size) >= 0) return true;
+    hkf::head_pose_measurement_v1_t old;
+    if (old.decode(data, 0, size) < 0) return false;
+    m.utime = old.utime;
+    m.seq = old.seq;
+    m.model = old.model;
+    m.valid = old.valid;
+    m.pitch = old.pitch;
+    m.yaw = old.yaw;
+    m.roll = old.roll;
+    std::memcpy(m.face_box, old.face_box, sizeof m.face_box);
+    m.detection_score = old.detection_score;
+    m.inference_us = old.inference_us;
+    m.x = m.y = m.z = 0.f;
+    return true;
+}
+
+bool decode_message(hkf::head_pose_t &p, const void *data, int size)
+{
+    if (p.decode(data, 0, size) >= 0) return true;
+    hkf::head_pose_v1_t old;
+    if (old.decode(data, 0, size) < 0) return false;
+    p = hkf::head_pose_t();
+    p.utime = old.utime;
+    p.measurement_utime = old.measurement_utime;
+    p.seq = old.seq;
+    p.status = old.status;
+    p.pitch = old.pitch;
+    p.yaw = old.yaw;
+    p.roll = old.roll;
+    p.x = p.y = p.z = 0.f;
+    return true;
+}
+
 // Every event of `channel` in the log decoded as T; false (with `error`) if the file cannot be read.
 template <typename T>
 bool read_channel(const std::string &path, const std::string &channel, std::vector<T> &out, std::string &error)
@@ -81,7 +121,7 @@ bool read_channel(const std::string &path, const std::string &channel, std::vect
     while (lcm_log_reader_next(&reader, &event, data, sizeof data) == 1) {
         if (!event.data_read || channel != event.channel) continue;
         T message;
-        if (message.decode(data, 0, event.datalen) < 0) {
+        if (!decode_message(message, data, event.datalen)) {
             ++undecodable;
             continue;
         }
@@ -230,7 +270,11 @@ int annotate(const Options &o)
         std::optional<cv::Rect2f> box;
         if (r != raw_by_seq.end()) {
             const hkf::head_pose_measurement_t &m = *r->second;
-            const hkf_estimator::HeadPose pose{m.pitch, m.yaw, m.roll};
+            hkf_estimator::HeadPose pose{m.pitch, m.yaw, m.roll};
+            if (m.z > 0.f && std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.z)) {
+                pose.position = {m.x, m.y, m.z};
+                pose.has_position = true;
+            }
             if (m.valid && finite(pose)) {
                 point.raw = pose;
                 box = cv::Rect2f(cv::Point2f(m.face_box[0], m.face_box[1]), cv::Point2f(m.face_box[2], m.face_box[3]));
@@ -238,7 +282,12 @@ int annotate(const Options &o)
             }
             const auto f = filtered_by_utime.find(m.utime);
             if (f != filtered_by_utime.end()) {
-                const hkf_estimator::HeadPose pose_f{f->second->pitch, f->second->yaw, f->second->roll};
+                const hkf::head_pose_t &fp = *f->second;
+                hkf_estimator::HeadPose pose_f{fp.pitch, fp.yaw, fp.roll};
+                if (fp.z > 0.f && std::isfinite(fp.x) && std::isfinite(fp.y) && std::isfinite(fp.z)) {
+                    pose_f.position = {fp.x, fp.y, fp.z};
+                    pose_f.has_position = true;
+                }
                 if (finite(pose_f)) {
                     point.filtered = pose_f;
                     ++with_filtered;

@@ -41,6 +41,17 @@ void draw_annotation(cv::Mat &image, const std::optional<cv::Rect2f> &box, const
                       filtered->roll);
         cv::putText(image, text, {10, 50}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2);
     }
+    // the head's position, when measured (cm, camera frame)
+    if (raw && raw->has_position) {
+        std::snprintf(text, sizeof text, "raw       x %+.1f  y %+.1f  z %.1f cm", raw->position.x, raw->position.y,
+                      raw->position.z);
+        cv::putText(image, text, {10, 75}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
+    }
+    if (filtered && filtered->has_position) {
+        std::snprintf(text, sizeof text, "filtered  x %+.1f  y %+.1f  z %.1f cm", filtered->position.x,
+                      filtered->position.y, filtered->position.z);
+        cv::putText(image, text, {10, 100}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2);
+    }
     if (!box || !(box->width > 0.f && box->height > 0.f)) return;
     cv::rectangle(image, *box, cv::Scalar(0, 255, 255), 2, cv::LINE_AA);
     const cv::Point2f centre(box->x + box->width / 2, box->y + box->height / 2);

@@ -170,7 +170,11 @@ class Monitor:
             p = self.last
             yaw = (p.yaw - p.center[1] + 180.0) % 360.0 - 180.0
             text += (f", {STATUS.get(p.status, '?')} pitch {p.pitch - p.center[0]:+6.1f} yaw {yaw:+6.1f} "
-                     f"roll {p.roll - p.center[2]:+6.1f} deg from centre")
+                     f"roll {p.roll - p.center[2]:+6.1f} deg")
+            if p.z > 0:  # a position: x, y, z from the centre position
+                text += (f", x {p.x - p.position_center[0]:+5.1f} y {p.y - p.position_center[1]:+5.1f} "
+                         f"z {p.z - p.position_center[2]:+5.1f} cm")
+            text += " from centre"
         self.raw = self.faces = self.poses = self.second = 0
         self.latency_ms = []
         return text
