@@ -93,13 +93,13 @@ int filter_node_model_id_too_long(const void *data, int size)
 
 int filter_node_init(filter_node_t *node, const node_config_t *config)
 {
-    hkf_position_settings_t position;
+    int result;
     memset(node, 0, sizeof *node);
     node->config = config;
     second_model_init(&node->second);
-    hkf_position_default_settings(&position);
-    if (hkf_position_init(&node->position, &position) != HKF_OK) {
-        return HKF_ERROR_SETTING_R_CONST; /* cannot happen: libhkf's own defaults */
+    result = hkf_position_init(&node->position, &config->position);
+    if (result != HKF_OK) {
+        return result; /* cannot happen: the config was checked */
     }
     return setup_filter(node, "");
 }

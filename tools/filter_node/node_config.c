@@ -24,6 +24,8 @@ typedef struct {
 
 #define FIELD(f) offsetof(hkf_settings_t, f)
 #define PAIR_KEY "pair_second_alone_from_yaw"
+#define POSITION_Q_KEY "position_process_noise"
+#define POSITION_R_KEY "position_measurement_noise"
 
 static const config_key_t keys[] = {
     {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll): deg^2/s^3; calibrated: x n, 1/s^3"},
@@ -52,7 +54,7 @@ static const config_key_t keys[] = {
     {"still_threshold", KIND_REAL, FIELD(still_threshold), "calibrated motion detector: still below this"},
 };
 #define KEY_COUNT (sizeof keys / sizeof keys[0])
-typedef char origin_slots_fit[KEY_COUNT + 1 <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys and the pair key */
+typedef char origin_slots_fit[KEY_COUNT + 3 <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys, the pair and position keys */
 typedef char own_keys_fit[KEY_COUNT <= 32 ? 1 : -1];                     /* a bit per key in node_model_t.own_keys */
 
 static const char *const noise_mode_names[] = {"constant", "adaptive", "adaptive_squared"};
@@ -74,6 +76,7 @@ void node_config_defaults(node_config_t *config)
     memset(config, 0, sizeof *config);
     config->settings = hkf_default_settings;
     config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
+    hkf_position_default_settings(&config->position);
     add_builtin_model(config, "fsanet", hkf_noise_fsanet);
     add_builtin_model(config, "hopenet", hkf_noise_hopenet);
     add_builtin_model(config, "mesh_pnp", model_curves_mesh_pnp); /* fitted by tools/fit */
@@ -319,8 +322,10 @@ static int split_assignment(char *line, char **key, char **value)
     return (*key)[0] != '\0' && (*value)[0] != '\0' ? 0 : -1;
 }
 
-/* The index of a base key in keys[], KEY_COUNT for the pair key. */
+/* The index of a base key in keys[], KEY_COUNT for the pair key, then the position keys. */
 #define PAIR_SLOT KEY_COUNT
+#define POSITION_Q_SLOT (KEY_COUNT + 1)
+#define POSITION_R_SLOT (KEY_COUNT + 2)
 
 static int apply(node_config_t *config, const char *model, char *key, char *value, const char *origin, char *error,
                  size_t error_size)
@@ -346,6 +351,20 @@ static int apply(node_config_t *config, const char *model, char *key, char *valu
             return 0;
         }
         snprintf(error, error_size, "%s wants degrees from 0 to 180, not '%s'", key, value);
+        return -1;
+    }
+    if (strcmp(key, POSITION_Q_KEY) == 0 || strcmp(key, POSITION_R_KEY) == 0) { /* the position filter's */
+        const int q = strcmp(key, POSITION_Q_KEY) == 0;
+        hkf_position_settings_t position = config->position;
+        hkf_position_filter_t probe;
+        if (parse_reals(value, q ? position.process_noise : position.measurement_noise, 3) == 0 &&
+            hkf_position_init(&probe, &position) == HKF_OK) {
+            config->position = position;
+            set_origin(config->origin[q ? POSITION_Q_SLOT : POSITION_R_SLOT], origin);
+            return 0;
+        }
+        snprintf(error, error_size, "%s wants three values (x y z), %s, not '%s'", key,
+                 q ? "0 to HKF_MAX_PROCESS_NOISE cm^2/s^3" : "HKF_MIN_VARIANCE to HKF_MAX_VARIANCE cm^2", value);
         return -1;
     }
     k = find_key(key);
@@ -612,6 +631,17 @@ void node_config_print(const node_config_t *config, FILE *out)
     }
     fprintf(out, "%-20s = %-40s # %s\n", PAIR_KEY, format_real(config->second_alone_from_yaw, text, sizeof text),
             "deg; two models on one channel: the second alone where the first's |yaw| >= this");
+    {
+        char three[3][32], line[100];
+        const hkf_real_t *q = config->position.process_noise, *r = config->position.measurement_noise;
+        snprintf(line, sizeof line, "%s %s %s", format_real(q[0], three[0], 32), format_real(q[1], three[1], 32),
+                 format_real(q[2], three[2], 32));
+        fprintf(out, "%-20s = %-40s # %s\n", POSITION_Q_KEY, line, "position filter's q per axis (x y z), cm^2/s^3");
+        snprintf(line, sizeof line, "%s %s %s", format_real(r[0], three[0], 32), format_real(r[1], three[1], 32),
+                 format_real(r[2], three[2], 32));
+        fprintf(out, "%-20s = %-40s # %s\n", POSITION_R_KEY, line,
+                "position filter's R per axis (x y z), cm^2 (the face box's: 25 x)");
+    }
     for (m = 0; m < config->model_count; ++m) {
         const node_model_t *model = &config->models[m];
         const hkf_settings_t s = settings_of_model(config, model);

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
 
 #define NODE_MAX_MODELS 16
@@ -38,6 +39,9 @@ typedef struct {
      * the second's measurement alone; below it, both are fused by their Eq. 8
      * R. Key "pair_second_alone_from_yaw"; default NODE_SECOND_ALONE_FROM_YAW. */
     hkf_real_t second_alone_from_yaw;
+    /* The head's position filter (hkf/hkf_position.h): keys "position_process_noise" (q per axis
+     * x y z, cm^2/s^3) and "position_measurement_noise" (R per axis, cm^2, of the face mesh's). */
+    hkf_position_settings_t position;
     char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* where each base key was set ("": the default) */
 } node_config_t;
 
