@@ -113,9 +113,13 @@ static void test_center_recenter_reset(void **state)
     }
     assert_int_equal(hkf_position_recenter(&f), HKF_OK);
     assert_true(fabs(D(f.center[0]) - 8.0) < 0.05 && fabs(D(f.center[2]) - 50.0) < 0.05);
-    hkf_position_restart(&f); /* a new track keeps the centre */
-    assert_int_equal(hkf_position_update(&f, moved, R(1.0), R(frame_s), NULL), HKF_OK);
-    assert_true(fabs(D(f.center[0]) - 8.0) < 0.05);
+    hkf_position_restart(&f); /* a new track, elsewhere, keeps the centre */
+    {
+        const hkf_real_t elsewhere[3] = {R(12.0), R(4.0), R(45.0)};
+        assert_int_equal(hkf_position_update(&f, elsewhere, R(1.0), R(frame_s), NULL), HKF_OK);
+        assert_true(fabs(D(f.x[0]) - 12.0) < TEST_TOL);
+    }
+    assert_true(fabs(D(f.center[0]) - 8.0) < 0.05 && fabs(D(f.center[2]) - 50.0) < 0.05);
     hkf_position_reset(&f);
     assert_int_equal(hkf_position_recenter(&f), HKF_ERROR_NOT_INITIALIZED);
     assert_int_equal(hkf_position_predict(&f, R(frame_s), NULL), HKF_ERROR_NOT_INITIALIZED);

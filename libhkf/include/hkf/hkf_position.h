@@ -54,7 +54,8 @@ typedef struct {
     hkf_real_t variance[3];  /* cm^2 */
 } hkf_position_output_t;
 
-/* Defaults measured on the estimator's mesh position (README "Head position"). */
+/* Defaults chosen on truth by construction with the estimator's mesh position
+ * (tools/eval/position_truth.py; README "Head position"). */
 void hkf_position_default_settings(hkf_position_settings_t *s);
 
 /* Checks the settings (HKF_ERROR_SETTING_*) and clears the track. */
