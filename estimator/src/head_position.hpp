@@ -39,6 +39,12 @@ std::vector<int> rigid_points(const std::vector<cv::Point3f> &canonical);
 // is pivot_cm behind the model's front-most point along its forward (+z) axis.
 HeadPosition position_from_fit(const cv::Vec3d &rvec, const cv::Vec3d &tvec, float front_z_cm, double pivot_cm);
 
+// The mesh's position: the rigid canonical points (cm) fitted to their landmarks (px) by
+// solvePnP (SQPNP) with the camera of settings.fov_deg, moved to the pivot. False when the
+// fit fails or gives no finite position in front of the camera.
+bool fit_position(const std::vector<cv::Point3f> &rigid_canonical, const std::vector<cv::Point2f> &rigid_landmarks,
+                  const cv::Size &frame, const PositionSettings &settings, float front_z_cm, HeadPosition &position);
+
 // The position of a face box on a face face_width_cm wide: the distance from
 // its width, x and y from its centre (the face's front), then moved pivot_cm
 // behind it, against nose_cv: the direction the nose points in OpenCV's camera

@@ -93,19 +93,9 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     if (!std::isfinite(pose.pitch) || !std::isfinite(pose.yaw) || !std::isfinite(pose.roll)) return std::nullopt;
 
     // the position: the rigid upper face fitted with the camera of --fov, moved to the pivot
-    const double fov_focal = focal_from_fov(frame.size(), position_settings_.fov_deg);
-    const cv::Matx33d fov_camera(fov_focal, 0, frame.cols / 2.0, 0, fov_focal, frame.rows / 2.0, 0, 0, 1);
     std::vector<cv::Point2f> rigid_landmarks;
     for (int i : rigid_) rigid_landmarks.push_back(landmarks_[static_cast<size_t>(i)]);
-    cv::Vec3d rigid_rvec, rigid_tvec;
-    if (cv::solvePnP(rigid_canonical_, rigid_landmarks, fov_camera, cv::noArray(), rigid_rvec, rigid_tvec, false,
-                     cv::SOLVEPNP_SQPNP)) {
-        const HeadPosition p = position_from_fit(rigid_rvec, rigid_tvec, front_z_, position_settings_.pivot_cm);
-        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f) {
-            pose.position = p;
-            pose.has_position = true;
-        }
-    }
+    pose.has_position = fit_position(rigid_canonical_, rigid_landmarks, frame.size(), position_settings_, front_z_, pose.position);
     return pose;
 }
 

@@ -22,7 +22,7 @@ moves, from 1 s on), raw and filtered. The defaults are chosen on TUNING_CLIPS: 
 smallest moving z error whose still z jitter is at most JITTER_GOAL_CM; the
 tables give the tuning clips and the others.
 
-usage: position_truth.py [--build DIR] [--out DIR] [--clips d0,d3,...]
+usage: position_truth.py [--build DIR] [--out DIR] [--clips d0,d3,...] [--check]
 writes OUT/position/{position.md,position_z.png} and the clips and raw logs
 under OUT/position/clips (made once, reused).
 """
@@ -171,11 +171,39 @@ def pooled(rows):
     return {k: float(np.sqrt(np.mean([r[k] ** 2 for r in rows]))) for k in keys}
 
 
+def check(build, clips, work):
+    """The defaults (hkf-filter's own settings) on these clips against the goals; 0 when all hold."""
+    failed = 0
+    for clip in clips:
+        csv_path = os.path.join(work, "f.csv")
+        command = [os.path.join(build, "tools", "hkf-filter"), "--offline",
+                   os.path.join(work, "..", "clips", clip.name, "raw.lcmlog"), os.path.join(work, "f.lcmlog"), "--csv", csv_path]
+        result = subprocess.run(command, capture_output=True, text=True)
+        if result.returncode != 0:
+            sys.exit(f"position_truth: {' '.join(command)} exited {result.returncode}: {result.stderr.strip()}")
+        by_time = {}
+        with open(csv_path) as fh:
+            for row in csv.DictReader(fh):
+                if row["extrapolated"] == "0" and row["utime"] == row["measurement_utime"] and float(row["z"]) > 0:
+                    by_time[int(row["utime"])] = (float(row["x"]), float(row["y"]), float(row["z"]))
+        f = metrics(clip, np.array([by_time.get(int(u), (np.nan,) * 3) for u in clip.utime]))
+        r = metrics(clip, clip.raw)
+        ok = r["found"] >= 0.95 and r["z_err_pct"] <= 3.0 and f["z_jitter"] <= 0.1 and f["z_jitter"] < 0.5 * r["z_jitter"] \
+            and f["z_rmse"] <= 3.0
+        failed += not ok
+        print(f"{'ok  ' if ok else 'FAIL'} {clip.name}: face at {r['distance']:.0f} cm, found {100 * r['found']:.0f} %; raw z error "
+              f"median {r['z_err_pct']:.1f} % (<= 3); still z jitter raw {r['z_jitter']:.3f}, filtered {f['z_jitter']:.3f} cm/frame "
+              f"(<= 0.1 and < half the raw); moving z RMSE raw {r['z_rmse']:.2f}, filtered {f['z_rmse']:.2f} cm (<= 3)")
+    return 1 if failed else 0
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
     p.add_argument("--out", default=os.path.join(ROOT, "out", "eval"))
     p.add_argument("--clips", default=",".join(CLIPS))
+    p.add_argument("--check", action="store_true",
+                   help="the defaults only, no grid: print the figures and exit 1 unless the goals hold (a test)")
     args = p.parse_args()
     out = os.path.join(args.out, "position")
     types = os.path.join(args.build, "lcmtypes", "python")
@@ -186,6 +214,8 @@ def main():
         clips.append(make_clip(args.build, out, name, types))
     work = os.path.join(out, "work")
     os.makedirs(work, exist_ok=True)
+    if args.check:
+        return check(args.build, clips, work)
     rows = {}
     for q in Q_GRID:
         for r_z in R_Z_GRID:
