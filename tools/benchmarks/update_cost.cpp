@@ -5,6 +5,7 @@
  *   step_libhkf_paper     hkf_update, adaptive R (Eq. 8) + loop closure (Eq. 9)
  *   step_libhkf_constant  hkf_update, constant R, no loop closure
  *   step_libhkf_defaults  hkf_update with hkf_default_settings (noise calibration, motion detector)
+ *   step_libhkf_position  hkf_position_update: the head's position (x, y, z), default settings
  *   step_libhkf_pair      hkf_update_pair: the paper's filter, a second estimator's measurement
  *                         with Hopenet's curves (two measurements, not the same work)
  *   step_opencv           cv::KalmanFilter(6, 3): predict + correct
@@ -26,6 +27,7 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_position.h"
 #include "head_motion_sim.h"
 
 #define NOINLINE __attribute__((noipa)) /* no inlining, no merging of the two libhkf steps */
@@ -122,6 +124,13 @@ NOINLINE int step_libhkf_pair(hkf_filter_t *f, const Input *in, const hkf_settin
 {
     const hkf_real_t z2[3] = {in->z[0] + 1.5f, in->z[1] - 2.0f, in->z[2] + 0.5f};
     return hkf_update_pair(f, in->z, z2, second, in->dt, out);
+}
+
+NOINLINE int step_libhkf_position(hkf_position_filter_t *f, const Input *in, hkf_position_output_t *out)
+{
+    /* a head about 60 cm away moving with the drive's angles (any signal will do: the step has no branches on it) */
+    const hkf_real_t xyz[3] = {0.2f * in->z[1], 0.1f * in->z[0], 60.0f + 0.1f * in->z[2]};
+    return hkf_position_update(f, xyz, 1.0f, in->dt, out);
 }
 
 NOINLINE void step_opencv(OpenCvFilter *k, const Input *in, float yaw_out[1])
@@ -272,6 +281,13 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "hkf-bench-update: hkf_init failed\n");
         return 1;
     }
+    hkf_position_settings_t position_settings;
+    hkf_position_default_settings(&position_settings);
+    hkf_position_filter_t f_position;
+    if (hkf_position_init(&f_position, &position_settings) != HKF_OK) {
+        std::fprintf(stderr, "hkf-bench-update: hkf_position_init failed\n");
+        return 1;
+    }
     OpenCvFilter cv_filter(paper);
     EigenFilter eigen_filter(paper);
 
@@ -283,6 +299,11 @@ int main(int argc, char **argv)
         if (step_libhkf_paper(&f_paper, &in, &a) != HKF_OK || step_libhkf_constant(&f_constant, &in, &b) != HKF_OK ||
             step_libhkf_defaults(&f_defaults, &in, &c) != HKF_OK || step_libhkf_pair(&f_pair, &in, &second, &d) != HKF_OK) {
             std::fprintf(stderr, "hkf-bench-update: hkf_update failed\n");
+            return 1;
+        }
+        hkf_position_output_t position;
+        if (step_libhkf_position(&f_position, &in, &position) != HKF_OK) {
+            std::fprintf(stderr, "hkf-bench-update: hkf_position_update failed\n");
             return 1;
         }
         step_opencv(&cv_filter, &in, &yaw_cv);
