@@ -19,6 +19,9 @@ trap 'kill $filter $bridge 2>/dev/null || true; rm -f "$log"' EXIT
 sleep 0.5
 echo "raw pose -> opentrack datagram through hkf-filter and hkf-opentrack (udpm + UDP on loopback, $(nproc) cores), $seconds s per rate:"
 for rate in 60 250; do
+  # each rate is a new publisher (its seq starts at 1): hkf-filter follows it once the last one
+  # has been silent for FILTER_NODE_STREAM_TIMEOUT_US (1 s), so give it that
+  sleep 1.2
   "$here/../../.venv/bin/python" "$here/opentrack_latency.py" --types "$build/lcmtypes/python" --lcm-url "$url" \
     --rate "$rate" --seconds "$seconds"
 done
