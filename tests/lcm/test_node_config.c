@@ -174,6 +174,10 @@ static void test_print_reads_back(void **state)
     assert_int_equal(node_config_set(&c, "lc_xi=0.25", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "model.whenet.r_const=1 2 3", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "model.whenet.q_boost=100", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_measurement_noise = 0.01 0.02 0.5", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_process_noise = 1 2 3", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_process_noise = 1 2", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "position_measurement_noise = 0 1 1", error, sizeof error), -1);
     strcpy(path, "/tmp/hkf_config_print_XXXXXX");
     f = fdopen(mkstemp(path), "w");
     node_config_print(&c, f);
@@ -182,6 +186,8 @@ static void test_print_reads_back(void **state)
     back.settings = hkf_default_settings;
     assert_int_equal(node_config_read_file(&back, path, error, sizeof error), 0);
     assert_true(same_settings(&c.settings, &back.settings));
+    assert_true(back.position.process_noise[2] == c.position.process_noise[2] &&
+                back.position.measurement_noise[1] == c.position.measurement_noise[1]);
     assert_int_equal(back.model_count, 4);
     assert_true(same_models(back.models, c.models, 4));
     {

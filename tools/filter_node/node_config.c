@@ -355,11 +355,12 @@ static int apply(node_config_t *config, const char *model, char *key, char *valu
     }
     if (strcmp(key, POSITION_Q_KEY) == 0 || strcmp(key, POSITION_R_KEY) == 0) { /* the position filter's */
         const int q = strcmp(key, POSITION_Q_KEY) == 0;
-        hkf_position_settings_t position = config->position;
-        hkf_position_filter_t probe;
-        if (parse_reals(value, q ? position.process_noise : position.measurement_noise, 3) == 0 &&
-            hkf_position_init(&probe, &position) == HKF_OK) {
-            config->position = position;
+        const hkf_real_t low = q ? 0 : (hkf_real_t)HKF_MIN_VARIANCE;
+        const hkf_real_t high = q ? (hkf_real_t)HKF_MAX_PROCESS_NOISE : (hkf_real_t)HKF_MAX_VARIANCE;
+        hkf_real_t v[3];
+        if (parse_reals(value, v, 3) == 0 && v[0] >= low && v[0] <= high && v[1] >= low && v[1] <= high &&
+            v[2] >= low && v[2] <= high) {
+            memcpy(q ? config->position.process_noise : config->position.measurement_noise, v, sizeof v);
             set_origin(config->origin[q ? POSITION_Q_SLOT : POSITION_R_SLOT], origin);
             return 0;
         }
@@ -542,8 +543,14 @@ static void describe_origins(const node_config_t *config, const node_model_t *mo
 int node_config_check(const node_config_t *config, char *error, size_t error_size)
 {
     hkf_filter_t probe;
+    hkf_position_filter_t position_probe;
     int m, result = hkf_init(&probe, &config->settings);
     char where[600] = "";
+    if (hkf_position_init(&position_probe, &config->position) != HKF_OK) {
+        snprintf(error, error_size, "invalid position settings (%s, %s): %s", POSITION_Q_KEY, POSITION_R_KEY,
+                 hkf_result_string(hkf_position_init(&position_probe, &config->position)));
+        return -1;
+    }
     if (result != HKF_OK) {
         describe_origins(config, NULL, result, where, sizeof where);
         snprintf(error, error_size, "%sinvalid settings: %s", where, hkf_result_string(result));
