@@ -495,6 +495,84 @@ static void test_decode_checks_layout(void **state)
     assert_int_equal(filter_node_decode(buffer, 3, &back), -1);
 }
 
+/* hkf 0.1's message (head_pose_measurement_v1_t, no position) decodes as a 0.2 one with z = 0. */
+static void test_decode_reads_v1(void **state)
+{
+    hkf_head_pose_measurement_v1_t old;
+    hkf_head_pose_measurement_t back;
+    unsigned char buffer[256];
+    int size;
+    (void)state;
+    memset(&old, 0, sizeof old);
+    old.utime = T0;
+    old.seq = 7;
+    old.model = "mesh_pnp";
+    old.valid = 1;
+    old.pitch = 1.0f, old.yaw = -2.0f, old.roll = 3.0f;
+    old.face_box[2] = 100.0f;
+    size = hkf_head_pose_measurement_v1_t_encoded_size(&old);
+    assert_true(size > 0 && size <= (int)sizeof buffer);
+    assert_int_equal(hkf_head_pose_measurement_v1_t_encode(buffer, 0, size, &old), size);
+    assert_int_equal(filter_node_decode(buffer, size, &back), 0);
+    assert_string_equal(back.model, "mesh_pnp");
+    assert_true(back.utime == T0 && back.seq == 7 && back.valid && back.yaw == -2.0f && back.face_box[2] == 100.0f);
+    assert_true(back.x == 0.0f && back.y == 0.0f && back.z == 0.0f);
+    hkf_head_pose_measurement_t_decode_cleanup(&back);
+    assert_int_equal(filter_node_decode(buffer, size + 12, &back), -1); /* neither layout */
+}
+
+/* The position: filtered from the measurements that carry one (z > 0), published with its
+ * centre; a message without one leaves it alone; RECENTER sets the centre, RESET forgets it;
+ * a box-based model's position moves the filter less than the mesh's. */
+static void test_position_filtered(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    hkf_tracker_command_t command = {0, HKF_TRACKER_COMMAND_T_RECENTER};
+    float mesh_step, box_step;
+    int i;
+    (void)state;
+    m = measurement(T0, 1, 0, 0, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.z == 0.0f && pose.position_center[2] == 0.0f); /* no position measured yet */
+    for (i = 1; i <= 30; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0, 0, 0);
+        m.model = "mesh_pnp";
+        m.x = 2.0f, m.y = -1.0f, m.z = 60.0f;
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    }
+    assert_true(fabsf(pose.z - 60.0f) < 0.01f && fabsf(pose.x - 2.0f) < 0.01f && pose.position_center[2] == 60.0f);
+    assert_true(pose.position_variance[2] > 0.0f && pose.position_variance[2] < 0.05f);
+    m = measurement(T0 + 31 * FRAME_US, 1, 0, 0, 0); /* no position: held */
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(fabsf(pose.z - 60.0f) < 0.01f);
+    {
+        filter_node_t box = node;
+        m = measurement(T0 + 32 * FRAME_US, 1, 0, 0, 0);
+        m.model = "mesh_pnp";
+        m.z = 50.0f, m.x = 2.0f, m.y = -1.0f;
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        mesh_step = 60.0f - pose.z;
+        m.model = "whenet"; /* a model change restarts the angles' track, not the position's */
+        assert_int_equal(filter_node_measurement(&box, &m, &pose), 1);
+        box_step = 60.0f - pose.z;
+        assert_true(mesh_step > 0.0f && box_step > 0.0f && box_step < 0.5f * mesh_step);
+    }
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    m = measurement(T0 + 33 * FRAME_US, 1, 0, 0, 0);
+    m.model = "mesh_pnp";
+    m.z = 50.0f, m.x = 2.0f, m.y = -1.0f;
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.position_center[2] < 59.0f); /* the centre moved to where the head was */
+    command.command = HKF_TRACKER_COMMAND_T_RESET;
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    m = measurement(T0 + 34 * FRAME_US, 1, 0, 0, 0);
+    m.model = "mesh_pnp";
+    m.z = 40.0f, m.x = 0.0f, m.y = 0.0f;
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.z == 40.0f && pose.position_center[2] == 40.0f); /* a new track, and centre */
+}
+
 /* One publisher: a second estimator on the same channel (its own frame
  * counter, another face at yaw 40) is rejected and counted, never mixed in. */
 static void test_two_publishers_not_mixed(void **state)
@@ -1009,6 +1087,8 @@ int main(void)
         cmocka_unit_test_setup(test_clock_steps_back_with_arrival, setup),
         cmocka_unit_test_setup(test_forged_stamp_ahead, setup),
         cmocka_unit_test_setup(test_decode_checks_layout, setup),
+        cmocka_unit_test_setup(test_decode_reads_v1, setup),
+        cmocka_unit_test_setup(test_position_filtered, setup),
         cmocka_unit_test_setup(test_two_publishers_not_mixed, setup),
         cmocka_unit_test_setup(test_publisher_restart_followed, setup),
         cmocka_unit_test_setup(test_rule_boundaries, setup),
