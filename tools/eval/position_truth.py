@@ -134,14 +134,17 @@ def make_clip(build, out, name, types):
     return Clip(name, utime, valid, raw, truth, still, changing)
 
 
-def filtered(build, clip, work, q, r_z):
-    """hkf-filter --offline's posterior position per raw frame (nan where none)."""
+def filtered(build, clip, work, setting=None):
+    """hkf-filter --offline's posterior position per raw frame (nan where none): with setting
+    (q, R_z) the position filter's q and R (R_x = R_y = R_z / 25), without it the defaults."""
     csv_path = os.path.join(work, "f.csv")
-    r_xy = r_z / 25.0
     command = [os.path.join(build, "tools", "hkf-filter"), "--offline",
-               os.path.join(work, "..", "clips", clip.name, "raw.lcmlog"), os.path.join(work, "f.lcmlog"),
-               "--csv", csv_path, "--set", f"position_process_noise = {q} {q} {q}",
-               "--set", f"position_measurement_noise = {r_xy} {r_xy} {r_z}"]
+               os.path.join(work, "..", "clips", clip.name, "raw.lcmlog"), os.path.join(work, "f.lcmlog"), "--csv", csv_path]
+    if setting is not None:
+        q, r_z = setting
+        r_xy = r_z / 25.0
+        command += ["--set", f"position_process_noise = {q} {q} {q}",
+                    "--set", f"position_measurement_noise = {r_xy} {r_xy} {r_z}"]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"position_truth: {' '.join(command)} exited {result.returncode}: {result.stderr.strip()}")
@@ -175,18 +178,7 @@ def check(build, clips, work):
     """The defaults (hkf-filter's own settings) on these clips against the goals; 0 when all hold."""
     failed = 0
     for clip in clips:
-        csv_path = os.path.join(work, "f.csv")
-        command = [os.path.join(build, "tools", "hkf-filter"), "--offline",
-                   os.path.join(work, "..", "clips", clip.name, "raw.lcmlog"), os.path.join(work, "f.lcmlog"), "--csv", csv_path]
-        result = subprocess.run(command, capture_output=True, text=True)
-        if result.returncode != 0:
-            sys.exit(f"position_truth: {' '.join(command)} exited {result.returncode}: {result.stderr.strip()}")
-        by_time = {}
-        with open(csv_path) as fh:
-            for row in csv.DictReader(fh):
-                if row["extrapolated"] == "0" and row["utime"] == row["measurement_utime"] and float(row["z"]) > 0:
-                    by_time[int(row["utime"])] = (float(row["x"]), float(row["y"]), float(row["z"]))
-        f = metrics(clip, np.array([by_time.get(int(u), (np.nan,) * 3) for u in clip.utime]))
+        f = metrics(clip, filtered(build, clip, work))
         r = metrics(clip, clip.raw)
         ok = r["found"] >= 0.95 and r["z_err_pct"] <= 3.0 and f["z_jitter"] <= 0.1 and f["z_jitter"] < 0.5 * r["z_jitter"] \
             and f["z_rmse"] <= 3.0
@@ -219,7 +211,7 @@ def main():
     rows = {}
     for q in Q_GRID:
         for r_z in R_Z_GRID:
-            rows[(q, r_z)] = {c.name: metrics(c, filtered(args.build, c, work, q, r_z)) for c in clips}
+            rows[(q, r_z)] = {c.name: metrics(c, filtered(args.build, c, work, (q, r_z))) for c in clips}
         log(f"q {q:g}: {len(R_Z_GRID)} settings of R done")
     raw = {c.name: metrics(c, c.raw) for c in clips}
     tuning = [n for n in names if n in TUNING_CLIPS]
@@ -262,7 +254,7 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     clip = clips[0]
-    fz = filtered(args.build, clip, work, *chosen)
+    fz = filtered(args.build, clip, work, chosen)
     t = (clip.utime - clip.utime[0]) / 1e6
     fig, ax = plt.subplots(figsize=(10, 4))
     ax.plot(t, clip.truth[:, 2], "k-", lw=2, label="truth")
