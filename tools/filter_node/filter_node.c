@@ -130,15 +130,13 @@ static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t
 {
     const hkf_real_t z[3] = {m->x, m->y, m->z};
     const int mesh = m->model != NULL && strcmp(m->model, FILTER_NODE_MESH_MODEL) == 0;
+    /* the first position's dt is unused; a gap beyond max_dt restarts the track in hkf_position_update */
     const double dt = node->position.started ? ((double)m->utime - (double)node->position_utime) * 1e-6 : 0.02;
     if (!(m->z > 0.f) || !isfinite(m->x) || !isfinite(m->y) || !isfinite(m->z) || !(dt > 0.0)) {
         return;
     }
-    if (dt > (double)node->position.settings.max_dt) {
-        hkf_position_restart(&node->position);
-    }
-    if (hkf_position_update(&node->position, z, mesh ? 1.0f : FILTER_NODE_BOX_POSITION_R_SCALE,
-                            node->position.started ? (hkf_real_t)dt : 0.02f, NULL) == HKF_OK) {
+    if (hkf_position_update(&node->position, z, mesh ? 1.0f : FILTER_NODE_BOX_POSITION_R_SCALE, (hkf_real_t)dt,
+                            NULL) == HKF_OK) {
         node->position_utime = m->utime;
     }
 }
