@@ -29,6 +29,7 @@
 #include "hkf/hkf.h"
 #include "hkf_internal.h"
 #include "hkf_math.h"
+#include "hkf_motion.h"
 
 enum { CENTER_NONE = 0, CENTER_FROM_TRACK = 1, CENTER_EXPLICIT = 2 };
 
@@ -144,14 +145,6 @@ static inline hkf_real_t clamp(hkf_real_t x, hkf_real_t low, hkf_real_t high)
 {
     x = x < low ? low : x;
     return x > high ? high : x;
-}
-
-/* A low-pass's step weight dt / (dt + time), at most 1: in float the reciprocal of a denormal
- * dt + time overflows (found by fuzz_libhkf), and the weight would be infinite. */
-static inline hkf_real_t step_weight(hkf_real_t dt, hkf_real_t time)
-{
-    const hkf_real_t ratio = hkf_divide(dt, hkf_divisor(hkf_add(dt, time)));
-    return ratio < HKF_REAL(1.0) ? ratio : HKF_REAL(1.0);
 }
 
 /* The measurement into the axis lanes (the idle fourth lane 0), yaw wrapped
@@ -447,61 +440,18 @@ static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_r
     f->status = HKF_STATUS_TRACKING;
 }
 
-/* The angle's random walk per s for a detector evidence: n q_boost times the
- * evidence's excess over motion_threshold (0 at or below it), at most
- * HKF_MAX_BOOSTED_PROCESS_NOISE; a product that saturates Q16.16 is beyond
- * that cap anyway. */
-static inline hkf_real_t motion_walk(const hkf_filter_t *restrict f, int a, hkf_real_t evidence)
-{
-    const hkf_settings_t *s = HKF_SETTINGS(f);
-    const hkf_real_t e = hkf_sub(evidence, s->motion_threshold);
-    const hkf_real_t positive = e > 0 ? e : 0; /* NaN (0 inf) reads as none */
-    const hkf_real_t excess = positive < HKF_REAL(10000.0) ? positive : HKF_REAL(10000.0);
-    const hkf_real_t walk = hkf_mul(hkf_mul(f->noise[a], s->q_boost), excess);
-    const hkf_real_t cap = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
-    return walk < cap ? walk : cap;
-}
-
 /* Noise calibration's motion detector and the boost it drives, for this step
- * (hkf.h): m += alpha (y - m) low-passes the innovation y; while the head is
- * still y is white with variance S and m has variance S alpha / (2 - alpha),
- * so m^2 (2 - alpha) / (alpha S) is the evidence of a motion beyond chance
- * (with (2 - alpha) / alpha = 1 + 2 time / dt). Beyond motion_threshold the
- * angle takes a random walk (motion_walk), added to the predicted angle
- * variance alone (S recomputed): the filter follows the measurement while the
- * head moves, and the rate, whose variance is not raised, is not thrown past
- * a stop (boosting the acceleration's noise instead overshot fast stops by
- * 7-8 % of the move on the truth clips). The walk of the evidence confirmed
- * by the previous frame counts in full; this frame's own adds at most R, so a
- * one-frame blip moves the filter at most about half way (a 2 deg roll blip
- * on d14 against 0.13 deg of noise was followed whole). Below still_threshold
- * the rate decays, with time constant rate_damping_time up to half of it and
- * less and less above, so the filter stops with the head. Both are continuous
- * in the evidence: no decision flips on rounding. */
+ * (hkf.h; hkf_motion.h: hkf_motion_lane), per axis; S recomputed after. */
 static HKF_ALWAYS_INLINE void motion_step(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
                                           const hkf_real_t r[restrict HKF_LANES],
                                           hkf_divisor_t inv_s[restrict HKF_LANES], hkf_real_t dt)
 {
     const hkf_settings_t *s = HKF_SETTINGS(f);
-    const hkf_real_t one = HKF_REAL(1.0);
-    const hkf_real_t alpha = step_weight(dt, s->q_boost_time);
-    const hkf_real_t spread = hkf_add(one, hkf_divide(hkf_add(s->q_boost_time, s->q_boost_time), hkf_divisor(dt)));
-    const hkf_real_t damping = s->rate_damping_time > 0 && s->still_threshold > 0 ? step_weight(dt, s->rate_damping_time) : 0;
-    const hkf_divisor_t still = hkf_divisor(s->still_threshold > 0 ? s->still_threshold : one);
+    const hkf_motion_step_t c = hkf_motion_prepare(dt, s->q_boost, s->q_boost_time, s->motion_threshold,
+                                                   s->rate_damping_time, s->still_threshold);
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t before = f->motion[a];
-        const hkf_real_t m = hkf_add(before, hkf_mul(alpha, hkf_sub(y[a], before)));
-        const hkf_real_t evidence = hkf_divide(hkf_mul(hkf_mul(m, m), spread), inv_s[a]);
-        const hkf_real_t confirmed = hkf_divide(hkf_mul(hkf_mul(before, before), spread), inv_s[a]);
-        const hkf_real_t fresh = hkf_mul(motion_walk(f, a, evidence), dt);
-        /* calm: 1 up to half still_threshold, then down to 0 at it */
-        const hkf_real_t ramp = hkf_sub(HKF_REAL(2.0), hkf_divide(hkf_add(evidence, evidence), still));
-        const hkf_real_t below_one = ramp < one ? ramp : one;
-        const hkf_real_t calm = below_one > 0 ? below_one : 0;
-        f->motion[a] = m;
-        f->p00[a] = hkf_add(hkf_add(f->p00[a], hkf_mul(motion_walk(f, a, confirmed), dt)), fresh < r[a] ? fresh : r[a]);
-        f->rate[a] = hkf_sub(f->rate[a], hkf_mul(hkf_mul(damping, calm), f->rate[a]));
+        hkf_motion_lane(&c, f->noise[a], y[a], r[a], inv_s[a], dt, &f->motion[a], &f->p00[a], &f->rate[a]);
         inv_s[a] = hkf_divisor(hkf_add(f->p00[a], r[a]));
     }
 }
@@ -522,16 +472,10 @@ static void noise_estimate_update(hkf_filter_t *restrict f, const hkf_real_t z[r
     }
     step[HKF_AXIS_YAW] = hkf_wrap180(step[HKF_AXIS_YAW]);
     if (f->noise_history >= 2u) {
-        const hkf_real_t beta = step_weight(dt, s->noise_time);
+        const hkf_real_t beta = hkf_step_weight(dt, s->noise_time);
         const hkf_real_t rise = hkf_add(HKF_REAL(1.0), hkf_mul(s->noise_rise, dt));
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            const hkf_real_t d = hkf_sub(step[a], f->last_step[a]);
-            const hkf_real_t sample = hkf_mul(hkf_mul(d, d), HKF_REAL(0.16666666666666667));
-            const hkf_real_t power = hkf_add(f->noise_power[a], hkf_mul(beta, hkf_sub(sample, f->noise_power[a])));
-            const hkf_real_t grown = hkf_mul(f->noise[a], rise); /* >= n: so min(grown, power) is power where that is lower */
-            const hkf_real_t n = grown < power ? grown : power;
-            f->noise_power[a] = power;
-            f->noise[a] = n > s->r_min ? n : s->r_min;
+            hkf_noise_lane(hkf_sub(step[a], f->last_step[a]), beta, rise, s->r_min, &f->noise_power[a], &f->noise[a]);
         }
     }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
@@ -561,7 +505,7 @@ static HKF_ALWAYS_INLINE void innovation_excess_step(hkf_filter_t *restrict f, c
                                                      const hkf_divisor_t inv_s[restrict HKF_LANES], hkf_real_t dt)
 {
     const hkf_real_t most = HKF_REAL(10000.0);
-    const hkf_real_t alpha = step_weight(dt, HKF_SETTINGS(f)->q_boost_time);
+    const hkf_real_t alpha = hkf_step_weight(dt, HKF_SETTINGS(f)->q_boost_time);
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         const hkf_real_t e = hkf_sub(hkf_divide(hkf_mul(y[a], y[a]), inv_s[a]), HKF_REAL(1.0));

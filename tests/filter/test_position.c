@@ -1,9 +1,10 @@
 /*
  * test_position.c - libhkf's position filter (hkf/hkf_position.h): the
  * closed-form step against the Kalman equations worked in double here, a
- * lean followed without bias, noise smoothed, coarse measurements trusted
- * less, recentre and restart, and every error path leaving the filter as it
- * was. Built for float, double and Q16.16.
+ * lean followed without bias, noise smoothed, the noise measured (calibration)
+ * and the motion detector's stiller rest and sooner arrival, coarse
+ * measurements trusted less, recentre and restart, and every error path
+ * leaving the filter as it was. Built for float, double and Q16.16.
  */
 #include "test_support.h"
 
@@ -11,23 +12,48 @@
 
 static const double frame_s = 1.0 / 60.0;
 
-static hkf_position_filter_t started_filter(double x, double y, double z)
+static hkf_position_filter_t started_filter_with(const hkf_position_settings_t *s, double x, double y, double z)
 {
-    hkf_position_settings_t s;
     hkf_position_filter_t f;
     const hkf_real_t at[3] = {R(x), R(y), R(z)};
-    hkf_position_default_settings(&s);
-    assert_int_equal(hkf_position_init(&f, &s), HKF_OK);
+    assert_int_equal(hkf_position_init(&f, s), HKF_OK);
     assert_int_equal(hkf_position_update(&f, at, R(1.0), R(frame_s), NULL), HKF_OK);
     return f;
 }
 
+static hkf_position_filter_t started_filter(double x, double y, double z)
+{
+    hkf_position_settings_t s;
+    hkf_position_default_settings(&s);
+    return started_filter_with(&s, x, y, z);
+}
+
+/* The filter without calibration: constant q (cm^2/s^3) and R, no detector. */
+static hkf_position_filter_t started_constant_filter(double x, double y, double z)
+{
+    hkf_position_settings_t s;
+    int a;
+    hkf_position_default_settings(&s);
+    s.noise_time = 0;
+    for (a = 0; a < 3; ++a) {
+        s.process_noise[a] = R(10.0);
+    }
+    return started_filter_with(&s, x, y, z);
+}
+
+/* Pseudo-random noise, uniform, of standard deviation sd (a fixed sequence per seed). */
+static double uniform_noise(unsigned *seed, double sd)
+{
+    *seed = *seed * 1103515245u + 12345u;
+    return ((double)((*seed >> 8) & 0xffff) / 65536.0 - 0.5) * sd * sqrt(12.0);
+}
+
 /* One predict + update against the equations in double: F = [[1, dt], [0, 1]],
- * Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]], H = [1, 0]. */
+ * Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]], H = [1, 0] (the constant filter). */
 static void test_step_matches_equations(void **state)
 {
     (void)state;
-    hkf_position_filter_t f = started_filter(1.0, -2.0, 60.0);
+    hkf_position_filter_t f = started_constant_filter(1.0, -2.0, 60.0);
     const double z[3] = {1.5, -2.2, 61.0};
     const hkf_real_t zr[3] = {R(z[0]), R(z[1]), R(z[2])};
     double x[3], v[3], p00[3], p01[3], p11[3];
@@ -69,8 +95,7 @@ static void test_lean_followed_noise_smoothed(void **state)
         const double truth = 60.0 - 10.0 * (t < 0.5 ? t / 0.5 : 1.0);
         double noise;
         hkf_real_t z[3];
-        seed = seed * 1103515245u + 12345u;
-        noise = ((double)((seed >> 8) & 0xffff) / 65536.0 - 0.5) * 1.7; /* ~0.5 cm standard deviation */
+        noise = uniform_noise(&seed, 0.5);
         z[0] = R(0.0), z[1] = R(0.0), z[2] = R(truth + noise);
         assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), &out), HKF_OK);
         if (i > 90 && i <= 120) { /* still at 50 cm after the lean */
@@ -85,6 +110,141 @@ static void test_lean_followed_noise_smoothed(void **state)
     }
     print_message("position: frame-to-frame RMS raw %.3f cm, filtered %.3f cm\n", sqrt(raw_jitter / 30), sqrt(out_jitter / 30));
     assert_true(out_jitter < 0.25 * raw_jitter);
+}
+
+/* Calibrated (the default): the measured noise n comes to the measurements' own
+ * variance on a still head and on a steady move alike (the second difference
+ * cancels a constant velocity) - a little below it on average, as n follows
+ * the low-passed power down at once and up slowly - and frames missed in a
+ * move (a longer dt, or hkf_position_predict) do not pass for noise. */
+static void test_noise_measured(void **state)
+{
+    const double sd[3] = {0.05, 0.05, 0.3}; /* cm: the mesh's x, y and z noise at ~60 cm */
+    const double speed[3] = {4.0, 0.0, -8.0}; /* cm/s */
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0);
+    unsigned seed = 11;
+    double t = 0, mean[3] = {0, 0, 0};
+    int i, a;
+    (void)state;
+    for (i = 1; i <= 600; ++i) {
+        hkf_real_t z[3];
+        t += frame_s;
+        for (a = 0; a < 3; ++a) {
+            z[a] = R((a == 2 ? 60.0 : 0.0) + speed[a] * t + uniform_noise(&seed, sd[a]));
+        }
+        assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), NULL), HKF_OK);
+        for (a = 0; a < 3 && i > 300; ++a) {
+            mean[a] += D(f.noise[a]) / 300.0;
+        }
+    }
+    for (a = 0; a < 3; ++a) {
+        const double ratio = mean[a] / (sd[a] * sd[a]);
+        print_message("axis %d: measured noise %.5f cm^2 (mean of 5 s), true %.5f (ratio %.2f)\n", a, mean[a],
+                      sd[a] * sd[a], ratio);
+        assert_true(ratio > 0.4 && ratio < 1.2);
+    }
+    assert_true(mean[2] / mean[0] > 0.5 * 36.0 && mean[2] / mean[0] < 2.0 * 36.0); /* 6x the noise: 36x n */
+    { /* a move without noise, every fourth frame missed: n goes to nothing */
+        hkf_position_filter_t g = started_filter(0.0, 0.0, 60.0), h;
+        const double start = D(g.noise[2]);
+        t = 0;
+        for (i = 1; i <= 300; ++i) {
+            const hkf_real_t z[3] = {R(0.0), R(0.0), R(60.0 - 20.0 * t)};
+            t += frame_s;
+            if (i % 4 == 0) {
+                continue; /* missed: the next dt is two frames */
+            }
+            assert_int_equal(hkf_position_update(&g, z, R(1.0), R(i % 4 == 1 && i > 1 ? 2 * frame_s : frame_s), NULL), HKF_OK);
+        }
+        print_message("a move with missed frames: measured z noise %.6f cm^2 (started at %.3f)\n", D(g.noise[2]), start);
+        assert_true(D(g.noise[2]) < 0.05 * start); /* the unequal steps counted: ~0.2 x start */
+        h = started_filter(0.0, 0.0, 60.0); /* the same move, the missed frames predicted */
+        t = 0;
+        for (i = 1; i <= 300; ++i) {
+            const hkf_real_t z[3] = {R(0.0), R(0.0), R(60.0 - 20.0 * t)};
+            t += frame_s;
+            if (i % 4 == 0) {
+                assert_int_equal(hkf_position_predict(&h, R(frame_s), NULL), HKF_OK);
+            } else {
+                assert_int_equal(hkf_position_update(&h, z, R(1.0), R(frame_s), NULL), HKF_OK);
+            }
+        }
+        assert_true(D(h.noise[2]) < 0.05 * start);
+    }
+}
+
+/* Calibrated, one step of a still head against the equations in double with
+ * R = n (the measured noise) and q = process_noise n. */
+static void test_calibrated_step_matches_equations(void **state)
+{
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0);
+    hkf_position_output_t out;
+    unsigned seed = 3;
+    int i, a;
+    (void)state;
+    for (i = 1; i <= 120; ++i) { /* a camera 5x quieter than n's start: n comes down to it */
+        const hkf_real_t z[3] = {R(uniform_noise(&seed, 0.02)), R(uniform_noise(&seed, 0.02)),
+                                 R(60.0 + uniform_noise(&seed, 0.1))};
+        assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), NULL), HKF_OK);
+    }
+    {
+        const hkf_real_t z[3] = {f.x[0], f.x[1], f.x[2]}; /* no innovation: the detector adds no walk */
+        double n[3], v[3], p00[3], p01[3], p11[3];
+        for (a = 0; a < 3; ++a) {
+            n[a] = D(f.noise[a]), v[a] = D(f.v[a]), p00[a] = D(f.p00[a]), p01[a] = D(f.p01[a]), p11[a] = D(f.p11[a]);
+            assert_true(n[a] < 0.5 * D(f.settings.measurement_noise[a])); /* measured, not the start */
+        }
+        assert_int_equal(hkf_position_update(&f, z, R(2.0), R(frame_s), &out), HKF_OK);
+        for (a = 0; a < 3; ++a) {
+            const double q = D(f.settings.process_noise[a]) * n[a], r = 2.0 * n[a], dt = frame_s;
+            const double a00 = p00[a] + 2 * dt * p01[a] + dt * dt * p11[a] + q * dt * dt * dt / 3;
+            const double s = a00 + r;
+            (void)v;
+            assert_true(fabs(D(out.variance[a]) - a00 * r / s) < 4 * TEST_TOL + 1e-3 * a00);
+        }
+    }
+}
+
+/* Calibrated against constant, a head still at 60 cm, then a fast 10 cm lean
+ * (minimum jerk, 0.4 s), still again: the calibrated filter is stiller at
+ * rest, arrives sooner, and stops without overshooting. */
+static void test_still_stiller_lean_sooner(void **state)
+{
+    hkf_position_filter_t calibrated = started_filter(0.0, 0.0, 60.0);
+    hkf_position_filter_t constant = started_constant_filter(0.0, 0.0, 60.0);
+    double jitter[2] = {0, 0}, last[2] = {60, 60}, overshoot[2] = {0, 0}, arrived[2] = {-1, -1};
+    unsigned seed = 5;
+    int i, k;
+    (void)state;
+    for (i = 1; i <= 240; ++i) {
+        const double t = i * frame_s, u = t < 2.0 ? 0.0 : t > 2.4 ? 1.0 : (t - 2.0) / 0.4;
+        const double truth = 60.0 - 10.0 * u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+        const hkf_real_t z[3] = {R(0.0), R(0.0), R(truth + uniform_noise(&seed, 0.3))};
+        hkf_position_output_t out[2];
+        assert_int_equal(hkf_position_update(&calibrated, z, R(1.0), R(frame_s), &out[0]), HKF_OK);
+        assert_int_equal(hkf_position_update(&constant, z, R(1.0), R(frame_s), &out[1]), HKF_OK);
+        for (k = 0; k < 2; ++k) {
+            const double p = D(out[k].position[2]);
+            if (t >= 1.0 && t < 2.0) {
+                jitter[k] += (p - last[k]) * (p - last[k]);
+            }
+            if (t > 2.4 && 50.0 - p > overshoot[k]) {
+                overshoot[k] = 50.0 - p;
+            }
+            if (arrived[k] < 0 && t >= 2.0 && p < 51.0) {
+                arrived[k] = t - 2.0;
+            }
+            last[k] = p;
+        }
+    }
+    for (k = 0; k < 2; ++k) {
+        jitter[k] = sqrt(jitter[k] / 60.0);
+        print_message("%s: still jitter %.4f cm/frame, within 1 cm of the lean's end after %.3f s, overshoot %.2f cm\n",
+                      k == 0 ? "calibrated" : "constant", jitter[k], arrived[k], overshoot[k]);
+    }
+    assert_true(jitter[0] < 0.5 * jitter[1]);
+    assert_true(arrived[0] > 0 && arrived[0] <= arrived[1]);
+    assert_true(overshoot[0] < 0.5);
 }
 
 /* A measurement with a larger R scale moves the output less. */
@@ -154,6 +314,15 @@ static void test_errors(void **state)
     hkf_position_default_settings(&s);
     s.max_dt = 0;
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_MAX_DT);
+    hkf_position_default_settings(&s);
+    s.noise_floor = 0;
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_R_RANGE);
+    hkf_position_default_settings(&s);
+    s.q_boost = R(-1.0);
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_Q_BOOST);
+    hkf_position_default_settings(&s);
+    s.still_threshold = R(-1.0);
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
     assert_int_equal(hkf_position_init(NULL, &s), HKF_ERROR_NULL_ARGUMENT);
 
     f = started_filter(0.0, 0.0, 60.0);
@@ -178,6 +347,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_step_matches_equations),
         cmocka_unit_test(test_lean_followed_noise_smoothed),
+        cmocka_unit_test(test_noise_measured),
+        cmocka_unit_test(test_calibrated_step_matches_equations),
+        cmocka_unit_test(test_still_stiller_lean_sooner),
         cmocka_unit_test(test_coarse_measurement_trusted_less),
         cmocka_unit_test(test_center_recenter_reset),
         cmocka_unit_test(test_gap_restarts),

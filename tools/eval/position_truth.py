@@ -15,11 +15,15 @@ for the face's own point (--pivot 0: the zoom scales the face's distance, not
 the head's depth behind it).
 
 Each clip goes through hkf-estimator (the face mesh) at 30 fps, then through
-hkf-filter --offline for every setting of a grid of the position filter's q
-and R. Per setting: the RMS error of the filtered z (and x) on moving frames,
+hkf-filter --offline for every setting of a grid of the position filter's
+process noise (per unit of the measured noise: the filter is calibrated) and
+q_boost, and for the constant filter (no calibration, no motion detector)
+with hkf 0.2-dev's q and R. Per setting: the RMS error of the filtered z (and x) on moving frames,
 the frame-to-frame RMS of z and x on still frames (a 4 s rest before the
 moves, from 1 s on), raw and filtered. The defaults are chosen on TUNING_CLIPS: the
-smallest moving z error whose still z jitter is at most JITTER_GOAL_CM; the
+smallest moving z error whose still z jitter is at most JITTER_GOAL_CM / JITTER_MARGIN
+(the raw jitter of the tuning clips alone spans 2.2x, 0.12-0.27 cm/frame: a user's
+camera may be as much noisier than ours, and the goal holds per clip, not pooled); the
 tables give the tuning clips and the others.
 
 usage: position_truth.py [--build DIR] [--out DIR] [--clips d0,d3,...] [--check]
@@ -44,11 +48,15 @@ FPS = 30.0
 FOV_DEG = 56.0
 BASE_CM = 60.0  # the face's distance at zoom 1 of the trajectory, as the goal states it
 JITTER_GOAL_CM = 0.05  # filtered z, frame to frame, still, at ~60 cm
+JITTER_MARGIN = 2.0  # the tuning asks for the goal / 2 (the docstring says why)
 STILL_LEAD_S = 4.0  # s of rest before the lean trajectory; jitter measured from 1 s on
 CLIPS = ["d0", "d3", "d9", "d10", "d11", "d12", "d14", "d18", "s18", "s20"]
 TUNING_CLIPS = ["d0", "d3", "d9", "d11", "d14"]  # the angles' tuning clips (evaluate.py)
-Q_GRID = [3.0, 10.0, 30.0, 100.0, 300.0, 1000.0]  # cm^2/s^3
-R_Z_GRID = [0.05, 0.25, 1.0, 4.0, 16.0]  # cm^2; R of x and y: R_z / 25 (the fit's x, y are ~5x less noisy)
+Q_GRID = [0.3, 1.0, 3.0, 10.0, 30.0, 100.0]  # process_noise, x the measured noise n: 1/s^3
+BOOST_GRID = [0.0, 100.0]  # q_boost, 1/s: off (the detector only damps the rate while still) or the angles' 100
+# (30-300 gave the same errors to 0.01 cm in a wider sweep: the walk's size hardly matters, its presence does)
+CONSTANT = ["position_noise_time = 0", "position_process_noise = 10 10 10",
+            "position_measurement_noise = 0.002 0.002 0.05"]  # no calibration: hkf 0.2-dev's first position filter
 
 
 def log(message):
@@ -136,15 +144,16 @@ def make_clip(build, out, name, types):
 
 def filtered(build, clip, work, setting=None):
     """hkf-filter --offline's posterior position per raw frame (nan where none): with setting
-    (q, R_z) the position filter's q and R (R_x = R_y = R_z / 25), without it the defaults."""
+    (process_noise, q_boost) those, with the list CONSTANT those lines, without one the defaults."""
     csv_path = os.path.join(work, "f.csv")
     command = [os.path.join(build, "tools", "hkf-filter"), "--offline",
                os.path.join(work, "..", "clips", clip.name, "raw.lcmlog"), os.path.join(work, "f.lcmlog"), "--csv", csv_path]
-    if setting is not None:
-        q, r_z = setting
-        r_xy = r_z / 25.0
-        command += ["--set", f"position_process_noise = {q} {q} {q}",
-                    "--set", f"position_measurement_noise = {r_xy} {r_xy} {r_z}"]
+    if setting is CONSTANT:
+        for line in CONSTANT:
+            command += ["--set", line]
+    elif setting is not None:
+        q, boost = setting
+        command += ["--set", f"position_process_noise = {q} {q} {q}", "--set", f"position_q_boost = {boost}"]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"position_truth: {' '.join(command)} exited {result.returncode}: {result.stderr.strip()}")
@@ -180,12 +189,12 @@ def check(build, clips, work):
     for clip in clips:
         f = metrics(clip, filtered(build, clip, work))
         r = metrics(clip, clip.raw)
-        ok = r["found"] >= 0.95 and r["z_err_pct"] <= 3.0 and f["z_jitter"] <= 0.1 and f["z_jitter"] < 0.5 * r["z_jitter"] \
-            and f["z_rmse"] <= 3.0
+        ok = r["found"] >= 0.95 and r["z_err_pct"] <= 3.0 and f["z_jitter"] <= JITTER_GOAL_CM \
+            and f["z_jitter"] < 0.5 * r["z_jitter"] and f["z_rmse"] <= 2.0
         failed += not ok
         print(f"{'ok  ' if ok else 'FAIL'} {clip.name}: face at {r['distance']:.0f} cm, found {100 * r['found']:.0f} %; raw z error "
               f"median {r['z_err_pct']:.1f} % (<= 3); still z jitter raw {r['z_jitter']:.3f}, filtered {f['z_jitter']:.3f} cm/frame "
-              f"(<= 0.1 and < half the raw); moving z RMSE raw {r['z_rmse']:.2f}, filtered {f['z_rmse']:.2f} cm (<= 3)")
+              f"(<= {JITTER_GOAL_CM} and < half the raw); moving z RMSE raw {r['z_rmse']:.2f}, filtered {f['z_rmse']:.2f} cm (<= 2)")
     return 1 if failed else 0
 
 
@@ -210,9 +219,10 @@ def main():
         return check(args.build, clips, work)
     rows = {}
     for q in Q_GRID:
-        for r_z in R_Z_GRID:
-            rows[(q, r_z)] = {c.name: metrics(c, filtered(args.build, c, work, (q, r_z))) for c in clips}
-        log(f"q {q:g}: {len(R_Z_GRID)} settings of R done")
+        for boost in BOOST_GRID:
+            rows[(q, boost)] = {c.name: metrics(c, filtered(args.build, c, work, (q, boost))) for c in clips}
+        log(f"process noise {q:g}: {len(BOOST_GRID)} settings of q_boost done")
+    constant = {c.name: metrics(c, filtered(args.build, c, work, CONSTANT)) for c in clips}
     raw = {c.name: metrics(c, c.raw) for c in clips}
     tuning = [n for n in names if n in TUNING_CLIPS]
     others = [n for n in names if n not in TUNING_CLIPS]
@@ -221,17 +231,19 @@ def main():
         return pooled([table[n] for n in which]) if which else None
 
     candidates = [(k, on(v, tuning)) for k, v in rows.items()]
-    fit = [c for c in candidates if c[1]["z_jitter"] <= JITTER_GOAL_CM] or candidates
+    fit = [c for c in candidates if c[1]["z_jitter"] <= JITTER_GOAL_CM / JITTER_MARGIN] or candidates
     chosen = min(fit, key=lambda c: c[1]["z_rmse"])[0]
     lines = [f"# Position against truth by construction ({len(clips)} clips, face at ~{BASE_CM:.0f} cm, --pivot 0)", "",
-             f"Chosen on {', '.join(tuning)}: q {chosen[0]:g} cm^2/s^3, R_z {chosen[1]:g} cm^2 (R_x = R_y = R_z / 25): "
-             f"the smallest moving z error with still z jitter <= {JITTER_GOAL_CM} cm.", "",
+             f"Chosen on {', '.join(tuning)}: process noise {chosen[0]:g} n per s^3, q_boost {chosen[1]:g} per s "
+             f"(calibrated): the smallest moving z error with still z jitter <= {JITTER_GOAL_CM / JITTER_MARGIN:g} cm "
+             f"(the goal {JITTER_GOAL_CM:g} with a margin of {JITTER_MARGIN:g} for noisier cameras). Constant: no "
+             "calibration, q 10 cm^2/s^3, R 0.002 0.002 0.05 cm^2.", "",
              "| clips | | z RMSE moving, cm | x RMSE moving, cm | z jitter still, cm/frame | x jitter still, cm/frame |",
              "| --- | --- | ---: | ---: | ---: | ---: |"]
     for label, which in (("tuning", tuning), ("held out", others), ("all", names)):
         if not which:
             continue
-        for what, table in (("raw", raw), ("filtered, chosen", rows[chosen])):
+        for what, table in (("raw", raw), ("filtered, constant", constant), ("filtered, chosen", rows[chosen])):
             m = on(table, which)
             lines.append(f"| {label} ({len(which)}) | {what} | {m['z_rmse']:.2f} | {m['x_rmse']:.2f} | {m['z_jitter']:.3f} | "
                          f"{m['x_jitter']:.3f} |")
@@ -242,10 +254,11 @@ def main():
         lines.append(f"| {n}{'' if n in TUNING_CLIPS else ' (held out)'} | {r['distance']:.0f} | {100 * r['found']:.0f} % | "
                      f"{r['z_err_pct']:.1f} | {r['z_jitter']:.3f} | {f['z_jitter']:.3f} | {f['z_rmse']:.2f} |")
     lines += ["", "Every setting, pooled on the tuning clips (z RMSE moving / z jitter still):", "",
-              "| q \\ R_z | " + " | ".join(f"{r:g}" for r in R_Z_GRID) + " |", "| --- |" + " ---: |" * len(R_Z_GRID)]
+              "| process noise \\ q_boost | " + " | ".join(f"{b:g}" for b in BOOST_GRID) + " |",
+              "| --- |" + " ---: |" * len(BOOST_GRID)]
     for q in Q_GRID:
-        lines.append(f"| {q:g} | " + " | ".join(f"{on(rows[(q, r)], tuning)['z_rmse']:.2f} / "
-                                                  f"{on(rows[(q, r)], tuning)['z_jitter']:.3f}" for r in R_Z_GRID) + " |")
+        lines.append(f"| {q:g} | " + " | ".join(f"{on(rows[(q, b)], tuning)['z_rmse']:.2f} / "
+                                                  f"{on(rows[(q, b)], tuning)['z_jitter']:.3f}" for b in BOOST_GRID) + " |")
     report = "\n".join(lines) + "\n"
     with open(os.path.join(out, "position.md"), "w") as fh:
         fh.write(report)
@@ -255,11 +268,13 @@ def main():
     import matplotlib.pyplot as plt
     clip = clips[0]
     fz = filtered(args.build, clip, work, chosen)
+    fc = filtered(args.build, clip, work, CONSTANT)
     t = (clip.utime - clip.utime[0]) / 1e6
     fig, ax = plt.subplots(figsize=(10, 4))
     ax.plot(t, clip.truth[:, 2], "k-", lw=2, label="truth")
     ax.plot(t[clip.valid], clip.raw[clip.valid, 2], ".", ms=3, label="raw")
-    ax.plot(t, fz[:, 2], "-", label=f"filtered (q {chosen[0]:g}, R_z {chosen[1]:g})")
+    ax.plot(t, fc[:, 2], "-", label="filtered, constant q and R")
+    ax.plot(t, fz[:, 2], "-", label=f"filtered, calibrated (process noise {chosen[0]:g}, q_boost {chosen[1]:g})")
     ax.set_xlabel("s")
     ax.set_ylabel("z, cm")
     ax.set_title(f"{clip.name}: a lean by zoom, the face's distance")

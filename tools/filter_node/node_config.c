@@ -24,8 +24,29 @@ typedef struct {
 
 #define FIELD(f) offsetof(hkf_settings_t, f)
 #define PAIR_KEY "pair_second_alone_from_yaw"
-#define POSITION_Q_KEY "position_process_noise"
-#define POSITION_R_KEY "position_measurement_noise"
+
+/* The position filter's keys (hkf_position_settings_t): one or three values within [low, high]. */
+typedef struct {
+    const char *name;
+    int count;
+    size_t offset;
+    double low, high;
+    const char *range;
+    const char *comment;
+} position_key_t;
+
+#define POSITION_FIELD(f) offsetof(hkf_position_settings_t, f)
+static const position_key_t position_keys[] = {
+    {"position_process_noise", 3, POSITION_FIELD(process_noise), 0, HKF_MAX_PROCESS_NOISE,
+     "0 to HKF_MAX_PROCESS_NOISE", "position filter's q per axis (x y z): cm^2/s^3; calibrated: x n, 1/s^3"},
+    {"position_measurement_noise", 3, POSITION_FIELD(measurement_noise), HKF_MIN_VARIANCE, HKF_MAX_VARIANCE,
+     "HKF_MIN_VARIANCE to HKF_MAX_VARIANCE cm^2", "position R per axis (x y z), cm^2; calibrated: n's start (face box: 25 x)"},
+    {"position_noise_time", 1, POSITION_FIELD(noise_time), 0, HKF_MAX_TIME, "0 to HKF_MAX_TIME s",
+     "s; position noise calibration's time constant, 0 = off (constant R and q)"},
+    {"position_q_boost", 1, POSITION_FIELD(q_boost), 0, HKF_MAX_Q_BOOST, "0 to HKF_MAX_Q_BOOST per s",
+     "1/s; calibrated: the position's walk n q_boost e per s while moving, 0 = off"},
+};
+#define POSITION_KEY_COUNT (sizeof position_keys / sizeof position_keys[0])
 
 static const config_key_t keys[] = {
     {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll): deg^2/s^3; calibrated: x n, 1/s^3"},
@@ -54,7 +75,7 @@ static const config_key_t keys[] = {
     {"still_threshold", KIND_REAL, FIELD(still_threshold), "calibrated motion detector: still below this"},
 };
 #define KEY_COUNT (sizeof keys / sizeof keys[0])
-typedef char origin_slots_fit[KEY_COUNT + 3 <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys, the pair and position keys */
+typedef char origin_slots_fit[KEY_COUNT + 1 + POSITION_KEY_COUNT <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys, the pair and position keys */
 typedef char own_keys_fit[KEY_COUNT <= 32 ? 1 : -1];                     /* a bit per key in node_model_t.own_keys */
 
 static const char *const noise_mode_names[] = {"constant", "adaptive", "adaptive_squared"};
@@ -324,8 +345,37 @@ static int split_assignment(char *line, char **key, char **value)
 
 /* The index of a base key in keys[], KEY_COUNT for the pair key, then the position keys. */
 #define PAIR_SLOT KEY_COUNT
-#define POSITION_Q_SLOT (KEY_COUNT + 1)
-#define POSITION_R_SLOT (KEY_COUNT + 2)
+#define POSITION_SLOT(i) (KEY_COUNT + 1 + (i))
+
+static const position_key_t *find_position_key(const char *name)
+{
+    size_t i;
+    for (i = 0; i < POSITION_KEY_COUNT; ++i) {
+        if (strcmp(position_keys[i].name, name) == 0) {
+            return &position_keys[i];
+        }
+    }
+    return NULL;
+}
+
+/* A position key's value(s) into config->position: 0, or -1 with the error. */
+static int set_position_key(node_config_t *config, const position_key_t *k, const char *value, const char *origin,
+                            char *error, size_t error_size)
+{
+    hkf_real_t v[3];
+    int i, ok = parse_reals(value, v, k->count) == 0;
+    for (i = 0; ok && i < k->count; ++i) {
+        ok = v[i] >= (hkf_real_t)k->low && v[i] <= (hkf_real_t)k->high;
+    }
+    if (!ok) {
+        snprintf(error, error_size, "%s wants %s, %s, not '%s'", k->name, k->count == 3 ? "three values (x y z)" : "a value",
+                 k->range, value);
+        return -1;
+    }
+    memcpy((char *)&config->position + k->offset, v, (size_t)k->count * sizeof v[0]);
+    set_origin(config->origin[POSITION_SLOT(k - position_keys)], origin);
+    return 0;
+}
 
 static int apply(node_config_t *config, const char *model, char *key, char *value, const char *origin, char *error,
                  size_t error_size)
@@ -353,20 +403,8 @@ static int apply(node_config_t *config, const char *model, char *key, char *valu
         snprintf(error, error_size, "%s wants degrees from 0 to 180, not '%s'", key, value);
         return -1;
     }
-    if (strcmp(key, POSITION_Q_KEY) == 0 || strcmp(key, POSITION_R_KEY) == 0) { /* the position filter's */
-        const int q = strcmp(key, POSITION_Q_KEY) == 0;
-        const hkf_real_t low = q ? 0 : (hkf_real_t)HKF_MIN_VARIANCE;
-        const hkf_real_t high = q ? (hkf_real_t)HKF_MAX_PROCESS_NOISE : (hkf_real_t)HKF_MAX_VARIANCE;
-        hkf_real_t v[3];
-        if (parse_reals(value, v, 3) == 0 && v[0] >= low && v[0] <= high && v[1] >= low && v[1] <= high &&
-            v[2] >= low && v[2] <= high) {
-            memcpy(q ? config->position.process_noise : config->position.measurement_noise, v, sizeof v);
-            set_origin(config->origin[q ? POSITION_Q_SLOT : POSITION_R_SLOT], origin);
-            return 0;
-        }
-        snprintf(error, error_size, "%s wants three values (x y z), %s, not '%s'", key,
-                 q ? "0 to HKF_MAX_PROCESS_NOISE cm^2/s^3" : "HKF_MIN_VARIANCE to HKF_MAX_VARIANCE cm^2", value);
-        return -1;
+    if (find_position_key(key) != NULL) { /* the position filter's */
+        return set_position_key(config, find_position_key(key), value, origin, error, error_size);
     }
     k = find_key(key);
     if (k == NULL) {
@@ -547,7 +585,7 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
     int m, result = hkf_init(&probe, &config->settings);
     char where[600] = "";
     if (hkf_position_init(&position_probe, &config->position) != HKF_OK) {
-        snprintf(error, error_size, "invalid position settings (%s, %s): %s", POSITION_Q_KEY, POSITION_R_KEY,
+        snprintf(error, error_size, "invalid position settings (position_*): %s",
                  hkf_result_string(hkf_position_init(&position_probe, &config->position)));
         return -1;
     }
@@ -638,16 +676,17 @@ void node_config_print(const node_config_t *config, FILE *out)
     }
     fprintf(out, "%-20s = %-40s # %s\n", PAIR_KEY, format_real(config->second_alone_from_yaw, text, sizeof text),
             "deg; two models on one channel: the second alone where the first's |yaw| >= this");
-    {
+    for (i = 0; i < POSITION_KEY_COUNT; ++i) {
+        const position_key_t *k = &position_keys[i];
+        const hkf_real_t *v = (const hkf_real_t *)(const void *)((const char *)&config->position + k->offset);
         char three[3][32], line[100];
-        const hkf_real_t *q = config->position.process_noise, *r = config->position.measurement_noise;
-        snprintf(line, sizeof line, "%s %s %s", format_real(q[0], three[0], 32), format_real(q[1], three[1], 32),
-                 format_real(q[2], three[2], 32));
-        fprintf(out, "%-20s = %-40s # %s\n", POSITION_Q_KEY, line, "position filter's q per axis (x y z), cm^2/s^3");
-        snprintf(line, sizeof line, "%s %s %s", format_real(r[0], three[0], 32), format_real(r[1], three[1], 32),
-                 format_real(r[2], three[2], 32));
-        fprintf(out, "%-20s = %-40s # %s\n", POSITION_R_KEY, line,
-                "position filter's R per axis (x y z), cm^2 (the face box's: 25 x)");
+        if (k->count == 3) {
+            snprintf(line, sizeof line, "%s %s %s", format_real(v[0], three[0], 32), format_real(v[1], three[1], 32),
+                     format_real(v[2], three[2], 32));
+        } else {
+            snprintf(line, sizeof line, "%s", format_real(v[0], three[0], 32));
+        }
+        fprintf(out, "%-20s = %-40s # %s\n", k->name, line, k->comment);
     }
     for (m = 0; m < config->model_count; ++m) {
         const node_model_t *model = &config->models[m];

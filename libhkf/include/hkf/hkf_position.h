@@ -6,6 +6,12 @@
  * angles: state (position, rate), white-acceleration process noise q, and an
  * observation noise R of its own per axis, scaled per measurement (a model
  * that measures position coarsely - from a face box - gives a larger scale).
+ * With noise calibration on (noise_time > 0, the default) the filter works
+ * as the angles' calibrated one (hkf.h): it measures each axis's noise n from
+ * the measurements' second differences, R = n x the measurement's scale and
+ * q = process_noise n; a motion detector gives the position a random walk
+ * while the head moves and damps the rate while it is still - a still head
+ * reads still and a lean is followed without the lag one fixed q would need.
  * Static memory, no allocation; float, double or Q16.16 like the rest of
  * libhkf. Separate from hkf_filter_t: firmware that tracks rotation only
  * does not link it (its size does not change).
@@ -33,10 +39,21 @@ enum { HKF_POSITION_X = 0, HKF_POSITION_Y = 1, HKF_POSITION_Z = 2 };
 #define HKF_MAX_POSITION_SCALE 1000    /* the largest R scale of one measurement */
 
 typedef struct {
-    hkf_real_t process_noise[3];      /* cm^2/s^3: q, white acceleration noise density, per axis */
-    hkf_real_t measurement_noise[3];  /* cm^2: R per axis for a measurement of scale 1 */
+    hkf_real_t process_noise[3];      /* q per axis: cm^2/s^3; calibrated: x n, 1/s^3 */
+    hkf_real_t measurement_noise[3];  /* cm^2: R per axis for a measurement of scale 1; calibrated: n's start */
     hkf_real_t p0_rate;               /* (cm/s)^2: the rate's variance when a track starts */
     hkf_real_t max_dt;                /* s: a longer gap between updates restarts the track */
+    /* Noise calibration and the motion detector, as the angles' (hkf.h,
+     * hkf_settings_t: the same names, units per cm instead of per deg);
+     * noise_time 0: constant R and q, no detector. */
+    hkf_real_t noise_time;            /* s */
+    hkf_real_t noise_rise;            /* 1/s */
+    hkf_real_t noise_floor;           /* cm^2: n at least this */
+    hkf_real_t q_boost;               /* 1/s; 0: no walk while moving */
+    hkf_real_t q_boost_time;          /* s */
+    hkf_real_t motion_threshold;
+    hkf_real_t rate_damping_time;     /* s; 0: the rate never decays */
+    hkf_real_t still_threshold;
 } hkf_position_settings_t;
 
 typedef struct {
@@ -44,6 +61,12 @@ typedef struct {
     hkf_real_t x[3], v[3];            /* cm, cm/s */
     hkf_real_t p00[3], p01[3], p11[3]; /* covariance of (x, v) per axis */
     hkf_real_t center[3];             /* cm: the centre position (first measurement, or hkf_position_recenter) */
+    hkf_real_t noise[3];              /* cm^2: calibrated, the measured noise n per axis */
+    hkf_real_t noise_power[3];        /* cm^2: the low-passed d^2 / 6 n follows */
+    hkf_real_t motion[3];             /* cm: the detector's low-passed innovation */
+    hkf_real_t last_z[3], last_step[3]; /* cm: the second difference's history */
+    hkf_real_t last_dt;               /* s: the step before (equal steps make a second difference) */
+    int history;                      /* measurements in the history, 0-2 */
     int started;                      /* a measurement has started the track */
     int centered;                     /* the centre is set (a restart keeps it; a reset clears it) */
 } hkf_position_filter_t;
@@ -61,10 +84,10 @@ void hkf_position_default_settings(hkf_position_settings_t *s);
 /* Checks the settings (HKF_ERROR_SETTING_*) and clears the track. */
 int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s);
 
-/* Forgets the track and the centre; the next measurement starts anew. */
+/* Forgets the track, the centre and the measured noise; the next measurement starts anew. */
 void hkf_position_reset(hkf_position_filter_t *f);
 
-/* Forgets the track but keeps the centre (a new clock, a change of estimator). */
+/* Forgets the track but keeps the centre and the measured noise (a new clock, a change of estimator). */
 void hkf_position_restart(hkf_position_filter_t *f);
 
 /* Predicts by dt (s) and takes the measurement z (cm) with R = r_scale x the
@@ -73,7 +96,7 @@ void hkf_position_restart(hkf_position_filter_t *f);
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out);
 
-/* Predicts by dt (s) without a measurement. */
+/* Predicts by dt (s) without a measurement (the noise's history restarts). */
 int hkf_position_predict(hkf_position_filter_t *f, hkf_real_t dt, hkf_position_output_t *out);
 
 /* The centre := the current position (a recentre; with the angles', hkf_recenter). */
