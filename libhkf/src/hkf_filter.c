@@ -440,18 +440,25 @@ static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_r
     f->status = HKF_STATUS_TRACKING;
 }
 
+/* The angle's random walk per s for a detector evidence (hkf_motion.h); f: the filter. */
+static hkf_real_t motion_walk(const void *f, int a, hkf_real_t evidence)
+{
+    const hkf_filter_t *filter = (const hkf_filter_t *)f;
+    return hkf_motion_walk(HKF_SETTINGS(filter)->q_boost, HKF_SETTINGS(filter)->motion_threshold, filter->noise[a],
+                           evidence);
+}
+
 /* Noise calibration's motion detector and the boost it drives, for this step
- * (hkf.h; hkf_motion.h: hkf_motion_lane), per axis; S recomputed after. */
+ * (hkf.h; hkf_motion.h), per axis; S recomputed after. */
 static HKF_ALWAYS_INLINE void motion_step(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
                                           const hkf_real_t r[restrict HKF_LANES],
                                           hkf_divisor_t inv_s[restrict HKF_LANES], hkf_real_t dt)
 {
     const hkf_settings_t *s = HKF_SETTINGS(f);
-    const hkf_motion_step_t c = hkf_motion_prepare(dt, s->q_boost, s->q_boost_time, s->motion_threshold,
-                                                   s->rate_damping_time, s->still_threshold);
+    const hkf_motion_step_t c = hkf_motion_prepare(dt, &s->q_boost_time, &s->rate_damping_time, &s->still_threshold);
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        hkf_motion_lane(&c, f->noise[a], y[a], r[a], inv_s[a], dt, &f->motion[a], &f->p00[a], &f->rate[a]);
+        hkf_motion_lane(&c, f, a, motion_walk, y[a], r[a], inv_s[a], dt, &f->motion[a], &f->p00[a], &f->rate[a]);
         inv_s[a] = hkf_divisor(hkf_add(f->p00[a], r[a]));
     }
 }
@@ -475,7 +482,7 @@ static void noise_estimate_update(hkf_filter_t *restrict f, const hkf_real_t z[r
         const hkf_real_t beta = hkf_step_weight(dt, s->noise_time);
         const hkf_real_t rise = hkf_add(HKF_REAL(1.0), hkf_mul(s->noise_rise, dt));
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            hkf_noise_lane(hkf_sub(step[a], f->last_step[a]), beta, rise, s->r_min, &f->noise_power[a], &f->noise[a]);
+            hkf_noise_lane(hkf_sub(step[a], f->last_step[a]), beta, rise, &s->r_min, &f->noise_power[a], &f->noise[a]);
         }
     }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {

@@ -18,28 +18,25 @@ static inline hkf_real_t hkf_step_weight(hkf_real_t dt, hkf_real_t time)
     return ratio < HKF_REAL(1.0) ? ratio : HKF_REAL(1.0);
 }
 
-/* The detector's settings and its weights for one step of dt. */
+/* The detector's weights for one step of dt (hkf_motion_prepare: from the settings' fields, read in
+ * place - the Cortex-M0 build's code is then what it was before the position shared it). */
 typedef struct {
-    hkf_real_t q_boost;        /* 1/s: the walk per unit of excess evidence and of noise */
-    hkf_real_t threshold;      /* evidence beyond this is motion */
     hkf_real_t alpha;          /* the innovation's low-pass weight, dt / (dt + q_boost_time) */
     hkf_real_t spread;         /* (2 - alpha) / alpha = 1 + 2 q_boost_time / dt */
     hkf_real_t damping;        /* the rate's decay weight while still; 0: never */
     hkf_divisor_t still;       /* 1 / still_threshold (1 when that is 0) */
 } hkf_motion_step_t;
 
-static HKF_ALWAYS_INLINE hkf_motion_step_t hkf_motion_prepare(hkf_real_t dt, hkf_real_t q_boost, hkf_real_t q_boost_time,
-                                                              hkf_real_t motion_threshold, hkf_real_t rate_damping_time,
-                                                              hkf_real_t still_threshold)
+static HKF_ALWAYS_INLINE hkf_motion_step_t hkf_motion_prepare(hkf_real_t dt, const hkf_real_t *q_boost_time,
+                                                              const hkf_real_t *rate_damping_time,
+                                                              const hkf_real_t *still_threshold)
 {
     const hkf_real_t one = HKF_REAL(1.0);
     hkf_motion_step_t c;
-    c.q_boost = q_boost;
-    c.threshold = motion_threshold;
-    c.alpha = hkf_step_weight(dt, q_boost_time);
-    c.spread = hkf_add(one, hkf_divide(hkf_add(q_boost_time, q_boost_time), hkf_divisor(dt)));
-    c.damping = rate_damping_time > 0 && still_threshold > 0 ? hkf_step_weight(dt, rate_damping_time) : 0;
-    c.still = hkf_divisor(still_threshold > 0 ? still_threshold : one);
+    c.alpha = hkf_step_weight(dt, *q_boost_time);
+    c.spread = hkf_add(one, hkf_divide(hkf_add(*q_boost_time, *q_boost_time), hkf_divisor(dt)));
+    c.damping = *rate_damping_time > 0 && *still_threshold > 0 ? hkf_step_weight(dt, *rate_damping_time) : 0;
+    c.still = hkf_divisor(*still_threshold > 0 ? *still_threshold : one);
     return c;
 }
 
@@ -47,12 +44,12 @@ static HKF_ALWAYS_INLINE hkf_motion_step_t hkf_motion_prepare(hkf_real_t dt, hkf
  * evidence's excess over the threshold (0 at or below it), at most
  * HKF_MAX_BOOSTED_PROCESS_NOISE; a product that saturates Q16.16 is beyond
  * that cap anyway. */
-static inline hkf_real_t hkf_motion_walk(const hkf_motion_step_t *c, hkf_real_t n, hkf_real_t evidence)
+static inline hkf_real_t hkf_motion_walk(hkf_real_t q_boost, hkf_real_t threshold, hkf_real_t n, hkf_real_t evidence)
 {
-    const hkf_real_t e = hkf_sub(evidence, c->threshold);
+    const hkf_real_t e = hkf_sub(evidence, threshold);
     const hkf_real_t positive = e > 0 ? e : 0; /* NaN (0 inf) reads as none */
     const hkf_real_t excess = positive < HKF_REAL(10000.0) ? positive : HKF_REAL(10000.0);
-    const hkf_real_t walk = hkf_mul(hkf_mul(n, c->q_boost), excess);
+    const hkf_real_t walk = hkf_mul(hkf_mul(n, q_boost), excess);
     const hkf_real_t cap = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
     return walk < cap ? walk : cap;
 }
@@ -61,10 +58,11 @@ static inline hkf_real_t hkf_motion_walk(const hkf_motion_step_t *c, hkf_real_t 
  * m += alpha (y - m) low-passes the innovation y; while the lane is still y
  * is white with variance S and m has variance S alpha / (2 - alpha), so
  * m^2 (2 - alpha) / (alpha S) is the evidence of a motion beyond chance.
- * Beyond the threshold the lane takes a random walk (hkf_motion_walk),
- * added to the predicted variance p00 alone (the caller recomputes S): the
- * filter follows the measurement while the head moves, and the rate, whose
- * variance is not raised, is not thrown past a stop (boosting the
+ * Beyond the threshold the lane takes a random walk (walk: the caller's
+ * hkf_motion_walk for its lane's noise and settings; owner and lane passed
+ * on), added to the predicted variance p00 alone (the caller recomputes S):
+ * the filter follows the measurement while the head moves, and the rate,
+ * whose variance is not raised, is not thrown past a stop (boosting the
  * acceleration's noise instead overshot fast stops by 7-8 % of the move on
  * the truth clips). The walk of the evidence confirmed by the previous frame
  * counts in full; this frame's own adds at most R, so a one-frame blip moves
@@ -72,39 +70,40 @@ static inline hkf_real_t hkf_motion_walk(const hkf_motion_step_t *c, hkf_real_t 
  * deg of noise was followed whole). Below still_threshold the rate decays,
  * with time constant rate_damping_time up to half of it and less and less
  * above, so the filter stops with the head. Both are continuous in the
- * evidence: no decision flips on rounding. n: the lane's measured noise. */
-static HKF_ALWAYS_INLINE void hkf_motion_lane(const hkf_motion_step_t *c, hkf_real_t n, hkf_real_t y, hkf_real_t r,
-                                              hkf_divisor_t inv_s, hkf_real_t dt, hkf_real_t *m, hkf_real_t *p00,
-                                              hkf_real_t *rate)
+ * evidence: no decision flips on rounding. */
+static HKF_ALWAYS_INLINE void hkf_motion_lane(const hkf_motion_step_t *c, const void *owner, int lane,
+                                              hkf_real_t (*walk)(const void *owner, int lane, hkf_real_t evidence),
+                                              hkf_real_t y, hkf_real_t r, hkf_divisor_t inv_s, hkf_real_t dt,
+                                              hkf_real_t *restrict m, hkf_real_t *restrict p00, hkf_real_t *restrict rate)
 {
     const hkf_real_t one = HKF_REAL(1.0);
     const hkf_real_t before = *m;
     const hkf_real_t now = hkf_add(before, hkf_mul(c->alpha, hkf_sub(y, before)));
     const hkf_real_t evidence = hkf_divide(hkf_mul(hkf_mul(now, now), c->spread), inv_s);
     const hkf_real_t confirmed = hkf_divide(hkf_mul(hkf_mul(before, before), c->spread), inv_s);
-    const hkf_real_t fresh = hkf_mul(hkf_motion_walk(c, n, evidence), dt);
+    const hkf_real_t fresh = hkf_mul(walk(owner, lane, evidence), dt);
     /* calm: 1 up to half still_threshold, then down to 0 at it */
     const hkf_real_t ramp = hkf_sub(HKF_REAL(2.0), hkf_divide(hkf_add(evidence, evidence), c->still));
     const hkf_real_t below_one = ramp < one ? ramp : one;
     const hkf_real_t calm = below_one > 0 ? below_one : 0;
     *m = now;
-    *p00 = hkf_add(hkf_add(*p00, hkf_mul(hkf_motion_walk(c, n, confirmed), dt)), fresh < r ? fresh : r);
+    *p00 = hkf_add(hkf_add(*p00, hkf_mul(walk(owner, lane, confirmed), dt)), fresh < r ? fresh : r);
     *rate = hkf_sub(*rate, hkf_mul(hkf_mul(c->damping, calm), *rate));
 }
 
 /* One lane of the noise estimate n (hkf.h), from the second difference d of
  * the raw measurements: power += beta (d^2 / 6 - power) with beta = dt /
  * (dt + noise_time); n = power where that is lower, else n grows by at most
- * the factor rise = 1 + noise_rise dt towards it; n >= floor. */
-static HKF_ALWAYS_INLINE void hkf_noise_lane(hkf_real_t d, hkf_real_t beta, hkf_real_t rise, hkf_real_t floor,
-                                             hkf_real_t *power, hkf_real_t *n)
+ * the factor rise = 1 + noise_rise dt towards it; n >= *floor (read last). */
+static HKF_ALWAYS_INLINE void hkf_noise_lane(hkf_real_t d, hkf_real_t beta, hkf_real_t rise, const hkf_real_t *floor,
+                                             hkf_real_t *restrict power, hkf_real_t *restrict n)
 {
     const hkf_real_t sample = hkf_mul(hkf_mul(d, d), HKF_REAL(0.16666666666666667));
     const hkf_real_t next = hkf_add(*power, hkf_mul(beta, hkf_sub(sample, *power)));
     const hkf_real_t grown = hkf_mul(*n, rise); /* >= n: so min(grown, power) is power where that is lower */
     const hkf_real_t estimate = grown < next ? grown : next;
     *power = next;
-    *n = estimate > floor ? estimate : floor;
+    *n = estimate > *floor ? estimate : *floor;
 }
 
 #endif /* HKF_MOTION_H */

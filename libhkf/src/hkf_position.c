@@ -130,6 +130,13 @@ static hkf_real_t process_noise(const hkf_position_filter_t *f, int a)
     return scaled < cap ? scaled : cap;
 }
 
+/* The axis's random walk per s for a detector evidence (hkf_motion.h); f: the filter. */
+static hkf_real_t motion_walk(const void *f, int a, hkf_real_t evidence)
+{
+    const hkf_position_filter_t *filter = (const hkf_position_filter_t *)f;
+    return hkf_motion_walk(filter->settings.q_boost, filter->settings.motion_threshold, filter->noise[a], evidence);
+}
+
 /* R of an axis for a measurement of scale 1: the setting, or calibrated, the measured n */
 static hkf_real_t measurement_noise(const hkf_position_filter_t *f, int a)
 {
@@ -182,7 +189,7 @@ static void noise_estimate_update(hkf_position_filter_t *f, const hkf_real_t z[3
     for (a = 0; a < 3; ++a) {
         const hkf_real_t step = hkf_sub(z[a], f->last_z[a]);
         if (equal) {
-            hkf_noise_lane(hkf_sub(step, f->last_step[a]), beta, rise, f->settings.noise_floor, &f->noise_power[a],
+            hkf_noise_lane(hkf_sub(step, f->last_step[a]), beta, rise, &f->settings.noise_floor, &f->noise_power[a],
                            &f->noise[a]);
         }
         f->last_z[a] = z[a];
@@ -237,8 +244,7 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
     predict_axes(f, dt);
     {
         const hkf_position_settings_t *s = &f->settings;
-        const hkf_motion_step_t motion = hkf_motion_prepare(dt, s->q_boost, s->q_boost_time, s->motion_threshold,
-                                                            s->rate_damping_time, s->still_threshold);
+        const hkf_motion_step_t motion = hkf_motion_prepare(dt, &s->q_boost_time, &s->rate_damping_time, &s->still_threshold);
         const int detect = calibrated(f) && (s->q_boost > 0 || s->rate_damping_time > 0);
         for (a = 0; a < 3; ++a) {
             const hkf_real_t r = hkf_mul(measurement_noise(f, a), r_scale);
@@ -246,7 +252,7 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
             hkf_divisor_t inv_s = hkf_divisor(hkf_add(f->p00[a], r));         /* Eq. 5 */
             hkf_real_t k0, k1;
             if (detect) {
-                hkf_motion_lane(&motion, f->noise[a], y, r, inv_s, dt, &f->motion[a], &f->p00[a], &f->v[a]);
+                hkf_motion_lane(&motion, f, a, motion_walk, y, r, inv_s, dt, &f->motion[a], &f->p00[a], &f->v[a]);
                 inv_s = hkf_divisor(hkf_add(f->p00[a], r));
             }
             k0 = hkf_divide(f->p00[a], inv_s);                                /* Eq. 6 */
