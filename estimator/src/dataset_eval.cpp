@@ -86,16 +86,12 @@ std::optional<Face> labelled_face(const HeadPoseEstimator &model, FaceDetector &
     return best;
 }
 
-// The live path on one image, as a fresh tracker sees a still face: its first frame (the
-// whole image searched, the largest face scoring at least the acquire score taken), then
-// its second (that face followed in the region around it, as on every frame after; the
-// whole image again if the region's detector misses it). `wrong` is set when that face is
-// not the labelled one (its centre more than half the labelled box's size from the box's).
-std::optional<Face> live_face(TrackerDetectors detectors, const cv::Mat &image, const cv::Rect2f &box, bool &wrong)
+// still_face, and `wrong` set when that face is not the labelled one (its centre more than
+// half the labelled box's size from the box's).
+std::optional<Face> live_face(HeadPoseEstimator &model, TrackerDetectors detectors, const cv::Mat &image, const cv::Rect2f &box,
+                              bool &wrong)
 {
-    FaceTracker tracker(detectors, TrackerSettings{});
-    std::optional<Face> face = tracker.track(image, 0);
-    if (face) face = tracker.track(image, 33333);
+    std::optional<Face> face = still_face(model, detectors, image);
     wrong = false;
     if (!face) return face;
     const cv::Point2f d = cv::Point2f(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2) -
@@ -108,6 +104,14 @@ std::optional<Face> live_face(TrackerDetectors detectors, const cv::Mat &image, 
 }
 
 }  // namespace
+
+std::optional<Face> still_face(HeadPoseEstimator &model, TrackerDetectors detectors, const cv::Mat &image)
+{
+    FaceTracker tracker(detectors, TrackerSettings{});
+    std::optional<Face> face = tracker.track(image, 0);
+    if (face && model.follows_faces()) (void)model.estimate(image, *face);  // the searched frame, then the followed one
+    return face ? tracker.track(image, 33333) : face;
+}
 
 EvalResult evaluate_dataset(HeadPoseEstimator &model, TrackerDetectors detectors, DatasetCrop crop, const std::string &dir, long limit,
                             std::ostream &predictions, const std::function<void(long, long)> &progress)
@@ -132,7 +136,7 @@ EvalResult evaluate_dataset(HeadPoseEstimator &model, TrackerDetectors detectors
         if (in_protocol) ++result.bin_images[bin];
         const auto start = std::chrono::steady_clock::now();
         bool wrong = false;
-        std::optional<Face> face = crop == DatasetCrop::Live ? live_face(detectors, image, row.box, wrong)
+        std::optional<Face> face = crop == DatasetCrop::Live ? live_face(model, detectors, image, row.box, wrong)
                                                              : labelled_face(model, *detectors.region, image, row.box);
         result.wrong_face += wrong;
         const std::optional<HeadPose> estimate = face ? model.estimate(image, *face) : std::nullopt;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -16,6 +17,13 @@
 #include "head_pose_estimator.hpp"
 
 namespace hkf_estimator {
+
+// The live path on one image, as a fresh tracker sees a still face: its first frame (the
+// whole image searched, the largest face scoring at least the acquire score taken), then
+// its second (that face followed in the region around it, as on every frame after; the
+// whole image again if the region's detector misses it). A model that follows faces
+// (HeadPoseEstimator::follows_faces) has estimated the first; the caller estimates the second.
+std::optional<Face> still_face(HeadPoseEstimator &model, TrackerDetectors detectors, const cv::Mat &image);
 
 enum class DatasetCrop {
     Live,    // the live path: FaceTracker on the image as on a still face's first two frames

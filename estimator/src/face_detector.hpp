@@ -18,6 +18,7 @@ struct Face {
     // (RetinaFace: no tragions; those two are the mouth's right and left corners)
     std::array<cv::Point2f, 6> keypoints;
     float score = 0.f;  // 0..1
+    bool followed = false;  // found around the last frame's face by the tracker: the same face
 };
 
 // short: BlazeFace for faces within ~2 m (a driver); full: BlazeFace up to ~5 m;

@@ -49,6 +49,7 @@ std::optional<Face> FaceTracker::track(const cv::Mat &frame, int64_t utime)
         const cv::Rect roi(cv::Point(static_cast<int>(roi_f.x), static_cast<int>(roi_f.y)),
                            cv::Point(static_cast<int>(roi_f.br().x), static_cast<int>(roi_f.br().y)));
         if (roi.width > 8 && roi.height > 8) found = search_region(*detectors_.region, frame, roi, size);
+        if (found) found->followed = true;
     }
     if (!found) {
         ++full_frame_searches_;

@@ -29,6 +29,9 @@ public:
     virtual const ModelSpec &spec() const = 0;
     // True when estimate() uses the face's keypoints, not only its box.
     virtual bool needs_keypoints() const = 0;
+    // True when estimate() on a face the tracker followed (Face::followed) uses what it measured
+    // on the frame before: a still image is then estimated twice, searched and followed, as video is.
+    virtual bool follows_faces() const { return false; }
     // The pose of the face in frame (BGR); nullopt when the model finds no face there.
     virtual std::optional<HeadPose> estimate(const cv::Mat &frame, const Face &face) = 0;
 

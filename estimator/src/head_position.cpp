@@ -36,7 +36,8 @@ HeadPosition position_from_fit(const cv::Vec3d &rvec, const cv::Vec3d &tvec, flo
 }
 
 bool fit_position(const std::vector<cv::Point3f> &rigid_canonical, const std::vector<cv::Point2f> &rigid_landmarks,
-                  const cv::Size &frame, const PositionSettings &settings, float front_z_cm, HeadPosition &position)
+                  const cv::Size &frame, const PositionSettings &settings, float front_z_cm, HeadPosition &position,
+                  double *px_per_cm)
 {
     const double f = focal_from_fov(frame, settings.fov_deg);
     const cv::Matx33d camera(f, 0, frame.width / 2.0, 0, f, frame.height / 2.0, 0, 0, 1);
@@ -46,6 +47,11 @@ bool fit_position(const std::vector<cv::Point3f> &rigid_canonical, const std::ve
         return false;
     const HeadPosition p = position_from_fit(rvec, tvec, front_z_cm, settings.pivot_cm);
     if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f)) return false;
+    if (px_per_cm != nullptr) {
+        const double front = position_from_fit(rvec, tvec, front_z_cm, 0.0).z;
+        if (!(std::isfinite(front) && front > 0.0)) return false;
+        *px_per_cm = f / front;
+    }
     position = p;
     return true;
 }

@@ -41,9 +41,11 @@ HeadPosition position_from_fit(const cv::Vec3d &rvec, const cv::Vec3d &tvec, flo
 
 // The mesh's position: the rigid canonical points (cm) fitted to their landmarks (px) by
 // solvePnP (SQPNP) with the camera of settings.fov_deg, moved to the pivot. False when the
-// fit fails or gives no finite position in front of the camera.
+// fit fails or gives no finite position in front of the camera. With px_per_cm: the face's
+// scale in the image at its front point (focal / that point's distance), which no turn changes.
 bool fit_position(const std::vector<cv::Point3f> &rigid_canonical, const std::vector<cv::Point2f> &rigid_landmarks,
-                  const cv::Size &frame, const PositionSettings &settings, float front_z_cm, HeadPosition &position);
+                  const cv::Size &frame, const PositionSettings &settings, float front_z_cm, HeadPosition &position,
+                  double *px_per_cm = nullptr);
 
 // The position of a face box on a face face_width_cm wide: the distance from
 // its width, x and y from its centre (the face's front), then moved pivot_cm

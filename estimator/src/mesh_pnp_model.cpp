@@ -50,13 +50,8 @@ MeshPnpModel::MeshPnpModel(ModelSpec spec) : spec_(std::move(spec))
     for (const cv::Point3f &p : canonical_) front_z_ = std::max(front_z_, p.z);
 }
 
-std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face &face)
+bool MeshPnpModel::landmarks_in_region(const cv::Mat &frame, const cv::Point2f &centre, double angle, float side)
 {
-    // the region: square, enlarged, rotated so that the eyes are level
-    const cv::Point2f centre(face.box.x + face.box.width / 2, face.box.y + face.box.height / 2);
-    const float side = std::max(face.box.width, face.box.height) * spec_.roi_scale;
-    const cv::Point2f eyes = face.keypoints[1] - face.keypoints[0];  // the subject's right eye -> left eye
-    const double angle = std::atan2(eyes.y, eyes.x) * 180.0 / M_PI;
     cv::Mat to_input = cv::getRotationMatrix2D(centre, angle, spec_.input_width / side);
     to_input.at<double>(0, 2) += spec_.input_width / 2.0 - centre.x;
     to_input.at<double>(1, 2) += spec_.input_height / 2.0 - centre.y;
@@ -69,8 +64,8 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     net_.forward(out, std::vector<std::string>{spec_.landmarks_output, spec_.flag_output});
     if (out.size() != 2) throw EstimatorError(spec_.name + " gave " + std::to_string(out.size()) + " outputs, not 2");
     const float *xyz = mesh_landmarks(out[0], spec_.landmarks, spec_.landmarks_output);
-    if (decode_face_flag(out[1], spec_.flag_output) < spec_.min_face_flag) return std::nullopt;
-    if (!std::all_of(xyz, xyz + 3 * spec_.landmarks, [](float v) { return std::isfinite(v); })) return std::nullopt;
+    if (decode_face_flag(out[1], spec_.flag_output) < spec_.min_face_flag) return false;
+    if (!std::all_of(xyz, xyz + 3 * spec_.landmarks, [](float v) { return std::isfinite(v); })) return false;
 
     // landmarks back into the frame
     cv::Mat to_frame;
@@ -78,6 +73,22 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     std::vector<cv::Point2f> in_patch(static_cast<size_t>(spec_.landmarks));
     for (int i = 0; i < spec_.landmarks; ++i) in_patch[static_cast<size_t>(i)] = {xyz[3 * i], xyz[3 * i + 1]};
     cv::transform(in_patch, landmarks_, to_frame);
+    return true;
+}
+
+std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face &face)
+{
+    // the region: square, rotated so that the eyes are level; its side the box's long side enlarged,
+    // or for a face the tracker followed, roi_face_cm of face at the scale the last fit measured
+    // (unless the two differ by half: not the same face)
+    const cv::Point2f centre(face.box.x + face.box.width / 2, face.box.y + face.box.height / 2);
+    const float box_side = std::max(face.box.width, face.box.height) * spec_.roi_scale;
+    const float scale_side = static_cast<float>(spec_.roi_face_cm * last_px_per_cm_);
+    const bool by_scale = face.followed && scale_side > 0.f && scale_side < 1.5f * box_side && box_side < 1.5f * scale_side;
+    const cv::Point2f eyes = face.keypoints[1] - face.keypoints[0];  // the subject's right eye -> left eye
+    last_px_per_cm_ = 0.0;
+    if (!landmarks_in_region(frame, centre, std::atan2(eyes.y, eyes.x) * 180.0 / M_PI, by_scale ? scale_side : box_side))
+        return std::nullopt;
 
     // the pose of the canonical face that projects onto them
     const double focal = spec_.focal_scale * std::max(frame.cols, frame.rows);
@@ -92,10 +103,13 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     pose.roll *= spec_.signs[2];
     if (!std::isfinite(pose.pitch) || !std::isfinite(pose.yaw) || !std::isfinite(pose.roll)) return std::nullopt;
 
-    // the position: the rigid upper face fitted with the camera of --fov, moved to the pivot
+    // the position: the rigid upper face fitted with the camera of --fov, moved to the pivot; its
+    // scale sizes the next frame's region
     std::vector<cv::Point2f> rigid_landmarks;
     for (int i : rigid_) rigid_landmarks.push_back(landmarks_[static_cast<size_t>(i)]);
-    pose.has_position = fit_position(rigid_canonical_, rigid_landmarks, frame.size(), position_settings_, front_z_, pose.position);
+    pose.has_position = fit_position(rigid_canonical_, rigid_landmarks, frame.size(), position_settings_, front_z_, pose.position,
+                                     &last_px_per_cm_);
+    if (!pose.has_position) last_px_per_cm_ = 0.0;
     return pose;
 }
 

@@ -93,6 +93,9 @@ ModelSpec load_model_spec(const std::string &spec_dir, const std::string &name, 
             float &target = key == "roi_scale" ? spec.roi_scale : spec.focal_scale;
             target = parse_one<float>(in, where);
             if (!(target > 0.f && target < 100.f)) throw EstimatorError(where + ": " + key + " must be positive");
+        } else if (key == "roi_face_cm") {
+            spec.roi_face_cm = parse_one<float>(in, where);
+            if (!(spec.roi_face_cm >= 0.f && spec.roi_face_cm < 1000.f)) throw EstimatorError(where + ": roi_face_cm 0..1000");
         } else if (key == "crop_margin") {
             spec.crop_margin = parse_one<float>(in, where);
             if (!(spec.crop_margin >= 0.f && spec.crop_margin <= 2.f)) throw EstimatorError(where + ": crop_margin 0..2");

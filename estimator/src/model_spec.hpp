@@ -35,6 +35,7 @@ struct ModelSpec {
     std::string landmarks_output, flag_output, canonical;
     int landmarks = 0;
     float roi_scale = 1.5f;        // the region: the detection box's long side times this
+    float roi_face_cm = 0.f;       // a followed face's region: this many cm of face at its front; 0: the box's
     float min_face_flag = 0.5f;    // below: no face in the region
     float focal_scale = 1.0f;      // focal length in px = this * the frame's long side
     std::array<float, 3> signs{1.f, 1.f, 1.f};  // model -> hkf convention, pitch yaw roll

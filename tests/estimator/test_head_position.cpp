@@ -20,6 +20,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "dataset_eval.hpp"
 #include "face_detector.hpp"
 #include "face_tracker.hpp"
 #include "head_pose_estimator.hpp"
@@ -70,11 +71,7 @@ int main(int argc, char **argv)
     at_face.pivot_cm = 0.0;
     mesh->set_position_settings(at_face);
     // the live path: the whole frame searched, the largest face followed in its region
-    auto face_in = [&](const cv::Mat &image) -> std::optional<Face> {
-        FaceTracker tracker(TrackerDetectors{search.get(), follow.get()}, TrackerSettings{});
-        std::optional<Face> face = tracker.track(image, 0);
-        return face ? tracker.track(image, 33333) : face;
-    };
+    auto face_in = [&](const cv::Mat &image) { return still_face(*mesh, TrackerDetectors{search.get(), follow.get()}, image); };
 
     const char *clips[] = {"d0", "d3", "d9", "d10", "d11", "d12", "d14", "d18", "s18", "s20"};
     // the clips the box fallback's constant was read from (head_position.hpp)
