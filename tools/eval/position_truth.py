@@ -36,7 +36,9 @@ its reading at 0 deg, per 30 deg of turn, is the cross-talk. A yaw turn
 cannot be made from one image, and no shared clip holds a yaw turn without a
 move.
 
-usage: position_truth.py [--build DIR] [--out DIR] [--clips d0,d3,...] [--check]
+usage: position_truth.py [--build DIR] [--out DIR] [--clips d0,d3,...] [--spec-dir DIR] [--check]
+(--spec-dir: hkf-estimator's model descriptions, e.g. a copy of estimator/models with
+roi_face_cm = 0 for the mesh region framed by the detector's box alone; use its own --out)
 writes OUT/position/{position.md,position_z.png} and the clips and raw logs
 under OUT/position/clips (made once, reused).
 """
@@ -92,11 +94,15 @@ def read_positions(path, types_dir):
     return np.array(utime, np.int64), np.array(valid), np.array(xyz, float), np.array(centre, float)
 
 
+SPEC_DIR = []  # ["--spec-dir", DIR] from --spec-dir
+
+
 def estimate(build, source, log_path, *extra, pivot=0.0):
     if os.path.exists(log_path):
         return log_path
     command = [os.path.join(build, "estimator", "hkf-estimator"), "--source", source, "--second-model", "none",
-               "--pivot", f"{pivot:g}", "--fov", f"{FOV_DEG:g}", "--lcm-url", f"file://{log_path}.part?mode=w", *extra]
+               "--pivot", f"{pivot:g}", "--fov", f"{FOV_DEG:g}", "--lcm-url", f"file://{log_path}.part?mode=w",
+               *SPEC_DIR, *extra]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"position_truth: {' '.join(command)} exited {result.returncode}: {result.stderr.strip()[-400:]}")
@@ -283,9 +289,12 @@ def main():
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
     p.add_argument("--out", default=os.path.join(ROOT, "out", "eval"))
     p.add_argument("--clips", default=",".join(CLIPS))
+    p.add_argument("--spec-dir", help="hkf-estimator's model descriptions (default: its own)")
     p.add_argument("--check", action="store_true",
                    help="the defaults only, no grid: print the figures and exit 1 unless the goals hold (a test)")
     args = p.parse_args()
+    if args.spec_dir:
+        SPEC_DIR[:] = ["--spec-dir", args.spec_dir]
     out = os.path.join(args.out, "position")
     types = os.path.join(args.build, "lcmtypes", "python")
     names = args.clips.split(",")
