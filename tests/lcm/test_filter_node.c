@@ -586,6 +586,47 @@ static void test_position_filtered(void **state)
     assert_true(pose.z == 40.0f && pose.position_center[2] == 40.0f); /* a new track, and centre */
 }
 
+/* The second model's positions: where the mesh measured none (a profile) WHENet's box position
+ * of the frame stands in, moved onto the mesh's by their running difference (the box reads the
+ * head 3 cm farther here): the position holds where the head is, then follows a lean; a second
+ * measurement of a frame the mesh measured only teaches the offset. */
+static void test_second_model_position(void **state)
+{
+    hkf_head_pose_measurement_t first, second;
+    hkf_head_pose_t pose;
+    int64_t utime = T0;
+    int i;
+    (void)state;
+    for (i = 0; i < 90; ++i) { /* 0-29 both measure; 30-59 the mesh folds, the head still; 60-89 a lean to 50 cm */
+        const float truth = i < 60 ? 60.0f : 50.0f;
+        const float noise = i % 2 ? 0.2f : -0.2f;
+        utime += FRAME_US;
+        first = measurement(utime, i < 30, 0, i < 30 ? 5 : 70, 0);
+        first.model = "mesh_pnp";
+        if (i < 30) {
+            first.x = 1.0f, first.y = -2.0f, first.z = truth + noise;
+        }
+        (void)filter_node_receive(&node, &first, utime, &pose);
+        second = first;
+        second.model = "whenet";
+        second.valid = 1;
+        second.yaw = i < 30 ? 5.0f : 70.0f;
+        second.x = 1.5f, second.y = -2.0f, second.z = truth + 3.0f - noise;
+        (void)filter_node_receive(&node, &second, utime + 1000, &pose);
+        if (i == 29 || i == 59) {
+            const int64_t at = node.position_utime;
+            assert_true(filter_node_extrapolate(&node, utime + 2000, &pose) >= 0);
+            print_message("frame %d: z %.2f cm (the head at %.0f cm; the last position taken at frame %lld)\n", i,
+                          pose.z, truth, (long long)((at - T0) / FRAME_US - 1));
+            assert_true(fabsf(pose.z - truth) < 0.5f && fabsf(pose.x - 1.0f) < 0.2f);
+            assert_true(at == utime);
+        }
+    }
+    assert_true(filter_node_extrapolate(&node, utime + 2000, &pose) >= 0);
+    print_message("after the lean: z %.2f cm (the head at 50 cm)\n", pose.z);
+    assert_true(fabsf(pose.z - 50.0f) < 1.0f);
+}
+
 /* One publisher: a second estimator on the same channel (its own frame
  * counter, another face at yaw 40) is rejected and counted, never mixed in. */
 static void test_two_publishers_not_mixed(void **state)
@@ -1102,6 +1143,7 @@ int main(void)
         cmocka_unit_test_setup(test_decode_checks_layout, setup),
         cmocka_unit_test_setup(test_decode_reads_v1, setup),
         cmocka_unit_test_setup(test_position_filtered, setup),
+        cmocka_unit_test_setup(test_second_model_position, setup),
         cmocka_unit_test_setup(test_two_publishers_not_mixed, setup),
         cmocka_unit_test_setup(test_publisher_restart_followed, setup),
         cmocka_unit_test_setup(test_rule_boundaries, setup),

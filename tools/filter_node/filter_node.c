@@ -97,6 +97,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     memset(node, 0, sizeof *node);
     node->config = config;
     second_model_init(&node->second);
+    second_position_init(&node->second_position);
     result = hkf_position_init(&node->position, &config->position);
     if (result != HKF_OK) {
         return result; /* cannot happen: the config was checked */
@@ -125,19 +126,41 @@ static void fill_position(const filter_node_t *node, int64_t utime, int lost, hk
     }
 }
 
-/* A measurement's position (z > 0: measured) into the position filter. */
+static int has_position(const hkf_head_pose_measurement_t *m)
+{
+    return m->valid && m->z > 0.f && isfinite(m->x) && isfinite(m->y) && isfinite(m->z);
+}
+
+/* A position xyz measured at utime (R scaled by r_scale) into the position filter, if later than the last. */
+static void update_position(filter_node_t *node, const float xyz[3], int64_t utime, float r_scale)
+{
+    const hkf_real_t z[3] = {xyz[0], xyz[1], xyz[2]};
+    /* the first position's dt is unused; a gap beyond max_dt restarts the track in hkf_position_update */
+    const double dt = node->position.started ? ((double)utime - (double)node->position_utime) * 1e-6 : 0.02;
+    if (dt > 0.0 && hkf_position_update(&node->position, z, (hkf_real_t)r_scale, (hkf_real_t)dt, NULL) == HKF_OK) {
+        node->position_utime = utime;
+    }
+}
+
+/* The first model's frame m: its position (z > 0: measured) into the position filter, and noted
+ * for a second model's measurement of the frame. */
 static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
-    const hkf_real_t z[3] = {m->x, m->y, m->z};
+    const float xyz[3] = {m->x, m->y, m->z};
     const int mesh = m->model != NULL && strcmp(m->model, FILTER_NODE_MESH_MODEL) == 0;
-    /* the first position's dt is unused; a gap beyond max_dt restarts the track in hkf_position_update */
-    const double dt = node->position.started ? ((double)m->utime - (double)node->position_utime) * 1e-6 : 0.02;
-    if (!(m->z > 0.f) || !isfinite(m->x) || !isfinite(m->y) || !isfinite(m->z) || !(dt > 0.0)) {
-        return;
+    second_position_note_first(&node->second_position, m->seq, m->utime, has_position(m), xyz);
+    if (has_position(m)) {
+        update_position(node, xyz, m->utime, mesh ? 1.0f : FILTER_NODE_BOX_POSITION_R_SCALE);
     }
-    if (hkf_position_update(&node->position, z, mesh ? 1.0f : FILTER_NODE_BOX_POSITION_R_SCALE, (hkf_real_t)dt,
-                            NULL) == HKF_OK) {
-        node->position_utime = m->utime;
+}
+
+/* A second model's measurement m: its position stands in where the first model measured none. */
+static void take_second_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
+{
+    const float xyz[3] = {m->x, m->y, m->z};
+    float moved[3];
+    if (has_position(m) && second_position_take(&node->second_position, m->seq, m->utime, xyz, moved)) {
+        update_position(node, moved, m->utime, FILTER_NODE_BOX_POSITION_R_SCALE);
     }
 }
 
@@ -230,6 +253,7 @@ static int coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
     second_model_keep_frame(&node->second, m, NULL, dt, &node->filter);
+    take_position(node, m); /* noted: no position */
     if (hkf_predict(&node->filter, dt, &out) != HKF_OK) { /* no track yet (or again, after a gap) */
         return 0;
     }
@@ -388,6 +412,7 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
         } else {
             fuse_second(node, second_of, m);
         }
+        take_second_position(node, m);
         return 0;
     }
     if (!from_followed_publisher(node, m, arrival_utime)) {

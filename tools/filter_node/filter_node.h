@@ -54,8 +54,11 @@
  * - position (hkf 0.2): a measurement's x, y, z (z > 0: measured) go through
  *   libhkf's position filter (hkf/hkf_position.h), with R scaled by
  *   FILTER_NODE_BOX_POSITION_R_SCALE for a model that measures position from
- *   the face box (any but the face mesh); a second model's positions are not
- *   used. The pose carries the filtered position, extrapolated to its time
+ *   the face box (any but the face mesh). Where the first model measured no
+ *   position in a frame (the mesh folds at a profile), a second model's
+ *   position of that frame stands in, box-scaled too, moved onto the first's
+ *   by the running mean of their difference (second_position.h), if it comes
+ *   before the first model's next. The pose carries the filtered position, extrapolated to its time
  *   like the angles (held while LOST), and its centre; RECENTER sets the
  *   centre, RESET forgets it, a restart keeps it.
  */
@@ -68,6 +71,7 @@
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "hkf_head_pose_measurement_v1_t.h"
+#include "second_position.h"
 #include "hkf_head_pose_t.h"
 #include "hkf_tracker_command_t.h"
 #include "node_config.h"
@@ -115,6 +119,7 @@ typedef struct {
     second_model_t second;            /* the kept frames and the second model's offset (second_model.h) */
     hkf_position_filter_t position;   /* the head's position: the followed model's measurements (z > 0) */
     int64_t position_utime;           /* capture time of the last position taken */
+    second_position_t second_position; /* the first model's last positions, the second's offset (second_position.h) */
     filter_node_counts_t counts;
 } filter_node_t;
 
