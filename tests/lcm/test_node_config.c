@@ -178,6 +178,11 @@ static void test_print_reads_back(void **state)
     assert_int_equal(node_config_set(&c, "position_process_noise = 1 2 3", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_process_noise = 1 2", error, sizeof error), -1);
     assert_int_equal(node_config_set(&c, "position_measurement_noise = 0 1 1", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "position_noise_time = 0.5", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_q_boost = 30", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_q_boost = -1", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "position_noise_time = 1 2", error, sizeof error), -1);
+    assert_true(c.position.noise_time == (hkf_real_t)0.5 && c.position.q_boost == (hkf_real_t)30);
     strcpy(path, "/tmp/hkf_config_print_XXXXXX");
     f = fdopen(mkstemp(path), "w");
     node_config_print(&c, f);
@@ -187,7 +192,8 @@ static void test_print_reads_back(void **state)
     assert_int_equal(node_config_read_file(&back, path, error, sizeof error), 0);
     assert_true(same_settings(&c.settings, &back.settings));
     assert_true(back.position.process_noise[2] == c.position.process_noise[2] &&
-                back.position.measurement_noise[1] == c.position.measurement_noise[1]);
+                back.position.measurement_noise[1] == c.position.measurement_noise[1] &&
+                back.position.noise_time == c.position.noise_time && back.position.q_boost == c.position.q_boost);
     assert_int_equal(back.model_count, 4);
     assert_true(same_models(back.models, c.models, 4));
     {
