@@ -3,7 +3,7 @@
 // moved back to the point the head turns about), or, for a model that gives
 // only angles, the face box and an average face size.
 //
-// Camera frame (README: "Angle convention"): x to the image's right, y up, z the
+// Camera frame (docs/programs.md: "Angle convention"): x to the image's right, y up, z the
 // distance along the optical axis (> 0). The focal length comes from the
 // camera's diagonal field of view (--fov; opentrack's default 56 deg).
 #pragma once

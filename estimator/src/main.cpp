@@ -124,9 +124,9 @@ void usage(std::ostream &out)
            "                     pose on the tracked face or measures a large yaw (default whenet;\n"
            "                     none: the first model alone); its measurements go on the same\n"
            "                     channel with the frame's seq and time, and hkf-filter fuses both\n"
-           "                     (README: \"Two models on one channel\")\n"
+           "                     (docs/programs.md: \"Two models on one channel\")\n"
            "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 10; 0: every frame)\n"           "  --fov DEG          the camera's diagonal field of view, for the head's position (default\n"
-           "                     56; unknown: a gain on the distance, README \"Head position\")\n"
+           "                     56; unknown: a gain on the distance, docs/estimator.md \"Head position\")\n"
            "  --pivot CM         the point the head turns about, CM behind the nose tip (default 10)\n"
            "--dataset mode evaluates a head-pose model on a labelled image set laid out like\n"
            "../shared/data/aflw2000 (labels.csv and images/): finds each face the way live video\n"
@@ -250,7 +250,7 @@ int parse(int argc, char **argv, Options &o)
         std::cerr << "hkf-estimator: give either --source SRC or --dataset DIR (see --help)\n";
         return 2;
     }
-    // the default pipeline: WHENet beside the mesh on video (README: "The default pipeline");
+    // the default pipeline: WHENet beside the mesh on video (docs/estimator.md: "The default pipeline");
     // a dataset run measures one model, and WHENet as the first model needs no second
     if (!o.second_model_given && o.dataset.empty() && o.model != kDefaultSecondModel) o.second_model = kDefaultSecondModel;
     if (!o.dataset.empty() && !o.second_model.empty()) {

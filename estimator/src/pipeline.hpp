@@ -29,7 +29,7 @@ struct PipelineOptions {
     // A second model (run_pipeline's `second`) measures the frames where the
     // first finds no pose on the tracked face or measures |yaw| >= this (deg;
     // 0: every frame), on its own thread (second_model.hpp).
-    float second_from_yaw = 10.f;  // chosen on AFLW2000's even images (README: "Two models on one channel")
+    float second_from_yaw = 10.f;  // chosen on AFLW2000's even images (docs/programs.md: "Two models on one channel")
 };
 
 // The estimator's exit statuses beyond 0 (ran), 1 (an error) and 2 (bad arguments).

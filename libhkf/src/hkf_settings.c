@@ -53,8 +53,8 @@ const hkf_noise_curve_t hkf_noise_hopenet[3] = {
  * and rate damping 0.1 s; noise_time 0.3 s, noise_rise 0.2 per s; loop
  * closure off. Chosen on the five real clips that give both a still jitter
  * and a lag, and checked leaving each out in turn (tools/eval/leave_one_out.py,
- * `./run eval`; README "Noise calibration, one clip left out"), and on exact
- * truth (README "Truth by construction"). */
+ * `./run eval`; docs/evaluation.md "Noise calibration, one clip left out"), and on exact
+ * truth (docs/evaluation.md "Truth by construction"). */
 const hkf_settings_t hkf_default_settings = {
     HKF_PAPER_BASE,
     .process_noise = {HKF_REAL(1.0), HKF_REAL(1.0), HKF_REAL(1.0)},

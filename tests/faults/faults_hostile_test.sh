@@ -4,7 +4,7 @@
 # (../shared/data/videos/d3.mp4) and real face images (AFLW2000). No command
 # line, file or message may make a program destroy or truncate data and exit
 # 0, abort, hang without saying so, or hold the pose up for longer than the
-# coast time. Each fault's outcome is in the README's reliability table.
+# coast time. Each fault's outcome is in the fault catalogue (docs/reliability.md).
 # usage: faults_hostile_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)

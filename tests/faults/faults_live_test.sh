@@ -4,7 +4,7 @@
 # stalls, hangs or is unplugged; the estimator killed and restarted under a
 # running node; the node killed and restarted under a running estimator; two
 # estimators on one channel. lcm-logger records every stage; nothing may
-# publish a non-finite value. Expected outcomes: the README's reliability table.
+# publish a non-finite value. Expected outcomes: the fault catalogue (docs/reliability.md).
 # usage: faults_live_test.sh BUILD_DIR SOURCE_DIR   (exit 77: no network namespace here)
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)

@@ -2,7 +2,7 @@
 # The fault catalogue, part 1 (files, no network): on a real clip's raw poses
 # (hkf-estimator on ../shared/data/videos/d3.mp4), a corrupt video, clock jumps,
 # a log cut off by a power loss, and SIGTERM during --offline. Each fault's
-# expected outcome is in the README's reliability table.
+# expected outcome is in the fault catalogue (docs/reliability.md).
 # usage: faults_offline_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)

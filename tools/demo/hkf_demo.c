@@ -14,7 +14,7 @@
 
 /* The display: opentrack or a simulator reads the latest pose DISPLAY_HZ times a
  * second; a frame's pose is there CAPTURE_TO_PUBLISH_S after its capture (the
- * default estimator's measured p99, README "Accuracy and speed"). Raw poses are
+ * default estimator's measured p99, docs/estimator.md "Accuracy and speed"). Raw poses are
  * held until the next; a filter's are extrapolated to the moment of reading. */
 #define DISPLAY_HZ 120.0
 #define CAPTURE_TO_PUBLISH_S 0.010

@@ -56,7 +56,7 @@ Q_BOOST_VALUES = [30, 100, 300, 1000, 3000, 10000]
 # every filter compared, in the tables' order
 FILTER_NAMES = list(HKF_VARIANTS) + [Q_BOOST_NAME, "1 euro", "Accela", "EWMA"]
 GOAL_LAG_CUT = 0.30  # the goal set for the filter on real clips: the defaults lag at least 30 % less than the best 1 euro and Accela at equal jitter
-# tune on these clips, report on the others (the README's split)
+# tune on these clips, report on the others (docs/evaluation.md's split)
 TUNING_CLIPS = ["d0", "d3", "d9", "d11", "d14"]  # 274 still and 1,496 moving frames (mesh_pnp); the others 91 and 1,073
 ONE_EURO_MIN_CUTOFF = [0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
 ONE_EURO_BETA = [0.0, 0.001, 0.003, 0.01, 0.03, 0.1, 0.3, 1.0, 3.0]  # to 3: the best sat at 0.3 on the truth clips

@@ -47,7 +47,7 @@ import truth_motion  # noqa: E402
 
 FPS = 30.0
 ESTIMATOR = "mesh_pnp"  # the default model
-GOALS = {  # what the filter should reach on held-out clips (the README states them)
+GOALS = {  # what the filter should reach on held-out clips (docs/evaluation.md states them)
     "rmse_ratio": 0.70,       # defaults' moving RMSE / best 1 euro's at equal jitter
     "jitter_share": 0.25,     # defaults' still jitter / raw's
     "overshoot_share": 0.05,  # of the move

@@ -2,7 +2,7 @@
 """A Python simulator's side of hkf, as small as it gets: subscribe the filtered
 head pose (hkf.head_pose_t on HEAD_POSE) and turn it into a camera orientation.
 
-Needs only pip (README "Python"):
+Needs only pip (docs/programs.md "Python"):
     python3 -m venv venv && venv/bin/pip install ./lcmtypes/python
     venv/bin/python tools/examples/head_pose_subscriber.py
 

@@ -45,7 +45,7 @@ typedef struct {
     char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* where each base key was set ("": the default) */
 } node_config_t;
 
-#define NODE_SECOND_ALONE_FROM_YAW 25.0 /* deg: chosen on AFLW2000's even images (README) */
+#define NODE_SECOND_ALONE_FROM_YAW 25.0 /* deg: chosen on AFLW2000's even images (docs/programs.md) */
 
 /* libhkf's defaults, and the models "fsanet" and "hopenet" with the paper's
  * Table I curves (r_const = each curve's minimum). */

@@ -5,13 +5,13 @@
  * The datagram: six IEEE-754 doubles, little-endian, 48 bytes, in opentrack's
  * axis order x, y, z (cm), yaw, pitch, roll (deg).
  *
- * Position (hkf 0.2; README "Head position"): hkf's camera frame, x to the
+ * Position (hkf 0.2; docs/estimator.md "Head position"): hkf's camera frame, x to the
  * image's right, y up, z away from the camera, sent as it is (opentrack's x,
  * y, z), relative to hkf's centre position unless --absolute; 0 until the
  * filter has a position. Whether a game moves its camera forward for +z or
  * for -z varies: --invert z.
  *
- * Angle convention. hkf (README "Angle convention"): pitch > 0 nose up,
+ * Angle convention. hkf (docs/programs.md "Angle convention"): pitch > 0 nose up,
  * yaw > 0 nose to the driver's right, roll > 0 right ear down. opentrack's
  * own face tracker (tracker-neuralnet) builds its angles in a right-handed
  * frame x forward, y up, z to the user's right and publishes yaw and pitch

@@ -198,7 +198,7 @@ static double bias_field(const sim_t *sim, int axis, const double pose[3])
 
 /* The measured model's white frame noise at the curve's centre, deg: the
  * still frames of the real clips give a frame-to-frame change of 0.23-0.53 deg
- * through mesh_pnp (README, the leave-one-out table), i.e. 0.16-0.37 deg of
+ * through mesh_pnp (docs/evaluation.md, the leave-one-out table), i.e. 0.16-0.37 deg of
  * noise per frame; against ~3 deg of AFLW2000 error, under 1 % of the error
  * variance. It grows with the pose as the error curve does. */
 #define SIM_FRAME_NOISE_DEG 0.25

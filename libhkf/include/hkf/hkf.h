@@ -199,7 +199,7 @@ typedef struct {
  * per s^3, the signed motion detector driving the angle's random walk
  * (q_boost 100 per s, q_boost_time 0.2 s, motion_threshold 128,
  * still_threshold 64), rate damping 0.1 s, loop closure off, gate off; chosen
- * leaving one real clip out at a time (README, "Noise calibration, one clip
+ * leaving one real clip out at a time (docs/evaluation.md, "Noise calibration, one clip
  * left out"). */
 extern const hkf_settings_t hkf_default_settings;
 /* The paper's filter alone: adaptive R, loop closure (xi 0.618, theta 2 deg),

@@ -1,7 +1,7 @@
 /*
  * hkf_position.h - the head's position filtered as the angles are.
  *
- * Per axis (x, y, z in cm: camera frame, README "Head position") a
+ * Per axis (x, y, z in cm: camera frame, docs/estimator.md "Head position") a
  * constant-velocity Kalman filter with the same closed-form 2x2 step as the
  * angles: state (position, rate), white-acceleration process noise q, and an
  * observation noise R of its own per axis, scaled per measurement (a model
@@ -78,7 +78,7 @@ typedef struct {
 } hkf_position_output_t;
 
 /* Defaults chosen on truth by construction with the estimator's mesh position
- * (tools/eval/position_truth.py; README "Head position"). */
+ * (tools/eval/position_truth.py; docs/estimator.md "Head position"). */
 void hkf_position_default_settings(hkf_position_settings_t *s);
 
 /* Checks the settings (HKF_ERROR_SETTING_*) and clears the track. */
