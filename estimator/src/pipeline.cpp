@@ -134,6 +134,239 @@ hkf::head_pose_measurement_t measurement_message(int64_t utime, int64_t seq, con
     return m;
 }
 
+// OpenCV DNN's first forward pass of a network costs several of the next: spent
+// here, before capture starts, not on the first frames of a camera.
+void warm_up(TrackerDetectors detectors)
+{
+    const cv::Mat blank(480, 640, CV_8UC3, cv::Scalar(128, 128, 128));
+    detectors.search->detect(blank);
+    if (detectors.region != detectors.search) detectors.region->detect(blank);
+}
+
+// The capture thread: frames from the source into the slot (a file paced at its
+// frame rate with --realtime) until it ends, fails, or a stop is requested.
+class Capture {
+public:
+    Capture(FrameSource &source, LatestFrame &slot, const PipelineOptions &options, bool drop_old)
+        : slot_(slot), thread_([this, &source, &options, drop_old] { run(source, options, drop_old); })
+    {
+    }
+    // Closes the slot and joins the thread; false when it does not stop within a second (a
+    // thread blocked inside a hung camera or stream cannot be interrupted: it is left).
+    bool stop()
+    {
+        slot_.close();  // a capture waiting to hand over a frame gives up
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+        while (!done_ && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        if (!done_) return false;
+        thread_.join();
+        return true;
+    }
+    ~Capture()
+    {
+        if (thread_.joinable()) thread_.detach();  // only a hung one; the process leaves with _Exit
+    }
+    bool failed() const { return failed_; }
+    const std::string &error() const { return error_; }
+
+private:
+    void run(FrameSource &source, const PipelineOptions &options, bool drop_old)
+    {
+        try {
+            const int64_t start = wall_utime();
+            for (long n = 0; !stop_requested && (options.max_frames == 0 || n < options.max_frames); ++n) {
+                Frame frame;
+                if (!source.read(frame)) break;
+                if (options.realtime && !source.live()) {  // pace a file at its frame rate
+                    const int64_t due = start + static_cast<int64_t>(1e6 * static_cast<double>(frame.index) / source.fps());
+                    std::this_thread::sleep_for(std::chrono::microseconds(std::max<int64_t>(0, due - wall_utime())));
+                    frame.utime = wall_utime();
+                }
+                slot_.put(std::move(frame), drop_old);
+            }
+        } catch (const std::exception &e) {  // EstimatorError, or OpenCV's own on a broken source
+            error_ = e.what();
+            failed_ = true;
+        }
+        slot_.close();
+        done_ = true;
+    }
+
+    LatestFrame &slot_;
+    std::atomic<bool> failed_{false}, done_{false};
+    std::string error_;
+    std::thread thread_;  // last: started once the rest is in place
+};
+
+// A source that stops delivering frames (a camera unplugged or hung, a stream
+// stalled) is reported after kStallWarning; the loop keeps waiting for it.
+class StallWatch {
+public:
+    static constexpr std::chrono::seconds kStallWarning{2};
+    void no_frame(const FrameSource &source)
+    {
+        const auto now = std::chrono::steady_clock::now();
+        if (!stalled_ && now - last_ >= kStallWarning) {
+            stalled_ = true;
+            ++stalls_;
+            std::fprintf(stderr, "hkf-estimator: no frame from %s for %.1f s (camera unplugged or stalled?); waiting\n",
+                         source.description().c_str(), std::chrono::duration<double>(now - last_).count());
+        }
+    }
+    void frame()
+    {
+        const auto now = std::chrono::steady_clock::now();
+        if (stalled_) {
+            std::fprintf(stderr, "hkf-estimator: frames again after %.1f s\n", std::chrono::duration<double>(now - last_).count());
+            stalled_ = false;
+        }
+        last_ = now;
+    }
+    long stalls() const { return stalls_; }
+
+private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+    bool stalled_ = false;
+    long stalls_ = 0;
+};
+
+// The frame with the face, the raw pose (and position) and the last filtered pose drawn.
+cv::Mat annotated_frame(const cv::Mat &frame, const std::optional<Face> &face, const HeadPose &pose, FilteredPose &filtered)
+{
+    cv::Mat image = frame.clone();
+    if (!face) {
+        cv::putText(image, "no face", {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 255), 2);
+        return image;
+    }
+    draw_face(image, *face);
+    const cv::Point2f c(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2);
+    draw_pose_axes(image, pose, c, 0.8f * face->box.width, 2);
+    char text[96];
+    std::snprintf(text, sizeof text, "raw p %.1f y %.1f r %.1f", pose.pitch, pose.yaw, pose.roll);
+    cv::putText(image, text, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
+    if (pose.has_position) {
+        std::snprintf(text, sizeof text, "head x %.1f y %.1f z %.1f cm", pose.position.x, pose.position.y, pose.position.z);
+        cv::putText(image, text, {10, 75}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
+    }
+    std::lock_guard<std::mutex> lock(filtered.mutex);
+    if (filtered.have) {
+        draw_pose_axes(image, filtered.pose, c, 0.8f * face->box.width, 5);
+        std::snprintf(text, sizeof text, "filtered p %.1f y %.1f r %.1f", filtered.pose.pitch, filtered.pose.yaw,
+                      filtered.pose.roll);
+        cv::putText(image, text, {10, 50}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2);
+    }
+    return image;
+}
+
+// --annotate's video: opened on the first frame, at its size (a source that changes
+// size is scaled to it, counted); closed whole however the run ends.
+class AnnotatedVideo {
+public:
+    explicit AnnotatedVideo(std::string path) : path_(std::move(path)) {}
+    void write(cv::Mat image, double fps)
+    {
+        if (!writer_.isOpened()) {
+            size_ = image.size();
+            if (!writer_.open(path_, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps, size_))
+                throw EstimatorError("cannot write the video " + path_);
+        }
+        if (image.size() != size_) {
+            cv::Mat scaled;
+            cv::resize(image, scaled, size_, 0, 0, cv::INTER_AREA);
+            image = scaled;
+            ++resized_;
+        }
+        writer_.write(image);
+    }
+    void close()
+    {
+        if (writer_.isOpened()) writer_.release();
+    }
+    long resized() const { return resized_; }
+
+private:
+    std::string path_;
+    cv::VideoWriter writer_;
+    cv::Size size_;
+    long resized_ = 0;
+};
+
+// What the run counted, for the summary and the exit status.
+struct RunCounts {
+    long frames = 0, with_face = 0, publish_failures = 0;
+    std::vector<double> latency_ms, inference_ms, second_latency_ms;
+};
+
+// The second model on its own thread (nullptr without one): its measurements published on
+// the channel as they come, their capture->publish latency counted.
+std::unique_ptr<SecondModelWorker> start_second_model(HeadPoseEstimator *second, const HeadPoseEstimator &model,
+                                                      const PipelineOptions &options, const FrameSource &source,
+                                                      lcm::LCM &lcm, std::mutex &lcm_mutex, RunCounts &counts)
+{
+    if (second == nullptr) return nullptr;
+    std::fprintf(stderr, "hkf-estimator: second model %s where %s finds no pose or |yaw| >= %.0f deg\n",
+                 second->spec().name.c_str(), model.spec().name.c_str(), static_cast<double>(options.second_from_yaw));
+    return std::make_unique<SecondModelWorker>(*second, [second, &options, &source, &lcm, &lcm_mutex, &counts](const SecondModelResult &r) {
+        std::optional<Face> face;
+        if (r.pose) face = r.job.face;
+        const hkf::head_pose_measurement_t m = measurement_message(r.job.utime, r.job.seq, second->spec().name, face,
+                                                                   r.pose.value_or(HeadPose{}), r.inference_ms);
+        std::lock_guard<std::mutex> lock(lcm_mutex);
+        if (lcm.publish(options.channel, &m) != 0) ++counts.publish_failures;
+        counts.second_latency_ms.push_back(
+            static_cast<double>(wall_utime() - (source.live() ? r.job.utime : r.job.taken_utime)) / 1000.0);
+    });
+}
+
+// The run's summary on stdout.
+void print_summary(const RunCounts &counts, double seconds, const LatestFrame &slot, const FaceTracker &tracker,
+                   const StallWatch &stall, SecondModelWorker *second_worker, const HeadPoseEstimator *second,
+                   const FrameSource &source, bool capture_hung, const AnnotatedVideo &video, const PipelineOptions &options)
+{
+    std::printf("hkf-estimator: %ld frames, %ld with a face, %.1f fps; capture->publish ms p50 %.1f p99 %.1f; "
+                "inference ms p50 %.1f; %ld dropped; %ld full-frame face searches; %ld stalls of the source\n",
+                counts.frames, counts.with_face, seconds > 0 ? static_cast<double>(counts.frames) / seconds : 0.0,
+                percentile(counts.latency_ms, 0.5), percentile(counts.latency_ms, 0.99), percentile(counts.inference_ms, 0.5),
+                slot.dropped(), tracker.full_frame_searches(), stall.stalls());
+    if (second_worker)
+        std::printf("hkf-estimator: second model %s: %ld frames asked for, %ld measured, %ld skipped (it was busy); "
+                    "capture->publish ms p50 %.1f p99 %.1f; inference ms p50 %.1f\n",
+                    second->spec().name.c_str(), second_worker->asked(), second_worker->done(), second_worker->skipped(),
+                    percentile(counts.second_latency_ms, 0.5), percentile(counts.second_latency_ms, 0.99),
+                    percentile(second_worker->inference_ms(), 0.5));
+    if (!capture_hung && source.skipped_images() > 0)
+        std::printf("hkf-estimator: %ld images of the folder could not be read; skipped\n", source.skipped_images());
+    if (video.resized() > 0)
+        std::printf("hkf-estimator: %ld frames of another size than the first were scaled to it in %s\n", video.resized(),
+                    options.annotate_path.c_str());
+    if (counts.publish_failures > 0)
+        std::printf("hkf-estimator: %ld measurements could not be published on %s\n", counts.publish_failures,
+                    options.channel.c_str());
+}
+
+// 0; 1 for no frame, a failure or a publish that failed; kExitSourceEnded for a camera or
+// stream that ended by itself; kExitDamagedFile for a file that ended well short of its
+// frame count (the decoder gave up on damage; the count can be approximate, hence the margin).
+int exit_status(const RunCounts &counts, bool failed, const FrameSource &source, const PipelineOptions &options)
+{
+    int status = counts.frames > 0 ? 0 : 1;
+    if (failed || counts.publish_failures > 0) status = 1;
+    if (!failed && !stop_requested && source.live()) {
+        std::fprintf(stderr, "hkf-estimator: %s stopped delivering frames (unplugged?) after %ld frames\n",
+                     source.description().c_str(), counts.frames);
+        status = kExitSourceEnded;
+    }
+    const int64_t expected = source.expected_frames(), read = source.frames_read();
+    if (!failed && !stop_requested && !source.live() && options.max_frames == 0 && expected > 0 &&
+        read < expected - std::max<int64_t>(5, expected / 50)) {
+        std::fprintf(stderr, "hkf-estimator: %s ended after %lld of its %lld frames: the rest could not be decoded "
+                     "(a damaged file?)\n", source.description().c_str(), static_cast<long long>(read),
+                     static_cast<long long>(expected));
+        status = kExitDamagedFile;
+    }
+    return status;
+}
+
 }  // namespace
 
 int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const PipelineOptions &options,
@@ -146,8 +379,7 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
     if (!options.annotate_path.empty() || options.show)
         lcm_subscribe(lcm.getUnderlyingLCM(), options.filtered_channel.c_str(), on_filtered_pose, &filtered);
     FaceTracker tracker(detectors, options.tracker);
-    cv::VideoWriter writer;
-    cv::Size writer_size;
+    AnnotatedVideo video(options.annotate_path);
     bool show = options.show;
     if (show && std::getenv("DISPLAY") == nullptr) {
         std::fprintf(stderr, "hkf-estimator: --show needs a display (DISPLAY is not set); no window\n");
@@ -156,92 +388,30 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     std::signal(SIGHUP, on_signal);  // the terminal closed: stop with the summary and a whole --annotate video
-
-    // OpenCV DNN's first forward pass of a network costs several of the next: spent
-    // here, before capture starts, not on the first frames of a camera
-    const cv::Mat blank(480, 640, CV_8UC3, cv::Scalar(128, 128, 128));
-    detectors.search->detect(blank);
-    if (detectors.region != detectors.search) detectors.region->detect(blank);
+    warm_up(detectors);
 
     const bool drop_old = source.live() || options.realtime;
     LatestFrame slot;
-    std::atomic<bool> capture_failed{false}, capture_done{false};
-    std::string capture_error;
-    std::thread capture([&] {
-        try {
-            const int64_t start = wall_utime();
-            for (long n = 0; !stop_requested && (options.max_frames == 0 || n < options.max_frames); ++n) {
-                Frame frame;
-                if (!source.read(frame)) break;
-                if (options.realtime && !source.live()) {  // pace a file at its frame rate
-                    const int64_t due = start + static_cast<int64_t>(1e6 * static_cast<double>(frame.index) / source.fps());
-                    std::this_thread::sleep_for(std::chrono::microseconds(std::max<int64_t>(0, due - wall_utime())));
-                    frame.utime = wall_utime();
-                }
-                slot.put(std::move(frame), drop_old);
-            }
-        } catch (const std::exception &e) {  // EstimatorError, or OpenCV's own on a broken source
-            capture_error = e.what();
-            capture_failed = true;
-        }
-        slot.close();
-        capture_done = true;
-    });
-
+    Capture capture(source, slot, options, drop_old);
     std::fprintf(stderr, "hkf-estimator: %s -> %s on %s (model %s)\n", source.description().c_str(), options.channel.c_str(),
                  options.lcm_url.c_str(), model.spec().name.c_str());
-    // LCM is published to from this thread and the second model's; one at a time
-    std::mutex lcm_mutex;
-    long publish_failures = 0;  // under lcm_mutex
-    std::vector<double> second_latency_ms;  // capture -> publish of the second model's measurements
-    std::unique_ptr<SecondModelWorker> second_worker;
-    if (second != nullptr) {
-        std::fprintf(stderr, "hkf-estimator: second model %s where %s finds no pose or |yaw| >= %.0f deg\n",
-                     second->spec().name.c_str(), model.spec().name.c_str(), static_cast<double>(options.second_from_yaw));
-        second_worker = std::make_unique<SecondModelWorker>(*second, [&](const SecondModelResult &r) {
-            std::optional<Face> face;
-            if (r.pose) face = r.job.face;
-            const hkf::head_pose_measurement_t m = measurement_message(r.job.utime, r.job.seq, second->spec().name, face,
-                                                                       r.pose.value_or(HeadPose{}), r.inference_ms);
-            std::lock_guard<std::mutex> lock(lcm_mutex);
-            if (lcm.publish(options.channel, &m) != 0) ++publish_failures;
-            second_latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? r.job.utime : r.job.taken_utime)) /
-                                        1000.0);
-        });
-    }
-    long frames = 0, with_face = 0;
-    std::vector<double> latency_ms, inference_ms;
+    std::mutex lcm_mutex;  // LCM is published to from this thread and the second model's; one at a time
+    RunCounts counts;      // publish_failures and second_latency_ms under lcm_mutex
+    std::unique_ptr<SecondModelWorker> second_worker = start_second_model(second, model, options, source, lcm, lcm_mutex, counts);
     const auto started = std::chrono::steady_clock::now();
+    StallWatch stall;
     int64_t seq = 0;
-    // A source that stops delivering frames (a camera unplugged or hung, a
-    // stream stalled) is reported after kStallWarning; the loop keeps waiting
-    // for it and still stops promptly on SIGINT / SIGTERM.
-    constexpr auto kStallWarning = std::chrono::seconds(2);
-    auto last_frame_time = std::chrono::steady_clock::now();
-    bool stalled = false;
-    long stalls = 0, resized = 0;
     std::string loop_error;  // what stopped the frame loop, if anything did
     try {
         for (;;) {
             bool ended = false;
             auto frame = slot.take(std::chrono::milliseconds(100), ended);
             if (ended || stop_requested) break;
-            const auto now = std::chrono::steady_clock::now();
             if (!frame) {
-                if (!stalled && now - last_frame_time >= kStallWarning) {
-                    stalled = true;
-                    ++stalls;
-                    std::fprintf(stderr, "hkf-estimator: no frame from %s for %.1f s (camera unplugged or stalled?); waiting\n",
-                                 source.description().c_str(), std::chrono::duration<double>(now - last_frame_time).count());
-                }
+                stall.no_frame(source);
                 continue;
             }
-            if (stalled) {
-                std::fprintf(stderr, "hkf-estimator: frames again after %.1f s\n",
-                             std::chrono::duration<double>(now - last_frame_time).count());
-                stalled = false;
-            }
-            last_frame_time = now;
+            stall.frame();
             const int64_t taken = wall_utime();
             const auto t0 = std::chrono::steady_clock::now();
             std::optional<Face> face = tracker.track(frame->image, frame->utime);
@@ -255,7 +425,7 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
                 measurement_message(frame->utime, seq++, model.spec().name, face, pose, inference);
             {
                 std::lock_guard<std::mutex> lock(lcm_mutex);
-                if (lcm.publish(options.channel, &m) != 0 && publish_failures++ == 0)
+                if (lcm.publish(options.channel, &m) != 0 && counts.publish_failures++ == 0)
                     std::fprintf(stderr, "hkf-estimator: publishing on %s failed (counted)\n", options.channel.c_str());
             }
             if (second_worker && tracked && (!estimate || std::fabs(estimate->yaw) >= options.second_from_yaw)) {
@@ -263,60 +433,25 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
                 second_worker->submit(SecondModelJob{frame->image, *tracked, m.utime, m.seq, taken}, drop_old);
             }
             // from the frame being available (a camera's capture) to its publish
-            latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0);
-            inference_ms.push_back(inference);
-            ++frames;
-            with_face += face.has_value();
+            counts.latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0);
+            counts.inference_ms.push_back(inference);
+            ++counts.frames;
+            counts.with_face += face.has_value();
 
             if (!options.annotate_path.empty() || show) {
                 {
                     std::lock_guard<std::mutex> lock(lcm_mutex);
                     lcm.handleTimeout(0);  // filtered poses that have arrived
                 }
-                cv::Mat image = frame->image.clone();
-                if (face) {
-                    draw_face(image, *face);
-                    const cv::Point2f c(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2);
-                    draw_pose_axes(image, pose, c, 0.8f * face->box.width, 2);
-                    char text[96];
-                    std::snprintf(text, sizeof text, "raw p %.1f y %.1f r %.1f", pose.pitch, pose.yaw, pose.roll);
-                    cv::putText(image, text, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
-                    if (pose.has_position) {
-                        std::snprintf(text, sizeof text, "head x %.1f y %.1f z %.1f cm", pose.position.x, pose.position.y,
-                                      pose.position.z);
-                        cv::putText(image, text, {10, 75}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
-                    }
-                    std::lock_guard<std::mutex> lock(filtered.mutex);
-                    if (filtered.have) {
-                        draw_pose_axes(image, filtered.pose, c, 0.8f * face->box.width, 5);
-                        std::snprintf(text, sizeof text, "filtered p %.1f y %.1f r %.1f", filtered.pose.pitch, filtered.pose.yaw,
-                                      filtered.pose.roll);
-                        cv::putText(image, text, {10, 50}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2);
-                    }
-                } else {
-                    cv::putText(image, "no face", {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 255), 2);
-                }
-                if (!options.annotate_path.empty()) {
-                    if (!writer.isOpened()) {
-                        writer_size = image.size();
-                        if (!writer.open(options.annotate_path, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), source.fps(), writer_size))
-                            throw EstimatorError("cannot write the video " + options.annotate_path);
-                    }
-                    if (image.size() != writer_size) {  // a source that changes size: the video keeps its first size
-                        cv::Mat scaled;
-                        cv::resize(image, scaled, writer_size, 0, 0, cv::INTER_AREA);
-                        image = scaled;
-                        ++resized;
-                    }
-                    writer.write(image);
-                }
+                const cv::Mat image = annotated_frame(frame->image, face, pose, filtered);
+                if (!options.annotate_path.empty()) video.write(image, source.fps());
                 if (show) {
                     cv::imshow("hkf-estimator", image);
                     if (cv::waitKey(1) == 27) stop_requested = true;
                 }
             }
-            if (frames % 100 == 0)
-                std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", frames, with_face);
+            if (counts.frames % 100 == 0)
+                std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", counts.frames, counts.with_face);
             if (second_worker && !second_worker->error().empty()) throw EstimatorError(second_worker->error());
         }
     } catch (const std::exception &e) {  // the capture thread is stopped and the video closed below, as always
@@ -325,57 +460,16 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
     }
     if (second_worker) second_worker->stop();  // its frames in hand are measured and published
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    if (writer.isOpened()) writer.release();  // the annotated video is whole, however the run ends
-    // A capture thread blocked inside the source (a hung camera or stream) cannot
-    // be interrupted: give it a moment, then leave without it (see below).
-    slot.close();  // a capture waiting to hand over a frame gives up
-    const auto stop_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-    while (!capture_done && std::chrono::steady_clock::now() < stop_deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    const bool capture_hung = !capture_done;
-    if (!capture_hung) capture.join();
-    if (capture_failed) std::fprintf(stderr, "hkf-estimator: %s\n", capture_error.c_str());
+    video.close();  // the annotated video is whole, however the run ends
+    const bool capture_hung = !capture.stop();
+    if (capture.failed()) std::fprintf(stderr, "hkf-estimator: %s\n", capture.error().c_str());
     if (!loop_error.empty()) std::fprintf(stderr, "hkf-estimator: stopped: %s\n", loop_error.c_str());
-    std::printf("hkf-estimator: %ld frames, %ld with a face, %.1f fps; capture->publish ms p50 %.1f p99 %.1f; "
-                "inference ms p50 %.1f; %ld dropped; %ld full-frame face searches; %ld stalls of the source\n",
-                frames, with_face, seconds > 0 ? static_cast<double>(frames) / seconds : 0.0, percentile(latency_ms, 0.5),
-                percentile(latency_ms, 0.99), percentile(inference_ms, 0.5), slot.dropped(), tracker.full_frame_searches(),
-                stalls);
-    if (second_worker)
-        std::printf("hkf-estimator: second model %s: %ld frames asked for, %ld measured, %ld skipped (it was busy); "
-                    "capture->publish ms p50 %.1f p99 %.1f; inference ms p50 %.1f\n",
-                    second->spec().name.c_str(), second_worker->asked(), second_worker->done(), second_worker->skipped(),
-                    percentile(second_latency_ms, 0.5), percentile(second_latency_ms, 0.99),
-                    percentile(second_worker->inference_ms(), 0.5));
-    if (!capture_hung && source.skipped_images() > 0)
-        std::printf("hkf-estimator: %ld images of the folder could not be read; skipped\n", source.skipped_images());
-    if (resized > 0)
-        std::printf("hkf-estimator: %ld frames of another size than the first were scaled to it in %s\n", resized,
-                    options.annotate_path.c_str());
     {
         std::lock_guard<std::mutex> lock(lcm_mutex);
-        if (publish_failures > 0)
-            std::printf("hkf-estimator: %ld measurements could not be published on %s\n", publish_failures,
-                        options.channel.c_str());
+        print_summary(counts, seconds, slot, tracker, stall, second_worker.get(), second, source, capture_hung, video,
+                      options);
     }
-    int status = frames > 0 ? 0 : 1;
-    const bool failed = capture_failed || !loop_error.empty();
-    if (failed || publish_failures > 0) status = 1;
-    if (!failed && !stop_requested && source.live()) {  // a camera or stream that ends by itself has failed
-        std::fprintf(stderr, "hkf-estimator: %s stopped delivering frames (unplugged?) after %ld frames\n",
-                     source.description().c_str(), frames);
-        status = kExitSourceEnded;
-    }
-    // a file that ends well short of its container's frame count: the decoder
-    // gave up on damage (the count can be approximate, hence the margin)
-    const int64_t expected = source.expected_frames(), read = source.frames_read();
-    if (!failed && !stop_requested && !source.live() && options.max_frames == 0 && expected > 0 &&
-        read < expected - std::max<int64_t>(5, expected / 50)) {
-        std::fprintf(stderr, "hkf-estimator: %s ended after %lld of its %lld frames: the rest could not be decoded "
-                     "(a damaged file?)\n", source.description().c_str(), static_cast<long long>(read),
-                     static_cast<long long>(expected));
-        status = kExitDamagedFile;
-    }
+    const int status = exit_status(counts, capture.failed() || !loop_error.empty(), source, options);
     if (capture_hung) {
         std::fprintf(stderr, "hkf-estimator: %s is not responding; leaving it\n", source.description().c_str());
         std::fflush(stdout);
