@@ -17,7 +17,10 @@ check() { # check NAME COMMAND...: --version prints "NAME VERSION" and --help a 
   shift
   out=$("$@" --version) || fail "$name --version: exit $?"
   [[ "$out" == "$name $version"* ]] || fail "$name --version printed '$out', not '$name $version'"
-  "$@" --help | grep -qi "usage" || fail "$name --help printed no usage"
+  help=$("$@" --help) || fail "$name --help: exit $?"
+  # not `--help | grep -q` under pipefail: grep leaves at the first match and the program's later
+  # lines meet a closed pipe (SIGPIPE, a failure that depends on timing)
+  grep -qi "usage" <<<"$help" || fail "$name --help printed no usage"
   echo "$out"
 }
 for p in "${programs[@]}"; do

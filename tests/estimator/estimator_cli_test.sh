@@ -71,5 +71,5 @@ expect_error "crop is live or labels" "$est" --dataset "$data" --predictions "$w
 expect_error "either --source SRC or --dataset DIR" "$est" --limit 3
 expect_error "detector is short, full or retina" "$est" --source x --detector medium
 expect_error "region wants" "$est" --source x --region 1,2,3
-"$est" --help | grep -q "usage: hkf-estimator" || fail "--help"
+grep -q "usage: hkf-estimator" <<<"$("$est" --help)" || fail "--help"
 echo "estimator_cli_test: all checks passed"

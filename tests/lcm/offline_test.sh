@@ -169,5 +169,5 @@ grep -q "missing.lcmlog" "$work/e.txt" || fail "error does not name the file"
 if "$filter" --set lc_xi=2 --print-config 2>"$work/e.txt"; then fail "lc_xi=2 accepted"; fi
 grep -q "lc_xi" "$work/e.txt" || fail "error does not name lc_xi"
 if "$filter" --rate -5 2>/dev/null; then fail "--rate -5 accepted"; fi
-"$filter" --help | grep -q "usage: hkf-filter" || fail "--help"
+grep -q "usage: hkf-filter" <<<"$("$filter" --help)" || fail "--help"
 echo "offline_test: all checks passed"

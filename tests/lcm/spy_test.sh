@@ -4,7 +4,7 @@
 # usage: spy_test.sh BUILD_DIR
 set -euo pipefail
 spy=$1/tools/hkf-spy
-"$spy" --help | grep -q "usage: hkf-spy"
+grep -q "usage: hkf-spy" <<<"$("$spy" --help)"
 cp=$("$spy" --print-class-path)
 echo "class path: $cp"
 IFS=: read -r -a jars <<<"$cp"
