@@ -46,7 +46,7 @@ if ! cmp -s "$root/tools/requirements.txt" "$stamp" 2>/dev/null; then
 fi
 
 # Third-party models, converted by our scripts into .models (shared by every build).
-"$root/tools/models/fetch_models.sh" "$root/.models"
+"$root/dev/models/fetch_models.sh" "$root/.models"
 # CMSIS-DSP's sources from PyPI, for the Cortex-M4F cost comparison (tests/mcu).
-"$root/tools/mcu/fetch_cmsis_dsp.sh" "$root/.third_party/cmsis-dsp"
+"$root/dev/mcu/fetch_cmsis_dsp.sh" "$root/.third_party/cmsis-dsp"
 echo "setup: all dependencies present"

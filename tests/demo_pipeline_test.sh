@@ -10,7 +10,7 @@ trap 'rm -rf "$out"' EXIT
 frames=$(sed -n 's/^hkf-estimator: \([0-9]*\) frames, \([0-9]*\) with a face.*/\2/p' "$out/log.txt")
 rows=$(($(wc -l <"$out/filtered.csv") - 1))
 [ "$frames" -gt 50 ] && [ "$rows" -ge "$frames" ] || { echo "FAIL: $rows filtered poses for $frames frames with a face" >&2; exit 1; }
-# the default estimator's own Eq. 8 curves are built in (tools/fit): no measurement falls back to FSA-Net's
+# the default estimator's own Eq. 8 curves are built in (dev/fit): no measurement falls back to FSA-Net's
 grep -q " 0 with an unknown model" "$out/log.txt" || { echo "FAIL: measurements with an unknown model" >&2; exit 1; }
 for f in poses.png annotated.mp4; do [ -s "$out/$f" ] || { echo "FAIL: no $f" >&2; exit 1; }; done
 file "$out/poses.png" | grep -q "PNG image" || { echo "FAIL: poses.png is not a PNG" >&2; exit 1; }

@@ -8,8 +8,8 @@ version=$(head -n 1 "$source/VERSION")
 fail() { echo "FAIL: $*" >&2; exit 1; }
 programs=(tools/hkf-filter tools/hkf-opentrack tools/hkf-cmd tools/hkf-demo tools/hkf-simlog tools/hkf-spy
           estimator/hkf-estimator estimator/hkf-annotate)
-for p in tools/benchmarks/hkf-soak tools/benchmarks/hkf-bench-latency tools/benchmarks/hkf-bench-update \
-         tools/benchmarks/hkf-bench-estimator; do
+for p in dev/benchmarks/hkf-soak dev/benchmarks/hkf-bench-latency dev/benchmarks/hkf-bench-update \
+         dev/benchmarks/hkf-bench-estimator; do
   [ -x "$build/$p" ] && programs+=("$p")  # the benchmarks, where built
 done
 check() { # check NAME COMMAND...: --version prints "NAME VERSION" and --help a usage, both exit 0

@@ -19,7 +19,7 @@ constexpr float kNmsIou = 0.3f;  // MediaPipe's min_suppression_threshold
 // RetinaFace (biubug6/Pytorch_Retinaface's MobileNet-0.25 configuration): anchors of
 // strides 8, 16, 32 with two square sizes each, centred on each cell; box offsets scaled
 // by the variances 0.1 (centre) and 0.2 (log size); BGR input less the mean 104, 117, 123.
-constexpr int kRetinaInput = 640;  // retinaface_640.onnx (tools/models/convert_retinaface.py)
+constexpr int kRetinaInput = 640;  // retinaface_640.onnx (dev/models/convert_retinaface.py)
 constexpr float kRetinaCentreVariance = 0.1f, kRetinaSizeVariance = 0.2f, kRetinaNmsIou = 0.4f;
 
 std::vector<cv::Vec3f> retina_anchors(int input)

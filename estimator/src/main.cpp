@@ -255,7 +255,7 @@ int parse(int argc, char **argv, Options &o)
     if (!o.second_model_given && o.dataset.empty() && o.model != kDefaultSecondModel) o.second_model = kDefaultSecondModel;
     if (!o.dataset.empty() && !o.second_model.empty()) {
         std::cerr << "hkf-estimator: --second-model is for --source; on a dataset run each model and fuse their "
-                     "predictions with tools/eval/fusion_on_aflw.py (see --help)\n";
+                     "predictions with dev/eval/fusion_on_aflw.py (see --help)\n";
         return 2;
     }
     if (!o.second_model.empty() && o.second_model == o.model) {

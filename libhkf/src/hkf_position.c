@@ -16,7 +16,7 @@ void hkf_position_default_settings(hkf_position_settings_t *s)
     if (s == NULL) {
         return;
     }
-    /* chosen on truth by construction (tools/eval/position_truth.py, docs/estimator.md "Head position"): the
+    /* chosen on truth by construction (dev/eval/position_truth.py, docs/estimator.md "Head position"): the
      * least moving z error whose still z jitter is <= 0.025 cm a frame at 60 cm (the goal, 0.05, with a
      * margin for noisier cameras), on d0 d3 d9 d11 d14;
      * the detector's constants are the angles' (hkf_default_settings) */

@@ -52,7 +52,7 @@ const hkf_noise_curve_t hkf_noise_hopenet[3] = {
  * 100 per s, q_boost_time 0.2 s, motion_threshold 128, still_threshold 64)
  * and rate damping 0.1 s; noise_time 0.3 s, noise_rise 0.2 per s; loop
  * closure off. Chosen on the five real clips that give both a still jitter
- * and a lag, and checked leaving each out in turn (tools/eval/leave_one_out.py,
+ * and a lag, and checked leaving each out in turn (dev/eval/leave_one_out.py,
  * `./run eval`; docs/evaluation.md "Noise calibration, one clip left out"), and on exact
  * truth (docs/evaluation.md "Truth by construction"). */
 const hkf_settings_t hkf_default_settings = {

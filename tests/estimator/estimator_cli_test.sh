@@ -35,10 +35,10 @@ found=$(sed -n 's/^labelled |yaw| .* images, *\([0-9]*\) faces found.*/\1/p' "$w
 evaluated=$(sed -n 's/.* \([0-9]*\) within +-99 deg$/\1/p' "$work/mesh.txt")
 [ "$found" = "$evaluated" ] || fail "the yaw bins hold $found faces, $evaluated were evaluated"
 
-# both models' predictions fused as hkf_update_pair fuses them (tools/eval/fusion_on_aflw.py): every face
+# both models' predictions fused as hkf_update_pair fuses them (dev/eval/fusion_on_aflw.py): every face
 # either model found is estimated, and the fused error lies between the two models' (per image it is a
 # weighted mean of theirs, so far below the worse one)
-"$source/.venv/bin/python" "$source/tools/eval/fusion_on_aflw.py" --labels "$data/labels.csv" --limit 150 --mesh "$work/m.csv" \
+"$source/.venv/bin/python" "$source/dev/eval/fusion_on_aflw.py" --labels "$data/labels.csv" --limit 150 --mesh "$work/m.csv" \
   --whenet "$work/p.csv" --filter "$build/tools/hkf-filter" | tee "$work/fusion.txt"
 "$source/.venv/bin/python" - "$work/fusion.txt" <<'PY' || fail "fusion_on_aflw.py"
 import re, sys

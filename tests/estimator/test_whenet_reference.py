@@ -18,7 +18,7 @@ import onnxruntime
 from PIL import Image
 
 build, source, data, models = sys.argv[1:5]
-sys.path.insert(0, os.path.join(source, "tools", "models"))
+sys.path.insert(0, os.path.join(source, "dev", "models"))
 import whenet_reference as ref  # noqa: E402
 
 MEAN = np.array([0.485, 0.456, 0.406], np.float32)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/eval/evaluate.py end to end on one real clip through mesh_pnp: every
+# dev/eval/evaluate.py end to end on one real clip through mesh_pnp: every
 # filter's sweep runs, the tables and the plot are written, and each filter's
 # jitter-lag curve behaves as a smoother should (more smoothing: less jitter,
 # more lag) on real head motion.
@@ -8,7 +8,7 @@ set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)
 out=$build/eval_test
 rm -rf "$out"
-"$source/.venv/bin/python" "$source/tools/eval/evaluate.py" --build "$build" --out "$out" --estimators mesh_pnp \
+"$source/.venv/bin/python" "$source/dev/eval/evaluate.py" --build "$build" --out "$out" --estimators mesh_pnp \
   --clips 1 | tee "$out.log"
 for f in sweep.csv curves.csv equal_jitter.md jitter_lag.png; do
   [ -s "$out/$f" ] || { echo "FAIL: no $out/$f" >&2; exit 1; }

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""The evaluation's metrics (tools/eval/metrics.py) and peer filters
-(tools/eval/peer_filters.py) on signals whose answers are known: a pure delay
+"""The evaluation's metrics (dev/eval/metrics.py) and peer filters
+(dev/eval/peer_filters.py) on signals whose answers are known: a pure delay
 gives that lag, white noise of known sigma the expected jitter, a constant
 offset at the centre that offset, and each peer filter its defining response.
 usage: test_metrics.py (exit 0 when every check holds)"""
@@ -10,7 +10,7 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "eval"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "dev", "eval"))
 import metrics  # noqa: E402
 import peer_filters  # noqa: E402
 

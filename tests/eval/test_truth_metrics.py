@@ -1,4 +1,4 @@
-"""The truth metrics (tools/eval/truth_metrics.py) on filters with a known
+"""The truth metrics (dev/eval/truth_metrics.py) on filters with a known
 response to a step of known size, and the truth trajectories' promises."""
 import math
 import os
@@ -7,7 +7,7 @@ import unittest
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "eval"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "dev", "eval"))
 import truth_metrics  # noqa: E402
 import truth_motion  # noqa: E402
 

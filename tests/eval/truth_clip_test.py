@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A truth clip made as tools/eval/truth_eval.py makes them, through the real
+"""A truth clip made as dev/eval/truth_eval.py makes them, through the real
 estimator: one real frame of ../shared/data/videos/d10.mp4 turned along a
 short driver trajectory with fresh noise and JPEG per frame. The construction
 holds when the estimator's angles follow the truth computed for the turn
@@ -15,7 +15,7 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "eval"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "dev", "eval"))
 import truth_clips  # noqa: E402
 import truth_eval  # noqa: E402
 import truth_motion  # noqa: E402

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Table I procedure (tools/fit) on real data: hkf-estimator --dataset on the
+# The Table I procedure (dev/fit) on real data: hkf-estimator --dataset on the
 # shared AFLW2000 split, then fit_noise_curves.py. The fit must be plausible
 # (error lowest near 0 deg, rising toward +-90 deg, small residual) and, for
 # the default estimator, reproduce the curves built into hkf-filter.
@@ -15,7 +15,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 fit() {
   "$build/estimator/hkf-estimator" --dataset "$data" --crop labels --model "$1" ${2:+--limit "$2"} --predictions "$work/$1.csv" \
     >"$work/$1_eval.txt" 2>&1 || { cat "$work/$1_eval.txt" >&2; fail "hkf-estimator --dataset --model $1"; }
-  "$python" "$source/tools/fit/fit_noise_curves.py" --labels "$data/labels.csv" --predictions "$work/$1.csv" \
+  "$python" "$source/dev/fit/fit_noise_curves.py" --labels "$data/labels.csv" --predictions "$work/$1.csv" \
     --model "$1" --png "$work/$1.png" >"$work/$1_fit.txt" || fail "fit_noise_curves.py for $1"
   cat "$work/$1_fit.txt"
   file "$work/$1.png" | grep -q "PNG image" || fail "no PNG for $1"

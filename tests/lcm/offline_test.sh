@@ -24,7 +24,7 @@ without=$(sed -n 's/.*(\([0-9]*\) without a face).*/\1/p' "$work/a.txt")
 grep -q "the estimator fell silent 1 times" "$work/a.txt" || fail "the end of the log is not reported as a silence"
 rows=$(($(wc -l <"$work/a.csv") - 1))
 [ "$rows" -eq "$published" ] || fail "CSV has $rows rows, $published poses published"
-"$python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/a.lcmlog" "$work/b.lcmlog"
+"$python" "$source/dev/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/a.lcmlog" "$work/b.lcmlog"
 if grep -qi nan "$work/a.csv"; then fail "NaN in the CSV"; fi
 
 # --rate: extrapolated poses in between, in log time
@@ -73,7 +73,7 @@ cat "$work/f.txt"
 grep -q "1 clock jumps (0 followed)" "$work/f.txt" || fail "the INT64_MAX stamp was not rejected as a clock jump"
 grep -q "0 out of order" "$work/f.txt" || fail "good messages after the bad stamp were rejected"
 "$filter" --offline "$work/future.lcmlog.without" "$work/w.lcmlog" 2>/dev/null
-"$python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/w.lcmlog" "$work/f.lcmlog" \
+"$python" "$source/dev/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/w.lcmlog" "$work/f.lcmlog" \
   || fail "the poses around the bad stamp differ from those of the log without it"
 
 # two estimators on one channel (another drive, its own frame counter, 5 ms later): the node
@@ -92,7 +92,7 @@ PY
 "$filter" --offline "$work/two.lcmlog" "$work/two_out.lcmlog" 2>"$work/two.txt" || fail "exit status with two publishers"
 cat "$work/two.txt"
 grep -q "900 from another publisher" "$work/two.txt" || fail "the second publisher's 900 messages were not all rejected"
-"$python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/a.lcmlog" "$work/two_out.lcmlog" \
+"$python" "$source/dev/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" "$work/a.lcmlog" "$work/two_out.lcmlog" \
   || fail "two publishers: the output is not the first publisher's alone"
 
 # a log cut off mid-event (a power loss): the whole events are filtered, the cut is reported

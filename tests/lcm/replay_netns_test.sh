@@ -48,7 +48,7 @@ wait "$logger_pid" || true
 cat "$work/offline.txt"
 grep -q "300 measurements" "$work/live.txt" || fail "the live filter did not receive all 300 measurements"
 
-"$source/.venv/bin/python" "$source/tools/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" \
+"$source/.venv/bin/python" "$source/dev/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" \
   "$work/expected.lcmlog" "$work/recorded.lcmlog" || fail "recorded HEAD_POSE differs from the offline output"
 "$source/tests/lcm/java_decode_test.sh" "$build" "$source" "$work/recorded.lcmlog" || fail "Java decode"
 

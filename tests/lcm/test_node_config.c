@@ -85,7 +85,7 @@ static void test_shipped_file_equals_defaults(void **state)
     assert_int_equal(from_file.model_count, 4);
     assert_string_equal(from_file.models[1].name, "hopenet");
     assert_memory_equal(from_file.models[1].noise, hkf_noise_hopenet, sizeof from_file.models[1].noise);
-    /* our estimators' fitted curves (tools/fit): the file and the built-in table agree */
+    /* our estimators' fitted curves (dev/fit): the file and the built-in table agree */
     assert_string_equal(from_file.models[2].name, "mesh_pnp");
     assert_memory_equal(from_file.models[2].noise, model_curves_mesh_pnp, sizeof from_file.models[2].noise);
     assert_string_equal(from_file.models[3].name, "whenet");

@@ -141,7 +141,7 @@ static void predict(cmsis_filter_t *f, float dt)
 }
 
 /* one measurement: returns 0, or 1 when arm_mat_inverse_f32 finds S singular
- * (not inlined, so that tools/benchmarks/cortex_m4_cycles.py finds it) */
+ * (not inlined, so that dev/benchmarks/cortex_m4_cycles.py finds it) */
 __attribute__((noinline)) static int cmsis_filter_update(cmsis_filter_t *f, const float z[M], float dt)
 {
     float zc[M], d[M];

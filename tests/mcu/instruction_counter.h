@@ -3,7 +3,7 @@
  * Cortex-M target under qemu -icount, where every instruction advances the
  * clock by the same time: SysTick counts the clock, and a loop of known
  * length calibrates ticks per instruction. (Not cycles: qemu models no
- * pipeline; tools/benchmarks/cortex_m4_cycles.py estimates those.)
+ * pipeline; dev/benchmarks/cortex_m4_cycles.py estimates those.)
  */
 #ifndef HKF_INSTRUCTION_COUNTER_H
 #define HKF_INSTRUCTION_COUNTER_H

@@ -6,7 +6,7 @@
 # the double build's. Exit 77 (skipped) without the toolchain or qemu.
 # REAL cmsis_dsp runs, instead of libhkf, the same filter written with
 # CMSIS-DSP's matrix functions (cmsis_dsp_filter.c; float, Cortex-M4F) against
-# the same double build; it needs tools/mcu/fetch_cmsis_dsp.sh's sources.
+# the same double build; it needs dev/mcu/fetch_cmsis_dsp.sh's sources.
 # TOLERANCE_DEG: with the paper's settings; DEFAULTS_TOLERANCE_DEG: with the defaults.
 # usage: run_target_test.sh BUILD_DIR SOURCE_DIR CPU REAL TOLERANCE_DEG DEFAULTS_TOLERANCE_DEG
 set -euo pipefail
@@ -18,7 +18,7 @@ program=hkf_target_test extra=()
 if [ "$real" = cmsis_dsp ]; then
   cmsis=$source/.third_party/cmsis-dsp
   [ -s "$cmsis/Include/arm_math.h" ] \
-    || { echo "SKIP: no CMSIS-DSP sources in $cmsis (tools/mcu/fetch_cmsis_dsp.sh, run by scripts/setup.sh)"; exit 77; }
+    || { echo "SKIP: no CMSIS-DSP sources in $cmsis (dev/mcu/fetch_cmsis_dsp.sh, run by scripts/setup.sh)"; exit 77; }
   program=hkf_cmsis_dsp_test extra=(-DHKF_CMSIS_DSP_DIR="$cmsis")
 fi
 clip=$source/../shared/data/videos/d10.mp4

@@ -73,7 +73,7 @@ static void write_micro_degrees(const char *name, error_t e)
 }
 
 /* The sequence with settings set k (0: the paper's, 1: the defaults); returns the failures.
- * Not inlined: tools/benchmarks/cortex_m4_cycles.py looks for hkf_update's calls from here. */
+ * Not inlined: dev/benchmarks/cortex_m4_cycles.py looks for hkf_update's calls from here. */
 __attribute__((noinline)) static int run_sequence(int k, const char *name, const hkf_settings_t *settings)
 {
     static hkf_filter_t filter; /* static: the stack holds only the call frames */

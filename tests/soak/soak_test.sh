@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The short soak: 30 s of the simulated drive at 1 kHz through a live
-# hkf-filter (tools/benchmarks/soak.sh; the benchmark job runs an hour).
+# hkf-filter (dev/benchmarks/soak.sh; the benchmark job runs an hour).
 # Every measured pose answered, none non-finite, the node's memory flat after
 # its first 10 s, and the node stops cleanly with its summary.
 # usage: soak_test.sh BUILD_DIR SOURCE_DIR   (exit 77: no network namespace here)
@@ -11,7 +11,7 @@ trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 status=0
-"$source/tools/benchmarks/soak.sh" "$build" 30 5 >"$work/soak.txt" 2>&1 || status=$?
+"$source/dev/benchmarks/soak.sh" "$build" 30 5 >"$work/soak.txt" 2>&1 || status=$?
 cat "$work/soak.txt"
 [ "$status" = 77 ] && exit 77
 [ "$status" = 0 ] || fail "soak.sh exit $status"

@@ -17,6 +17,6 @@ echo "== $video -> hkf-estimator -> hkf-filter"
   2> >(grep -v "frames, .* with a face$" >&2)
 "$build/tools/hkf-filter" --offline "$out/raw.lcmlog" "$out/filtered.lcmlog" --csv "$out/filtered.csv"
 "$build/estimator/hkf-annotate" "$video" "$out/raw.lcmlog" "$out/filtered.lcmlog" "$out/annotated.mp4"
-"$root/.venv/bin/python" "$root/tools/plots/plot_poses.py" "$out/raw.lcmlog" "$out/filtered.csv" "$out/poses.png" \
+"$root/.venv/bin/python" "$root/dev/plots/plot_poses.py" "$out/raw.lcmlog" "$out/filtered.csv" "$out/poses.png" \
   --types "$build/lcmtypes/python" --title "$(basename "$video"): raw head pose and hkf's adaptive Kalman filter"
 echo "results in $out: annotated.mp4 (face, raw and filtered pose axes and traces), poses.png (raw vs filtered), raw.lcmlog, filtered.lcmlog, filtered.csv"

@@ -1,7 +1,7 @@
 /*
  * model_curves.c - see model_curves.h. Reproduce with:
  *   build/estimator/hkf-estimator --dataset ../shared/data/aflw2000 --model NAME --predictions p.csv
- *   .venv/bin/python tools/fit/fit_noise_curves.py --labels ../shared/data/aflw2000/labels.csv \
+ *   .venv/bin/python dev/fit/fit_noise_curves.py --labels ../shared/data/aflw2000/labels.csv \
  *       --predictions p.csv --model NAME --png NAME.png
  * (tests/fit/fit_test.sh does, and checks these numbers.) lambda = 1e4 marks an
  * axis whose error grows quadratically over the whole range: only

@@ -1,6 +1,6 @@
 /*
  * model_curves.h - Eq. 8 curves (tau lambda mu sigma, deg) of the estimators
- * hkf ships, fitted as the paper's Table I was: tools/fit/fit_noise_curves.py
+ * hkf ships, fitted as the paper's Table I was: dev/fit/fit_noise_curves.py
  * on hkf-estimator --dataset's predictions for ../shared/data/aflw2000 (the
  * 1,500-image dev split). hkf-filter knows them as built-in models, beside
  * libhkf's FSA-Net and Hopenet presets.

@@ -100,7 +100,7 @@ void node_config_defaults(node_config_t *config)
     hkf_position_default_settings(&config->position);
     add_builtin_model(config, "fsanet", hkf_noise_fsanet);
     add_builtin_model(config, "hopenet", hkf_noise_hopenet);
-    add_builtin_model(config, "mesh_pnp", model_curves_mesh_pnp); /* fitted by tools/fit */
+    add_builtin_model(config, "mesh_pnp", model_curves_mesh_pnp); /* fitted by dev/fit */
     add_builtin_model(config, "whenet", model_curves_whenet);
 }
 

@@ -78,7 +78,7 @@ typedef struct {
 } hkf_position_output_t;
 
 /* Defaults chosen on truth by construction with the estimator's mesh position
- * (tools/eval/position_truth.py; docs/estimator.md "Head position"). */
+ * (dev/eval/position_truth.py; docs/estimator.md "Head position"). */
 void hkf_position_default_settings(hkf_position_settings_t *s);
 
 /* Checks the settings (HKF_ERROR_SETTING_*) and clears the track. */

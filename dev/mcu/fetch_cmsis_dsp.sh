@@ -3,7 +3,7 @@
 # package's source distribution carries the C sources (Include/, Source/).
 # Unpacked into DIR (default .third_party/cmsis-dsp); nothing is committed.
 # Used only by the Cortex-M4F comparison test (tests/mcu/cmsis_dsp_filter.c).
-# Idempotent. usage: tools/mcu/fetch_cmsis_dsp.sh [DIR]
+# Idempotent. usage: dev/mcu/fetch_cmsis_dsp.sh [DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 dir=${1:-$root/.third_party/cmsis-dsp}

@@ -19,9 +19,9 @@ for crop in live labels; do
 done
 echo
 echo "## Per-stage cost"
-"$build/tools/benchmarks/hkf-bench-estimator" "$root/../shared/data/videos/d3.mp4" "$models" "$root/estimator/models" "$work/640x480_60fps.mp4"
+"$build/dev/benchmarks/hkf-bench-estimator" "$root/../shared/data/videos/d3.mp4" "$models" "$root/estimator/models" "$work/640x480_60fps.mp4"
 echo
-"$root/.venv/bin/python" "$root/tools/benchmarks/onnxruntime_speed.py" "$models"
+"$root/.venv/bin/python" "$root/dev/benchmarks/onnxruntime_speed.py" "$models"
 echo
 echo "## The whole process on 640x480 video paced at 60 fps (--realtime)"
 for model in whenet mesh_pnp; do
@@ -38,6 +38,6 @@ for from_yaw in 0 10; do
     --second-from-yaw "$from_yaw" --lcm-url memq:// 2>/dev/null
 done
 echo
-echo "## Re-acquire: the face leaves and comes back (tools/benchmarks/reacquire.py)"
-"$root/.venv/bin/python" "$root/tools/benchmarks/reacquire.py" "$build" "$root/../shared/data/videos/d3.mp4" \
+echo "## Re-acquire: the face leaves and comes back (dev/benchmarks/reacquire.py)"
+"$root/.venv/bin/python" "$root/dev/benchmarks/reacquire.py" "$build" "$root/../shared/data/videos/d3.mp4" \
   "$models/testdata/no_face.mp4" 3

@@ -33,11 +33,11 @@ def fail(message):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("build_dir", help="the CMake build folder (holds tools/benchmarks/hkf-bench-update)")
+    parser.add_argument("build_dir", help="the CMake build folder (holds dev/benchmarks/hkf-bench-update)")
     parser.add_argument("--steps", type=int, default=20000, help="filter steps per variant (default 20000)")
     args = parser.parse_args()
 
-    bench = os.path.join(args.build_dir, "tools", "benchmarks", "hkf-bench-update")
+    bench = os.path.join(args.build_dir, "dev", "benchmarks", "hkf-bench-update")
     if not os.access(bench, os.X_OK):
         fail(f"{bench} is not built (OpenCV and Eigen are needed: scripts/setup.sh)")
     for tool in ("valgrind", "callgrind_annotate"):

@@ -309,7 +309,7 @@ def plot(clips, names, loo_points, path):
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel("lag on moving frames, ms")
     axes[0][0].legend(fontsize=6)
-    fig.suptitle("Leave one clip out: lower left is better (./run eval: tools/eval/leave_one_out.py)", fontsize=9)
+    fig.suptitle("Leave one clip out: lower left is better (./run eval: dev/eval/leave_one_out.py)", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     log(path)

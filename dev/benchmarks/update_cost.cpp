@@ -1,6 +1,6 @@
 /*
  * hkf-bench-update - one filter step of the paper's filter done four ways,
- * for counting instructions under callgrind (tools/benchmarks/update_cost.py):
+ * for counting instructions under callgrind (dev/benchmarks/update_cost.py):
  *
  *   step_libhkf_paper     hkf_update, adaptive R (Eq. 8) + loop closure (Eq. 9)
  *   step_libhkf_constant  hkf_update, constant R, no loop closure
@@ -238,7 +238,7 @@ int main(int argc, char **argv)
         std::printf("usage: hkf-bench-update [STEPS]\n"
                     "Runs STEPS (default 20000) filter steps of a simulated drive through libhkf,\n"
                     "cv::KalmanFilter and an Eigen 6-state filter. Count instructions with\n"
-                    "tools/benchmarks/update_cost.py, which runs this under callgrind.\n");
+                    "dev/benchmarks/update_cost.py, which runs this under callgrind.\n");
         return 0;
     }
     long steps = 20000;

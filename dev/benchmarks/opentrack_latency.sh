@@ -7,7 +7,7 @@ build=$(cd "$1" && pwd)
 seconds=${2:-10}
 here=$(cd "$(dirname "$0")" && pwd)
 if [ "${HKF_IN_NETNS:-}" != 1 ]; then
-  HKF_IN_NETNS=1 exec "$here/../lcm-netns" "$0" "$@"
+  HKF_IN_NETNS=1 exec "$here/../../tools/lcm-netns" "$0" "$@"
 fi
 url="udpm://239.255.76.67:7667?ttl=0"
 log=$(mktemp)

@@ -9,7 +9,7 @@ source "$(dirname "$0")/live_filter.sh"
 start_live_filter "$build"
 echo "raw -> filtered latency through hkf-filter over LCM (udpm on loopback, $(nproc) cores), $seconds s per rate:"
 for rate in 30 1000; do
-  "$build/tools/benchmarks/hkf-bench-latency" --rate "$rate" --seconds "$seconds" --lcm-url "$url"
+  "$build/dev/benchmarks/hkf-bench-latency" --rate "$rate" --seconds "$seconds" --lcm-url "$url"
   sleep 1.2  # each run is a new publisher (its seq starts at 0): hkf-filter follows it after 1 s of silence
 done
 kill -INT $filter

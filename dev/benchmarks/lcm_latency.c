@@ -4,7 +4,7 @@
  * wall clock, receives the filtered poses (HEAD_POSE), and prints latency
  * percentiles (publish of the raw pose -> receipt of its filtered pose, i.e.
  * two LCM hops plus the filter) and how many raw poses got no answer.
- * Run it with tools/benchmarks/lcm_latency.sh, which starts hkf-filter in a
+ * Run it with dev/benchmarks/lcm_latency.sh, which starts hkf-filter in a
  * private network namespace.
  */
 #define _POSIX_C_SOURCE 200809L

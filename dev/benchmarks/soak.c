@@ -6,7 +6,7 @@
  * node's memory (VmRSS of --watch-pid), and any non-finite or out-of-order
  * pose. Ends with a summary; exit 1 if a measured pose got no answer, an
  * answer came out of order, or a pose was non-finite.
- * Run it with tools/benchmarks/soak.sh, which starts hkf-filter in a private
+ * Run it with dev/benchmarks/soak.sh, which starts hkf-filter in a private
  * network namespace.
  */
 #define _POSIX_C_SOURCE 200809L

@@ -3,7 +3,7 @@
 
 Truth clips: from each clip in ../shared/data/videos, two real frames - the
 most frontal and the most turned face the estimator found - each turned in the
-image plane along a driver trajectory (tools/eval/truth_motion.py: holds,
+image plane along a driver trajectory (dev/eval/truth_motion.py: holds,
 glances of 10-40 deg at up to 300 deg/s and back, a drift, a sine, a tremor),
 with fresh sensor noise and JPEG on every frame (truth_clips.py). An in-plane
 turn of theta about the face centre is the head turned by theta about the line
@@ -14,7 +14,7 @@ same way; its own pose is the clip's raw pose low-passed without phase shift
 (metrics.reference), frame by frame.
 
 Each truth clip goes through hkf-estimator (default model) as an image folder
-at 30 fps, then through every filter and setting of tools/eval/evaluate.py's
+at 30 fps, then through every filter and setting of dev/eval/evaluate.py's
 sweep. Metrics (truth_metrics.py): still jitter, roll RMSE on moving and still
 frames, overshoot after a stop, onset delay, settling time. Each filter is
 compared at the defaults' still jitter: its best moving RMSE among its

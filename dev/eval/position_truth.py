@@ -3,7 +3,7 @@
 
 From each clip in ../shared/data/videos, one real frame (frame 4) is held
 still for 4 s, then zoomed and shifted along a lean trajectory
-(tools/eval/truth_motion.lean_trajectory: holds, and minimum-jerk moves of 0.3-0.8 s between a zoom of 0.75-1.35 and a
+(dev/eval/truth_motion.lean_trajectory: holds, and minimum-jerk moves of 0.3-0.8 s between a zoom of 0.75-1.35 and a
 shift of +-12 % of the width), with fresh sensor noise and JPEG on every frame
 (truth_clips.render). The zoom is about the face centre c; the base zoom puts
 the face at about BASE_CM from the camera. With the pinhole of --fov (focal f,

