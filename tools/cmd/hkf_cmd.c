@@ -36,11 +36,7 @@ int main(int argc, char **argv)
     lcm_t *lcm;
     int i, result;
     for (i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(argv[i], "--version") == 0) {
-            printf("hkf-cmd %s\n", HKF_VERSION);
+        if (argument_help_or_version(argv[i], "hkf-cmd", usage)) {
             return 0;
         } else if (strcmp(argv[i], "--lcm-url") == 0 && i + 1 < argc) {
             lcm_url = argv[++i];

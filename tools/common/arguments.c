@@ -5,7 +5,25 @@
 
 #include <errno.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
+
+#ifndef HKF_VERSION
+#error "HKF_VERSION is set by the build (add_compile_definitions in CMakeLists.txt)"
+#endif
+
+int argument_help_or_version(const char *arg, const char *program, void (*usage)(FILE *to))
+{
+    if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
+        usage(stdout);
+        return 1;
+    }
+    if (strcmp(arg, "--version") == 0) {
+        printf("%s %s\n", program, HKF_VERSION);
+        return 1;
+    }
+    return 0;
+}
 
 int argument_number(const char *text, double low, double high, double *value)
 {

@@ -1,16 +1,21 @@
 /*
  * arguments.h - what every program's command line shares: a number option
- * read whole and checked against its range, and the clocks the programs stamp
- * and wait with.
+ * read whole and checked against its range, --help and --version, and the
+ * clocks the programs stamp and wait with.
  */
 #ifndef ARGUMENTS_H
 #define ARGUMENTS_H
 
 #include <stdint.h>
+#include <stdio.h>
 
 /* 1 when all of text is a number (strtod's syntax, not out of range) within
  * [low, high]: *value holds it; else 0 (the caller says what it wanted). */
 int argument_number(const char *text, double low, double high, double *value);
+
+/* 1 when arg is --help or -h (usage(stdout) called) or --version ("PROGRAM
+ * VERSION" printed): the program has answered and exits 0; else 0. */
+int argument_help_or_version(const char *arg, const char *program, void (*usage)(FILE *to));
 
 /* Microseconds: the wall clock (capture stamps, as the estimator writes them)
  * and the monotonic clock (waits and arrival times). */

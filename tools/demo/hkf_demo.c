@@ -62,11 +62,7 @@ static int parse_options(int argc, char **argv, demo_options_t *o)
     o->csv_path = NULL;
     for (i = 1; i < argc; ++i) {
         const int has_value = i + 1 < argc;
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            usage(stdout);
-            return 1;
-        } else if (strcmp(argv[i], "--version") == 0) {
-            printf("hkf-demo %s\n", HKF_VERSION);
+        if (argument_help_or_version(argv[i], "hkf-demo", usage)) {
             return 1;
         } else if (strcmp(argv[i], "--seconds") == 0 && has_value) {
             if (!argument_number(argv[++i], 1.0, 3600.0, &o->seconds)) {

@@ -137,11 +137,7 @@ static int parse_options(int argc, char **argv, options_t *o)
     for (i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
-            usage(stdout);
-            return 1;
-        } else if (strcmp(arg, "--version") == 0) {
-            printf("hkf-opentrack %s\n", HKF_VERSION);
+        if (argument_help_or_version(arg, "hkf-opentrack", usage)) {
             return 1;
         } else if (strcmp(arg, "--absolute") == 0) {
             o->mapping.relative_to_center = 0;

@@ -60,12 +60,7 @@ int main(int argc, char **argv)
     for (i_arg = 1; i_arg < argc; ++i_arg) {
         const char *arg = argv[i_arg];
         const char *value = i_arg + 1 < argc ? argv[i_arg + 1] : NULL;
-        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        }
-        if (strcmp(arg, "--version") == 0) {
-            printf("hkf-simlog %s\n", HKF_VERSION);
+        if (argument_help_or_version(arg, "hkf-simlog", usage)) {
             return 0;
         }
         if (value == NULL) {
