@@ -108,8 +108,7 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     std::vector<cv::Point2f> rigid_landmarks;
     for (int i : rigid_) rigid_landmarks.push_back(landmarks_[static_cast<size_t>(i)]);
     pose.has_position = fit_position(rigid_canonical_, rigid_landmarks, frame.size(), position_settings_, front_z_, pose.position,
-                                     &last_px_per_cm_);
-    if (!pose.has_position) last_px_per_cm_ = 0.0;
+                                     &last_px_per_cm_);  // written only when it succeeds: else still 0
     return pose;
 }
 

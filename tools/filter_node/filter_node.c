@@ -148,8 +148,9 @@ static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t
 {
     const float xyz[3] = {m->x, m->y, m->z};
     const int mesh = m->model != NULL && strcmp(m->model, FILTER_NODE_MESH_MODEL) == 0;
-    second_position_note_first(&node->second_position, m->seq, m->utime, has_position(m), xyz);
-    if (has_position(m)) {
+    const int measured = has_position(m);
+    second_position_note_first(&node->second_position, m->seq, m->utime, measured, xyz);
+    if (measured) {
         update_position(node, xyz, m->utime, mesh ? 1.0f : FILTER_NODE_BOX_POSITION_R_SCALE);
     }
 }
