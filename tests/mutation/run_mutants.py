@@ -17,6 +17,11 @@ comparison, a lost wrap, an off-by-one, a skipped check), with a snippet that
 occurs once in the file. `--check` validates the list without building.
 
 usage: run_mutants.py [--list FILE] [--work DIR] [--only N[,N...] | --sample K] [--check]
+                      [--check-selection BUILD]
+The baseline runs the union of the chosen mutants' tests, resolved to test names one
+expression at a time (`ctest -N -R`), so no single regular expression grows with the list
+(CMake's allow only 10 parenthesised groups). `--check-selection BUILD` resolves the full
+run's selection in a configured build and checks it, running no test and planting nothing.
 Needs a configured build of its own (made in WORK/build on the first run;
 only what a mutant touches is rebuilt after that). A survivor whose
 description starts with EQUIVALENT was shown to change no behaviour (its probe
@@ -119,6 +124,46 @@ def build(build_dir, src, options=()):
     return result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
 
 
+def list_tests(build_dir, expression):
+    """The names of the tests that `ctest -R expression` selects (nothing is run)."""
+    result = subprocess.run(["ctest", "-N", "-R", expression], cwd=build_dir, capture_output=True, text=True)
+    complaint = re.findall(r"RegularExpression::compile\(\): .*", result.stdout + result.stderr)
+    if result.returncode != 0 or complaint:
+        raise ValueError(f"ctest cannot use the expression '{expression}': {' '.join(complaint) or result.stderr}")
+    return re.findall(r"^\s*Test\s+#\d+: (\S+)$", result.stdout, re.M)
+
+
+def names_expression(names):
+    """One ctest -R expression, without groups, that selects exactly these tests."""
+    return "|".join(f"^{re.escape(n)}$" for n in sorted(names))
+
+
+def selection(build_dir, chosen):
+    """The baseline's test names and expression, and the errors: an expression that ctest
+    refuses or that selects no test, or a baseline expression that selects other tests."""
+    names, errors = set(), []
+    for expression in sorted({m.tests for m in chosen}):
+        try:
+            found = list_tests(build_dir, expression)
+        except ValueError as e:
+            errors.append(str(e))
+            continue
+        if not found:
+            users = [str(m.number) for m in chosen if m.tests == expression]
+            errors.append(f"the expression '{expression}' (mutants {', '.join(users)}) selects no test")
+        names.update(found)
+    baseline = names_expression(names)
+    if names and not errors:
+        try:
+            listed = set(list_tests(build_dir, baseline))
+        except ValueError as e:
+            errors.append(str(e))
+        else:
+            if listed != names:
+                errors.append(f"the baseline expression selects {len(listed)} tests, not the {len(names)} wanted")
+    return sorted(names), baseline, errors
+
+
 def run_tests(build_dir, tests, timeout):
     result = subprocess.run(["ctest", "-R", tests, "-j", str(os.cpu_count() or 2), "--timeout", str(timeout),
                              "--stop-on-failure"], cwd=build_dir, capture_output=True, text=True)
@@ -134,6 +179,8 @@ def main():
     parser.add_argument("--only", default="", help="comma-separated mutant numbers")
     parser.add_argument("--sample", type=int, default=0, help="every K-th mutant only (a fixed sample)")
     parser.add_argument("--check", action="store_true", help="validate the list, build and run nothing")
+    parser.add_argument("--check-selection", metavar="BUILD",
+                        help="resolve the full run's tests in this configured build and check them; run nothing")
     parser.add_argument("--libhkf-only", action="store_true",
                         help="only libhkf's mutants, in a build of libhkf and its tests alone (-DHKF_BUILD_TOOLS=OFF): "
                              "the quick sample in ./run test")
@@ -148,6 +195,15 @@ def main():
     print(f"run_mutants: {len(mutants)} mutants in {os.path.relpath(args.list, ROOT)}, all valid", flush=True)
     if args.check:
         return 0
+    if args.check_selection:
+        names, _, errors = selection(os.path.abspath(args.check_selection), mutants)
+        if errors:
+            print("\n".join(f"run_mutants: {e}" for e in errors), file=sys.stderr)
+            return 1
+        print(f"run_mutants: the full run's baseline selects {len(names)} tests for "
+              f"{len({m.tests for m in mutants})} expressions: {' '.join(names)}")
+        return 0
+    run_started = time.time()
     chosen = [m for m in mutants if m.path.startswith("libhkf/")] if args.libhkf_only else mutants
     if args.only:
         wanted = {int(n) for n in args.only.split(",")}
@@ -163,7 +219,10 @@ def main():
         print(log, file=sys.stderr)
         print("run_mutants: the unmutated tree does not build", file=sys.stderr)
         return 1
-    baseline = "|".join(sorted({f"({m.tests})" for m in chosen}))
+    names, baseline, errors = selection(build_dir, chosen)
+    if errors:
+        print("\n".join(f"run_mutants: {e}" for e in errors), file=sys.stderr)
+        return 1
     ok, count, log = run_tests(build_dir, baseline, args.timeout)
     if not ok or count == 0:
         print(log[-3000:], file=sys.stderr)
@@ -198,8 +257,10 @@ def main():
     scored = killed + len(survivors)
     score = killed / scored if scored else 0.0
     unexplained = [m for m in survivors if not m.what.startswith("EQUIVALENT")]
+    wall = time.time() - run_started
     print(f"run_mutants: {killed} of {scored} mutants killed: score {100 * score:.1f} %"
-          + (f"; {len(stillborn)} did not build" if stillborn else ""))
+          + (f"; {len(stillborn)} did not build" if stillborn else "")
+          + f"; wall time {wall / 60:.1f} min ({len(chosen)} mutants, {os.cpu_count()} cores)")
     for m in survivors:
         print(f"  survivor [{m.number}] {m.path} (line {m.line} of the list): {m.what}")
     if survivors:
