@@ -34,6 +34,10 @@ void hkf_position_default_settings(hkf_position_settings_t *s)
     s->motion_threshold = HKF_REAL(128.0);
     s->rate_damping_time = HKF_REAL(0.1);
     s->still_threshold = HKF_REAL(64.0);
+    /* a head leans at well under 1 m/s; a mesh that misreads the face's scale, or a forged message, jumps
+     * further in one step */
+    s->max_speed = HKF_REAL(300.0);  /* cm/s */
+    s->max_gate_rejections = 5u;     /* 6 frames (0.2 s at 30 fps) that agree with each other restart the track */
 }
 
 static int in_range(hkf_real_t x, hkf_real_t low, hkf_real_t high) { return hkf_is_finite(x) && x >= low && x <= high; }
@@ -72,6 +76,10 @@ int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s
         !in_range(s->still_threshold, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_MOTION_THRESHOLD))) {
         return HKF_ERROR_SETTING_CALIBRATION;
     }
+    if (!in_range(s->max_speed, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_SPEED)) ||
+        (s->max_speed > 0 && s->max_gate_rejections == 0u)) {
+        return HKF_ERROR_SETTING_GATE;
+    }
     f->settings = *s;
     hkf_position_reset(f);
     return HKF_OK;
@@ -90,6 +98,7 @@ void hkf_position_reset(hkf_position_filter_t *f)
     }
     f->last_dt = 0;
     f->history = 0;
+    f->gate_rejections = 0u;
     f->started = 0;
     f->centered = 0;
 }
@@ -99,10 +108,25 @@ void hkf_position_restart(hkf_position_filter_t *f)
     if (f != NULL) {
         f->started = 0;
         f->history = 0;
+        f->gate_rejections = 0u;
     }
 }
 
-static void write_output(const hkf_position_filter_t *f, hkf_position_output_t *out)
+/* x within [-limit, limit] */
+static hkf_real_t bounded(hkf_real_t x, hkf_real_t limit) { return x > limit ? limit : x < -limit ? -limit : x; }
+
+/* The range: every axis within +-HKF_MAX_ABS_POSITION, its rate within +-HKF_MAX_SPEED. */
+static void keep_in_range(hkf_position_filter_t *f)
+{
+    int a;
+    for (a = 0; a < 3; ++a) {
+        f->x[a] = bounded(f->x[a], HKF_REAL_FROM(HKF_MAX_ABS_POSITION));
+        f->v[a] = bounded(f->v[a], HKF_REAL_FROM(HKF_MAX_SPEED));
+    }
+}
+
+static void write_output(const hkf_position_filter_t *f, hkf_status_t status, unsigned flags,
+                         hkf_position_output_t *out)
 {
     int a;
     if (out == NULL) {
@@ -113,6 +137,8 @@ static void write_output(const hkf_position_filter_t *f, hkf_position_output_t *
         out->rate[a] = f->v[a];
         out->variance[a] = f->p00[a];
     }
+    out->status = status;
+    out->flags = flags;
 }
 
 static int calibrated(const hkf_position_filter_t *f) { return f->settings.noise_time > 0; }
@@ -199,6 +225,53 @@ static void noise_estimate_update(hkf_position_filter_t *f, const hkf_real_t z[3
     f->history = 2;
 }
 
+/* A new track at the measurement z: rate 0, P = diag(R, p0_rate); the centre there if none is set. */
+static void start_track(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale,
+                        hkf_position_output_t *out)
+{
+    int a;
+    for (a = 0; a < 3; ++a) {
+        f->x[a] = z[a];
+        f->v[a] = 0;
+        f->p00[a] = hkf_mul(measurement_noise(f, a), r_scale);
+        f->p01[a] = 0;
+        f->p11[a] = f->settings.p0_rate;
+        if (!f->centered) {
+            f->center[a] = z[a];
+        }
+    }
+    for (a = 0; a < 3; ++a) {
+        f->last_z[a] = z[a];
+        f->motion[a] = 0;
+    }
+    f->history = 1;
+    f->gate_rejections = 0u;
+    f->started = 1;
+    f->centered = 1;
+    write_output(f, HKF_STATUS_TRACKING, HKF_FLAG_REACQUIRED, out);
+}
+
+/* The outlier gate on the predicted state: an axis's innovation |y| beyond
+ * max_speed dt + HKF_POSITION_GATE_SIGMAS sqrt(S), tested without a root as
+ * (|y| - max_speed dt)^2 > sigmas^2 S where |y| exceeds the reach. */
+static int gated(const hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
+{
+    const hkf_real_t reach = hkf_mul(f->settings.max_speed, dt);
+    const hkf_real_t sigmas2 = HKF_REAL_FROM(HKF_POSITION_GATE_SIGMAS * HKF_POSITION_GATE_SIGMAS);
+    int a;
+    if (!(f->settings.max_speed > 0)) {
+        return 0;
+    }
+    for (a = 0; a < 3; ++a) {
+        const hkf_real_t beyond = hkf_sub(hkf_abs(hkf_sub(z[a], f->x[a])), reach);
+        const hkf_real_t s = hkf_add(f->p00[a], hkf_mul(measurement_noise(f, a), r_scale));
+        if (beyond > 0 && hkf_mul(beyond, beyond) > hkf_mul(sigmas2, s)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out)
 {
@@ -221,27 +294,22 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
         return HKF_ERROR_SETTING_R_CONST;
     }
     if (!f->started || check_step(f, dt) == HKF_ERROR_DT_RANGE) {  /* a new track: at the measurement */
-        for (a = 0; a < 3; ++a) {
-            f->x[a] = z[a];
-            f->v[a] = 0;
-            f->p00[a] = hkf_mul(measurement_noise(f, a), r_scale);
-            f->p01[a] = 0;
-            f->p11[a] = f->settings.p0_rate;
-            if (!f->centered) {
-                f->center[a] = z[a];
-            }
-        }
-        for (a = 0; a < 3; ++a) {
-            f->last_z[a] = z[a];
-            f->motion[a] = 0;
-        }
-        f->history = 1;
-        f->started = 1;
-        f->centered = 1;
-        write_output(f, out);
+        start_track(f, z, r_scale, out);
         return HKF_OK;
     }
     predict_axes(f, dt);
+    if (gated(f, z, r_scale, dt)) {
+        if (f->gate_rejections >= f->settings.max_gate_rejections) { /* they agree: the head is there */
+            start_track(f, z, r_scale, out);
+            return HKF_OK;
+        }
+        ++f->gate_rejections;
+        f->history = 0; /* a refused measurement breaks the second difference */
+        keep_in_range(f);
+        write_output(f, HKF_STATUS_COASTING, HKF_FLAG_GATED, out);
+        return HKF_OK;
+    }
+    f->gate_rejections = 0u;
     {
         const hkf_position_settings_t *s = &f->settings;
         const hkf_motion_step_t motion = hkf_motion_prepare(dt, &s->q_boost_time, &s->rate_damping_time, &s->still_threshold);
@@ -269,7 +337,8 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
     if (calibrated(f)) {
         noise_estimate_update(f, z, dt);
     }
-    write_output(f, out);
+    keep_in_range(f);
+    write_output(f, HKF_STATUS_TRACKING, 0u, out);
     return HKF_OK;
 }
 
@@ -288,7 +357,42 @@ int hkf_position_predict(hkf_position_filter_t *f, hkf_real_t dt, hkf_position_o
     }
     predict_axes(f, dt);
     f->history = 0; /* a frame without a measurement breaks the second difference */
-    write_output(f, out);
+    keep_in_range(f);
+    write_output(f, HKF_STATUS_COASTING, 0u, out);
+    return HKF_OK;
+}
+
+int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, hkf_position_output_t *out)
+{
+    hkf_real_t t, coast;
+    int a;
+    if (f == NULL || out == NULL) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (!f->started) {
+        return HKF_ERROR_NOT_INITIALIZED;
+    }
+    if (!hkf_is_finite(ahead)) {
+        return HKF_ERROR_NON_FINITE;
+    }
+    if (ahead < 0) {
+        return HKF_ERROR_DT_RANGE;
+    }
+    t = ahead < HKF_REAL_FROM(HKF_MAX_TIME) ? ahead : HKF_REAL_FROM(HKF_MAX_TIME);
+    coast = t < f->settings.max_dt ? t : f->settings.max_dt;  /* the rate moves it for up to max_dt */
+    for (a = 0; a < 3; ++a) {
+        /* Eq. 1-3 over t: [1 t] P [1 t]' + q t^3 / 3 */
+        const hkf_real_t qt3 = hkf_mul(hkf_mul(hkf_mul(process_noise(f, a), t), hkf_mul(t, t)), HKF_REAL(0.33333333));
+        const hkf_real_t spread = hkf_mul(t, hkf_add(hkf_add(f->p01[a], f->p01[a]), hkf_mul(t, f->p11[a])));
+        const hkf_real_t variance = hkf_add(hkf_add(f->p00[a], spread), qt3);
+        out->position[a] = bounded(hkf_add(f->x[a], hkf_mul(f->v[a], coast)), HKF_REAL_FROM(HKF_MAX_ABS_POSITION));
+        out->rate[a] = ahead > f->settings.max_dt ? 0 : f->v[a];
+        out->variance[a] = variance < HKF_REAL_FROM(HKF_MAX_VARIANCE) ? variance : HKF_REAL_FROM(HKF_MAX_VARIANCE);
+    }
+    out->status = ahead > f->settings.max_dt              ? HKF_STATUS_LOST
+                  : ahead > 0 || f->gate_rejections > 0u ? HKF_STATUS_COASTING
+                                                         : HKF_STATUS_TRACKING;
+    out->flags = ahead > 0 ? HKF_FLAG_EXTRAPOLATED : 0u;
     return HKF_OK;
 }
 
@@ -303,6 +407,20 @@ int hkf_position_recenter(hkf_position_filter_t *f)
     }
     for (a = 0; a < 3; ++a) {
         f->center[a] = f->x[a];
+    }
+    return HKF_OK;
+}
+
+int hkf_position_recenter_at(hkf_position_filter_t *f, hkf_real_t ahead)
+{
+    hkf_position_output_t out;
+    int a;
+    const int result = hkf_position_extrapolate(f, ahead, &out);
+    if (result != HKF_OK) {
+        return result;
+    }
+    for (a = 0; a < 3; ++a) {
+        f->center[a] = out.position[a];
     }
     return HKF_OK;
 }

@@ -212,6 +212,12 @@ static void test_defaults_and_presets_are_valid(void **state)
     /* Hopenet yaw at its centre: 10.74 - 7.017 */
     assert_near(hkf_observation_noise(&f, HKF_AXIS_YAW, R(-5.57)), 3.723, 1e-3);
     assert_string_equal(hkf_result_string(12345), "unknown hkf result code");
+    {
+        int code;
+        for (code = HKF_ERROR_SETTING_CALIBRATION; code <= HKF_OK; ++code) { /* limits in numbers, not macro names */
+            assert_null(strstr(hkf_result_string(code), "HKF_"));
+        }
+    }
 }
 
 static void test_null_arguments(void **state)

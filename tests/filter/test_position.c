@@ -296,6 +296,118 @@ static void test_gap_restarts(void **state)
     assert_true(fabs(D(out.rate[2])) < TEST_TOL);
 }
 
+/* The outlier gate: a measurement farther than max_speed dt + 3 sigmas is refused (the prediction
+ * stands, HKF_FLAG_GATED, COASTING); max_gate_rejections such in a row, then the next restarts
+ * the track there. A real lean at 100 cm/s is never refused; max_speed 0 turns the gate off. */
+static void test_gate(void **state)
+{
+    (void)state;
+    hkf_position_settings_t s;
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0);
+    const hkf_real_t still[3] = {R(0.0), R(0.0), R(60.0)};
+    const hkf_real_t forged[3] = {R(1000.0), R(-1000.0), R(1000.0)};
+    const hkf_real_t moved[3] = {R(20.0), R(0.0), R(60.0)};
+    hkf_position_output_t out;
+    unsigned i;
+    for (i = 0; i < 60; ++i) {
+        assert_int_equal(hkf_position_update(&f, still, R(1.0), R(frame_s), &out), HKF_OK);
+        assert_int_equal(out.flags, 0u);
+    }
+    assert_int_equal(hkf_position_update(&f, forged, R(1.0), R(frame_s), &out), HKF_OK);
+    assert_true(out.flags == HKF_FLAG_GATED && out.status == HKF_STATUS_COASTING);
+    assert_true(fabs(D(out.position[0])) < 0.01 && fabs(D(out.position[2]) - 60.0) < 0.01);
+    assert_int_equal(hkf_position_update(&f, still, R(1.0), R(frame_s), &out), HKF_OK); /* the count starts again */
+    assert_int_equal(out.flags, 0u);
+    for (i = 0; i < f.settings.max_gate_rejections; ++i) {
+        assert_int_equal(hkf_position_update(&f, moved, R(1.0), R(frame_s), &out), HKF_OK);
+        assert_int_equal(out.flags, HKF_FLAG_GATED);
+    }
+    assert_int_equal(hkf_position_update(&f, moved, R(1.0), R(frame_s), &out), HKF_OK);
+    assert_int_equal(out.flags, HKF_FLAG_REACQUIRED); /* they agree: the head is there */
+    assert_true(fabs(D(out.position[0]) - 20.0) < TEST_TOL && out.status == HKF_STATUS_TRACKING);
+    f = started_filter(0.0, 0.0, 60.0);
+    for (i = 0; i < 30; ++i) { /* still, then a lean at 100 cm/s for 0.5 s */
+        assert_int_equal(hkf_position_update(&f, still, R(1.0), R(frame_s), &out), HKF_OK);
+    }
+    for (i = 1; i <= 30; ++i) {
+        const hkf_real_t lean[3] = {R(0.0), R(0.0), R(60.0 - 100.0 * frame_s * i)};
+        assert_int_equal(hkf_position_update(&f, lean, R(1.0), R(frame_s), &out), HKF_OK);
+        assert_int_equal(out.flags, 0u);
+    }
+    hkf_position_default_settings(&s);
+    s.max_speed = 0;
+    f = started_filter_with(&s, 0.0, 0.0, 60.0);
+    assert_int_equal(hkf_position_update(&f, forged, R(1.0), R(frame_s), &out), HKF_OK);
+    assert_true(out.flags == 0u && D(out.position[0]) > 1.0); /* no gate: taken */
+}
+
+/* The range: whatever comes in, the state, the output and every extrapolation stay within
+ * +-HKF_MAX_ABS_POSITION, and the rate within +-HKF_MAX_SPEED. */
+static void test_range(void **state)
+{
+    (void)state;
+    hkf_position_settings_t s;
+    hkf_position_filter_t f;
+    hkf_position_output_t out;
+    int i, a;
+    hkf_position_default_settings(&s);
+    s.max_speed = 0; /* no gate: the worst case */
+    f = started_filter_with(&s, -1000.0, 0.0, 1.0);
+    for (i = 0; i < 40; ++i) {
+        const double x = i < 20 ? -1000.0 : 1000.0;
+        const hkf_real_t z[3] = {R(x), R(-x), R(i % 2 ? 1000.0 : 1.0)};
+        assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), &out), HKF_OK);
+        for (a = 0; a < 3; ++a) {
+            assert_true(fabs(D(out.position[a])) <= HKF_MAX_ABS_POSITION);
+            assert_true(fabs(D(out.rate[a])) <= HKF_MAX_SPEED);
+        }
+        assert_int_equal(hkf_position_extrapolate(&f, R(0.4), &out), HKF_OK);
+        for (a = 0; a < 3; ++a) {
+            assert_true(fabs(D(out.position[a])) <= HKF_MAX_ABS_POSITION);
+        }
+    }
+}
+
+/* Between measurements: moved on by the rate for up to max_dt (COASTING), beyond held there with
+ * rate 0 (LOST), the variance growing all the while; the filter untouched; the centre on it. */
+static void test_extrapolate_coast_then_stale(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_constant_filter(0.0, 0.0, 60.0), before;
+    hkf_position_output_t out, previous;
+    const double max_dt = D(f.settings.max_dt);
+    int i;
+    for (i = 1; i <= 60; ++i) { /* a lean at 10 cm/s in x */
+        const hkf_real_t z[3] = {R(10.0 * frame_s * i), R(0.0), R(60.0)};
+        assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), &out), HKF_OK);
+    }
+    before = f;
+    assert_int_equal(hkf_position_extrapolate(&f, R(0.0), &previous), HKF_OK);
+    assert_true(previous.status == HKF_STATUS_TRACKING && D(previous.position[0]) == D(out.position[0]));
+    for (i = 1; i <= 40; ++i) {
+        const double ahead = 0.05 * i;
+        assert_int_equal(hkf_position_extrapolate(&f, R(ahead), &out), HKF_OK);
+        assert_true(D(out.variance[0]) > D(previous.variance[0]));
+        if (ahead <= max_dt - 0.01) {
+            assert_int_equal(out.status, HKF_STATUS_COASTING);
+            assert_true(fabs(D(out.position[0]) - (D(f.x[0]) + D(f.v[0]) * ahead)) < 10 * TEST_TOL);
+        } else if (ahead > max_dt + 0.01) {
+            assert_int_equal(out.status, HKF_STATUS_LOST);
+            assert_true(D(out.rate[0]) == 0.0);
+            assert_true(fabs(D(out.position[0]) - (D(f.x[0]) + D(f.v[0]) * max_dt)) < 10 * TEST_TOL);
+        }
+        previous = out;
+    }
+    assert_int_equal(hkf_position_extrapolate(&f, R(-0.1), &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_position_extrapolate(&f, R(0.1), NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_memory_equal(&f, &before, sizeof f);
+    assert_int_equal(hkf_position_recenter_at(&f, R(2.0)), HKF_OK);
+    assert_true(fabs(D(f.center[0]) - D(previous.position[0])) < TEST_TOL);
+    hkf_position_reset(&f);
+    assert_int_equal(hkf_position_extrapolate(&f, R(0.1), &out), HKF_ERROR_NOT_INITIALIZED);
+    assert_int_equal(hkf_position_recenter_at(&f, R(0.1)), HKF_ERROR_NOT_INITIALIZED);
+}
+
 /* Bad settings get their code; bad input its code, the filter untouched. */
 static void test_errors(void **state)
 {
@@ -322,6 +434,17 @@ static void test_errors(void **state)
     hkf_position_default_settings(&s);
     s.still_threshold = R(-1.0);
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
+    hkf_position_default_settings(&s);
+    s.max_speed = R(-1.0);
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_GATE);
+    hkf_position_default_settings(&s);
+    s.max_gate_rejections = 0u;
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_GATE);
+    s.max_speed = 0; /* no gate: no count needed */
+    assert_int_equal(hkf_position_init(&f, &s), HKF_OK);
+    s.max_speed = R(HKF_MAX_SPEED);
+    s.max_gate_rejections = 1u;
+    assert_int_equal(hkf_position_init(&f, &s), HKF_OK);
     assert_int_equal(hkf_position_init(NULL, &s), HKF_ERROR_NULL_ARGUMENT);
 
     f = started_filter(0.0, 0.0, 60.0);
@@ -352,6 +475,9 @@ int main(void)
         cmocka_unit_test(test_coarse_measurement_trusted_less),
         cmocka_unit_test(test_center_recenter_reset),
         cmocka_unit_test(test_gap_restarts),
+        cmocka_unit_test(test_gate),
+        cmocka_unit_test(test_range),
+        cmocka_unit_test(test_extrapolate_coast_then_stale),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -182,7 +182,13 @@ static void test_print_reads_back(void **state)
     assert_int_equal(node_config_set(&c, "position_q_boost = 30", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_q_boost = -1", error, sizeof error), -1);
     assert_int_equal(node_config_set(&c, "position_noise_time = 1 2", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "position_noise_time = 99", error, sizeof error), -1);
+    assert_non_null(strstr(error, "0 to 10 s")); /* the range in numbers, not macro names */
+    assert_int_equal(node_config_set(&c, "position_max_speed = 50", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_max_speed = 20000", error, sizeof error), -1);
+    assert_non_null(strstr(error, "0 to 10000 cm/s"));
     assert_true(c.position.noise_time == (hkf_real_t)0.5 && c.position.q_boost == (hkf_real_t)30);
+    assert_true(c.position.max_speed == (hkf_real_t)50);
     strcpy(path, "/tmp/hkf_config_print_XXXXXX");
     f = fdopen(mkstemp(path), "w");
     node_config_print(&c, f);

@@ -105,52 +105,76 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     return setup_filter(node, "");
 }
 
-/* The filtered position at capture time utime: the last one taken moved on by its
- * rate (as the angles, up to coast_time ahead), held with rate 0 when LOST. */
-static void fill_position(const filter_node_t *node, int64_t utime, int lost, hkf_head_pose_t *pose)
+/* Seconds from the last position taken to capture time utime, 0 when utime is not later
+ * (stamps may be anything: in double). */
+static double position_ahead(const filter_node_t *node, int64_t utime)
+{
+    const double ahead = ((double)utime - (double)node->position_utime) * 1e-6;
+    return ahead > 0.0 ? ahead : 0.0;
+}
+
+/* The filtered position at capture time utime (hkf_position_extrapolate): the last one
+ * taken moved on by its rate for up to the position's max_dt, then held with rate 0 while
+ * its variance grows; within the range the node accepts. */
+static void fill_position(const filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
 {
     const hkf_position_filter_t *p = &node->position;
-    const double ahead = ((double)utime - (double)node->position_utime) * 1e-6;
-    const double step = lost || ahead < 0.0 ? 0.0 : ahead > (double)node->config->settings.coast_time
-                                                        ? (double)node->config->settings.coast_time : ahead;
     float *position[3] = {&pose->x, &pose->y, &pose->z}, *rate[3] = {&pose->x_rate, &pose->y_rate, &pose->z_rate};
+    hkf_position_output_t out;
     int a;
-    if (!p->started) {
+    if (hkf_position_extrapolate(p, (hkf_real_t)position_ahead(node, utime), &out) != HKF_OK) {
         return; /* all 0: no position measured yet */
     }
     for (a = 0; a < 3; ++a) {
-        *position[a] = (float)((double)p->x[a] + (double)p->v[a] * step);
-        *rate[a] = lost ? 0.f : (float)p->v[a];
-        pose->position_variance[a] = (float)p->p00[a];
+        *position[a] = (float)out.position[a];
+        *rate[a] = (float)out.rate[a];
+        pose->position_variance[a] = (float)out.variance[a];
         pose->position_center[a] = (float)p->center[a];
+    }
+    if (pose->z < FILTER_NODE_MIN_Z) {
+        pose->z = FILTER_NODE_MIN_Z; /* a coast toward the camera stops at it */
     }
 }
 
-static int has_position(const hkf_head_pose_measurement_t *m)
+/* A measurement's position: 1 when it carries one the node takes (FILTER_NODE_MIN_Z <= z and every
+ * axis within HKF_MAX_ABS_POSITION), 0 when it carries none (no face, or z = 0: not measured), -1
+ * when it carries a bad one (non-finite, z < 0 or too near, beyond the range). */
+static int position_of(const hkf_head_pose_measurement_t *m)
 {
-    return m->valid && m->z > 0.f && isfinite(m->x) && isfinite(m->y) && isfinite(m->z);
+    const float most = (float)HKF_MAX_ABS_POSITION;
+    if (!m->valid || m->z == 0.f) {
+        return 0;
+    }
+    return isfinite(m->x) && isfinite(m->y) && isfinite(m->z) && fabsf(m->x) <= most && fabsf(m->y) <= most &&
+                   m->z >= FILTER_NODE_MIN_Z && m->z <= most
+               ? 1
+               : -1;
 }
 
-/* A position xyz measured at utime (R scaled by r_scale) into the position filter, if later than the last. */
+/* A position xyz measured at utime (R scaled by r_scale) into the position filter, if later than the
+ * last one taken and not later than the angles' time reference (a frame of the clock the node follows). */
 static void update_position(filter_node_t *node, const float xyz[3], int64_t utime, float r_scale)
 {
     const hkf_real_t z[3] = {xyz[0], xyz[1], xyz[2]};
+    hkf_position_output_t out;
     /* the first position's dt is unused; a gap beyond max_dt restarts the track in hkf_position_update */
     const double dt = node->position.started ? ((double)utime - (double)node->position_utime) * 1e-6 : 0.02;
-    if (dt > 0.0 && hkf_position_update(&node->position, z, (hkf_real_t)r_scale, (hkf_real_t)dt, NULL) == HKF_OK) {
+    if (dt > 0.0 && utime <= node->last_utime && hkf_position_update(&node->position, z, (hkf_real_t)r_scale, (hkf_real_t)dt, &out) == HKF_OK) {
         node->position_utime = utime;
+        node->counts.positions_gated += (out.flags & HKF_FLAG_GATED) != 0;
     }
 }
 
-/* The first model's frame m: its position (z > 0: measured) into the position filter, and noted
- * for a second model's measurement of the frame. */
+/* The first model's frame m: its position (measured, or a bad one counted) into the position
+ * filter, and noted for a second model's measurement of the frame. */
 static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
     const float xyz[3] = {m->x, m->y, m->z};
     const int mesh = m->model != NULL && strcmp(m->model, FILTER_NODE_MESH_MODEL) == 0;
-    const int measured = has_position(m);
-    second_position_note_first(&node->second_position, m->seq, m->utime, measured, xyz);
-    if (measured) {
+    const int measured = position_of(m);
+    node->counts.bad_positions += measured < 0;
+    second_position_note_first(&node->second_position, m->seq, m->utime, measured > 0, xyz);
+    if (measured > 0) {
         update_position(node, xyz, m->utime, mesh ? 1.0f : FILTER_NODE_BOX_POSITION_R_SCALE);
     }
 }
@@ -159,8 +183,10 @@ static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t
 static void take_second_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
     const float xyz[3] = {m->x, m->y, m->z};
+    const int measured = position_of(m);
     float moved[3];
-    if (has_position(m) && second_position_take(&node->second_position, m->seq, m->utime, xyz, moved)) {
+    node->counts.bad_positions += measured < 0;
+    if (measured > 0 && second_position_take(&node->second_position, m->seq, m->utime, xyz, moved)) {
         update_position(node, moved, m->utime, FILTER_NODE_BOX_POSITION_R_SCALE);
     }
 }
@@ -193,7 +219,7 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
     pose->loop_closure_active = (out->flags & HKF_FLAG_LOOP_CLOSURE) != 0;
     pose->extrapolated = (out->flags & HKF_FLAG_EXTRAPOLATED) != 0;
     pose->latency_us = 0;
-    fill_position(node, utime, out->status == HKF_STATUS_LOST, pose);
+    fill_position(node, utime, pose);
     ++node->counts.published;
 }
 
@@ -206,6 +232,7 @@ static void restart_track(filter_node_t *node)
     hkf_position_restart(&node->position);
     ++node->counts.restarts;
     second_model_forget_frames(&node->second);
+    second_position_forget_frames(&node->second_position);
 }
 
 static int finite_angles(const hkf_head_pose_measurement_t *m)
@@ -336,6 +363,7 @@ static void resync_clock(filter_node_t *node)
         restart_track(node);
     } else {
         second_model_forget_frames(&node->second);
+        second_position_forget_frames(&node->second_position);
     }
 }
 
@@ -502,11 +530,13 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         ++node->counts.commands;
         second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
-        (void)hkf_position_recenter(&node->position);
+        /* on the position last published (the angles' frame time): held or coasting, it reads 0 */
+        (void)hkf_position_recenter_at(&node->position, (hkf_real_t)position_ahead(node, node->last_utime));
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;
         second_model_forget_frames(&node->second);
+        second_position_init(&node->second_position); /* the models' offset too: nothing of before stays */
         hkf_position_reset(&node->position);
         (void)setup_filter(node, node->model);
         return 0;

@@ -58,9 +58,14 @@
  *   position in a frame (the mesh folds at a profile), a second model's
  *   position of that frame stands in, box-scaled too, moved onto the first's
  *   by the running mean of their difference (second_position.h), if it comes
- *   before the first model's next. The pose carries the filtered position, extrapolated to its time
- *   like the angles (held while LOST), and its centre; RECENTER sets the
- *   centre, RESET forgets it, a restart keeps it.
+ *   before the first model's next. A position is taken within FILTER_NODE_MIN_Z <= z <=
+ *   HKF_MAX_ABS_POSITION and |x|, |y| <= HKF_MAX_ABS_POSITION (z = 0: none measured; others are
+ *   counted as bad_positions), and passes the position filter's outlier gate. The pose carries
+ *   the filtered position at its time (hkf_position_extrapolate: coasting at its rate for up to
+ *   the position's max_dt, then held with rate 0, its variance growing - the position's own
+ *   staleness, apart from the angles' status), within the same range, and its centre; RECENTER
+ *   sets the centre on the position last published, RESET forgets it and the models' offset, a
+ *   restart keeps it.
  */
 #ifndef FILTER_NODE_H
 #define FILTER_NODE_H
@@ -85,6 +90,8 @@ typedef struct {
     unsigned long out_of_order;    /* rejected: utime older than the last */
     unsigned long duplicates;      /* rejected: utime equal to the last */
     unsigned long bad_values;      /* rejected: non-finite or out-of-range angles */
+    unsigned long bad_positions;   /* positions not taken: non-finite, z < FILTER_NODE_MIN_Z (but not 0), beyond the range */
+    unsigned long positions_gated; /* positions the position filter's outlier gate refused */
     unsigned long decode_errors;   /* messages that did not decode */
     unsigned long restarts;        /* tracks restarted after a gap or a model change */
     unsigned long clock_jumps;     /* rejected: capture time disagrees with arrival time */
@@ -143,6 +150,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
  * median, against the mesh's ~0.5 %): 25 x the mesh's (5 x the standard deviation). */
 #define FILTER_NODE_BOX_POSITION_R_SCALE 25.0f
 #define FILTER_NODE_MESH_MODEL "mesh_pnp" /* the model whose position is the mesh fit's */
+#define FILTER_NODE_MIN_Z 1.0f /* cm: the nearest position taken and published (z = 0: not measured) */
 
 #define FILTER_NODE_CLOCK_JUMP_US 5000000LL /* 5 s: more than any gap a replay's pacing hides */
 #define FILTER_NODE_RESYNC_MESSAGES 3

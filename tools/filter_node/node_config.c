@@ -31,20 +31,22 @@ typedef struct {
     int count;
     size_t offset;
     double low, high;
-    const char *range;
+    const char *unit; /* of the range, in the error message */
     const char *comment;
 } position_key_t;
 
 #define POSITION_FIELD(f) offsetof(hkf_position_settings_t, f)
 static const position_key_t position_keys[] = {
     {"position_process_noise", 3, POSITION_FIELD(process_noise), 0, HKF_MAX_PROCESS_NOISE,
-     "0 to HKF_MAX_PROCESS_NOISE", "position filter's q per axis (x y z): cm^2/s^3; calibrated: x n, 1/s^3"},
+     "", "position filter's q per axis (x y z): cm^2/s^3; calibrated: x n, 1/s^3"},
     {"position_measurement_noise", 3, POSITION_FIELD(measurement_noise), HKF_MIN_VARIANCE, HKF_MAX_VARIANCE,
-     "HKF_MIN_VARIANCE to HKF_MAX_VARIANCE cm^2", "position R per axis (x y z), cm^2; calibrated: n's start (face box: 25 x)"},
-    {"position_noise_time", 1, POSITION_FIELD(noise_time), 0, HKF_MAX_TIME, "0 to HKF_MAX_TIME s",
+     " cm^2", "position R per axis (x y z), cm^2; calibrated: n's start (face box: 25 x)"},
+    {"position_noise_time", 1, POSITION_FIELD(noise_time), 0, HKF_MAX_TIME, " s",
      "s; position noise calibration's time constant, 0 = off (constant R and q)"},
-    {"position_q_boost", 1, POSITION_FIELD(q_boost), 0, HKF_MAX_Q_BOOST, "0 to HKF_MAX_Q_BOOST per s",
+    {"position_q_boost", 1, POSITION_FIELD(q_boost), 0, HKF_MAX_Q_BOOST, " per s",
      "1/s; calibrated: the position's walk n q_boost e per s while moving, 0 = off"},
+    {"position_max_speed", 1, POSITION_FIELD(max_speed), 0, HKF_MAX_SPEED, " cm/s",
+     "cm/s; the outlier gate: a position farther from the prediction than this x dt + 3 sigmas is refused, 0 = off"},
 };
 #define POSITION_KEY_COUNT (sizeof position_keys / sizeof position_keys[0])
 
@@ -368,8 +370,8 @@ static int set_position_key(node_config_t *config, const position_key_t *k, cons
         ok = v[i] >= (hkf_real_t)k->low && v[i] <= (hkf_real_t)k->high;
     }
     if (!ok) {
-        snprintf(error, error_size, "%s wants %s, %s, not '%s'", k->name, k->count == 3 ? "three values (x y z)" : "a value",
-                 k->range, value);
+        snprintf(error, error_size, "%s wants %s, %g to %g%s, not '%s'", k->name,
+                 k->count == 3 ? "three values (x y z)" : "a value", k->low, k->high, k->unit, value);
         return -1;
     }
     memcpy((char *)&config->position + k->offset, v, (size_t)k->count * sizeof v[0]);

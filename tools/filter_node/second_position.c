@@ -6,6 +6,11 @@
 void second_position_init(second_position_t *p)
 {
     memset(p, 0, sizeof *p);
+    second_position_forget_frames(p);
+}
+
+void second_position_forget_frames(second_position_t *p)
+{
     for (int i = 0; i < FILTER_NODE_POSITION_FRAMES; ++i) {
         p->frames[i].seq = -1;
     }

@@ -30,6 +30,9 @@ typedef struct {
 /* Empty: no frame kept, no offset. */
 void second_position_init(second_position_t *p);
 
+/* Forgets the kept frames (a restart, a new clock) and keeps the offset. */
+void second_position_forget_frames(second_position_t *p);
+
 /* Notes the first model's frame (seq, utime) and its position (measured: z > 0). */
 void second_position_note_first(second_position_t *p, int64_t seq, int64_t utime, int measured, const float xyz[3]);
 

@@ -12,6 +12,13 @@
  * q = process_noise n; a motion detector gives the position a random walk
  * while the head moves and damps the rate while it is still - a still head
  * reads still and a lean is followed without the lag one fixed q would need.
+ * An outlier gate refuses a measurement farther from the prediction than a
+ * head can move in the step (max_speed x dt, plus 3 sigmas of the innovation);
+ * after max_gate_rejections in a row the next one restarts the track there.
+ * The state stays within +-HKF_MAX_ABS_POSITION on every axis. Between
+ * measurements (hkf_position_extrapolate) the position coasts at its rate for
+ * up to max_dt, then is stale: held where the coast ended, rate 0, status
+ * LOST; its variance grows all the while.
  * Static memory, no allocation; float, double or Q16.16 like the rest of
  * libhkf. Separate from hkf_filter_t: firmware that tracks rotation only
  * does not link it (its size does not change).
@@ -37,6 +44,8 @@ enum { HKF_POSITION_X = 0, HKF_POSITION_Y = 1, HKF_POSITION_Z = 2 };
 /* The ranges hkf_position_init and the updates accept. */
 #define HKF_MAX_ABS_POSITION 1000      /* cm: a measurement beyond is refused (HKF_ERROR_ANGLE_RANGE) */
 #define HKF_MAX_POSITION_SCALE 1000    /* the largest R scale of one measurement */
+#define HKF_MAX_SPEED 10000            /* cm/s: the largest max_speed */
+#define HKF_POSITION_GATE_SIGMAS 3     /* the gate's allowance for noise, in sigmas of the innovation */
 
 typedef struct {
     hkf_real_t process_noise[3];      /* q per axis: cm^2/s^3; calibrated: x n, 1/s^3 */
@@ -54,6 +63,10 @@ typedef struct {
     hkf_real_t motion_threshold;
     hkf_real_t rate_damping_time;     /* s; 0: the rate never decays */
     hkf_real_t still_threshold;
+    /* The outlier gate: a measurement whose innovation on an axis exceeds
+     * max_speed x dt + HKF_POSITION_GATE_SIGMAS sqrt(S) is refused; 0: no gate. */
+    hkf_real_t max_speed;             /* cm/s */
+    unsigned max_gate_rejections;     /* refused in a row; the next refused one restarts the track at it */
 } hkf_position_settings_t;
 
 typedef struct {
@@ -67,6 +80,7 @@ typedef struct {
     hkf_real_t last_z[3], last_step[3]; /* cm: the second difference's history */
     hkf_real_t last_dt;               /* s: the step before (equal steps make a second difference) */
     int history;                      /* measurements in the history, 0-2 */
+    unsigned gate_rejections;         /* measurements the gate refused in a row */
     int started;                      /* a measurement has started the track */
     int centered;                     /* the centre is set (a restart keeps it; a reset clears it) */
 } hkf_position_filter_t;
@@ -75,6 +89,8 @@ typedef struct {
     hkf_real_t position[3];  /* cm */
     hkf_real_t rate[3];      /* cm/s */
     hkf_real_t variance[3];  /* cm^2 */
+    hkf_status_t status;     /* TRACKING (a measurement), COASTING (up to max_dt after one), LOST (stale) */
+    unsigned flags;          /* HKF_FLAG_GATED: the gate refused this measurement */
 } hkf_position_output_t;
 
 /* Defaults chosen on truth by construction with the estimator's mesh position
@@ -92,15 +108,25 @@ void hkf_position_restart(hkf_position_filter_t *f);
 
 /* Predicts by dt (s) and takes the measurement z (cm) with R = r_scale x the
  * setting's R. The first measurement, or one after a gap beyond max_dt,
- * starts the track there (and sets the centre if none is set). */
+ * starts the track there (and sets the centre if none is set). A measurement
+ * the gate refuses leaves the prediction and sets HKF_FLAG_GATED (HKF_OK). */
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out);
 
 /* Predicts by dt (s) without a measurement (the noise's history restarts). */
 int hkf_position_predict(hkf_position_filter_t *f, hkf_real_t dt, hkf_position_output_t *out);
 
+/* The position `ahead` s (>= 0) after the last step, without changing the
+ * filter: moved on by the rate for up to max_dt (COASTING; TRACKING at 0),
+ * beyond that held where the coast ended with rate 0 (LOST); the variance
+ * grows with ahead (up to HKF_MAX_TIME, capped at HKF_MAX_VARIANCE). */
+int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, hkf_position_output_t *out);
+
 /* The centre := the current position (a recentre; with the angles', hkf_recenter). */
 int hkf_position_recenter(hkf_position_filter_t *f);
+
+/* The centre := the position hkf_position_extrapolate gives `ahead` s on (what was published then). */
+int hkf_position_recenter_at(hkf_position_filter_t *f, hkf_real_t ahead);
 
 #ifdef __cplusplus
 }
