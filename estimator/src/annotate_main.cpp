@@ -28,6 +28,7 @@
 #include "hkf/head_pose_t.hpp"
 #include "hkf/head_pose_v1_t.hpp"
 #include "pose_drawing.hpp"
+#include "written_video.hpp"
 
 extern "C" {
 #include "lcm_log_reader.h"
@@ -216,6 +217,7 @@ int annotate(const Options &o);
 int main(int argc, char **argv)
 {
     Options o;
+    safe_files_fail_writes_past_size_limit();  // a file-size limit: a reported write error, not SIGXFSZ
     switch (parse(argc, argv, o)) {
     case 1: return 0;
     case 2: return 2;
@@ -310,6 +312,8 @@ int annotate(const Options &o)
     if (o.still_index >= frames)
         return fail("--still " + std::to_string(o.still_index) + ": the video has only " + std::to_string(frames) + " frames");
     writer.release();
+    if (const std::string problem = hkf_estimator::written_video_problem(o.out, frames); !problem.empty())
+        return fail(problem);
     if (stop_requested) return fail("stopped by a signal after " + std::to_string(frames) + " frames; " + o.out + " is whole up to there");
     std::printf("hkf-annotate: %s: %ld frames, %ld with a raw pose, %ld with a filtered pose\n", o.out.c_str(), frames,
                 with_raw, with_filtered);

@@ -296,6 +296,7 @@ int main(int argc, char **argv)
     Options o;
     // OpenCV reads this on its first image: beyond it, imread gives no image (the cap of frame_source.hpp)
     setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
+    safe_files_fail_writes_past_size_limit();  // a file-size limit: a reported write error, not SIGXFSZ
     switch (parse(argc, argv, o)) {
     case 1: return 0;
     case 2: return 2;

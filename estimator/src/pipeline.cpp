@@ -16,6 +16,9 @@
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
+
+#include "lcm_file_url.h"
+#include "written_video.hpp"
 #include <opencv2/highgui.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -277,23 +280,27 @@ public:
             ++resized_;
         }
         writer_.write(image);
+        ++written_;
     }
     void close()
     {
         if (writer_.isOpened()) writer_.release();
     }
     long resized() const { return resized_; }
+    // After close: "" when the video opens and holds every frame written (written_video.hpp).
+    std::string problem() const { return written_video_problem(path_, written_); }
 
 private:
     std::string path_;
     cv::VideoWriter writer_;
     cv::Size size_;
-    long resized_ = 0;
+    long resized_ = 0, written_ = 0;
 };
 
 // What the run counted, for the summary and the exit status.
 struct RunCounts {
     long frames = 0, with_face = 0, publish_failures = 0;
+    unsigned long published = 0;  // measurements LCM took: a file:// log must hold them all
     std::vector<double> latency_ms, inference_ms, second_latency_ms;
 };
 
@@ -313,6 +320,7 @@ std::unique_ptr<SecondModelWorker> start_second_model(HeadPoseEstimator *second,
                                                                    r.pose.value_or(HeadPose{}), r.inference_ms);
         std::lock_guard<std::mutex> lock(lcm_mutex);
         if (lcm.publish(options.channel, &m) != 0) ++counts.publish_failures;
+        else ++counts.published;
         counts.second_latency_ms.push_back(
             static_cast<double>(wall_utime() - (source.live() ? r.job.utime : r.job.taken_utime)) / 1000.0);
     });
@@ -373,7 +381,14 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
                  HeadPoseEstimator *second)
 {
     FrameSource source(options.source, options.fps_for_images);
-    lcm::LCM lcm(options.lcm_url);
+    // a file:// URL: never the source or the video, never a named pipe; its log checked at the end
+    const char *keep[] = {options.source.c_str(), options.annotate_path.c_str()};
+    lcm_file_url_t log_file;
+    if (lcm_file_url_check(options.lcm_url.c_str(), "output", keep, options.annotate_path.empty() ? 1 : 2,
+                           "hkf-estimator", &log_file) != 0)
+        throw EstimatorError("--lcm-url " + options.lcm_url + " refused");
+    auto lcm_owner = std::make_unique<lcm::LCM>(options.lcm_url);
+    lcm::LCM &lcm = *lcm_owner;
     if (!lcm.good()) throw EstimatorError("cannot open LCM provider " + options.lcm_url);
     FilteredPose filtered;
     if (!options.annotate_path.empty() || options.show)
@@ -425,8 +440,12 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
                 measurement_message(frame->utime, seq++, model.spec().name, face, pose, inference);
             {
                 std::lock_guard<std::mutex> lock(lcm_mutex);
-                if (lcm.publish(options.channel, &m) != 0 && counts.publish_failures++ == 0)
-                    std::fprintf(stderr, "hkf-estimator: publishing on %s failed (counted)\n", options.channel.c_str());
+                if (lcm.publish(options.channel, &m) != 0) {
+                    if (counts.publish_failures++ == 0)
+                        std::fprintf(stderr, "hkf-estimator: publishing on %s failed (counted)\n", options.channel.c_str());
+                } else {
+                    ++counts.published;
+                }
             }
             if (second_worker && tracked && (!estimate || std::fabs(estimate->yaw) >= options.second_from_yaw)) {
                 // after the first model's message, so that the node has the frame when the second's comes
@@ -469,7 +488,14 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
         print_summary(counts, seconds, slot, tracker, stall, second_worker.get(), second, source, capture_hung, video,
                       options);
     }
-    const int status = exit_status(counts, capture.failed() || !loop_error.empty(), source, options);
+    int status = exit_status(counts, capture.failed() || !loop_error.empty(), source, options);
+    second_worker.reset();  // it publishes on lcm: gone first
+    lcm_owner.reset();      // closes a file:// log, which is then read back
+    if (lcm_file_url_verify(&log_file, counts.published, "hkf-estimator") != 0) status = 1;
+    if (const std::string problem = video.problem(); !problem.empty()) {
+        std::fprintf(stderr, "hkf-estimator: %s\n", problem.c_str());
+        status = 1;
+    }
     if (capture_hung) {
         std::fprintf(stderr, "hkf-estimator: %s is not responding; leaving it\n", source.description().c_str());
         std::fflush(stdout);

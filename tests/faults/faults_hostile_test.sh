@@ -53,7 +53,8 @@ said "error writing '/dev/full'"
 expect_exit 1 "--csv /dev/full" "$filter" --offline "$work/raw.lcmlog" "$work/ok.lcmlog" --csv /dev/full
 # a disk that fills midway: the file size limit (SIGXFSZ ignored, so write() fails with EFBIG)
 status=0
-(ulimit -f 4; trap '' XFSZ; exec "$filter" --offline "$work/raw.lcmlog" "$work/cut.lcmlog") >"$work/out.txt" 2>&1 || status=$?
+# (no trap here: a user's shell leaves SIGXFSZ as it is, and the program must report the write itself)
+(ulimit -f 4; exec "$filter" --offline "$work/raw.lcmlog" "$work/cut.lcmlog") >"$work/out.txt" 2>&1 || status=$?
 [ "$status" = 1 ] || { cat "$work/out.txt"; fail "a disk full midway: exit $status (expected 1)"; }
 grep -q "it is incomplete" "$work/out.txt" || fail "the cut output was not reported"
 echo "disk full midway: exit 1, $(stat -c %s "$work/cut.lcmlog") of $(stat -c %s "$work/ok.lcmlog") bytes, reported"
@@ -240,4 +241,87 @@ said "2 images of the folder could not be read; skipped"
 said "1 frames of another size than the first were scaled"
 "$estimator" --source "$work/images.mp4" --lcm-url memq:// >"$work/out.txt" 2>&1 || fail "the --annotate video does not play"
 said "^hkf-estimator: 5 frames,"
+echo "== 18. LCM file:// URLs follow the rules of every output (round 3)"
+cp "$data/videos/d3.mp4" "$work/clip.mp4"
+clip_sum=$(sum "$work/clip.mp4")
+expect_exit 1 "hkf-estimator --lcm-url file://SOURCE?mode=w" "$estimator" --source "$work/clip.mp4" --max-frames 10 \
+  --lcm-url "file://$work/clip.mp4?mode=w"
+said "refusing to write over it"
+[ "$(sum "$work/clip.mp4")" = "$clip_sum" ] || fail "the estimator wrote over its source through an LCM URL"
+cp "$work/raw.lcmlog" "$work/x.lcmlog"
+expect_exit 1 "hkf-filter --input-url file://X --output-url file://X?mode=w" "$filter" --input-url "file://$work/x.lcmlog" \
+  --output-url "file://$work/x.lcmlog?mode=w"
+[ "$(sum "$work/x.lcmlog")" = "$raw_sum" ] || fail "hkf-filter wrote over its input log through an LCM URL"
+expect_exit 1 "hkf-filter --input-url file://X?mode=w (an input that writes)" "$filter" --input-url "file://$work/x.lcmlog?mode=w"
+[ "$(sum "$work/x.lcmlog")" = "$raw_sum" ] || fail "an input URL in write mode truncated the log"
+# a disk that fills: a file-size limit, with SIGXFSZ as a user's shell leaves it
+status=0
+(ulimit -f 2; exec "$estimator" --source "$work/clip.mp4" --max-frames 60 --second-model none \
+  --lcm-url "file://$work/small.lcmlog?mode=w") >"$work/out.txt" 2>&1 || status=$?
+[ "$status" = 1 ] || { cat "$work/out.txt"; fail "the estimator's file:// log on a full disk: exit $status (expected 1)"; }
+said "data lost"
+echo "hkf-estimator onto a full disk: exit 1, $(grep -o 'holds [0-9]* of the [0-9]* events' "$work/out.txt")"
+status=0
+(ulimit -f 4; exec "$filter" --input-url "file://$work/raw.lcmlog?speed=0" \
+  --output-url "file://$work/small_out.lcmlog?mode=w") >"$work/out.txt" 2>&1 || status=$?
+[ "$status" = 1 ] || { cat "$work/out.txt"; fail "hkf-filter's file:// output on a full disk: exit $status (expected 1)"; }
+said "data lost"
+echo "hkf-filter --output-url onto a full disk: exit 1, $(grep -o 'holds [0-9]* of the [0-9]* events' "$work/out.txt")"
+status=0
+(ulimit -f 100; exec "$estimator" --source "$work/clip.mp4" --max-frames 200 --second-model none --lcm-url memq:// \
+  --annotate "$work/full.mp4") >"$work/out.txt" 2>&1 || status=$?
+[ "$status" = 1 ] || { cat "$work/out.txt"; fail "--annotate onto a full disk: exit $status (expected 1)"; }
+said "cannot be opened: it is cut"
+echo "hkf-estimator --annotate onto a full disk: exit 1, reported"
+expect_exit 1 "hkf-cmd --lcm-url file:///dev/full?mode=w" "$cmd" recenter --lcm-url "file:///dev/full?mode=w"
+said "not a regular file"
+expect_exit 1 "hkf-estimator --lcm-url file://FIFO?mode=w" "$estimator" --source "$work/clip.mp4" --max-frames 5 \
+  --lcm-url "file://$work/fifo?mode=w"
+said "named pipe"
+expect_exit 1 "hkf-filter --input-url file://FIFO" "$filter" --input-url "file://$work/fifo"
+said "named pipe"
+expect_exit 1 "hkf-cmd --lcm-url file://FIFO?mode=w" "$cmd" reset --lcm-url "file://$work/fifo?mode=w"
+said "named pipe"
+expect_exit 1 "hkf-opentrack --lcm-url file://FIFO" "$opentrack" --lcm-url "file://$work/fifo"
+said "named pipe"
+
+echo "== 19. positions far off, forged or bad: gated, bounded, counted (round 3)"
+log_position() {
+  "$python" - "$@" "$types" <<'PY'
+import sys
+import lcm
+src, dst, types = sys.argv[1:4]
+sys.path.insert(0, types)
+from hkf import head_pose_measurement_t
+out = lcm.EventLog(dst, "w", overwrite=True)
+for e in lcm.EventLog(src, "r"):
+    m = head_pose_measurement_t.decode(e.data)
+    if m.valid and 30 <= m.seq < 40:  # x -1000 cm for 10 frames, then +1000 once
+        m.x, m.z = -1000.0, 2.0
+    elif m.valid and m.seq == 40:
+        m.x, m.y, m.z = 1000.0, -1000.0, 1000.0
+    elif m.valid and 41 <= m.seq < 60:  # then no position
+        m.z = 0.0
+    elif m.valid and m.seq in (70, 71, 72):  # bad values: NaN, a negative z, beyond the range
+        m.x, m.z = (float("nan"), 60.0) if m.seq == 70 else (0.0, -4.65) if m.seq == 71 else (2000.0, 60.0)
+    elif m.valid and m.seq == 90:  # one forged message
+        m.x, m.y, m.z = 1000.0, -1000.0, 1000.0
+    out.write_event(e.timestamp, e.channel, m.encode())
+out.close()
+PY
+}
+log_position "$work/raw.lcmlog" "$work/position.lcmlog"
+expect_exit 0 "a log with far, forged and bad positions" "$filter" --offline "$work/position.lcmlog" "$work/position_out.lcmlog" \
+  --csv "$work/position.csv"
+said "positions: 3 bad values, [1-9][0-9]* refused by the outlier gate"
+"$python" - "$work/position.csv" <<'PY' || fail "a published position beyond the range the node accepts"
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+worst = max(max(abs(float(r["x"])), abs(float(r["y"])), float(r["z"])) for r in rows)
+assert all(math.isfinite(float(r[k])) for r in rows for k in ("x", "y", "z")), "non-finite"
+assert all(abs(float(r[k])) <= 1000 for r in rows for k in ("x", "y", "z")), f"beyond 1000 cm: {worst}"
+assert all(float(r["z"]) >= 1.0 or float(r["z"]) == 0.0 for r in rows), "z below 1 cm"
+forged = [r for r in rows if int(r["seq"]) > 0 and abs(float(r["x"])) > 900]
+print(f"positions published: |x|, |y|, z at most {worst:.0f} cm; {len(forged)} poses with |x| > 900 cm")
+PY
 echo "faults_hostile_test: all checks passed"

@@ -13,6 +13,8 @@
 
 #include "arguments.h"
 #include "hkf_tracker_command_t.h"
+#include "lcm_file_url.h"
+#include "safe_files.h"
 
 #define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
 
@@ -33,6 +35,7 @@ int main(int argc, char **argv)
 {
     const char *lcm_url = DEFAULT_LCM_URL, *channel = "HEAD_TRACKER_CMD", *verb = NULL;
     hkf_tracker_command_t command;
+    lcm_file_url_t log_file;
     lcm_t *lcm;
     int i, result;
     for (i = 1; i < argc; ++i) {
@@ -67,6 +70,10 @@ int main(int argc, char **argv)
         return 2;
     }
     command.utime = clock_wall_us();
+    safe_files_fail_writes_past_size_limit();
+    if (lcm_file_url_check(lcm_url, "output", NULL, 0, "hkf-cmd", &log_file) != 0) {
+        return 1; /* a file:// URL to a named pipe, a device or in read mode: it would hang or lose the command */
+    }
     lcm = lcm_create(lcm_url);
     if (lcm == NULL) {
         fprintf(stderr, "hkf-cmd: cannot open LCM provider '%s'\n", lcm_url);
@@ -74,6 +81,9 @@ int main(int argc, char **argv)
     }
     result = hkf_tracker_command_t_publish(lcm, channel, &command);
     lcm_destroy(lcm);
+    if (result == 0 && lcm_file_url_verify(&log_file, 1, "hkf-cmd") != 0) {
+        return 1;
+    }
     if (result != 0) {
         fprintf(stderr, "hkf-cmd: publishing on %s failed\n", channel);
         return 1;

@@ -29,4 +29,9 @@ FILE *safe_open_output(const char *path, const char *mode, const char *const *ke
  * flush, the sync or the close failed (a full disk shows here at the latest). */
 int safe_close(FILE *f);
 
+/* A write beyond the file-size limit (ulimit -f) fails with EFBIG, which the
+ * program reports, instead of killing it by SIGXFSZ without a word. Call once
+ * at start. */
+void safe_files_fail_writes_past_size_limit(void);
+
 #endif /* SAFE_FILES_H */

@@ -21,6 +21,7 @@
 #include "node_config.h"
 #include "pose_csv.h"
 #include "safe_files.h"
+#include "lcm_file_url.h"
 
 #define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
 
@@ -44,6 +45,7 @@ typedef struct {
     int64_t last_arrival_us;   /* monotonic clock when the last measurement was handled */
     int reported_decode_errors, reported_unknown_commands;
     unsigned long unknown_commands, publish_errors, csv_errors;
+    unsigned long published_ok;  /* poses LCM took: a file:// output must hold them all (lcm_file_url.h) */
 } node_run_t;
 
 /* The capture clock, for the latency a pose reports. */
@@ -209,9 +211,12 @@ static void report_decode_error(node_run_t *run, const char *channel, const char
 static void publish(node_run_t *run, hkf_head_pose_t *pose)
 {
     pose->latency_us = wall_utime() - pose->measurement_utime;
-    if (hkf_head_pose_t_publish(run->out_lcm, run->options->output_channel, pose) != 0 &&
-        run->publish_errors++ < 5) {
-        fprintf(stderr, "hkf-filter: publishing on %s failed\n", run->options->output_channel);
+    if (hkf_head_pose_t_publish(run->out_lcm, run->options->output_channel, pose) != 0) {
+        if (run->publish_errors++ < 5) {
+            fprintf(stderr, "hkf-filter: publishing on %s failed\n", run->options->output_channel);
+        }
+    } else {
+        ++run->published_ok;
     }
     if (run->csv != NULL && pose_csv_write(run->csv, pose) != 0 && run->csv_errors++ == 0) {
         fprintf(stderr, "hkf-filter: writing '%s' failed (a full disk?)\n", run->options->csv_path);
@@ -252,13 +257,40 @@ static void on_command(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     }
 }
 
+static int paths_to_keep(const options_t *o, const char *except, const char **keep);
+
+/* The live URLs' file:// rules (lcm_file_url.h), before LCM opens either: the input reads a regular
+ * file; the output writes none of the run's other files. 0, or -1 with the reason. */
+static int check_live_urls(const options_t *o, lcm_file_url_t *input, lcm_file_url_t *output)
+{
+    const char *keep[3 + 8 + 1];
+    int count;
+    if (lcm_file_url_check(o->input_url, "input", NULL, 0, "hkf-filter", input) != 0) {
+        return -1;
+    }
+    if (strcmp(o->input_url, o->output_url) == 0 && !input->is_file) {
+        *output = *input; /* one provider for both */
+        return 0;
+    }
+    count = paths_to_keep(o, NULL, keep);
+    if (input->is_file) {
+        keep[count++] = input->path;
+    }
+    return lcm_file_url_check(o->output_url, "output", keep, count, "hkf-filter", output);
+}
+
 static int run_live(node_run_t *run)
 {
     const options_t *o = run->options;
-    lcm_t *in = lcm_create(o->input_url);
+    lcm_file_url_t input_file, output_file;
+    lcm_t *in;
     int status = 0;
     const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     int64_t next_tick = arrival_utime() + tick_us;
+    if (check_live_urls(o, &input_file, &output_file) != 0) {
+        return 1;
+    }
+    in = lcm_create(o->input_url);
     if (in == NULL) {
         fprintf(stderr, "hkf-filter: cannot open LCM provider '%s'\n", o->input_url);
         return 1;
@@ -312,6 +344,9 @@ static int run_live(node_run_t *run)
         lcm_destroy(run->out_lcm);
     }
     lcm_destroy(in);
+    if (lcm_file_url_verify(&output_file, run->published_ok, "hkf-filter") != 0) {
+        status = 1;
+    }
     if (run->unknown_commands > 0) {
         fprintf(stderr, "hkf-filter: %lu unknown commands ignored\n", run->unknown_commands);
     }
@@ -472,6 +507,7 @@ int main(int argc, char **argv)
         return 0;
     }
     run.options = &options;
+    safe_files_fail_writes_past_size_limit();
     filter_node_init(&run.node, &options.config);
     if (!outputs_distinct(&options)) {
         status = 1;

@@ -19,6 +19,7 @@
 
 #include "arguments.h"
 
+#include "lcm_file_url.h"
 #include "lcm_wait.h"
 #include "opentrack_packet.h"
 
@@ -327,10 +328,15 @@ static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 static int run(bridge_t *bridge)
 {
     const options_t *o = bridge->options;
-    lcm_t *lcm = lcm_create(o->lcm_url);
+    lcm_file_url_t log_file;
+    lcm_t *lcm;
     const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     int64_t next_tick = clock_monotonic_us() + tick_us;
     int status = 0;
+    if (lcm_file_url_check(o->lcm_url, "input", NULL, 0, "hkf-opentrack", &log_file) != 0) {
+        return 1; /* a file:// URL: a regular log, read; a named pipe would hang LCM */
+    }
+    lcm = lcm_create(o->lcm_url);
     if (lcm == NULL) {
         fprintf(stderr, "hkf-opentrack: cannot open LCM provider '%s'\n", o->lcm_url);
         return 1;

@@ -56,6 +56,7 @@ int main(int argc, char **argv)
     FILE *truth = NULL;
     long frames, i;
     int i_arg, status = 0;
+    safe_files_fail_writes_past_size_limit();
 
     for (i_arg = 1; i_arg < argc; ++i_arg) {
         const char *arg = argv[i_arg];
