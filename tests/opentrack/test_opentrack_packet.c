@@ -114,8 +114,37 @@ static void test_position(void **state)
     mapping.relative_to_center = 0;
     assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
     assert_true(v[OPENTRACK_X] == 6.0 && v[OPENTRACK_Z] == -55.0);
-    pose.z = 1500.0f;
-    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), -2);
+    pose.z = 1500.0f; /* beyond: the angles are given, the position left as it was */
+    pose.yaw = 7.0f;
+    v[OPENTRACK_X] = 11.0, v[OPENTRACK_Y] = 12.0, v[OPENTRACK_Z] = 13.0;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), -3);
+    assert_true(v[OPENTRACK_YAW] == 7.0 && v[OPENTRACK_X] == 11.0 && v[OPENTRACK_Z] == 13.0);
+    pose.z = NAN;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), -3);
+    assert_true(v[OPENTRACK_YAW] == 7.0 && v[OPENTRACK_Y] == 12.0);
+    /* a TX of 1000 cm scaled x100 is sent as the most opentrack takes, not 100,000 cm */
+    pose.x = 1000.0f, pose.z = 55.0f;
+    mapping.scale[OPENTRACK_AXIS_X] = 100.0;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_X] == OPENTRACK_MAX_ABS_POSITION);
+}
+
+/* Relative angles take the short way round on every axis: a pitch of 180 with the centre at -180
+ * is 0, not 360 (36,000 x100); a scaled angle stays within +-180. */
+static void test_relative_angles_wrapped(void **state)
+{
+    opentrack_mapping_t mapping = opentrack_default_mapping();
+    hkf_head_pose_t pose = pose_at(180.0f, 170.0f, -170.0f);
+    double v[OPENTRACK_FIELDS];
+    (void)state;
+    pose.center[0] = -180.0f, pose.center[1] = -170.0f, pose.center[2] = 170.0f;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(fabs(v[OPENTRACK_PITCH]) < 1e-9 && fabs(v[OPENTRACK_YAW] - (-20.0)) < 1e-9);
+    assert_true(fabs(v[OPENTRACK_ROLL] - (-20.0)) < 1e-9); /* roll -170 - 170 = -340 = +20, then opentrack's sign */
+    mapping.scale[OPENTRACK_AXIS_PITCH] = 100.0;
+    pose.pitch = 90.0f, pose.center[0] = 0.0f;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+    assert_true(v[OPENTRACK_PITCH] == OPENTRACK_MAX_ABS_ANGLE);
 }
 
 /* hkf 0.1's pose (head_pose_v1_t) still decodes, its position 0; hkf 0.2's as it is. */
@@ -178,7 +207,7 @@ static void test_beyond_a_head_refused(void **state)
     assert_int_equal(opentrack_pose_values(&mapping, &pose, values), -2);
     pose = pose_at(180.0f, -180.0f, 180.0f);
     assert_int_equal(opentrack_pose_values(&mapping, &pose, values), 0);
-    assert_true(fabs(values[OPENTRACK_PITCH] - 180.0) < 1e-9);
+    assert_true(fabs(values[OPENTRACK_PITCH] - (-180.0)) < 1e-9); /* +180 and -180 are one angle: [-180, 180) */
 }
 
 int main(void)
@@ -189,6 +218,7 @@ int main(void)
         cmocka_unit_test(test_relative_to_center),
         cmocka_unit_test(test_invert_and_scale),
         cmocka_unit_test(test_position),
+        cmocka_unit_test(test_relative_angles_wrapped),
         cmocka_unit_test(test_decode_both_versions),
         cmocka_unit_test(test_non_finite_refused),
         cmocka_unit_test(test_beyond_a_head_refused),

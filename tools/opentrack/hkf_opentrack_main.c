@@ -36,7 +36,7 @@ typedef struct {
 } options_t;
 
 typedef struct {
-    unsigned long received, sent, held, centered, non_finite, absurd, send_errors, decode_errors;
+    unsigned long received, sent, held, centered, non_finite, absurd, send_errors, decode_errors, position_beyond;
 } bridge_counts_t;
 
 typedef struct {
@@ -44,6 +44,7 @@ typedef struct {
     int socket_fd;
     unsigned char packet[OPENTRACK_PACKET_SIZE]; /* the latest packet: what --rate repeats, LOST holds */
     int have_packet;
+    double last_values[OPENTRACK_FIELDS]; /* the last pose's values: a position beyond the range keeps its */
     bridge_counts_t counts;
 } bridge_t;
 
@@ -294,15 +295,22 @@ static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
         opentrack_encode(values, bridge->packet);
         bridge->have_packet = 1;
         ++bridge->counts.centered;
-    } else if ((result = opentrack_pose_values(&o->mapping, pose, values)) != 0) {
-        if (result == -2 && bridge->counts.absurd++ < 5) {
-            fprintf(stderr, "hkf-opentrack: a pose beyond +-180 deg or +-1000 cm (pitch %g, yaw %g, roll %g; x %g, y %g, "
-                            "z %g cm) not sent: forged or corrupt\n", (double)pose->pitch, (double)pose->yaw,
-                    (double)pose->roll, (double)pose->x, (double)pose->y, (double)pose->z);
-        }
-        bridge->counts.non_finite += result == -1;
-        return;
     } else {
+        memcpy(values, bridge->last_values, sizeof values); /* the last position, should this one be beyond */
+        result = opentrack_pose_values(&o->mapping, pose, values);
+        if (result == -1 || result == -2) {
+            if (result == -2 && bridge->counts.absurd++ < 5) {
+                fprintf(stderr, "hkf-opentrack: a pose beyond +-180 deg (pitch %g, yaw %g, roll %g) not sent: forged "
+                                "or corrupt\n", (double)pose->pitch, (double)pose->yaw, (double)pose->roll);
+            }
+            bridge->counts.non_finite += result == -1;
+            return;
+        }
+        if (result == -3 && bridge->counts.position_beyond++ < 5) {
+            fprintf(stderr, "hkf-opentrack: a position not finite or beyond +-1000 cm (x %g, y %g, z %g) not sent: the angles went "
+                            "with the last position\n", (double)pose->x, (double)pose->y, (double)pose->z);
+        }
+        memcpy(bridge->last_values, values, sizeof values);
         opentrack_encode(values, bridge->packet);
         bridge->have_packet = 1;
     }
@@ -387,8 +395,8 @@ int main(int argc, char **argv)
     fprintf(stderr,
             "hkf-opentrack: %lu poses received, %lu datagrams sent to %s port %s (%lu repeats of the last pose "
             "while LOST, %lu centre poses while LOST); dropped: %lu non-finite, %lu beyond +-180 deg, %lu send "
-            "errors, %lu undecodable\n",
+            "errors, %lu undecodable; %lu positions beyond +-1000 cm held at the last\n",
             c->received, c->sent, options.host, options.port, c->held, c->centered, c->non_finite, c->absurd,
-            c->send_errors, c->decode_errors);
+            c->send_errors, c->decode_errors, c->position_beyond);
     return status;
 }

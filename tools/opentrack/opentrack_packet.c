@@ -29,7 +29,7 @@ int opentrack_axis_from_name(const char *name)
     return -1;
 }
 
-/* [-180, 180): yaw relative to the centre takes the short way round. */
+/* [-180, 180): an angle relative to the centre takes the short way round. */
 static double wrap_degrees(double angle)
 {
     double wrapped = fmod(angle + 180.0, 360.0);
@@ -38,6 +38,9 @@ static double wrap_degrees(double angle)
     }
     return wrapped - 180.0;
 }
+
+/* x within [-limit, limit] */
+static double within(double x, double limit) { return x > limit ? limit : x < -limit ? -limit : x; }
 
 int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pose_t *pose,
                           double values[OPENTRACK_FIELDS])
@@ -49,36 +52,40 @@ int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pos
     const float place[6] = {pose->x, pose->y, pose->z, pose->position_center[0], pose->position_center[1],
                             pose->position_center[2]};
     double position[3];
-    int a, i;
+    int a, i, position_beyond = 0;
     for (i = 0; i < 6; ++i) {
-        if ((isfinite(given[i]) && fabs((double)given[i]) > OPENTRACK_MAX_ABS_ANGLE) ||
-            (isfinite(place[i]) && fabs((double)place[i]) > OPENTRACK_MAX_ABS_POSITION)) {
+        if (isfinite(given[i]) && fabs((double)given[i]) > OPENTRACK_MAX_ABS_ANGLE) {
             return -2;
         }
+        position_beyond |= !isfinite(place[i]) || fabs((double)place[i]) > OPENTRACK_MAX_ABS_POSITION;
     }
     for (i = 0; i < 3; ++i) { /* hkf's camera frame is opentrack's x, y, z */
         position[i] = (double)place[i] - (mapping->relative_to_center ? (double)place[3 + i] : 0.0);
     }
     if (mapping->relative_to_center) {
-        pitch -= pose->center[0];
+        pitch = wrap_degrees(pitch - (double)pose->center[0]);
         yaw = wrap_degrees(yaw - (double)pose->center[1]);
-        roll -= pose->center[2];
+        roll = wrap_degrees(roll - (double)pose->center[2]);
     }
     /* the convention mapping (opentrack_packet.h): roll changes sign */
     angle[OPENTRACK_AXIS_YAW] = yaw;
     angle[OPENTRACK_AXIS_PITCH] = pitch;
     angle[OPENTRACK_AXIS_ROLL] = -roll;
-    for (a = 0; a < 3; ++a) {
-        values[OPENTRACK_YAW + a] = (mapping->invert[a] ? -angle[a] : angle[a]) * mapping->scale[a];
-        values[OPENTRACK_X + a] =
-            (mapping->invert[OPENTRACK_AXIS_X + a] ? -position[a] : position[a]) * mapping->scale[OPENTRACK_AXIS_X + a];
-    }
-    for (i = 0; i < OPENTRACK_FIELDS; ++i) {
-        if (!isfinite(values[i])) {
+    for (i = 0; i < 6; ++i) {
+        if (!isfinite(given[i])) {
             return -1;
         }
     }
-    return 0;
+    for (a = 0; a < 3; ++a) { /* scaled, then within what opentrack's axes show */
+        values[OPENTRACK_YAW + a] =
+            within((mapping->invert[a] ? -angle[a] : angle[a]) * mapping->scale[a], OPENTRACK_MAX_ABS_ANGLE);
+        if (!position_beyond) {
+            values[OPENTRACK_X + a] = within((mapping->invert[OPENTRACK_AXIS_X + a] ? -position[a] : position[a]) *
+                                                 mapping->scale[OPENTRACK_AXIS_X + a],
+                                             OPENTRACK_MAX_ABS_POSITION);
+        }
+    }
+    return position_beyond ? -3 : 0;
 }
 
 int opentrack_decode_pose(const void *data, int size, hkf_head_pose_t *pose)

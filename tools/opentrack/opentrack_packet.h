@@ -53,9 +53,13 @@ int opentrack_axis_from_name(const char *name);
 #define OPENTRACK_MAX_ABS_ANGLE 180.0
 #define OPENTRACK_MAX_ABS_POSITION 1000.0 /* cm: libhkf's HKF_MAX_ABS_POSITION */
 
-/* The six values for one pose. Returns 0; -1 when any value is not finite, -2
- * when an angle or the centre is beyond OPENTRACK_MAX_ABS_ANGLE, or the position
- * or its centre beyond OPENTRACK_MAX_ABS_POSITION (neither is ever sent). */
+/* The six values for one pose: the angles relative to the centre wrapped into
+ * [-180, 180), every value scaled and then kept within +-OPENTRACK_MAX_ABS_ANGLE
+ * and +-OPENTRACK_MAX_ABS_POSITION. Returns 0; -1 when an angle or the centre
+ * is not finite, -2 when one is beyond OPENTRACK_MAX_ABS_ANGLE (neither is ever
+ * sent); -3 when the position or its centre is not finite or beyond
+ * OPENTRACK_MAX_ABS_POSITION: the angles are in values, the position's three
+ * are left as they were (the caller's last). */
 int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pose_t *pose,
                           double values[OPENTRACK_FIELDS]);
 
