@@ -24,6 +24,7 @@ HeadPose AngleBinsModel::estimate_input(const cv::Mat &input)
     std::vector<cv::Mat> out;
     net_.forward(out, outputs_);
     if (out.size() != 3) throw EstimatorError(spec_.name + " gave " + std::to_string(out.size()) + " outputs, not 3");
+    if (!finite_outputs(out)) return HeadPose(std::nanf(""), std::nanf(""), std::nanf(""));
     HeadPose pose;
     pose.pitch = spec_.signs[0] * decode_angle_bins(out[0], spec_.pitch);
     pose.yaw = spec_.signs[1] * decode_angle_bins(out[1], spec_.yaw);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include <opencv2/imgcodecs.hpp>
@@ -84,6 +85,24 @@ FrameSource::FrameSource(const std::string &spec, double fps_for_images) : fps_(
     start_utime_ = wall_utime();
 }
 
+// OpenCV's FFmpeg reader gives the last frame again, and says it read one, when it cannot
+// convert a frame (a stream whose frames change size, e.g. concatenated MJPEG): the same
+// pose would go out as measured for the rest of the file. A file whose frames repeat bit for
+// bit for a second on end is stopped with the reason (no camera does that; a duplicated frame
+// of a frame-rate conversion repeats once).
+void FrameSource::check_not_repeating(const cv::Mat &image)
+{
+    const bool same = image.size() == last_read_.size() && image.type() == last_read_.type() && image.isContinuous() &&
+                      last_read_.isContinuous() &&
+                      std::memcmp(image.data, last_read_.data, image.total() * image.elemSize()) == 0;
+    repeats_ = same ? repeats_ + 1 : 0;
+    if (!same) image.copyTo(last_read_);
+    if (static_cast<double>(repeats_) >= std::max(fps_, 1.0))
+        throw EstimatorError(description_ + " repeats its frame " +
+                             std::to_string(next_index_ - repeats_) + " bit for bit from then on: its decoder is stuck (frames that change "
+                             "size mid-stream, e.g. concatenated MJPEG?)");
+}
+
 bool FrameSource::read(Frame &frame)
 {
     if (!images_.empty()) {
@@ -99,6 +118,7 @@ bool FrameSource::read(Frame &frame)
     } else {
         if (!capture_.read(frame.image) || frame.image.empty()) return false;
         check_frame_size(frame.image.cols, frame.image.rows, description_);  // a stream may change size
+        if (!live_) check_not_repeating(frame.image);
     }
     frame.index = next_index_++;
     frame.utime = live_ ? wall_utime() : start_utime_ + static_cast<int64_t>(std::llround(1e6 * static_cast<double>(frame.index) / fps_));

@@ -48,6 +48,7 @@ public:
     bool read(Frame &frame);
 
 private:
+    void check_not_repeating(const cv::Mat &image);  // a file's decoder stuck on one frame: EstimatorError
     cv::VideoCapture capture_;
     std::vector<std::string> images_;
     bool live_ = false;
@@ -55,6 +56,8 @@ private:
     int64_t start_utime_ = 0, next_index_ = 0, expected_frames_ = 0;
     size_t next_image_ = 0;
     long skipped_images_ = 0;
+    cv::Mat last_read_;      // a file's last frame that differed from the one before
+    int64_t repeats_ = 0;    // frames in a row equal to it
     std::string description_;
 };
 

@@ -37,9 +37,22 @@ public:
 
     // The camera and head the position is measured with (--fov, --pivot).
     void set_position_settings(const PositionSettings &settings) { position_settings_ = settings; }
+    // Faces on which the network gave NaN or infinite outputs (no pose): a healthy network never
+    // does, so any is a sign of damaged weights.
+    long non_finite_outputs() const { return non_finite_outputs_; }
 
 protected:
+    // false (and counted) when a network output holds a NaN or an infinity
+    bool finite_outputs(const std::vector<cv::Mat> &outputs)
+    {
+        for (const cv::Mat &m : outputs)
+            if (!cv::checkRange(m)) return ++non_finite_outputs_, false;
+        return true;
+    }
     PositionSettings position_settings_;
+
+private:
+    long non_finite_outputs_ = 0;
 };
 
 // The estimator a description names: angle_bins or landmarks_pnp. Throws EstimatorError.

@@ -149,7 +149,7 @@ void usage(std::ostream &out)
 // 0 = run, 1 = help shown, 2 = bad arguments
 int parse(int argc, char **argv, Options &o)
 {
-    if (const char *env = std::getenv("HKF_MODELS_DIR")) o.models_dir = env;
+    if (const char *env = std::getenv("HKF_MODELS_DIR"); env != nullptr && *env != '\0') o.models_dir = env;  // '': unset
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--help" || arg == "-h") {

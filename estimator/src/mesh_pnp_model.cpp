@@ -24,7 +24,7 @@ const cv::Matx33d kCanonicalToCamera(1, 0, 0, 0, -1, 0, 0, 0, -1);
 std::vector<cv::Point3f> read_canonical(const std::string &path, int count)
 {
     std::ifstream in(path);
-    if (!in) throw EstimatorError("canonical face " + path + " is missing (scripts/setup.sh extracts it)");
+    if (!in) throw EstimatorError("canonical face " + path + " is missing (" + kModelsHint + ")");
     std::vector<cv::Point3f> points;
     std::string line;
     while (std::getline(in, line)) {
@@ -63,6 +63,7 @@ bool MeshPnpModel::landmarks_in_region(const cv::Mat &frame, const cv::Point2f &
     std::vector<cv::Mat> out;
     net_.forward(out, std::vector<std::string>{spec_.landmarks_output, spec_.flag_output});
     if (out.size() != 2) throw EstimatorError(spec_.name + " gave " + std::to_string(out.size()) + " outputs, not 2");
+    if (!finite_outputs(out)) return false;
     const float *xyz = mesh_landmarks(out[0], spec_.landmarks, spec_.landmarks_output);
     if (decode_face_flag(out[1], spec_.flag_output) < spec_.min_face_flag) return false;
     if (!std::all_of(xyz, xyz + 3 * spec_.landmarks, [](float v) { return std::isfinite(v); })) return false;

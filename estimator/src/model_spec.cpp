@@ -92,7 +92,8 @@ ModelSpec load_model_spec(const std::string &spec_dir, const std::string &name, 
         } else if (key == "roi_scale" || key == "focal_scale") {
             float &target = key == "roi_scale" ? spec.roi_scale : spec.focal_scale;
             target = parse_one<float>(in, where);
-            if (!(target > 0.f && target < 100.f)) throw EstimatorError(where + ": " + key + " must be positive");
+            if (!(target > 0.f && target < 100.f))
+                throw EstimatorError(where + ": " + key + " must be above 0 and below 100");
         } else if (key == "roi_face_cm") {
             spec.roi_face_cm = parse_one<float>(in, where);
             if (!(spec.roi_face_cm >= 0.f && spec.roi_face_cm < 1000.f)) throw EstimatorError(where + ": roi_face_cm 0..1000");

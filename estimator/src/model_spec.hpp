@@ -13,6 +13,11 @@ struct EstimatorError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Where a missing model comes from, for both a source tree and an installed one.
+inline const std::string kModelsHint =
+    "in a source tree scripts/setup.sh fetches and converts the models; an installed hkf has them in "
+    "share/hkf/models beside its bin/, or give --models-dir DIR or HKF_MODELS_DIR";
+
 struct AngleBins {
     std::string output;  // the network output holding this angle's logits
     int bins = 0;

@@ -10,7 +10,7 @@ namespace hkf_estimator {
 cv::dnn::Net load_onnx_network(const std::string &file, const std::vector<std::string> &outputs)
 {
     std::ifstream probe(file, std::ios::binary);
-    if (!probe) throw EstimatorError("model file " + file + " is missing (scripts/setup.sh fetches and converts it)");
+    if (!probe) throw EstimatorError("model file " + file + " is missing (" + kModelsHint + ")");
     cv::dnn::Net net;
     try {
         net = cv::dnn::readNetFromONNX(file);

@@ -352,12 +352,30 @@ void print_summary(const RunCounts &counts, double seconds, const LatestFrame &s
                     options.channel.c_str());
 }
 
+// 1 (said on stderr) when a model gave NaN or infinite outputs: a healthy network never does.
+int damaged_models(const HeadPoseEstimator &model, const HeadPoseEstimator *second)
+{
+    int damaged = 0;
+    for (const HeadPoseEstimator *m : {&model, second}) {
+        if (m == nullptr || m->non_finite_outputs() == 0) continue;
+        std::fprintf(stderr, "hkf-estimator: the model %s gave NaN or infinite outputs on %ld faces (no pose there): "
+                     "its weights are damaged? (%s)\n", m->spec().name.c_str(), m->non_finite_outputs(),
+                     kModelsHint.c_str());
+        damaged = 1;
+    }
+    return damaged;
+}
+
 // 0; 1 for no frame, a failure or a publish that failed; kExitSourceEnded for a camera or
 // stream that ended by itself; kExitDamagedFile for a file that ended well short of its
 // frame count (the decoder gave up on damage; the count can be approximate, hence the margin).
 int exit_status(const RunCounts &counts, bool failed, const FrameSource &source, const PipelineOptions &options)
 {
     int status = counts.frames > 0 ? 0 : 1;
+    if (counts.frames == 0 && !failed && !stop_requested)
+        std::fprintf(stderr, "hkf-estimator: %s gave no frame: %s\n", source.description().c_str(),
+                     source.expected_frames() == 0 ? "it holds none (an empty video or folder)"
+                                                    : "none of its frames could be decoded");
     if (failed || counts.publish_failures > 0) status = 1;
     if (!failed && !stop_requested && source.live()) {
         std::fprintf(stderr, "hkf-estimator: %s stopped delivering frames (unplugged?) after %ld frames\n",
@@ -489,6 +507,7 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
                       options);
     }
     int status = exit_status(counts, capture.failed() || !loop_error.empty(), source, options);
+    if (damaged_models(model, second)) status = 1;
     second_worker.reset();  // it publishes on lcm: gone first
     lcm_owner.reset();      // closes a file:// log, which is then read back
     if (lcm_file_url_verify(&log_file, counts.published, "hkf-estimator") != 0) status = 1;

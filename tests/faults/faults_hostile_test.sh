@@ -324,4 +324,50 @@ assert all(float(r["z"]) >= 1.0 or float(r["z"]) == 0.0 for r in rows), "z below
 forged = [r for r in rows if int(r["seq"]) > 0 and abs(float(r["x"])) > 900]
 print(f"positions published: |x|, |y|, z at most {worst:.0f} cm; {len(forged)} poses with |x| > 900 cm")
 PY
+echo "== 20. the estimator's inputs: a stuck decoder, an empty video, damaged weights, odd settings (round 3)"
+"$python" - "$data/videos/d3.mp4" "$work" <<'PY'
+import sys
+import cv2
+video, work = sys.argv[1:3]
+capture, stream = cv2.VideoCapture(video), open(f"{work}/concat.mjpeg", "wb")
+for i in range(120):  # concatenated MJPEG: the frames grow by half at frame 60
+    ok, frame = capture.read()
+    if i >= 60:
+        frame = cv2.resize(frame, (frame.shape[1] * 3 // 2, frame.shape[0] * 3 // 2))
+    stream.write(cv2.imencode(".jpg", frame)[1].tobytes())
+writer = cv2.VideoWriter(f"{work}/zero.avi", cv2.VideoWriter_fourcc(*"MJPG"), 30, (320, 240))
+writer.release()  # a video of no frame
+PY
+expect_exit 1 "frames that change size mid-stream (concatenated MJPEG)" "$estimator" --source "$work/concat.mjpeg" \
+  --second-model none --lcm-url memq://
+said "its decoder is stuck"
+expect_exit 1 "a video of no frame" "$estimator" --source "$work/zero.avi" --lcm-url memq://
+said "gave no frame: it holds none"
+mkdir "$work/nan_models"
+for f in "$source"/.models/*; do ln -s "$f" "$work/nan_models/"; done
+rm "$work/nan_models/face_landmark.onnx"
+"$python" - "$source/.models/face_landmark.onnx" "$work/nan_models/face_landmark.onnx" <<'PY'
+import sys
+import numpy as np
+import onnx
+from onnx import numpy_helper
+model = onnx.load(sys.argv[1])
+for weights in model.graph.initializer:  # every large float tensor NaN: damaged weights
+    values = numpy_helper.to_array(weights)
+    if values.dtype == np.float32 and values.size > 100:
+        weights.CopyFrom(numpy_helper.from_array(np.full_like(values, np.nan), weights.name))
+onnx.save(model, sys.argv[2])
+PY
+expect_exit 1 "a face mesh with NaN weights" "$estimator" --source "$work/clip.mp4" --max-frames 10 --second-model none \
+  --lcm-url memq:// --models-dir "$work/nan_models"
+said "gave NaN or infinite outputs on 10 faces"
+sed 's/^roi_scale *= .*/roi_scale = 1e9/' "$source/estimator/models/mesh_pnp.model" >"$work/specs/mesh_roi.model"
+expect_exit 1 "roi_scale = 1e9" "$estimator" --source "$work/clip.mp4" --max-frames 5 --second-model none \
+  --lcm-url memq:// --model mesh_roi --spec-dir "$work/specs"
+said "roi_scale must be above 0 and below 100"
+HKF_MODELS_DIR='' expect_exit 0 "HKF_MODELS_DIR='' (as unset)" "$estimator" --source "$work/clip.mp4" --max-frames 5 \
+  --second-model none --lcm-url memq://
+expect_exit 1 "--models-dir without the models" "$estimator" --source "$work/clip.mp4" --max-frames 5 \
+  --second-model none --lcm-url memq:// --models-dir "$work/specs"
+said "an installed hkf has them in share/hkf/models"
 echo "faults_hostile_test: all checks passed"

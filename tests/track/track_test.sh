@@ -8,6 +8,7 @@
 # clear error. Needs root (unshare --net); exits 77 (skipped) otherwise.
 # usage: track_test.sh BUILD_DIR SOURCE_DIR PYTHON VIDEO_DIR
 set -euo pipefail
+trap 'echo "track_test: line $LINENO failed" >&2' ERR
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) python=$3 videos=$4
 
 if [ "${HKF_IN_NETNS:-}" != 1 ]; then
@@ -54,6 +55,14 @@ received=$(wc -l <"$work/udp.hex")
 # a source that ends: everything stops by itself, exit 0
 "${track[@]}" --source "$videos/d18.mp4" --logs "$work/logs2" >"$work/end.txt" 2>&1 || fail "exit status at the end of the source"
 grep -q "the source ended" "$work/end.txt" || fail "no end-of-source message"
+# ... read faster than real time, its stamps are the file's time: the status line gives no latency
+if grep -q "capture->pose" "$work/end.txt"; then fail "a latency shown for a file read faster than real time"; fi
+grep -q "no latency (a file faster than real time" "$work/end.txt" || fail "the status line does not say why no latency"
+# logs on a full disk (a file-size limit of 0 for the tracker and its programs): exit 1, said
+{ (ulimit -f 0; exec "${track[@]}" --source "$videos/d18.mp4" --logs "$work/logs3") 2>&1 && echo "exit 0" ||
+  echo "exit $?"; } | cat >"$work/full.txt"
+grep -q "its output was lost (a full disk?)" "$work/full.txt" || fail "logs on a full disk: not reported"
+grep -qx "exit 1" "$work/full.txt" || fail "logs on a full disk: $(tail -n 1 "$work/full.txt") (expected exit 1)"
 # bad input: a clear message and a non-zero exit
 if "${track[@]}" --source "$work/missing.mp4" 2>"$work/bad.txt"; then fail "a missing source was accepted"; fi
 grep -q "no such file" "$work/bad.txt" || fail "no clear message for a missing source"

@@ -129,8 +129,9 @@ def child_setup():
 class Monitor:
     """Listens to HEAD_POSE_RAW and HEAD_POSE; one status line a second."""
 
-    def __init__(self, url):
+    def __init__(self, url, clock_is_real):
         from hkf import head_pose_measurement_t, head_pose_t
+        self.clock_is_real = clock_is_real  # a camera, or a file at its frame rate: stamps on the wall clock
         self.raw_t, self.pose_t = head_pose_measurement_t, head_pose_t
         self.lc = lcm.LCM(url)
         self.lc.subscribe("HEAD_POSE_RAW", self.on_raw)
@@ -163,9 +164,11 @@ class Monitor:
                 f"filter {self.poses / interval:5.1f} poses/s")
         if self.second:
             text += f", second model {self.second / interval:4.1f}/s"
-        if self.latency_ms:
+        if self.latency_ms and self.clock_is_real:
             lat = sorted(self.latency_ms)
             text += f", capture->pose p50 {lat[len(lat) // 2]:.1f} ms max {lat[-1]:.1f} ms"
+        elif self.latency_ms:  # a file read as fast as it goes: its stamps are the file's time, not the clock
+            text += ", no latency (a file faster than real time: --realtime measures it)"
         if self.last is not None:
             p = self.last
             yaw = (p.yaw - p.center[1] + 180.0) % 360.0 - 180.0
@@ -181,8 +184,9 @@ class Monitor:
 
 
 def stop(children, logs):
-    """SIGINT to each program, the estimator first; SIGKILL after a grace period."""
-    codes = {}
+    """SIGINT to each program, the estimator first; SIGKILL after a grace period. Returns each
+    program's exit code, and the programs whose log holds nothing (their output was lost)."""
+    codes, lost = {}, []
     for name, proc in reversed(children):
         if proc.poll() is None:
             proc.send_signal(signal.SIGINT)
@@ -197,9 +201,13 @@ def stop(children, logs):
         with open(logs[name]) as f:
             lines = [l.rstrip("\n") for l in f if l.strip()]
         counts = [l for l in lines if re.match(re.escape(name) + r": \d+ ", l)]
-        for line in dict.fromkeys(counts[-1:] + lines[-1:]) or [f"{name}: (no output)"]:
+        for line in dict.fromkeys(counts[-1:] + lines[-1:]):
             print(line)
-    return codes
+        if not lines:  # every program says what it does when it starts: its output was lost
+            print(f"hkf-track: {name}'s log {logs[name]} is empty: its output was lost (a full disk?)",
+                  file=sys.stderr)
+            lost.append(name)
+    return codes, lost
 
 
 def main():
@@ -214,7 +222,7 @@ def main():
     signal.signal(signal.SIGINT, lambda *_: stop_requested.append("SIGINT"))
     signal.signal(signal.SIGTERM, lambda *_: stop_requested.append("SIGTERM"))
     signal.signal(signal.SIGHUP, lambda *_: stop_requested.append("SIGHUP"))  # the terminal closed
-    monitor = Monitor(args.lcm_url)
+    monitor = Monitor(args.lcm_url, clock_is_real=args.camera is not None or args.realtime)
     children, logs = [], {}
     for name, argv in commands(args):
         logs[name] = os.path.join(args.logs, name + ".log")
@@ -257,12 +265,12 @@ def main():
             status = 1
     elif stop_requested:
         print(f"hkf-track: {stop_requested[0]}: stopping", flush=True)
-    codes = stop(children, logs)
+    codes, lost = stop(children, logs)
     bad = [n for n, c in codes.items() if c not in (0, -signal.SIGINT) and (ended is None or n != ended[0])]
     for name in bad:
         print(f"hkf-track: {name} exited with status {codes[name]}; see {logs[name]}", file=sys.stderr)
     print(f"hkf-track: {monitor.total_poses} filtered poses in {time.monotonic() - started:.1f} s", flush=True)
-    return 1 if bad else status
+    return 1 if bad or lost else status
 
 
 if __name__ == "__main__":
