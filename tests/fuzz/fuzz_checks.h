@@ -31,6 +31,17 @@ static inline void fuzz_check_pose(const hkf_head_pose_t *p, const char *target)
         fuzz_check(isfinite(p->r[a]) && isfinite(p->center[a]), target, "non-finite R or centre published");
     }
     fuzz_check(p->status >= HKF_HEAD_POSE_T_TRACKING && p->status <= HKF_HEAD_POSE_T_LOST, target, "unknown status");
+    /* the position: none (all 0) or within the range hkf-filter takes (|x|, |y| <= 1000 cm, 1 <= z <= 1000) */
+    for (a = 0; a < 3; ++a) {
+        const float place[3] = {p->x, p->y, p->z}, rate[3] = {p->x_rate, p->y_rate, p->z_rate};
+        fuzz_check(isfinite(place[a]) && isfinite(rate[a]) && isfinite(p->position_center[a]), target,
+                   "non-finite position, rate or centre published");
+        fuzz_check(fabsf(place[a]) <= 1000.f && fabsf(p->position_center[a]) <= 1000.f, target,
+                   "a position beyond +-1000 cm published");
+        fuzz_check(isfinite(p->position_variance[a]) && p->position_variance[a] >= 0, target,
+                   "position variance not finite and >= 0");
+    }
+    fuzz_check(p->z == 0.f || p->z >= 1.f, target, "a position nearer than 1 cm published");
 }
 
 #endif /* FUZZ_CHECKS_H */

@@ -1,0 +1,166 @@
+/*
+ * fuzz_position.c - libFuzzer target for libhkf's position filter
+ * (hkf/hkf_position.h): arbitrary settings, then an arbitrary sequence of
+ * update / predict / extrapolate / recenter / recenter_at / restart / reset
+ * with arbitrary values (NaN, infinities, huge numbers included). After every
+ * call it checks:
+ *   - a rejected call (negative result) left the filter bit-identical;
+ *   - an accepted call wrote finite outputs, every position and centre within
+ *     +-HKF_MAX_ABS_POSITION, rates within +-HKF_MAX_SPEED, variances >= 0, a
+ *     known status.
+ * A failed check aborts, which libFuzzer reports as a finding. Built once per
+ * numeric type: fuzz_position (float) and fuzz_position_fixed (Q16.16).
+ *
+ * Input: [edits count][edits: field byte, 4-byte value]...[ops: op byte, operands]...
+ */
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hkf/hkf_position.h"
+
+#if defined(HKF_REAL_FIXED)
+#define FUZZ_NAME "fuzz_position_fixed"
+#else
+#define FUZZ_NAME "fuzz_position"
+#endif
+
+typedef struct {
+    const uint8_t *data;
+    size_t size;
+} input_t;
+
+static unsigned long long steps; /* accepted calls, for the run's summary */
+
+static void print_steps(void) { fprintf(stderr, FUZZ_NAME ": %llu position filter steps in total\n", steps); }
+
+static int take_byte(input_t *in, uint8_t *byte)
+{
+    if (in->size < 1) {
+        return 0;
+    }
+    *byte = in->data[0];
+    ++in->data;
+    --in->size;
+    return 1;
+}
+
+/* Any bit pattern at all: a float's, or a Q16.16 int32's. */
+static hkf_real_t take_real(input_t *in)
+{
+#if defined(HKF_REAL_FIXED)
+    int32_t value = 0;
+#else
+    float value = 0.0f;
+#endif
+    if (in->size >= sizeof value) {
+        memcpy(&value, in->data, sizeof value);
+        in->data += sizeof value;
+        in->size -= sizeof value;
+    }
+    return (hkf_real_t)value;
+}
+
+static void check(int condition, const char *what)
+{
+    if (!condition) {
+        fprintf(stderr, FUZZ_NAME ": %s\n", what);
+        abort();
+    }
+}
+
+/* One settings field by number, to an arbitrary value. */
+static void edit_setting(hkf_position_settings_t *s, uint8_t field, input_t *in)
+{
+    const hkf_real_t v = take_real(in);
+    const int axis = field % 3;
+    switch ((field / 3) % 11) {
+    case 0: s->process_noise[axis] = v; break;
+    case 1: s->measurement_noise[axis] = v; break;
+    case 2: s->p0_rate = v; break;
+    case 3: s->max_dt = v; break;
+    case 4: axis == 0 ? (void)(s->noise_time = v) : axis == 1 ? (void)(s->noise_rise = v) : (void)(s->noise_floor = v); break;
+    case 5: axis == 0 ? (void)(s->q_boost = v) : (void)(s->q_boost_time = v); break;
+    case 6: axis == 0 ? (void)(s->motion_threshold = v) : (void)(s->still_threshold = v); break;
+    case 7: s->rate_damping_time = v; break;
+    case 8: s->max_speed = v; break;
+    default: s->max_gate_rejections = field % 7u; break;
+    }
+}
+
+/* |x| <= limit, in the build's own numbers (Q16.16: the limit scaled) */
+static int in_range(hkf_real_t x, double limit) { return isfinite((double)x) && fabs((double)x) <= (double)HKF_REAL_FROM(limit); }
+
+static void check_output(const hkf_position_filter_t *f, const hkf_position_output_t *out)
+{
+    int a;
+    for (a = 0; a < 3; ++a) {
+        check(in_range(out->position[a], HKF_MAX_ABS_POSITION), "a position beyond +-HKF_MAX_ABS_POSITION");
+        check(in_range(out->rate[a], HKF_MAX_SPEED), "a rate beyond +-HKF_MAX_SPEED");
+        check(isfinite((double)out->variance[a]) && out->variance[a] >= 0, "variance not finite and >= 0");
+        check(in_range(f->center[a], HKF_MAX_ABS_POSITION), "a centre beyond +-HKF_MAX_ABS_POSITION");
+    }
+    check(out->status >= HKF_STATUS_TRACKING && out->status <= HKF_STATUS_LOST, "unknown status");
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static int registered;
+    input_t in = {data, size};
+    hkf_position_settings_t s;
+    hkf_position_filter_t f, before;
+    uint8_t edits = 0, op, field;
+    if (!registered) {
+        registered = atexit(print_steps) == 0;
+    }
+    memset(&s, 0, sizeof s); /* padding too: filters are compared byte for byte */
+    memset(&f, 0, sizeof f);
+    hkf_position_default_settings(&s);
+    (void)take_byte(&in, &edits);
+    while (edits-- > 0 && take_byte(&in, &field)) {
+        edit_setting(&s, field, &in);
+    }
+    if (hkf_position_init(&f, &s) != HKF_OK) {
+        hkf_position_default_settings(&s);
+        check(hkf_position_init(&f, &s) == HKF_OK, "the defaults refused");
+    }
+    while (take_byte(&in, &op)) {
+        hkf_position_output_t out;
+        int result = HKF_OK, wrote = 0;
+        before = f;
+        switch (op % 7) {
+        case 0: { /* a measurement: z, its R scale, dt */
+            const hkf_real_t z[3] = {take_real(&in), take_real(&in), take_real(&in)};
+            const hkf_real_t scale = take_real(&in), dt = take_real(&in);
+            result = hkf_position_update(&f, z, scale, dt, &out);
+            wrote = 1;
+            break;
+        }
+        case 1: result = hkf_position_predict(&f, take_real(&in), &out), wrote = 1; break;
+        case 2: {
+            const hkf_position_filter_t kept = f;
+            result = hkf_position_extrapolate(&f, take_real(&in), &out), wrote = 1;
+            check(memcmp(&kept, &f, sizeof f) == 0, "hkf_position_extrapolate changed the filter");
+            break;
+        }
+        case 3: result = hkf_position_recenter(&f); break;
+        case 4: result = hkf_position_recenter_at(&f, take_real(&in)); break;
+        case 5: hkf_position_restart(&f); break;
+        default: hkf_position_reset(&f); break;
+        }
+        if (result < 0) {
+            check(memcmp(&before, &f, sizeof f) == 0, "a rejected call changed the filter");
+            continue;
+        }
+        ++steps;
+        if (wrote) {
+            check_output(&f, &out);
+        }
+    }
+    return 0;
+}
