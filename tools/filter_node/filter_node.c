@@ -151,15 +151,14 @@ static int position_of(const hkf_head_pose_measurement_t *m)
                : -1;
 }
 
-/* A position xyz measured at utime (R scaled by r_scale) into the position filter, if later than the
- * last one taken and not later than the angles' time reference (a frame of the clock the node follows). */
+/* A position xyz measured at utime (R scaled by r_scale) into the position filter, if later than the last. */
 static void update_position(filter_node_t *node, const float xyz[3], int64_t utime, float r_scale)
 {
     const hkf_real_t z[3] = {xyz[0], xyz[1], xyz[2]};
     hkf_position_output_t out;
     /* the first position's dt is unused; a gap beyond max_dt restarts the track in hkf_position_update */
     const double dt = node->position.started ? ((double)utime - (double)node->position_utime) * 1e-6 : 0.02;
-    if (dt > 0.0 && utime <= node->last_utime && hkf_position_update(&node->position, z, (hkf_real_t)r_scale, (hkf_real_t)dt, &out) == HKF_OK) {
+    if (dt > 0.0 && hkf_position_update(&node->position, z, (hkf_real_t)r_scale, (hkf_real_t)dt, &out) == HKF_OK) {
         node->position_utime = utime;
         node->counts.positions_gated += (out.flags & HKF_FLAG_GATED) != 0;
     }
