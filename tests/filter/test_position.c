@@ -334,6 +334,17 @@ static void test_gate(void **state)
         assert_int_equal(hkf_position_update(&f, lean, R(1.0), R(frame_s), &out), HKF_OK);
         assert_int_equal(out.flags, 0u);
     }
+    hkf_position_default_settings(&s); /* a noisy still head (R 1 cm^2), a gate of 6 cm/s: the noise passes, 3 sigmas */
+    s.noise_time = 0;
+    s.measurement_noise[0] = s.measurement_noise[1] = s.measurement_noise[2] = R(1.0);
+    s.max_speed = R(6.0);
+    f = started_filter_with(&s, 0.0, 0.0, 60.0);
+    for (i = 0; i < 120; ++i) {
+        const double noise = ((int)(i * 7919u % 11u) - 5) * 0.1; /* +-0.5 cm, spread, about 0.32 cm rms */
+        const hkf_real_t z[3] = {R(noise), R(0.0), R(60.0 - noise)};
+        assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), &out), HKF_OK);
+        assert_int_equal(out.flags & HKF_FLAG_GATED, 0u);
+    }
     hkf_position_default_settings(&s);
     s.max_speed = 0;
     f = started_filter_with(&s, 0.0, 0.0, 60.0);

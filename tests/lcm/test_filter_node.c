@@ -728,6 +728,16 @@ static void test_position_gated_and_bounded(void **state)
         assert_true(pose.z >= FILTER_NODE_MIN_Z && pose.z <= HKF_MAX_ABS_POSITION);
     }
     print_message("after -1000 x 10, +1000 once, 3 s without: x %.1f cm, z %.1f cm\n", pose.x, pose.z);
+    for (i = 0; i < 60; ++i, ++frame) { /* toward the camera at 60 cm/s to 2 cm, then no position: the coast stops at 1 cm */
+        m = measurement(T0 + frame * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        if (i < 30) {
+            m.x = 0.0f, m.y = 0.0f, m.z = 2.0f + 2.0f * (float)(29 - i);
+        }
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        assert_true(pose.z >= FILTER_NODE_MIN_Z && pose.z <= HKF_MAX_ABS_POSITION);
+    }
+    assert_true(pose.z == FILTER_NODE_MIN_Z);
 }
 
 /* Item 6: a head leaning at 15 cm/s whose positions stop while the angles go on. The position

@@ -105,7 +105,7 @@ def scratch_copy(work):
         target = os.path.join(src, f)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         if not os.path.exists(target) or open(target, "rb").read() != open(os.path.join(ROOT, f), "rb").read():
-            shutil.copy2(os.path.join(ROOT, f), target)
+            shutil.copy(os.path.join(ROOT, f), target)  # stamped now, not with the tree's time: it must rebuild
     for link in (".models", ".venv", ".third_party"):
         if os.path.exists(os.path.join(ROOT, link)) and not os.path.lexists(os.path.join(src, link)):
             os.symlink(os.path.join(ROOT, link), os.path.join(src, link))
