@@ -147,6 +147,34 @@ static void test_relative_angles_wrapped(void **state)
     assert_true(v[OPENTRACK_PITCH] == OPENTRACK_MAX_ABS_ANGLE);
 }
 
+/* --predict: a pose moved on by its rates (angles, and the position when measured), not when
+ * LOST; the horizon is the pose's age plus the lead, and 0 for a stamp of another clock. */
+static void test_predict(void **state)
+{
+    hkf_head_pose_t pose = pose_at(1.0f, 10.0f, -2.0f), moved;
+    (void)state;
+    pose.yaw_rate = 100.0f, pose.pitch_rate = -20.0f, pose.roll_rate = 0.0f;
+    pose.z = 60.0f, pose.z_rate = -30.0f, pose.x_rate = 10.0f;
+    pose.utime = 1000000;
+    moved = opentrack_predict(&pose, 0.05);
+    assert_true(fabsf(moved.yaw - 15.0f) < 1e-4f && fabsf(moved.pitch - 0.0f) < 1e-4f && moved.roll == -2.0f);
+    assert_true(fabsf(moved.z - 58.5f) < 1e-4f && fabsf(moved.x - 0.5f) < 1e-4f);
+    assert_true(moved.center[1] == pose.center[1] && moved.utime == pose.utime);
+    pose.status = HKF_HEAD_POSE_T_LOST;
+    moved = opentrack_predict(&pose, 0.05);
+    assert_true(moved.yaw == pose.yaw && moved.z == pose.z);
+    pose.status = HKF_HEAD_POSE_T_TRACKING;
+    pose.z = 0.0f; /* no position measured: it stays 0 */
+    moved = opentrack_predict(&pose, 0.05);
+    assert_true(moved.z == 0.0f && moved.x == pose.x);
+    moved = opentrack_predict(&pose, -0.01);
+    assert_true(moved.yaw == pose.yaw);
+    assert_true(fabs(opentrack_horizon(&pose, 1040000, 0.01) - 0.05) < 1e-9); /* 40 ms old, 10 ms lead */
+    assert_true(opentrack_horizon(&pose, 990000, 0.01) == 0.0);               /* a stamp in the future */
+    assert_true(opentrack_horizon(&pose, 1000000 + 300000, 0.0) == 0.0);      /* older than OPENTRACK_MAX_AGE */
+    assert_true(fabs(opentrack_horizon(&pose, 1250000, 0.0) - OPENTRACK_MAX_AGE) < 1e-9);
+}
+
 /* hkf 0.1's pose (head_pose_v1_t) still decodes, its position 0; hkf 0.2's as it is. */
 static void test_decode_both_versions(void **state)
 {
@@ -219,6 +247,7 @@ int main(void)
         cmocka_unit_test(test_invert_and_scale),
         cmocka_unit_test(test_position),
         cmocka_unit_test(test_relative_angles_wrapped),
+        cmocka_unit_test(test_predict),
         cmocka_unit_test(test_decode_both_versions),
         cmocka_unit_test(test_non_finite_refused),
         cmocka_unit_test(test_beyond_a_head_refused),

@@ -31,6 +31,8 @@ typedef struct {
     const char *lcm_url, *channel, *host, *port;
     long bind_port;       /* local source port, 0 = any */
     double rate_hz;       /* 0: one datagram per pose */
+    int predict;          /* --predict: each datagram shows the pose moved on to when it is sent */
+    double lead_s;        /* --lead: and this much further */
     lost_policy_t lost;
     opentrack_mapping_t mapping;
 } options_t;
@@ -45,6 +47,8 @@ typedef struct {
     unsigned char packet[OPENTRACK_PACKET_SIZE]; /* the latest packet: what --rate repeats, LOST holds */
     int have_packet;
     double last_values[OPENTRACK_FIELDS]; /* the last pose's values: a position beyond the range keeps its */
+    hkf_head_pose_t pose;                 /* the last pose taken, which --predict moves on at each send */
+    int have_pose;
     bridge_counts_t counts;
 } bridge_t;
 
@@ -70,6 +74,10 @@ static void usage(FILE *to)
             "                     send the centre (0, 0, 0), or send the filter's held pose as is\n"
             "  --rate HZ          send the latest pose at this fixed rate (1 to 1000) instead of once per pose\n"
             "                     (run hkf-filter --rate too, for extrapolated poses in between)\n"
+            "  --predict          send each pose moved on by its rates to the moment it is sent (when its\n"
+            "                     capture stamp is on this machine's clock and at most 250 ms old)\n"
+            "  --lead MS          with --predict, this much further ahead (0 to 100 ms): the camera's own\n"
+            "                     delay before the capture stamp\n"
             "  --help, --version  this text; the version\n"
             "Non-finite poses, and angles beyond +-180 deg that no head makes (a forged or corrupt\n"
             "message), are never sent (counted); a destination that refuses (opentrack not running) is\n"
@@ -144,6 +152,9 @@ static int parse_options(int argc, char **argv, options_t *o)
         } else if (strcmp(arg, "--absolute") == 0) {
             o->mapping.relative_to_center = 0;
             continue;
+        } else if (strcmp(arg, "--predict") == 0) {
+            o->predict = 1;
+            continue;
         } else if (value == NULL) {
             fprintf(stderr, "hkf-opentrack: unknown or incomplete argument '%s' (see --help)\n", arg);
             return 2;
@@ -188,6 +199,13 @@ static int parse_options(int argc, char **argv, options_t *o)
                 fprintf(stderr, "hkf-opentrack: --lost wants hold, center or send, not '%s'\n", value);
                 return 2;
             }
+        } else if (strcmp(arg, "--lead") == 0) {
+            if (!argument_number(value, 0.0, 100.0, &o->lead_s)) {
+                fprintf(stderr, "hkf-opentrack: --lead wants milliseconds from 0 to 100, not '%s'\n", value);
+                return 2;
+            }
+            o->lead_s *= 1e-3;
+            o->predict = 1;
         } else if (strcmp(arg, "--rate") == 0) {
             if (!argument_number(value, 1.0, 1000.0, &o->rate_hz)) {
                 fprintf(stderr, "hkf-opentrack: --rate wants a frequency from 1 to 1000 Hz, not '%s'\n", value);
@@ -278,12 +296,40 @@ static void send_packet(bridge_t *bridge)
     }
 }
 
+/* A tracked or coasting pose into the packet (moved on to now with --predict); 0, or -1 when
+ * it is not sent (counted: non-finite, or beyond +-180 deg). `count`: a new pose, not a tick's
+ * repeat (--rate --predict), so its problems are counted once. */
+static int pack_pose(bridge_t *bridge, const hkf_head_pose_t *pose, int count)
+{
+    const options_t *o = bridge->options;
+    const hkf_head_pose_t sent =
+        o->predict ? opentrack_predict(pose, opentrack_horizon(pose, clock_wall_us(), o->lead_s)) : *pose;
+    double values[OPENTRACK_FIELDS];
+    int result;
+    memcpy(values, bridge->last_values, sizeof values); /* the last position, should this one be beyond */
+    result = opentrack_pose_values(&o->mapping, &sent, values);
+    if (result == -1 || result == -2) {
+        if (count && result == -2 && bridge->counts.absurd++ < 5) {
+            fprintf(stderr, "hkf-opentrack: a pose beyond +-180 deg (pitch %g, yaw %g, roll %g) not sent: forged "
+                            "or corrupt\n", (double)pose->pitch, (double)pose->yaw, (double)pose->roll);
+        }
+        bridge->counts.non_finite += count && result == -1;
+        return -1;
+    }
+    if (count && result == -3 && bridge->counts.position_beyond++ < 5) {
+        fprintf(stderr, "hkf-opentrack: a position not finite or beyond +-1000 cm (x %g, y %g, z %g) not sent: the "
+                        "angles went with the last position\n", (double)pose->x, (double)pose->y, (double)pose->z);
+    }
+    memcpy(bridge->last_values, values, sizeof values);
+    opentrack_encode(values, bridge->packet);
+    bridge->have_packet = 1;
+    return 0;
+}
+
 /* One pose -> the packet to send (or none); then sent unless --rate sends it. */
 static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
 {
     const options_t *o = bridge->options;
-    double values[OPENTRACK_FIELDS];
-    int result;
     ++bridge->counts.received;
     if (pose->status == HKF_HEAD_POSE_T_LOST && o->lost == LOST_HOLD) {
         if (!bridge->have_packet) {
@@ -291,31 +337,23 @@ static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
         }
         ++bridge->counts.held;
     } else if (pose->status == HKF_HEAD_POSE_T_LOST && o->lost == LOST_CENTER) {
-        memset(values, 0, sizeof values);
-        opentrack_encode(values, bridge->packet);
+        const double centre[OPENTRACK_FIELDS] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        opentrack_encode(centre, bridge->packet);
         bridge->have_packet = 1;
         ++bridge->counts.centered;
-    } else {
-        memcpy(values, bridge->last_values, sizeof values); /* the last position, should this one be beyond */
-        result = opentrack_pose_values(&o->mapping, pose, values);
-        if (result == -1 || result == -2) {
-            if (result == -2 && bridge->counts.absurd++ < 5) {
-                fprintf(stderr, "hkf-opentrack: a pose beyond +-180 deg (pitch %g, yaw %g, roll %g) not sent: forged "
-                                "or corrupt\n", (double)pose->pitch, (double)pose->yaw, (double)pose->roll);
-            }
-            bridge->counts.non_finite += result == -1;
-            return;
-        }
-        if (result == -3 && bridge->counts.position_beyond++ < 5) {
-            fprintf(stderr, "hkf-opentrack: a position not finite or beyond +-1000 cm (x %g, y %g, z %g) not sent: the angles went "
-                            "with the last position\n", (double)pose->x, (double)pose->y, (double)pose->z);
-        }
-        memcpy(bridge->last_values, values, sizeof values);
-        opentrack_encode(values, bridge->packet);
-        bridge->have_packet = 1;
+    } else if (pack_pose(bridge, pose, 1) != 0) {
+        return;
     }
     if (o->rate_hz <= 0.0) {
         send_packet(bridge);
+    }
+}
+
+/* --rate with --predict: the last pose moved on to this tick (a LOST pose stays as it was sent). */
+static void repredict(bridge_t *bridge)
+{
+    if (bridge->have_pose && bridge->pose.status != HKF_HEAD_POSE_T_LOST) {
+        (void)pack_pose(bridge, &bridge->pose, 0);
     }
 }
 
@@ -330,6 +368,8 @@ static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
         return;
     }
     handle_pose(bridge, &pose);
+    bridge->pose = pose;
+    bridge->have_pose = 1;
     hkf_head_pose_t_decode_cleanup(&pose);
 }
 
@@ -361,6 +401,9 @@ static int run(bridge_t *bridge)
             break;
         }
         if (tick_us > 0 && clock_monotonic_us() >= next_tick) {
+            if (o->predict) {
+                repredict(bridge);
+            }
             if (bridge->have_packet) {
                 send_packet(bridge);
             }

@@ -88,6 +88,29 @@ int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pos
     return position_beyond ? -3 : 0;
 }
 
+hkf_head_pose_t opentrack_predict(const hkf_head_pose_t *pose, double horizon)
+{
+    hkf_head_pose_t moved = *pose;
+    if (pose->status == HKF_HEAD_POSE_T_LOST || !(horizon > 0.0 && isfinite(horizon))) {
+        return moved;
+    }
+    moved.pitch = (float)((double)pose->pitch + (double)pose->pitch_rate * horizon);
+    moved.yaw = (float)((double)pose->yaw + (double)pose->yaw_rate * horizon);
+    moved.roll = (float)((double)pose->roll + (double)pose->roll_rate * horizon);
+    if (pose->z > 0.f) { /* a position measured */
+        moved.x = (float)((double)pose->x + (double)pose->x_rate * horizon);
+        moved.y = (float)((double)pose->y + (double)pose->y_rate * horizon);
+        moved.z = (float)((double)pose->z + (double)pose->z_rate * horizon);
+    }
+    return moved;
+}
+
+double opentrack_horizon(const hkf_head_pose_t *pose, int64_t now_us, double lead_s)
+{
+    const double age = ((double)now_us - (double)pose->utime) * 1e-6; /* stamps may be anything */
+    return age >= 0.0 && age <= OPENTRACK_MAX_AGE ? age + lead_s : 0.0;
+}
+
 int opentrack_decode_pose(const void *data, int size, hkf_head_pose_t *pose)
 {
     hkf_head_pose_v1_t old;

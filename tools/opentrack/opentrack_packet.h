@@ -63,6 +63,18 @@ int opentrack_axis_from_name(const char *name);
 int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pose_t *pose,
                           double values[OPENTRACK_FIELDS]);
 
+/* --predict: the pose moved on by its rates for `horizon` s (angles and position), so that a
+ * pose sent some time after its capture shows where the head is when it is sent. The pose
+ * itself when LOST (its rates are 0) or when horizon is not finite or negative. */
+hkf_head_pose_t opentrack_predict(const hkf_head_pose_t *pose, double horizon);
+
+/* The horizon of --predict for a pose captured at capture_us and sent at now_us (one wall
+ * clock), plus lead_s: 0 (no prediction) when the pose's age is negative or beyond
+ * OPENTRACK_MAX_AGE (stamps of another clock: a file read faster than real time, or another
+ * machine's), or not a measurement's. */
+#define OPENTRACK_MAX_AGE 0.25 /* s: hkf-filter's coast time; an older pose's rate says nothing of now */
+double opentrack_horizon(const hkf_head_pose_t *pose, int64_t now_us, double lead_s);
+
 /* Decodes a HEAD_POSE payload: hkf 0.2's, or hkf 0.1's (head_pose_v1_t, its position
  * then 0). Returns 0, or -1 when it is neither. */
 int opentrack_decode_pose(const void *data, int size, hkf_head_pose_t *pose);
