@@ -169,6 +169,19 @@ static hkf_real_t measurement_noise(const hkf_position_filter_t *f, int a)
     return calibrated(f) ? f->noise[a] : f->settings.measurement_noise[a];
 }
 
+/* P stays positive semi-definite in every build: float and double lose it to rounding when R is
+ * far below P (the update's p11 - k1 p01 cancels), and the position's variance is published. */
+static void keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11)
+{
+    hkf_keep_covariance(p00, p01, p11); /* Q16.16's clamp */
+    *p00 = *p00 > 0 ? *p00 : 0;
+    *p11 = *p11 > 0 ? *p11 : 0;
+    if (!(hkf_mul(*p01, *p01) <= hkf_mul(*p00, *p11))) { /* |p01| <= min(p00, p11) <= sqrt(p00 p11) */
+        const hkf_real_t most = *p00 < *p11 ? *p00 : *p11;
+        *p01 = *p01 < 0 ? -most : most;
+    }
+}
+
 /* Eq. 1-3 per axis: x += v dt; P = F P F' + Q, Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]] */
 static void predict_axes(hkf_position_filter_t *f, hkf_real_t dt)
 {
@@ -182,7 +195,7 @@ static void predict_axes(hkf_position_filter_t *f, hkf_real_t dt)
                                                hkf_mul(qdt2, hkf_mul(dt, HKF_REAL(0.33333333)))));
         f->p01[a] = hkf_add(f->p01[a], hkf_add(p11dt, hkf_mul(qdt2, HKF_REAL(0.5))));
         f->p11[a] = hkf_add(f->p11[a], qdt);
-        hkf_keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
+        keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
     }
 }
 
@@ -331,7 +344,7 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
             f->p11[a] = hkf_sub(f->p11[a], hkf_mul(k1, f->p01[a]));
             f->p00[a] = hkf_mul(k0, r);
             f->p01[a] = hkf_mul(k1, r);
-            hkf_keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
+            keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
         }
     }
     if (calibrated(f)) {
@@ -387,7 +400,8 @@ int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, h
         const hkf_real_t variance = hkf_add(hkf_add(f->p00[a], spread), qt3);
         out->position[a] = bounded(hkf_add(f->x[a], hkf_mul(f->v[a], coast)), HKF_REAL_FROM(HKF_MAX_ABS_POSITION));
         out->rate[a] = ahead > f->settings.max_dt ? 0 : f->v[a];
-        out->variance[a] = variance < HKF_REAL_FROM(HKF_MAX_VARIANCE) ? variance : HKF_REAL_FROM(HKF_MAX_VARIANCE);
+        out->variance[a] = variance < 0 ? 0 : variance < HKF_REAL_FROM(HKF_MAX_VARIANCE) ? variance
+                                                                              : HKF_REAL_FROM(HKF_MAX_VARIANCE);
     }
     out->status = ahead > f->settings.max_dt              ? HKF_STATUS_LOST
                   : ahead > 0 || f->gate_rejections > 0u ? HKF_STATUS_COASTING
