@@ -39,45 +39,7 @@
 #endif
 #define SETTINGS_OF(f) (&(f)->settings) /* hkf_init's copy, in every build */
 
-typedef struct {
-    const uint8_t *data;
-    size_t size;
-} input_t;
-
-static int take_byte(input_t *in, uint8_t *byte)
-{
-    if (in->size < 1) {
-        return 0;
-    }
-    *byte = in->data[0];
-    ++in->data;
-    --in->size;
-    return 1;
-}
-
-/* Any bit pattern at all: a float's, or a Q16.16 int32's. */
-static hkf_real_t take_real(input_t *in)
-{
-#if defined(HKF_REAL_FIXED)
-    int32_t value = 0;
-#else
-    float value = 0.0f;
-#endif
-    if (in->size >= sizeof value) {
-        memcpy(&value, in->data, sizeof value);
-        in->data += sizeof value;
-        in->size -= sizeof value;
-    }
-    return (hkf_real_t)value;
-}
-
-static void check(int condition, const char *what)
-{
-    if (!condition) {
-        fprintf(stderr, FUZZ_NAME ": %s\n", what);
-        abort();
-    }
-}
+#include "fuzz_input.h"
 
 /* One settings field by number, to an arbitrary value. */
 static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
