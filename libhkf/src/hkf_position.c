@@ -285,13 +285,10 @@ static int gated(const hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real
     return 0;
 }
 
-int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
-                        hkf_position_output_t *out)
+/* HKF_OK, or why a measurement z with R scale r_scale, dt s after the last, is refused. */
+static int check_measurement(const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
 {
     int a;
-    if (f == NULL || z == NULL) {
-        return HKF_ERROR_NULL_ARGUMENT;
-    }
     for (a = 0; a < 3; ++a) {
         if (!hkf_is_finite(z[a])) {
             return HKF_ERROR_NON_FINITE;
@@ -305,6 +302,20 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
     }
     if (!(r_scale >= HKF_REAL(1.0) && r_scale <= HKF_REAL_FROM(HKF_MAX_POSITION_SCALE))) {
         return HKF_ERROR_SETTING_R_CONST;
+    }
+    return HKF_OK;
+}
+
+int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
+                        hkf_position_output_t *out)
+{
+    int a, result;
+    if (f == NULL || z == NULL) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = check_measurement(z, r_scale, dt);
+    if (result != HKF_OK) {
+        return result;
     }
     if (!f->started || check_step(f, dt) == HKF_ERROR_DT_RANGE) {  /* a new track: at the measurement */
         start_track(f, z, r_scale, out);
