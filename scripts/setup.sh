@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every dependency of hkf on Debian 12, idempotently: apt packages
 # that are missing (apt-get update only when something is). Safe to re-run.
+# usage: setup.sh [--release]   (--release: also what ./run release needs)
 set -euo pipefail
 
 packages=(
@@ -18,7 +19,11 @@ packages=(
   clang libclang-rt-14-dev                      # the fuzz targets (libFuzzer, tests/fuzz)
   gcc-arm-none-eabi libnewlib-arm-none-eabi     # libhkf for Cortex-M (cmake/arm-none-eabi.cmake)
   qemu-system-arm                               # ... and its target tests in an emulator (tests/mcu)
+  help2man                                      # the programs' man pages, from their --help
 )
+if [ "${1:-}" = --release ]; then
+  packages+=(lintian mmdebstrap)                # ./run release: Debian's checks, a clean Debian 12 root
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Every program answers --help and --version (exit 0), the version being the
 # one in the VERSION file at the root.
-# usage: programs_test.sh BUILD_DIR SOURCE_DIR PYTHON
+# usage: programs_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
-build=$1 source=$2 python=$3
+build=$1 source=$2
 version=$(head -n 1 "$source/VERSION")
 fail() { echo "FAIL: $*" >&2; exit 1; }
-programs=(tools/hkf-filter tools/hkf-opentrack tools/hkf-cmd tools/hkf-demo tools/hkf-simlog tools/hkf-spy
+programs=(tools/hkf-filter tools/hkf-opentrack tools/hkf-cmd tools/hkf-demo tools/hkf-simlog tools/hkf-spy tools/hkf-track
           estimator/hkf-estimator estimator/hkf-annotate)
 for p in dev/benchmarks/hkf-soak dev/benchmarks/hkf-bench-latency dev/benchmarks/hkf-bench-update \
          dev/benchmarks/hkf-bench-estimator; do
@@ -26,5 +26,4 @@ check() { # check NAME COMMAND...: --version prints "NAME VERSION" and --help a 
 for p in "${programs[@]}"; do
   check "$(basename "$p")" "$build/$p"
 done
-check hkf-track "$python" "$source/tools/track/hkf_track.py"
-echo "programs_test: ${#programs[@]} programs and hkf-track answer --help and --version $version"
+echo "programs_test: ${#programs[@]} programs answer --help and --version $version"

@@ -14,7 +14,7 @@ trap 'rm -rf "$work"' EXIT
 echo "## AFLW2000 (development split of $(($(wc -l <"$aflw/labels.csv") - 1)) images): the live path, then the labels' face boxes"
 for crop in live labels; do
   for model in whenet mesh_pnp; do
-    "$build/estimator/hkf-estimator" --dataset "$aflw" --crop "$crop" --model "$model" --predictions "$work/$model.csv" 2>/dev/null
+    "$build/estimator/hkf-estimator" --dataset "$aflw" --crop "$crop" --model "$model" --second-model none --predictions "$work/$model.csv" 2>/dev/null
   done
 done
 echo

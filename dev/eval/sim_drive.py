@@ -98,7 +98,7 @@ def error_model(build, out, estimator, types):
     predictions = os.path.join(out, f"{estimator}.aflw2000.csv")
     if not os.path.exists(predictions):
         result = subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--dataset", data, "--crop", "labels", "--model",
-                                 estimator, "--predictions", predictions + ".part"], capture_output=True, text=True)
+                                 estimator, "--second-model", "none", "--predictions", predictions + ".part"], capture_output=True, text=True)
         if result.returncode != 0:
             evaluate.fail(f"hkf-estimator --dataset ({estimator}) exited {result.returncode}: {result.stderr[-400:]}")
         os.replace(predictions + ".part", predictions)

@@ -113,58 +113,94 @@ std::optional<Face> still_face(HeadPoseEstimator &model, TrackerDetectors detect
     return face ? tracker.track(image, 33333) : face;
 }
 
-EvalResult evaluate_dataset(HeadPoseEstimator &model, TrackerDetectors detectors, DatasetCrop crop, const std::string &dir, long limit,
-                            std::ostream &predictions, const std::function<void(long, long)> &progress)
+namespace {
+
+// One model on one image, its face found as the run's crop says; `wrong` as live_face sets it.
+std::optional<HeadPose> estimate_image(HeadPoseEstimator &model, const DatasetRun &run, const cv::Mat &image,
+                                       const LabelRow &row, bool &wrong)
 {
-    const std::vector<LabelRow> rows = read_labels(dir + "/labels.csv");
-    const long total = limit > 0 ? std::min<long>(limit, static_cast<long>(rows.size())) : static_cast<long>(rows.size());
+    wrong = false;
+    const std::optional<Face> face = run.crop == DatasetCrop::Live ? live_face(model, run.detectors, image, row.box, wrong)
+                                                                   : labelled_face(model, *run.detectors.region, image, row.box);
+    return face ? model.estimate(image, *face) : std::nullopt;
+}
+
+// The run's pose for one image: the first model's, or with a second the pipeline's.
+std::optional<HeadPose> run_image(const DatasetRun &run, const cv::Mat &image, const LabelRow &row, bool &wrong)
+{
+    const std::optional<HeadPose> first = estimate_image(*run.first, run, image, row, wrong);
+    if (run.second == nullptr || !run.fusion->wants_second(first)) return first;
+    bool second_wrong = false;
+    const std::optional<HeadPose> second = estimate_image(*run.second, run, image, row, second_wrong);
+    wrong = wrong || second_wrong;
+    return run.fusion->fuse(first, second);
+}
+
+int yaw_bin(float yaw)
+{
+    int bin = 0;
+    while (bin < EvalResult::kYawBins - 1 && std::fabs(yaw) >= EvalResult::kYawBinEdges[bin + 1]) ++bin;
+    return bin;
+}
+
+// Adds a found pose's errors against the label (within the protocol) to the sums.
+void add_errors(EvalResult &result, double sum[3], int bin, const HeadPose &pose, const LabelRow &row)
+{
+    const HeadPose truth = label_in_hkf_convention(row);
+    const double error[3] = {std::fabs(pose.pitch - truth.pitch), std::fabs(pose.yaw - truth.yaw),
+                             std::fabs(pose.roll - truth.roll)};
+    for (int a = 0; a < 3; ++a) {
+        sum[a] += error[a];
+        result.bin_mae[bin][a] += error[a];
+    }
+    ++result.evaluated;
+}
+
+void finish_means(EvalResult &result, const double sum[3])
+{
+    for (int a = 0; a < 3; ++a) result.mae[a] = result.evaluated > 0 ? sum[a] / static_cast<double>(result.evaluated) : 0.0;
+    for (int b = 0; b < EvalResult::kYawBins; ++b) {
+        const long found = result.bin_images[b] - result.bin_no_face[b];
+        for (int a = 0; a < 3; ++a) result.bin_mae[b][a] = found > 0 ? result.bin_mae[b][a] / static_cast<double>(found) : 0.0;
+    }
+}
+
+}  // namespace
+
+EvalResult evaluate_dataset(const DatasetRun &run, std::ostream &predictions, const std::function<void(long, long)> &progress)
+{
+    const std::vector<LabelRow> rows = read_labels(run.dir + "/labels.csv");
+    const long total = run.limit > 0 ? std::min<long>(run.limit, static_cast<long>(rows.size())) : static_cast<long>(rows.size());
     EvalResult result;
     double sum[3] = {0, 0, 0};
     predictions << "image,pitch_deg,yaw_deg,roll_deg\n" << std::fixed << std::setprecision(4);
     for (long i = 0; i < total; ++i) {
         const LabelRow &row = rows[static_cast<size_t>(i)];
         ++result.images;
-        const cv::Mat image = cv::imread(dir + "/images/" + row.image, cv::IMREAD_COLOR);
+        const cv::Mat image = cv::imread(run.dir + "/images/" + row.image, cv::IMREAD_COLOR);
         if (image.empty() || face_crop_rect(row.box, 0.f, image.size()).empty()) {
             ++result.unreadable;
-            std::cerr << "hkf-estimator: cannot read " << dir << "/images/" << row.image << " or its face box; skipped\n";
+            std::cerr << "hkf-estimator: cannot read " << run.dir << "/images/" << row.image << " or its face box; skipped\n";
             continue;
         }
         const bool in_protocol = std::fabs(row.yaw) <= 99.f && std::fabs(row.pitch) <= 99.f && std::fabs(row.roll) <= 99.f;
-        int bin = 0;
-        while (bin < EvalResult::kYawBins - 1 && std::fabs(row.yaw) >= EvalResult::kYawBinEdges[bin + 1]) ++bin;
+        const int bin = yaw_bin(row.yaw);
         if (in_protocol) ++result.bin_images[bin];
         const auto start = std::chrono::steady_clock::now();
         bool wrong = false;
-        std::optional<Face> face = crop == DatasetCrop::Live ? live_face(model, detectors, image, row.box, wrong)
-                                                             : labelled_face(model, *detectors.region, image, row.box);
-        result.wrong_face += wrong;
-        const std::optional<HeadPose> estimate = face ? model.estimate(image, *face) : std::nullopt;
+        const std::optional<HeadPose> pose = run_image(run, image, row, wrong);
+        result.wrong_face += wrong && !pose;
         result.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (!estimate) {
+        if (!pose) {
             ++result.no_face;
             if (in_protocol) ++result.bin_no_face[bin];
             continue;
         }
-        const HeadPose pose = *estimate;
-        predictions << row.image << ',' << pose.pitch << ',' << pose.yaw << ',' << pose.roll << '\n';
-        if (in_protocol) {
-            const HeadPose truth = label_in_hkf_convention(row);
-            const double error[3] = {std::fabs(pose.pitch - truth.pitch), std::fabs(pose.yaw - truth.yaw),
-                                     std::fabs(pose.roll - truth.roll)};
-            for (int a = 0; a < 3; ++a) {
-                sum[a] += error[a];
-                result.bin_mae[bin][a] += error[a];
-            }
-            ++result.evaluated;
-        }
+        predictions << row.image << ',' << pose->pitch << ',' << pose->yaw << ',' << pose->roll << '\n';
+        if (in_protocol) add_errors(result, sum, bin, *pose, row);
         progress(i + 1, total);
     }
-    for (int a = 0; a < 3; ++a) result.mae[a] = result.evaluated > 0 ? sum[a] / static_cast<double>(result.evaluated) : 0.0;
-    for (int b = 0; b < EvalResult::kYawBins; ++b) {
-        const long found = result.bin_images[b] - result.bin_no_face[b];
-        for (int a = 0; a < 3; ++a) result.bin_mae[b][a] = found > 0 ? result.bin_mae[b][a] / static_cast<double>(found) : 0.0;
-    }
+    finish_means(result, sum);
     return result;
 }
 

@@ -14,6 +14,7 @@
 
 #include "face_detector.hpp"
 #include "face_tracker.hpp"
+#include "frame_fusion.hpp"
 #include "head_pose_estimator.hpp"
 
 namespace hkf_estimator {
@@ -48,12 +49,22 @@ struct EvalResult {
     double bin_mae[kYawBins][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 };
 
-// Runs the model over DIR's labels (at most limit rows when limit > 0), each face
-// found as `crop` says. Writes
+// What a dataset run measures: one model, or the default pipeline (the first model, the second
+// where the live pipeline runs it, the two joined as hkf-filter joins one frame: frame_fusion.hpp).
+struct DatasetRun {
+    HeadPoseEstimator *first = nullptr;
+    HeadPoseEstimator *second = nullptr;    // nullptr: the first model alone
+    const FrameFusion *fusion = nullptr;    // with a second model: how the two join
+    TrackerDetectors detectors;
+    DatasetCrop crop = DatasetCrop::Live;
+    std::string dir;                        // labels.csv and images/
+    long limit = 0;                         // at most this many rows (0: all)
+};
+
+// Runs over the run's labels, each face found as its crop says. Writes
 // "image,pitch_deg,yaw_deg,roll_deg" (hkf convention) to predictions, and
 // reports progress through progress(done, total). Throws EstimatorError on a
 // missing or malformed labels.csv.
-EvalResult evaluate_dataset(HeadPoseEstimator &model, TrackerDetectors detectors, DatasetCrop crop, const std::string &dir, long limit,
-                            std::ostream &predictions, const std::function<void(long, long)> &progress);
+EvalResult evaluate_dataset(const DatasetRun &run, std::ostream &predictions, const std::function<void(long, long)> &progress);
 
 }  // namespace hkf_estimator

@@ -104,7 +104,7 @@ bool parse_number(const std::string &text, double low, double high, double &valu
 void usage(std::ostream &out)
 {
     out << "usage: hkf-estimator --source SRC [options]        camera / video / images -> LCM\n"
-           "       hkf-estimator --dataset DIR --predictions OUT.csv [--model NAME] [--limit N]\n"
+           "       hkf-estimator --dataset DIR --predictions OUT.csv [--model NAME [--second-model NAME|none]] [--limit N]\n"
            "Finds the driver's face, estimates its head pose and publishes\n"
            "hkf.head_pose_measurement_t on HEAD_POSE_RAW for every frame (valid = false: no face).\n"
            "  --source SRC       a camera (0, /dev/video0), a video file, or a folder of images\n"
@@ -128,7 +128,9 @@ void usage(std::ostream &out)
            "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 10; 0: every frame)\n"           "  --fov DEG          the camera's diagonal field of view, for the head's position (default\n"
            "                     56; unknown: a gain on the distance, docs/estimator.md \"Head position\")\n"
            "  --pivot CM         the point the head turns about, CM behind the nose tip (default 10)\n"
-           "--dataset mode evaluates a head-pose model on a labelled image set laid out like\n"
+           "--dataset mode evaluates what the tracker runs (with no --model: the mesh, and WHENet where\n"
+           "the live pipeline runs it, fused as hkf-filter fuses one frame; --second-model none: one\n"
+           "model) on a labelled image set laid out like\n"
            "../shared/data/aflw2000 (labels.csv and images/): finds each face the way live video\n"
            "does (the search on the whole image takes the largest face, then the face is followed\n"
            "in the region around it as on a still face's next frame; a face away from the labelled\n"
@@ -250,14 +252,9 @@ int parse(int argc, char **argv, Options &o)
         std::cerr << "hkf-estimator: give either --source SRC or --dataset DIR (see --help)\n";
         return 2;
     }
-    // the default pipeline: WHENet beside the mesh on video (docs/estimator.md: "The default pipeline");
-    // a dataset run measures one model, and WHENet as the first model needs no second
-    if (!o.second_model_given && o.dataset.empty() && o.model != kDefaultSecondModel) o.second_model = kDefaultSecondModel;
-    if (!o.dataset.empty() && !o.second_model.empty()) {
-        std::cerr << "hkf-estimator: --second-model is for --source; on a dataset run each model and fuse their "
-                     "predictions with dev/eval/fusion_on_aflw.py (see --help)\n";
-        return 2;
-    }
+    // the default pipeline: WHENet beside the mesh (docs/estimator.md: "The default pipeline"), on video
+    // and on a dataset alike; WHENet as the first model needs no second
+    if (!o.second_model_given && o.model != kDefaultSecondModel) o.second_model = kDefaultSecondModel;
     if (!o.second_model.empty() && o.second_model == o.model) {
         std::cerr << "hkf-estimator: --second-model must differ from --model (" << o.model << ")\n";
         return 2;
@@ -288,6 +285,55 @@ int parse(int argc, char **argv, Options &o)
     return 0;
 }
 
+// What a dataset run measured: the totals, then faces found and MAE per labelled |yaw| bin.
+void print_dataset_result(const hkf_estimator::EvalResult &r, const Options &o)
+{
+    using hkf_estimator::EvalResult;
+    const std::string what = o.second_model.empty()
+        ? o.model
+        : "the default pipeline (" + o.model + "; " + o.second_model + " where its |yaw| >= " +
+              std::to_string(static_cast<int>(o.pipeline.second_from_yaw)) + " deg or it has no pose, fused as hkf-filter fuses "
+              "one frame, alone from " + std::to_string(static_cast<int>(hkf_estimator::kSecondAloneFromYaw)) + " deg)";
+    std::printf("%s on %s (%s): %ld images (%ld unreadable, %ld without a face found), %ld within +-99 deg\n",
+                what.c_str(), o.dataset.c_str(),
+                o.crop == hkf_estimator::DatasetCrop::Live ? "live path: detector on the whole image" : "labelled face boxes",
+                r.images, r.unreadable, r.no_face, r.evaluated);
+    if (o.crop == hkf_estimator::DatasetCrop::Live)
+        std::printf("faces not found: %ld, of which the detector took another face: %ld\n", r.no_face, r.wrong_face);
+    std::printf("MAE deg: pitch %.2f, yaw %.2f, roll %.2f, mean %.2f; %.1f ms per image (%d threads)\n",
+                r.mae[0], r.mae[1], r.mae[2], (r.mae[0] + r.mae[1] + r.mae[2]) / 3.0,
+                r.images > r.unreadable ? 1000.0 * r.seconds / static_cast<double>(r.images - r.unreadable) : 0.0,
+                cv::getNumThreads());
+    for (int b = 0; b < EvalResult::kYawBins; ++b) {
+        const long found = r.bin_images[b] - r.bin_no_face[b];
+        std::printf("labelled |yaw| %2.0f-%2.0f deg: %4ld images, %4ld faces found (%5.1f %%), MAE deg: pitch %.2f, yaw %.2f, "
+                    "roll %.2f, mean %.2f\n",
+                    EvalResult::kYawBinEdges[b], EvalResult::kYawBinEdges[b + 1], r.bin_images[b], found,
+                    r.bin_images[b] > 0 ? 100.0 * static_cast<double>(found) / static_cast<double>(r.bin_images[b]) : 0.0,
+                    r.bin_mae[b][0], r.bin_mae[b][1], r.bin_mae[b][2],
+                    (r.bin_mae[b][0] + r.bin_mae[b][1] + r.bin_mae[b][2]) / 3.0);
+    }
+}
+
+// --dataset: the run over the labelled images, its predictions written, its figures printed.
+int run_dataset(const hkf_estimator::DatasetRun &run, const Options &o)
+{
+    std::ofstream predictions(o.predictions);
+    if (!predictions) throw hkf_estimator::EstimatorError("cannot write " + o.predictions);
+    auto last = std::chrono::steady_clock::now();
+    const hkf_estimator::EvalResult r = evaluate_dataset(run, predictions, [&](long done, long total) {
+        const auto now = std::chrono::steady_clock::now();
+        if (done == total || now - last > std::chrono::seconds(2)) {
+            std::cerr << "hkf-estimator: " << done << "/" << total << " images\n";
+            last = now;
+        }
+    });
+    predictions.close();
+    if (!predictions) throw hkf_estimator::EstimatorError("error writing " + o.predictions);
+    print_dataset_result(r, o);
+    return r.evaluated > 0 ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -314,46 +360,15 @@ int main(int argc, char **argv)
         std::unique_ptr<FaceDetector> region;
         if (search_range == DetectorRange::Retina) region = std::make_unique<FaceDetector>(o.models_dir, DetectorRange::Short);
         const TrackerDetectors detectors{&detector, region ? region.get() : &detector};
-        if (!o.pipeline.source.empty()) {
-            std::unique_ptr<HeadPoseEstimator> second;
-            if (!o.second_model.empty()) {
-                second = make_estimator(load_model_spec(o.spec_dir, o.second_model, o.models_dir));
-                second->set_position_settings(o.position);
-            }
-            return run_pipeline(*model, detectors, o.pipeline, second.get());
+        std::unique_ptr<HeadPoseEstimator> second;
+        if (!o.second_model.empty()) {
+            second = make_estimator(load_model_spec(o.spec_dir, o.second_model, o.models_dir));
+            second->set_position_settings(o.position);
         }
-        std::ofstream predictions(o.predictions);
-        if (!predictions) throw EstimatorError("cannot write " + o.predictions);
-        auto last = std::chrono::steady_clock::now();
-        const EvalResult r = evaluate_dataset(*model, detectors, o.crop, o.dataset, o.limit, predictions, [&](long done, long total) {
-            const auto now = std::chrono::steady_clock::now();
-            if (done == total || now - last > std::chrono::seconds(2)) {
-                std::cerr << "hkf-estimator: " << done << "/" << total << " images\n";
-                last = now;
-            }
-        });
-        predictions.close();
-        if (!predictions) throw EstimatorError("error writing " + o.predictions);
-        std::printf("%s on %s (%s): %ld images (%ld unreadable, %ld without a face found), %ld within +-99 deg\n",
-                    o.model.c_str(), o.dataset.c_str(),
-                    o.crop == DatasetCrop::Live ? "live path: detector on the whole image" : "labelled face boxes",
-                    r.images, r.unreadable, r.no_face, r.evaluated);
-        if (o.crop == DatasetCrop::Live)
-            std::printf("faces not found: %ld, of which the detector took another face: %ld\n", r.no_face, r.wrong_face);
-        std::printf("MAE deg: pitch %.2f, yaw %.2f, roll %.2f, mean %.2f; model %.1f ms per image (%d threads)\n",
-                    r.mae[0], r.mae[1], r.mae[2], (r.mae[0] + r.mae[1] + r.mae[2]) / 3.0,
-                    r.images > r.unreadable ? 1000.0 * r.seconds / static_cast<double>(r.images - r.unreadable) : 0.0,
-                    cv::getNumThreads());
-        for (int b = 0; b < EvalResult::kYawBins; ++b) {
-            const long found = r.bin_images[b] - r.bin_no_face[b];
-            std::printf("labelled |yaw| %2.0f-%2.0f deg: %4ld images, %4ld faces found (%5.1f %%), MAE deg: pitch %.2f, yaw %.2f, "
-                        "roll %.2f, mean %.2f\n",
-                        EvalResult::kYawBinEdges[b], EvalResult::kYawBinEdges[b + 1], r.bin_images[b], found,
-                        r.bin_images[b] > 0 ? 100.0 * static_cast<double>(found) / static_cast<double>(r.bin_images[b]) : 0.0,
-                        r.bin_mae[b][0], r.bin_mae[b][1], r.bin_mae[b][2],
-                        (r.bin_mae[b][0] + r.bin_mae[b][1] + r.bin_mae[b][2]) / 3.0);
-        }
-        return r.evaluated > 0 ? 0 : 1;
+        if (!o.pipeline.source.empty()) return run_pipeline(*model, detectors, o.pipeline, second.get());
+        std::unique_ptr<FrameFusion> fusion;
+        if (second) fusion = std::make_unique<FrameFusion>(o.model, o.second_model, o.pipeline.second_from_yaw);
+        return run_dataset(DatasetRun{model.get(), second.get(), fusion.get(), detectors, o.crop, o.dataset, o.limit}, o);
     } catch (const EstimatorError &e) {
         std::cerr << "hkf-estimator: " << e.what() << "\n";
         return 1;

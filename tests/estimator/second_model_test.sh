@@ -94,6 +94,6 @@ expect() { # expected-status message-pattern args...
 }
 expect 2 "wants degrees from 0 to 180" --source "$videos/d10.mp4" --second-model whenet --second-from-yaw -5
 expect 2 "must differ from --model" --source "$videos/d10.mp4" --second-model mesh_pnp
-expect 2 "is for --source" --dataset /nonexistent --predictions "$work/p.csv" --second-model whenet
+expect 2 "must differ from --model" --dataset /nonexistent --predictions "$work/p.csv" --second-model mesh_pnp
 expect 1 "nosuch" --source "$videos/d10.mp4" --second-model nosuch --lcm-url memq://
 echo "second_model_test: passed"

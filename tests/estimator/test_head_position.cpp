@@ -91,7 +91,7 @@ int main(int argc, char **argv)
         std::vector<double> clip_z, clip_x, clip_distance;
         cv::Mat frame;
         for (int index = 0; in.read(frame) && index < 100; ++index) {
-            if (index % 20 != 0) continue;  // 5 frames a clip, 0.7 s apart
+            if (index % 33 != 0) continue;  // 4 frames a clip, 1.1 s apart
             const std::optional<Face> face = face_in(frame);
             const std::optional<HeadPose> base = face ? mesh->estimate(frame, *face) : std::nullopt;
             if (!base || !base->has_position) continue;  // no truth to compare against
@@ -146,9 +146,9 @@ int main(int argc, char **argv)
         cv::VideoCapture in(videos + "/" + clip + ".mp4");
         FaceTracker tracker(TrackerDetectors{search.get(), follow.get()}, TrackerSettings{});
         cv::Mat frame;
-        for (int index = 0; in.read(frame) && index < 240; ++index) {
+        for (int index = 0; in.read(frame) && index < 150; ++index) {  // 30 frames a clip, 5 s
             const std::optional<Face> face = tracker.track(frame, index * 33333LL);
-            if (!face || index % 3 != 0) continue;
+            if (!face || index % 5 != 0) continue;
             const std::optional<HeadPose> pose = mesh->estimate(frame, *face);
             const std::optional<HeadPose> boxed = whenet->estimate(frame, *face);
             if (pose && pose->has_position && boxed && boxed->has_position)

@@ -13,7 +13,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # fit MODEL [LIMIT]: predictions, then the fit and its PNG
 fit() {
-  "$build/estimator/hkf-estimator" --dataset "$data" --crop labels --model "$1" ${2:+--limit "$2"} --predictions "$work/$1.csv" \
+  "$build/estimator/hkf-estimator" --dataset "$data" --crop labels --model "$1" --second-model none ${2:+--limit "$2"} --predictions "$work/$1.csv" \
     >"$work/$1_eval.txt" 2>&1 || { cat "$work/$1_eval.txt" >&2; fail "hkf-estimator --dataset --model $1"; }
   "$python" "$source/dev/fit/fit_noise_curves.py" --labels "$data/labels.csv" --predictions "$work/$1.csv" \
     --model "$1" --png "$work/$1.png" >"$work/$1_fit.txt" || fail "fit_noise_curves.py for $1"

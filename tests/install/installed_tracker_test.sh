@@ -35,12 +35,10 @@ fi
 
 cd "$work"  # neither the source nor the build tree
 # (each output to a file first: grep -q may stop reading early, and under pipefail the writer's SIGPIPE would fail)
-for program in hkf-estimator hkf-filter hkf-opentrack hkf-cmd hkf-demo hkf-simlog hkf-annotate hkf-spy; do
+for program in hkf-estimator hkf-filter hkf-opentrack hkf-cmd hkf-demo hkf-simlog hkf-annotate hkf-spy hkf-track; do
   "$root/bin/$program" --version >"$work/version.txt" || fail "$program --version"
   grep -q "^$program " "$work/version.txt" || fail "$program --version: $(cat "$work/version.txt")"
 done
-PATH="$source/.venv/bin:$PATH" "$root/bin/hkf-track" --version >"$work/version.txt" || fail "hkf-track --version"
-grep -q "^hkf-track " "$work/version.txt" || fail "hkf-track --version: $(cat "$work/version.txt")"
 "$root/bin/hkf-spy" --print-class-path >"$work/class_path.txt" || fail "hkf-spy --print-class-path"
 grep -q "$root/bin/../share/hkf/java/hkf_lcmtypes.jar" "$work/class_path.txt" || fail "hkf-spy does not use the installed jar"
 "$root/bin/hkf-estimator" --help >"$work/help.txt" || fail "hkf-estimator --help"
@@ -61,8 +59,9 @@ tracked = [p for p in poses if p.status == head_pose_t.TRACKING]
 assert len(tracked) >= 55, (len(poses), len(tracked))
 print(f"installed tracker: {len(poses)} poses, {len(tracked)} tracking, from {hkf.__file__}")
 PY
-# hkf-track, installed, runs the installed programs (their logs in ./hkf-track-logs)
-PATH="$source/.venv/bin:$PATH" "$root/bin/hkf-track" --source "$clip" --seconds 20 \
+# hkf-track, installed, runs the installed programs (their logs in ./hkf-track-logs), with the system's
+# PATH alone: no Python, no project venv
+env -i PATH=/usr/bin:/bin "$root/bin/hkf-track" --source "$clip" --seconds 20 \
   --lcm-url "memq://" >"$work/track.txt" 2>&1 || { cat "$work/track.txt"; fail "the installed hkf-track"; }
 grep -q "^hkf-estimator: " "$work/hkf-track-logs/hkf-estimator.log" || fail "hkf-track did not run the installed estimator"
 tail -1 "$work/estimator.txt"

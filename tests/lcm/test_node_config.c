@@ -14,7 +14,6 @@
 
 #include <cmocka.h>
 
-#include "model_curves.h"
 #include "model_name.h"
 #include "node_config.h"
 
@@ -87,9 +86,9 @@ static void test_shipped_file_equals_defaults(void **state)
     assert_memory_equal(from_file.models[1].noise, hkf_noise_hopenet, sizeof from_file.models[1].noise);
     /* our estimators' fitted curves (dev/fit): the file and the built-in table agree */
     assert_string_equal(from_file.models[2].name, "mesh_pnp");
-    assert_memory_equal(from_file.models[2].noise, model_curves_mesh_pnp, sizeof from_file.models[2].noise);
+    assert_memory_equal(from_file.models[2].noise, hkf_noise_mesh_pnp, sizeof from_file.models[2].noise);
     assert_string_equal(from_file.models[3].name, "whenet");
-    assert_memory_equal(from_file.models[3].noise, model_curves_whenet, sizeof from_file.models[3].noise);
+    assert_memory_equal(from_file.models[3].noise, hkf_noise_whenet, sizeof from_file.models[3].noise);
     assert_true(same_models(from_file.models, defaults.models, 4));
 }
 
@@ -114,7 +113,7 @@ static void test_overrides(void **state)
     s = node_config_for_model(&c, "whenet", &known);
     assert_true(known);
     assert_true(s.noise[1].mu == 0.5f && s.noise[1].sigma == 30.0f);
-    assert_true(s.noise[0].tau == model_curves_whenet[0].tau); /* the rest from its built-in curves */
+    assert_true(s.noise[0].tau == hkf_noise_whenet[0].tau); /* the rest from its built-in curves */
     assert_true(s.process_noise[0] == 1.0f);                    /* and the base settings */
     assert_true(s.lc_theta == 3.5f);
     s = node_config_for_model(&c, "nobody", &known);

@@ -15,7 +15,7 @@ if [ "${HKF_IN_NETNS:-}" != 1 ]; then
   HKF_IN_NETNS=1 exec "$source/tools/lcm-netns" "$0" "$@"
 fi
 url="udpm://239.255.76.67:7667?ttl=0"
-track=("$python" "$source/tools/track/hkf_track.py" --build "$build")
+track=("$build/tools/hkf-track")  # the build tree's, finding its programs from its own place
 work=$(mktemp -d)
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; rm -rf "$work"; }

@@ -13,8 +13,7 @@ static volatile sig_atomic_t stop_flag = 0;
 
 static void on_stop_signal(int signal_number)
 {
-    (void)signal_number;
-    stop_flag = 1;
+    stop_flag = signal_number;
 }
 
 void lcm_wait_stop_on_signals(void)
@@ -30,6 +29,11 @@ void lcm_wait_stop_on_signals(void)
 int lcm_wait_stop_requested(void)
 {
     return stop_flag != 0;
+}
+
+int lcm_wait_stop_signal(void)
+{
+    return stop_flag;
 }
 
 int64_t lcm_wait_time(int64_t next_tick_us, int64_t now_us)

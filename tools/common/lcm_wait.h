@@ -24,6 +24,8 @@ lcm_subscription_t *lcm_wait_subscribe(lcm_t *lcm, const char *channel, lcm_msg_
 /* SIGINT, SIGTERM and SIGHUP (the terminal closed) only set a flag, which the loop polls to stop with a summary. */
 void lcm_wait_stop_on_signals(void);
 int lcm_wait_stop_requested(void);
+/* The signal that requested the stop (SIGINT, SIGTERM or SIGHUP), or 0. */
+int lcm_wait_stop_signal(void);
 
 /* The longest wait, so that a stop request (a signal) is noticed promptly. */
 #define LCM_WAIT_MAX_US 100000

@@ -18,6 +18,7 @@
 #include "filter_node_offline.h"
 #include "lcm_log_writer.h"
 #include "lcm_wait.h"
+#include "config_files.h"
 #include "node_config.h"
 #include "pose_csv.h"
 #include "safe_files.h"
@@ -31,6 +32,7 @@ typedef struct {
     const char *offline_in, *offline_out;
     const char *csv_path;
     const char *config_paths[8]; /* inputs too: never written over */
+    char found_config[CONFIG_FILES_MAX][CONFIG_FILES_PATH_MAX]; /* the system's and the user's, where found */
     int config_count;
     double rate_hz;
     int print_config;
@@ -76,16 +78,56 @@ static void usage(FILE *to)
             "  --output-channel C   filtered poses (default HEAD_POSE)\n"
             "  --command-channel C  commands (default HEAD_TRACKER_CMD)\n"
             "  --rate HZ            also publish poses extrapolated to this rate between measurements\n"
-            "  --config FILE        settings file (see tools/filter_node/hkf-filter.conf)\n"
+            "  --config FILE        settings file (repeatable); without it: " CONFIG_FILES_SYSTEM_DIR "/" CONFIG_FILES_NAME "\n"
+            "                       (or $HKF_SYSTEM_CONFIG_DIR's), then ~/.config/hkf/" CONFIG_FILES_NAME "\n"
+            "                       (or $XDG_CONFIG_HOME's), each where it exists\n"
             "  --set KEY=VALUE      override one setting (repeatable), e.g. --set lc_theta=3,\n"
             "                       --set model.whenet.noise.yaw='7 4 0 30' (any key, for one model)\n"
-            "  --print-config       print the effective settings and exit\n"
+            "  --print-config       print the effective settings, each with where it was set, and exit\n"
             "  --offline IN OUT     filter the log IN into the log OUT as fast as possible\n"
             "  --csv FILE           also write every published pose as CSV\n"
             "  --help, --version    this text; the version\n"
             "Stops on SIGINT / SIGTERM / SIGHUP (live) or at the end of IN (offline) with a summary.\n"
             "Exit status: 0; 1 when a file or LCM provider fails (a write that did not reach the disk\n"
             "included); 2 for bad arguments or settings.\n");
+}
+
+/* Without --config on the command line: the system's and the user's files, where they exist
+ * (config_files.h), read before any --set. 0, or 2 (said) when one is bad. */
+static int read_found_configs(int argc, char **argv, options_t *o)
+{
+    config_files_t found;
+    char error[600];
+    for (int i = 1; i < argc; ++i) { /* --help and --version answer whatever the files hold */
+        if (strcmp(argv[i], "--config") == 0 || strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0 ||
+            strcmp(argv[i], "--version") == 0) {
+            return 0;
+        }
+    }
+    config_files_find(&found);
+    for (int i = 0; i < found.count; ++i) {
+        o->config_paths[o->config_count++] = o->found_config[i];
+        memcpy(o->found_config[i], found.path[i], sizeof found.path[i]);
+        if (node_config_read_file(&o->config, found.path[i], error, sizeof error) != 0) {
+            fprintf(stderr, "hkf-filter: %s\n", error);
+            return 2;
+        }
+    }
+    return 0;
+}
+
+/* Every channel name is one LCM accepts: 0, or 2 (said). */
+static int check_channels(const options_t *o)
+{
+    const char *const channels[] = {o->input_channel, o->output_channel, o->command_channel};
+    for (int i = 0; i < 3; ++i) {
+        if (channels[i][0] == '\0' || strlen(channels[i]) > LCM_MAX_CHANNEL_NAME_LENGTH) {
+            fprintf(stderr, "hkf-filter: a channel name has 1 to %d characters, not '%.80s%s'\n",
+                    LCM_MAX_CHANNEL_NAME_LENGTH, channels[i], strlen(channels[i]) > 80 ? "..." : "");
+            return 2;
+        }
+    }
+    return 0;
 }
 
 /* 0 = run, 1 = done (help, print-config), 2 = bad arguments */
@@ -99,6 +141,7 @@ static int parse_options(int argc, char **argv, options_t *o)
     o->input_channel = "HEAD_POSE_RAW";
     o->output_channel = "HEAD_POSE";
     o->command_channel = "HEAD_TRACKER_CMD";
+    if (read_found_configs(argc, argv, o) != 0) return 2;
     for (i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
@@ -151,17 +194,7 @@ static int parse_options(int argc, char **argv, options_t *o)
     }
     o->input_url = o->input_url ? o->input_url : lcm_url;
     o->output_url = o->output_url ? o->output_url : lcm_url;
-    {
-        const char *const channels[] = {o->input_channel, o->output_channel, o->command_channel};
-        for (i = 0; i < 3; ++i) {
-            if (channels[i][0] == '\0' || strlen(channels[i]) > LCM_MAX_CHANNEL_NAME_LENGTH) {
-                fprintf(stderr, "hkf-filter: a channel name has 1 to %d characters, not '%.80s%s'\n",
-                        LCM_MAX_CHANNEL_NAME_LENGTH, channels[i], strlen(channels[i]) > 80 ? "..." : "");
-                return 2;
-            }
-        }
-    }
-    return 0;
+    return check_channels(o);
 }
 
 /* Every settings set (the base and each model's) must pass hkf_init. */
@@ -503,7 +536,7 @@ int main(int argc, char **argv)
         return 2;
     }
     if (options.print_config) {
-        node_config_print(&options.config, stdout);
+        node_config_print_origins(&options.config, stdout);
         return 0;
     }
     run.options = &options;

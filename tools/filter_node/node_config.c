@@ -2,7 +2,6 @@
 #define _POSIX_C_SOURCE 200809L
 #include "node_config.h"
 
-#include "model_curves.h"
 #include "model_name.h"
 #include "safe_files.h"
 
@@ -102,8 +101,8 @@ void node_config_defaults(node_config_t *config)
     hkf_position_default_settings(&config->position);
     add_builtin_model(config, "fsanet", hkf_noise_fsanet);
     add_builtin_model(config, "hopenet", hkf_noise_hopenet);
-    add_builtin_model(config, "mesh_pnp", model_curves_mesh_pnp); /* fitted by dev/fit */
-    add_builtin_model(config, "whenet", model_curves_whenet);
+    add_builtin_model(config, "mesh_pnp", hkf_noise_mesh_pnp); /* fitted by dev/fit */
+    add_builtin_model(config, "whenet", hkf_noise_whenet);
 }
 
 static const config_key_t *find_key(const char *name)
@@ -660,44 +659,66 @@ static void print_key_value(const hkf_settings_t *s, const config_key_t *key, ch
     }
 }
 
-static void print_key(const hkf_settings_t *s, const config_key_t *key, FILE *out)
+/* "key = value  # [where; ]what": `where` is the origin ("FILE:LINE" or "--set"), or `unset` when it has none;
+ * NULL leaves it out (a configuration that reads back to the same text). */
+static void print_line(const char *name, const char *value, const char *comment, const char *origin,
+                       const char *unset, FILE *out)
+{
+    const char *where = origin == NULL ? NULL : origin[0] != '\0' ? origin : unset;
+    fprintf(out, "%-20s = %-40s # %s%s%s\n", name, value, where != NULL ? where : "", where != NULL ? "; " : "",
+            comment);
+}
+
+static void print_key(const hkf_settings_t *s, const config_key_t *key, const char *origin, const char *unset,
+                      FILE *out)
 {
     char value[160];
     print_key_value(s, key, value, sizeof value);
-    fprintf(out, "%-20s = %-40s # %s\n", key->name, value, key->comment);
+    print_line(key->name, value, key->comment, origin, unset, out);
+}
+
+static void print_position_key(const node_config_t *config, size_t i, int origins, FILE *out)
+{
+    const position_key_t *k = &position_keys[i];
+    const hkf_real_t *v = (const hkf_real_t *)(const void *)((const char *)&config->position + k->offset);
+    char three[3][32], line[100];
+    if (k->count == 3) {
+        snprintf(line, sizeof line, "%s %s %s", format_real(v[0], three[0], 32), format_real(v[1], three[1], 32),
+                 format_real(v[2], three[2], 32));
+    } else {
+        snprintf(line, sizeof line, "%s", format_real(v[0], three[0], 32));
+    }
+    print_line(k->name, line, k->comment, origins ? config->origin[POSITION_SLOT(i)] : NULL, "default", out);
+}
+
+static void print_all(const node_config_t *config, int origins, FILE *out)
+{
+    char text[32];
+    fprintf(out, "# hkf-filter effective configuration%s\n",
+            origins ? " (after each value: where it was set, or default / built in)" : "");
+    for (size_t i = 0; i < KEY_COUNT; ++i) {
+        print_key(&config->settings, &keys[i], origins ? config->origin[i] : NULL, "default", out);
+    }
+    print_line(PAIR_KEY, format_real(config->second_alone_from_yaw, text, sizeof text),
+               "deg; two models on one channel: the second alone where the first's |yaw| >= this",
+               origins ? config->origin[PAIR_SLOT] : NULL, "default", out);
+    for (size_t i = 0; i < POSITION_KEY_COUNT; ++i) print_position_key(config, i, origins, out);
+    for (int m = 0; m < config->model_count; ++m) {
+        const node_model_t *model = &config->models[m];
+        const hkf_settings_t s = settings_of_model(config, model);
+        fprintf(out, "\n[model %s]\n", model->name);
+        for (size_t i = 0; i < KEY_COUNT; ++i) {
+            if (model_owns(model, &keys[i])) print_key(&s, &keys[i], origins ? model->origin[i] : NULL, "built in", out);
+        }
+    }
 }
 
 void node_config_print(const node_config_t *config, FILE *out)
 {
-    size_t i;
-    int m;
-    char text[32];
-    fprintf(out, "# hkf-filter effective configuration\n");
-    for (i = 0; i < KEY_COUNT; ++i) {
-        print_key(&config->settings, &keys[i], out);
-    }
-    fprintf(out, "%-20s = %-40s # %s\n", PAIR_KEY, format_real(config->second_alone_from_yaw, text, sizeof text),
-            "deg; two models on one channel: the second alone where the first's |yaw| >= this");
-    for (i = 0; i < POSITION_KEY_COUNT; ++i) {
-        const position_key_t *k = &position_keys[i];
-        const hkf_real_t *v = (const hkf_real_t *)(const void *)((const char *)&config->position + k->offset);
-        char three[3][32], line[100];
-        if (k->count == 3) {
-            snprintf(line, sizeof line, "%s %s %s", format_real(v[0], three[0], 32), format_real(v[1], three[1], 32),
-                     format_real(v[2], three[2], 32));
-        } else {
-            snprintf(line, sizeof line, "%s", format_real(v[0], three[0], 32));
-        }
-        fprintf(out, "%-20s = %-40s # %s\n", k->name, line, k->comment);
-    }
-    for (m = 0; m < config->model_count; ++m) {
-        const node_model_t *model = &config->models[m];
-        const hkf_settings_t s = settings_of_model(config, model);
-        fprintf(out, "\n[model %s]\n", model->name);
-        for (i = 0; i < KEY_COUNT; ++i) {
-            if (model_owns(model, &keys[i])) {
-                print_key(&s, &keys[i], out);
-            }
-        }
-    }
+    print_all(config, 0, out);
+}
+
+void node_config_print_origins(const node_config_t *config, FILE *out)
+{
+    print_all(config, 1, out);
 }

@@ -71,4 +71,8 @@ hkf_settings_t node_config_for_model(const node_config_t *config, const char *mo
 /* Writes the configuration in the config-file format (reads back the same). */
 void node_config_print(const node_config_t *config, FILE *out);
 
+/* The same, with where each value was set at the start of its comment: "FILE:LINE", "--set",
+ * "default" or (a model's built-in curves) "built in" (hkf-filter --print-config). */
+void node_config_print_origins(const node_config_t *config, FILE *out);
+
 #endif /* NODE_CONFIG_H */

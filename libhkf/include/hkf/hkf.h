@@ -213,6 +213,12 @@ extern const hkf_settings_t hkf_paper_settings;
 extern const hkf_noise_curve_t hkf_noise_fsanet[3];
 extern const hkf_noise_curve_t hkf_noise_hopenet[3];
 
+/* Noise curves of the estimators hkf ships, fitted on AFLW2000 as Table I was
+ * (hkf_estimator_curves.c): hkf-estimator's face mesh (model "mesh_pnp") and
+ * WHENet (model "whenet"). */
+extern const hkf_noise_curve_t hkf_noise_mesh_pnp[3];
+extern const hkf_noise_curve_t hkf_noise_whenet[3];
+
 typedef enum {
     HKF_STATUS_UNINITIALIZED = 0, /* no measurement yet */
     HKF_STATUS_TRACKING = 1,      /* the last call was a measurement update */

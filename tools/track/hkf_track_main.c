@@ -1,0 +1,116 @@
+/*
+ * hkf-track: the whole live tracker in one command (hkf-estimator, hkf-filter
+ * and, with --opentrack, hkf-opentrack), a status line a second, and the
+ * programs' summaries at the end. hkf-track --help says more.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <lcm/lcm.h>
+
+#include "arguments.h"
+#include "lcm_wait.h"
+#include "safe_files.h"
+#include "track_monitor.h"
+#include "track_options.h"
+#include "track_programs.h"
+
+static const char *signal_name(int signal_number)
+{
+    return signal_number == SIGINT ? "SIGINT" : signal_number == SIGTERM ? "SIGTERM" : "SIGHUP";
+}
+
+/* Status lines until a stop request, --seconds, or a program's end; the index of the program that ended, or -1. */
+static int watch(const track_options_t *o, lcm_t *lcm, track_monitor_t *monitor, track_programs_t *programs)
+{
+    const int64_t started = clock_monotonic_us();
+    int64_t next_line = started + 1000000;
+    char line[1024];
+    while (!lcm_wait_stop_requested()) {
+        int64_t now = clock_monotonic_us();
+        if (o->seconds > 0.0 && (double)(now - started) >= o->seconds * 1e6) return -1;
+        if (lcm_wait_and_handle(lcm, lcm_wait_time(next_line, now), "hkf-track") < 0) return -1;
+        if (clock_monotonic_us() >= next_line) {
+            track_monitor_line(monitor, (double)(clock_monotonic_us() - started) / 1e6, 1.0, line, sizeof line);
+            printf("%s\n", line);
+            fflush(stdout);
+            next_line += 1000000;
+        }
+        int ended = track_programs_reap(programs);
+        if (ended >= 0) return ended;
+    }
+    return -1;
+}
+
+/* What the end says: 0 for the source's end or a stop request, 1 for a program that failed. */
+static int report_end(const track_programs_t *programs, int ended)
+{
+    const track_program_t *program = ended >= 0 ? &programs->program[ended] : NULL;
+    if (program != NULL && strcmp(program->name, "hkf-estimator") == 0 && program->status == 0) {
+        printf("hkf-track: the source ended\n");
+        return 0;
+    }
+    if (program != NULL) {
+        fprintf(stderr, "hkf-track: %s stopped with status %d; see %s\n", program->name, program->status,
+                program->log);
+        return 1;
+    }
+    if (lcm_wait_stop_requested()) printf("hkf-track: %s: stopping\n", signal_name(lcm_wait_stop_signal()));
+    return 0;
+}
+
+/* The other programs' exit: 1 when one failed (not stopped cleanly by SIGINT). */
+static int report_failures(const track_programs_t *programs, int ended)
+{
+    int failed = 0;
+    for (int i = 0; i < programs->count; ++i) {
+        const track_program_t *program = &programs->program[i];
+        if (i == ended || program->status == 0 || program->status == -SIGINT) continue;
+        fprintf(stderr, "hkf-track: %s exited with status %d; see %s\n", program->name, program->status, program->log);
+        failed = 1;
+    }
+    return failed;
+}
+
+static int run(const track_options_t *o, track_programs_t *programs)
+{
+    static track_monitor_t monitor;
+    lcm_t *lcm = lcm_create(o->lcm_url);
+    if (lcm == NULL) {
+        fprintf(stderr, "hkf-track: LCM could not start on %s\n", o->lcm_url);
+        return 1;
+    }
+    if (track_monitor_start(&monitor, lcm, o->camera != NULL || o->realtime) != 0 ||
+        track_programs_start(programs, o->logs) != 0) {
+        lcm_destroy(lcm);
+        return 1;
+    }
+    printf("hkf-track: logs in %s; Ctrl-C stops\n", o->logs);
+    fflush(stdout);
+    const int64_t started = clock_monotonic_us();
+    int ended = watch(o, lcm, &monitor, programs);
+    int status = report_end(programs, ended);
+    track_programs_stop(programs);
+    int lost = track_programs_summaries(programs);
+    status |= report_failures(programs, ended);
+    printf("hkf-track: %ld filtered poses in %.1f s\n", monitor.total_poses,
+           (double)(clock_monotonic_us() - started) / 1e6);
+    lcm_destroy(lcm);
+    if (fflush(stdout) != 0 || ferror(stdout)) status = 1;
+    return status != 0 || lost > 0 ? 1 : 0;
+}
+
+int main(int argc, char **argv)
+{
+    static track_options_t options;
+    static track_programs_t programs;
+    safe_files_fail_writes_past_size_limit();
+    int parsed = track_options_parse(argc, argv, &options);
+    if (parsed != 0) return parsed == 1 ? 0 : 2;
+    if (track_programs_plan(&programs, &options) != 0) return 2;
+    lcm_wait_stop_on_signals();
+    return run(&options, &programs);
+}

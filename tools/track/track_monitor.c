@@ -1,0 +1,112 @@
+/* track_monitor.c - see track_monitor.h. */
+#include "track_monitor.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hkf_head_pose_measurement_t.h"
+#include "lcm_wait.h"
+
+/* A second model's measurement of a frame already counted carries that frame's seq (it may come late). */
+#define TRACK_SECOND_MODEL_WINDOW 300
+
+static void on_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    track_monitor_t *m = user;
+    hkf_head_pose_measurement_t raw;
+    (void)channel;
+    if (hkf_head_pose_measurement_t_decode(rbuf->data, 0, (int)rbuf->data_size, &raw) < 0) {
+        ++m->decode_errors;
+        return;
+    }
+    if (m->have_seq && m->last_seq - TRACK_SECOND_MODEL_WINDOW < raw.seq && raw.seq <= m->last_seq) {
+        ++m->second;
+    } else {
+        m->last_seq = raw.seq, m->have_seq = 1;
+        ++m->raw;
+        m->faces += raw.valid != 0;
+    }
+    hkf_head_pose_measurement_t_decode_cleanup(&raw);
+}
+
+static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    track_monitor_t *m = user;
+    hkf_head_pose_t pose;
+    (void)channel;
+    if (hkf_head_pose_t_decode(rbuf->data, 0, (int)rbuf->data_size, &pose) < 0) {
+        ++m->decode_errors;
+        return;
+    }
+    ++m->poses, ++m->total_poses;
+    if (!pose.extrapolated && m->latencies < TRACK_MAX_LATENCIES) {
+        m->latency_ms[m->latencies++] = (double)pose.latency_us / 1000.0;
+    }
+    m->last = pose, m->have_last = 1;
+    hkf_head_pose_t_decode_cleanup(&pose);
+}
+
+int track_monitor_start(track_monitor_t *m, lcm_t *lcm, int clock_is_real)
+{
+    memset(m, 0, sizeof *m);
+    m->clock_is_real = clock_is_real;
+    if (lcm_wait_subscribe(lcm, "HEAD_POSE_RAW", on_raw, m, "hkf-track") == NULL ||
+        lcm_wait_subscribe(lcm, "HEAD_POSE", on_pose, m, "hkf-track") == NULL) {
+        return -1;
+    }
+    return 0;
+}
+
+static int by_value(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Appends printf-style text to out, never beyond size. */
+#define APPEND(...) (used += (size_t)snprintf(out + used, used < size ? size - used : 0, __VA_ARGS__), \
+                     used = used < size ? used : size)
+
+static const char *status_name(int status)
+{
+    return status == HKF_HEAD_POSE_T_TRACKING ? "TRACKING"
+           : status == HKF_HEAD_POSE_T_COASTING ? "COASTING"
+           : status == HKF_HEAD_POSE_T_LOST     ? "LOST"
+                                                : "?";
+}
+
+/* The pose from the centre: pitch, yaw (wrapped to [-180, 180)), roll and, when measured, x, y, z. */
+static size_t pose_text(const hkf_head_pose_t *p, char *out, size_t size)
+{
+    size_t used = 0;
+    double yaw = fmod((double)p->yaw - p->center[1] + 180.0, 360.0);
+    yaw = (yaw < 0.0 ? yaw + 360.0 : yaw) - 180.0;
+    APPEND(", %s pitch %+6.1f yaw %+6.1f roll %+6.1f deg", status_name(p->status), (double)p->pitch - p->center[0],
+           yaw, (double)p->roll - p->center[2]);
+    if (p->z > 0.0f) {
+        APPEND(", x %+5.1f y %+5.1f z %+5.1f cm", (double)p->x - p->position_center[0],
+               (double)p->y - p->position_center[1], (double)p->z - p->position_center[2]);
+    }
+    APPEND(" from centre");
+    return used;
+}
+
+void track_monitor_line(track_monitor_t *m, double elapsed, double interval, char *out, size_t size)
+{
+    size_t used = 0;
+    APPEND("[%6.1f s] camera %5.1f fps (%ld with a face), filter %5.1f poses/s", elapsed, m->raw / interval, m->faces,
+           m->poses / interval);
+    if (m->second) APPEND(", second model %4.1f/s", m->second / interval);
+    if (m->latencies > 0 && m->clock_is_real) {
+        qsort(m->latency_ms, (size_t)m->latencies, sizeof m->latency_ms[0], by_value);
+        APPEND(", capture->pose p50 %.1f ms max %.1f ms", m->latency_ms[m->latencies / 2],
+               m->latency_ms[m->latencies - 1]);
+    } else if (m->latencies > 0) { /* a file read as fast as it goes: its stamps are the file's time */
+        APPEND(", no latency (a file faster than real time: --realtime measures it)");
+    }
+    if (m->have_last && used < size) pose_text(&m->last, out + used, size - used);
+    m->raw = m->faces = m->poses = m->second = 0;
+    m->latencies = 0;
+}

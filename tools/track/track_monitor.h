@@ -1,0 +1,46 @@
+/*
+ * track_monitor.h - hkf-track's status line: listens to HEAD_POSE_RAW and
+ * HEAD_POSE and says, once a second, the camera and filter rates, the
+ * capture-to-pose latency and the latest pose from the centre.
+ */
+#ifndef TRACK_MONITOR_H
+#define TRACK_MONITOR_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include <lcm/lcm.h>
+
+#include "hkf_head_pose_t.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define TRACK_MAX_LATENCIES 8192 /* per status line; more poses than that in a second are not timed */
+
+typedef struct {
+    int clock_is_real;  /* a camera, or a file at its frame rate: the stamps are the wall clock's */
+    long raw, faces, poses, second; /* since the last status line */
+    long total_poses;
+    double latency_ms[TRACK_MAX_LATENCIES];
+    int latencies;
+    int64_t last_seq;
+    int have_seq;
+    hkf_head_pose_t last;
+    int have_last;
+    long decode_errors;
+} track_monitor_t;
+
+/* Subscribes m to both channels on lcm. 0, or -1 (said on stderr). */
+int track_monitor_start(track_monitor_t *m, lcm_t *lcm, int clock_is_real);
+
+/* The status line for the `interval` seconds since the last one, `elapsed` s
+ * after the start, into out; the counts start again. */
+void track_monitor_line(track_monitor_t *m, double elapsed, double interval, char *out, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TRACK_MONITOR_H */

@@ -1,0 +1,158 @@
+/* track_options.c - see track_options.h. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "track_options.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "arguments.h"
+
+enum option_kind { OPTION_FLAG, OPTION_TEXT };
+
+typedef struct {
+    const char *name;
+    enum option_kind kind;
+    size_t offset; /* of the int (a flag) or the const char * (a text) in track_options_t */
+} option_t;
+
+#define TEXT(name, field) {name, OPTION_TEXT, offsetof(track_options_t, field)}
+#define FLAG(name, field) {name, OPTION_FLAG, offsetof(track_options_t, field)}
+
+static const option_t options[] = {
+    TEXT("--camera", camera),           TEXT("--source", source),
+    FLAG("--realtime", realtime),       TEXT("--model", model),
+    TEXT("--detector", detector),       TEXT("--second-model", second_model),
+    TEXT("--config", config),           TEXT("--rate", rate),
+    FLAG("--opentrack", opentrack),     TEXT("--opentrack-host", opentrack_host),
+    TEXT("--opentrack-port", opentrack_port), TEXT("--opentrack-args", opentrack_args),
+    TEXT("--lcm-url", lcm_url),         TEXT("--build", build),
+    TEXT("--logs", logs),
+};
+
+static void usage(FILE *to)
+{
+    fprintf(to,
+            "usage: hkf-track (--camera N | --source FILE) [options]\n"
+            "\n"
+            "The whole live tracker in one command. Starts hkf-estimator (camera or video ->\n"
+            "HEAD_POSE_RAW), hkf-filter (-> HEAD_POSE) and, with --opentrack, hkf-opentrack\n"
+            "(-> opentrack's \"UDP over network\" input); prints the camera and filter rates,\n"
+            "the capture-to-pose latency and the head pose once a second; stops them all on\n"
+            "Ctrl-C (or when a video ends) and prints their summaries. Each program's\n"
+            "messages go to a log in --logs.\n"
+            "\n"
+            "  hkf-track --camera 0 --opentrack            a webcam into opentrack\n"
+            "  hkf-track --source clip.mp4 --realtime      a video standing in for the camera\n"
+            "\n"
+            "options:\n"
+            "  --camera N             camera index (0) or device (/dev/video0)\n"
+            "  --source FILE          a video file or a folder of images instead of a camera\n"
+            "  --realtime             pace a file at its frame rate, like a camera\n"
+            "  --model NAME           head-pose model for hkf-estimator (mesh_pnp, whenet)\n"
+            "  --detector NAME        hkf-estimator's face search: retina (default: near, far and\n"
+            "                         turned faces), short or full\n"
+            "  --second-model NAME    the model hkf-estimator runs beside the first at large turns\n"
+            "                         (default whenet; none: the first alone); hkf-filter fuses both\n"
+            "  --config FILE          hkf-filter settings file (default: hkf-filter's own search:\n"
+            "                         hkf-filter --print-config says where each value came from)\n"
+            "  --rate HZ              hkf-filter also publishes extrapolated poses at HZ (0-10000]\n"
+            "  --opentrack            also run hkf-opentrack\n"
+            "  --opentrack-host HOST  where opentrack listens (default 127.0.0.1)\n"
+            "  --opentrack-port PORT  (default 4242)\n"
+            "  --opentrack-args ARGS  more hkf-opentrack options, e.g. '--invert yaw'\n"
+            "  --lcm-url URL          LCM provider for all of them (default %s)\n"
+            "  --seconds S            stop after this long (default: Ctrl-C, or the source's end)\n"
+            "  --build DIR            where the programs were built (default: beside hkf-track)\n"
+            "  --logs DIR             folder for the programs' logs (default ./hkf-track-logs)\n"
+            "  --help, --version\n"
+            "\n"
+            "Exit status: 0 when the source ended or Ctrl-C stopped a clean run; 1 when a program\n"
+            "failed or its log was lost; 2 for a bad command line or a missing program.\n",
+            TRACK_DEFAULT_LCM_URL);
+}
+
+static int bad(const char *what, const char *value)
+{
+    fprintf(stderr, "hkf-track: %s%s\n", what, value != NULL ? value : "");
+    fprintf(stderr, "hkf-track: --help lists the options\n");
+    return 2;
+}
+
+static const option_t *find_option(const char *arg, const char **inline_value)
+{
+    const char *equals = strchr(arg, '=');
+    size_t length = equals != NULL ? (size_t)(equals - arg) : strlen(arg);
+    *inline_value = equals != NULL ? equals + 1 : NULL;
+    for (size_t i = 0; i < sizeof options / sizeof options[0]; ++i) {
+        if (strlen(options[i].name) == length && strncmp(options[i].name, arg, length) == 0) return &options[i];
+    }
+    return NULL;
+}
+
+/* Reads argv[*i] (and its value); 0, or 2 when it is not an option or lacks its value. */
+static int read_option(int argc, char **argv, int *i, track_options_t *o)
+{
+    const char *value;
+    const option_t *option = find_option(argv[*i], &value);
+    if (strcmp(argv[*i], "--seconds") == 0 || strncmp(argv[*i], "--seconds=", 10) == 0) {
+        const char *text = argv[*i][9] == '=' ? argv[*i] + 10 : (*i + 1 < argc ? argv[++*i] : NULL);
+        if (text == NULL || !argument_number(text, 0.0, 1e9, &o->seconds)) {
+            return bad("--seconds wants a duration >= 0, not ", text != NULL ? text : "nothing");
+        }
+        return 0;
+    }
+    if (option == NULL) return bad("unknown option ", argv[*i]);
+    if (option->kind == OPTION_FLAG) {
+        if (value != NULL) return bad(option->name, " takes no value");
+        *(int *)((char *)o + option->offset) = 1;
+        return 0;
+    }
+    if (value == NULL) {
+        if (*i + 1 >= argc) return bad(option->name, " wants a value");
+        value = argv[++*i];
+    }
+    *(const char **)((char *)o + option->offset) = value;
+    return 0;
+}
+
+/* The rules between options: one source, a source that exists, a known detector, a rate in range. */
+static int check(const track_options_t *o)
+{
+    struct stat info;
+    double rate;
+    if ((o->camera == NULL) == (o->source == NULL)) return bad("give one of --camera N and --source FILE", NULL);
+    if (o->source != NULL && stat(o->source, &info) != 0) {
+        return bad("--source: no such file or folder: ", o->source);
+    }
+    if (o->detector != NULL && strcmp(o->detector, "retina") != 0 && strcmp(o->detector, "short") != 0 &&
+        strcmp(o->detector, "full") != 0) {
+        return bad("--detector wants retina, short or full, not ", o->detector);
+    }
+    if (o->rate != NULL && (!argument_number(o->rate, 0.0, 10000.0, &rate) || rate <= 0.0)) {
+        return bad("--rate wants a frequency above 0 and up to 10000 Hz, not ", o->rate);
+    }
+    if (strncmp(o->lcm_url, "file://", 7) == 0) {
+        return bad("--lcm-url: hkf-track runs live programs; a file:// log is for hkf-estimator and "
+                   "hkf-filter --offline, not ", o->lcm_url);
+    }
+    return 0;
+}
+
+int track_options_parse(int argc, char **argv, track_options_t *o)
+{
+    memset(o, 0, sizeof *o);
+    o->opentrack_host = "127.0.0.1";
+    o->opentrack_port = "4242";
+    o->opentrack_args = "";
+    o->lcm_url = TRACK_DEFAULT_LCM_URL;
+    o->logs = "hkf-track-logs";
+    for (int i = 1; i < argc; ++i) {
+        if (argument_help_or_version(argv[i], "hkf-track", usage)) return 1;
+        int status = read_option(argc, argv, &i, o);
+        if (status != 0) return status;
+    }
+    return check(o);
+}

@@ -1,0 +1,66 @@
+/*
+ * track_programs.h - the programs hkf-track runs: their command lines, started
+ * each in its own process group with its output in a log, watched, stopped in
+ * order, and their summaries read back from the logs.
+ */
+#ifndef TRACK_PROGRAMS_H
+#define TRACK_PROGRAMS_H
+
+#include <stddef.h>
+#include <sys/types.h>
+
+#include "track_options.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define TRACK_PROGRAMS 3      /* hkf-opentrack, hkf-filter, hkf-estimator */
+#define TRACK_MAX_ARGS 64
+#define TRACK_TEXT_SIZE 16384 /* the characters of all arguments */
+#define TRACK_PATH_SIZE 4096
+
+typedef struct {
+    const char *name;
+    char *argv[TRACK_MAX_ARGS + 1];
+    int argc;
+    char log[TRACK_PATH_SIZE];
+    pid_t pid;
+    int running;
+    int status; /* its exit code, or minus the signal that ended it */
+} track_program_t;
+
+typedef struct {
+    track_program_t program[TRACK_PROGRAMS]; /* in start order: the consumers first, so no pose is missed */
+    int count;
+    char text[TRACK_TEXT_SIZE];
+    size_t used;
+} track_programs_t;
+
+/* The command lines for o: the programs beside hkf-track (installed), in the
+ * build tree it runs from, or in o->build. 0, or 2 with the reason on stderr
+ * (a program missing, arguments too long). */
+int track_programs_plan(track_programs_t *p, const track_options_t *o);
+
+/* Starts each program with its output in LOGS/NAME.log, prints its command
+ * line, and waits 0.3 s before the next one so the subscribers listen before
+ * the estimator publishes. 0, or 1 (said) when a log or a process could not
+ * be made; the programs started are then stopped. */
+int track_programs_start(track_programs_t *p, const char *logs);
+
+/* The index of a program that has ended since the last call, or -1. */
+int track_programs_reap(track_programs_t *p);
+
+/* SIGINT to each program still running, the last started first; SIGKILL after
+ * 5 s (said). Every program's status is known afterwards. */
+void track_programs_stop(track_programs_t *p);
+
+/* Prints each program's summary (its last count line, and its last line) and
+ * returns how many logs were empty: their output was lost (said). */
+int track_programs_summaries(const track_programs_t *p);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TRACK_PROGRAMS_H */
