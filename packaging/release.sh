@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ./run release: the Debian package built as Debian builds (prefix /usr, dpkg-buildflags'
-# hardening, stripped), checked by lintian (no error allowed; the warnings left are explained in
-# debian/lintian-overrides), then installed with apt on a clean Debian 12 root and run there
+# hardening, stripped), checked by lintian (no error and no warning: a warning is fixed, or overridden
+# with its reason in debian/lintian-overrides), then installed with apt on a clean Debian 12 root and run there
 # (clean_root_test.sh).
 # usage: packaging/release.sh SOURCE_DIR BUILD_DIR OUT_DIR
 set -euo pipefail
@@ -32,9 +32,9 @@ lintian --info "$deb" >"$out/lintian.txt" 2>&1 || true  # its exit status counts
 cat "$out/lintian.txt"
 errors=$(grep -c '^E:' "$out/lintian.txt" || true)
 warnings=$(grep -c '^W:' "$out/lintian.txt" || true)
-overridden=$(grep -c '^[a-z].*:' "$source/packaging/debian/lintian-overrides" || true)
-echo "lintian: $errors errors, $warnings warnings ($overridden overridden, explained in packaging/debian/lintian-overrides)"
-[ "$errors" = 0 ] || { echo "release: lintian found errors" >&2; exit 1; }
+overridden=$(grep -c '^O:' "$out/lintian.txt" || true)
+echo "lintian: $errors errors, $warnings warnings, $overridden overridden (packaging/debian/lintian-overrides)"
+[ "$errors" = 0 ] && [ "$warnings" = 0 ] || { echo "release: lintian found errors or warnings" >&2; exit 1; }
 
 step "a clean Debian 12 root: apt-get install ./$(basename "$deb"), then the tracker in it"
 "$source/packaging/clean_root_test.sh" "$deb" "$source/../shared/data/videos/d10.mp4" "$out/root"
