@@ -66,4 +66,24 @@ grep -qx "exit 1" "$work/full.txt" || fail "logs on a full disk: $(tail -n 1 "$w
 # bad input: a clear message and a non-zero exit
 if "${track[@]}" --source "$work/missing.mp4" 2>"$work/bad.txt"; then fail "a missing source was accepted"; fi
 grep -q "no such file" "$work/bad.txt" || fail "no clear message for a missing source"
+# bad_args EXPECTED_TEXT ARGS...: a clear message and exit 2, nothing started
+bad_args() {
+  local text=$1 status=0
+  shift
+  "${track[@]}" "$@" >"$work/args.txt" 2>&1 || status=$?
+  [ "$status" = 2 ] || fail "hkf-track $*: exit $status, not 2"
+  grep -q -- "$text" "$work/args.txt" || fail "hkf-track $*: no '$text' in: $(cat "$work/args.txt")"
+  if grep -q "started" "$work/args.txt"; then fail "hkf-track $*: a program was started"; fi
+}
+clip=$videos/d18.mp4
+bad_args "give one of --camera N and --source FILE" --camera 0 --source "$clip"
+bad_args "give one of --camera N and --source FILE" --realtime
+bad_args "unknown option --nonsense" --source "$clip" --nonsense
+bad_args "--rate wants a frequency above 0" --source "$clip" --rate 0
+bad_args "--seconds wants a duration >= 0" --source "$clip" --seconds -1
+bad_args "--detector wants retina, short or full" --source "$clip" --detector wide
+bad_args "a file:// log is for hkf-estimator" --source "$clip" --lcm-url "file://$work/x.lcmlog"
+bad_args "an open quote" --source "$clip" --opentrack --opentrack-args "--invert 'yaw"
+bad_args "is missing" --source "$clip" --build "$work/no-build"
+"${track[@]}" --help | grep -q "^usage: hkf-track" || fail "--help"
 echo "track_test: passed ($received poses reached the UDP receiver; programs stopped on Ctrl-C)"

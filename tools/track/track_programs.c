@@ -213,9 +213,22 @@ static int start_one(track_program_t *program, const char *logs)
     return 0;
 }
 
+/* mkdir -p: the folder and those above it. 0, or -1 with errno. */
+static int make_folders(const char *path)
+{
+    char partial[TRACK_PATH_SIZE];
+    if (snprintf(partial, sizeof partial, "%s", path) >= (int)sizeof partial) return errno = ENAMETOOLONG, -1;
+    for (char *slash = strchr(partial + 1, '/');; slash = strchr(slash + 1, '/')) {
+        if (slash != NULL) *slash = '\0';
+        if (mkdir(partial, 0755) != 0 && errno != EEXIST) return -1;
+        if (slash == NULL) return 0;
+        *slash = '/';
+    }
+}
+
 int track_programs_start(track_programs_t *p, const char *logs)
 {
-    if (mkdir(logs, 0755) != 0 && errno != EEXIST) {
+    if (make_folders(logs) != 0) {
         fprintf(stderr, "hkf-track: cannot make the log folder %s: %s\n", logs, strerror(errno));
         return 1;
     }
