@@ -146,9 +146,9 @@ int main(int argc, char **argv)
         cv::VideoCapture in(videos + "/" + clip + ".mp4");
         FaceTracker tracker(TrackerDetectors{search.get(), follow.get()}, TrackerSettings{});
         cv::Mat frame;
-        for (int index = 0; in.read(frame) && index < 150; ++index) {  // 30 frames a clip, 5 s
+        for (int index = 0; in.read(frame) && index < 100; ++index) {  // 25 frames a clip, 3.3 s
             const std::optional<Face> face = tracker.track(frame, index * 33333LL);
-            if (!face || index % 5 != 0) continue;
+            if (!face || index % 4 != 0) continue;
             const std::optional<HeadPose> pose = mesh->estimate(frame, *face);
             const std::optional<HeadPose> boxed = whenet->estimate(frame, *face);
             if (pose && pose->has_position && boxed && boxed->has_position)

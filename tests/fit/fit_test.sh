@@ -56,7 +56,7 @@ for axis in ("pitch", "yaw", "roll"):
     assert abs(fitted[2] - built_in[2]) <= 0.01 and abs(fitted[3] / built_in[3] - 1) <= 1e-3, (axis, fitted, built_in)
 print("fit_test: the built-in mesh_pnp curves reproduce")
 PY
-# WHENet is slow in OpenCV's DNN: 400 images are enough to check the procedure on it
-fit whenet 400
+# WHENet is slow in OpenCV's DNN: 300 images are enough to check the procedure on it
+fit whenet 300
 plausible "$work/whenet_fit.txt"
 echo "fit_test: all checks passed"
