@@ -90,8 +90,8 @@ int main(int argc, char **argv)
         }
         std::vector<double> clip_z, clip_x, clip_distance;
         cv::Mat frame;
-        for (int index = 0; in.read(frame) && index < 100; ++index) {
-            if (index % 33 != 0) continue;  // 4 frames a clip, 1.1 s apart
+        for (int index = 0; in.read(frame) && index <= 100; ++index) {
+            if (index % 50 != 0) continue;  // 3 frames a clip, 1.7 s apart
             const std::optional<Face> face = face_in(frame);
             const std::optional<HeadPose> base = face ? mesh->estimate(frame, *face) : std::nullopt;
             if (!base || !base->has_position) continue;  // no truth to compare against
