@@ -9,10 +9,18 @@
 
 #include <lcm/lcm.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The wall clock in us since the Unix epoch: what capture stamps and hkf-filter use. */
 int64_t bench_wall_utime(void);
 
 /* Handles every message that arrives until the wall clock reaches `until`. */
 void bench_handle_until(lcm_t *lcm, int64_t until);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* BENCH_CLOCK_H */

@@ -30,10 +30,8 @@
 #include "pose_drawing.hpp"
 #include "written_video.hpp"
 
-extern "C" {
 #include "lcm_log_reader.h"
 #include "safe_files.h"
-}
 
 namespace {
 

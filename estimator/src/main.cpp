@@ -30,9 +30,7 @@
 
 #include "model_name.h"
 
-extern "C" {
 #include "safe_files.h"
-}
 
 namespace {
 

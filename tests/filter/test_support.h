@@ -20,6 +20,10 @@
 
 #include "hkf/hkf.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #ifndef TEST_TOL
 #error "TEST_TOL (degrees) must be defined by the build"
 #endif
@@ -110,5 +114,9 @@ static inline double yaw_diff(double a, double b)
     double d = fmod(a - b + 180.0, 360.0);
     return (d < 0.0 ? d + 360.0 : d) - 180.0;
 }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* HKF_TEST_SUPPORT_H */

@@ -11,6 +11,10 @@
 
 #include "hkf_head_pose_t.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 static inline void fuzz_check(int condition, const char *target, const char *what)
 {
     if (!condition) {
@@ -43,5 +47,9 @@ static inline void fuzz_check_pose(const hkf_head_pose_t *p, const char *target)
     }
     fuzz_check(p->z == 0.f || p->z >= 1.f, target, "a position nearer than 1 cm published");
 }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FUZZ_CHECKS_H */

@@ -16,6 +16,10 @@
 
 #include "hkf/hkf_real.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     const uint8_t *data;
     size_t size;
@@ -55,5 +59,9 @@ static inline void check(int condition, const char *what)
         abort();
     }
 }
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FUZZ_INPUT_H */

@@ -1,5 +1,5 @@
 /*
- * test_lcm_file_url.c - the file:// rules (tools/common/lcm_file_url.h) with
+ * test_lcm_file_url.c - the file:// rules (messages/lcm_file_url.h) with
  * LCM's real file provider: a URL's mode read as lcm_parse_url reads it;
  * inputs a regular file, outputs none of the run's files and no named pipe
  * or device; and a log read back after lcm_destroy holds every event

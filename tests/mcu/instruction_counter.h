@@ -10,6 +10,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Starts SysTick and measures the ticks of 200,000 instructions. */
 void counter_start(void);
 /* SysTick's current value (one load, inline: it adds little to what it
@@ -21,5 +25,9 @@ static inline uint32_t counter_ticks(uint32_t earlier, uint32_t later) { return 
 long counter_instructions_per_call(uint32_t ticks, uint32_t calls);
 /* The calibration: ticks for 200,000 instructions. */
 uint32_t counter_calibration_ticks(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -82,6 +82,10 @@
 #include "node_config.h"
 #include "second_model.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     unsigned long received;        /* measurements handled */
     unsigned long published;       /* poses produced (including extrapolated) */
@@ -188,5 +192,9 @@ int64_t filter_node_silence_due(const filter_node_t *node);
 
 /* RECENTER or RESET; returns 0, or -1 for an unknown command. */
 int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FILTER_NODE_H */

@@ -14,6 +14,10 @@
 #include "filter_node.h"
 #include "lcm_log_writer.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     const char *input_channel, *output_channel, *command_channel;
     int64_t tick_us; /* > 0: also poses extrapolated every tick_us of capture time (--rate) */
@@ -38,5 +42,9 @@ typedef struct {
  * (the output log stops at the first failed write). */
 int filter_node_offline(filter_node_t *node, const filter_node_offline_t *options, FILE *in, lcm_log_writer_t *out,
                         filter_node_offline_report_t *report);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* FILTER_NODE_OFFLINE_H */

@@ -13,6 +13,10 @@
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define NODE_MAX_MODELS 16
 /* a model id and its NUL: the limit stated in head_pose_measurement_t.lcm */
 #define NODE_MODEL_NAME_MAX (HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX + 1)
@@ -74,5 +78,9 @@ void node_config_print(const node_config_t *config, FILE *out);
 /* The same, with where each value was set at the start of its comment: "FILE:LINE", "--set",
  * "default" or (a model's built-in curves) "built in" (hkf-filter --print-config). */
 void node_config_print_origins(const node_config_t *config, FILE *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* NODE_CONFIG_H */

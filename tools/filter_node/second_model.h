@@ -14,6 +14,10 @@
 #include "hkf_head_pose_measurement_t.h"
 #include "node_config.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
 #define FILTER_NODE_ALIGN_FRAMES 60 /* frames both models measured that the second's offset averages */
 #define FILTER_NODE_FRAME_IDS 512   /* (seq, utime) of the followed publisher's last frames: a second measurement
@@ -74,5 +78,9 @@ int second_model_too_late(const second_model_t *s, const hkf_head_pose_measureme
  * whether the second model is in the table. */
 int second_model_fuse(second_model_t *s, const node_config_t *config, int index, const hkf_head_pose_measurement_t *m,
                       hkf_filter_t *filter, int *known);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SECOND_MODEL_H */

@@ -13,6 +13,10 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define FILTER_NODE_POSITION_FRAMES 32   /* the first model's last frames kept (as FILTER_NODE_PAIR_FRAMES) */
 #define FILTER_NODE_POSITION_ALIGN 60    /* frames both measured that the offset averages */
 #define FILTER_NODE_POSITION_MIN_ALIGN 5 /* frames both measured before the second's positions are used */
@@ -42,5 +46,9 @@ void second_position_note_first(second_position_t *p, int64_t seq, int64_t utime
  * the first's frame and 1 is returned; otherwise (a frame no longer kept, or
  * not yet aligned) 0. */
 int second_position_take(second_position_t *p, int64_t seq, int64_t utime, const float xyz[3], float out[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SECOND_POSITION_H */

@@ -26,6 +26,10 @@
 #include "hkf_head_pose_t.h"
 #include "hkf_head_pose_v1_t.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define OPENTRACK_PACKET_SIZE 48
 enum { OPENTRACK_X = 0, OPENTRACK_Y, OPENTRACK_Z, OPENTRACK_YAW, OPENTRACK_PITCH, OPENTRACK_ROLL, OPENTRACK_FIELDS };
 
@@ -81,5 +85,9 @@ int opentrack_decode_pose(const void *data, int size, hkf_head_pose_t *pose);
 
 /* The six values as the 48 bytes on the wire (little-endian, whatever the host). */
 void opentrack_encode(const double values[OPENTRACK_FIELDS], unsigned char packet[OPENTRACK_PACKET_SIZE]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* OPENTRACK_PACKET_H */

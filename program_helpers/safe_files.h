@@ -8,6 +8,10 @@
 
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Opens path for reading when it is a regular file; a named pipe, device or
  * folder is refused at once (opening a pipe with no writer would block for
  * ever). NULL with "'PATH' is a named pipe; ..." (or the system's reason) in error. */
@@ -33,5 +37,9 @@ int safe_close(FILE *f);
  * program reports, instead of killing it by SIGXFSZ without a word. Call once
  * at start. */
 void safe_files_fail_writes_past_size_limit(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* SAFE_FILES_H */

@@ -15,6 +15,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define LCM_LOG_SYNC_WORD 0xEDA1DA01u
 #define LCM_LOG_CHANNEL_MAX 255 /* bytes; lcm-logger writes at most 63 */
 
@@ -47,5 +51,9 @@ int lcm_log_reader_next(lcm_log_reader_t *reader, lcm_log_event_t *event, void *
 /* After the end: how many bytes at the end of the file belong to no whole
  * event (a log cut off mid-event by a power loss or a full disk). */
 long lcm_log_reader_cut(const lcm_log_reader_t *reader);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* LCM_LOG_READER_H */

@@ -9,6 +9,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* 1 when all of text is a number (strtod's syntax, not out of range) within
  * [low, high]: *value holds it; else 0 (the caller says what it wanted). */
 int argument_number(const char *text, double low, double high, double *value);
@@ -21,5 +25,9 @@ int argument_help_or_version(const char *arg, const char *program, void (*usage)
  * and the monotonic clock (waits and arrival times). */
 int64_t clock_wall_us(void);
 int64_t clock_monotonic_us(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* ARGUMENTS_H */

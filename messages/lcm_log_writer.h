@@ -10,6 +10,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     FILE *f;
     int64_t events;  /* written so far: the next event's number */
@@ -25,5 +29,9 @@ int lcm_log_writer_write(lcm_log_writer_t *writer, int64_t timestamp, const char
 
 /* Closes the log: 0 when every event and the close reached the file, else -1. */
 int lcm_log_writer_close(lcm_log_writer_t *writer);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* LCM_LOG_WRITER_H */

@@ -10,6 +10,10 @@
 
 #include <lcm/lcm.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* How many received messages a subscription may hold before LCM drops new
  * ones: 1 s at 1 kHz. LCM's default, 30, is 30 ms at 1 kHz, and a node that
  * the scheduler starves that long (a busy machine) silently lost messages in
@@ -38,5 +42,9 @@ int64_t lcm_wait_time(int64_t next_tick_us, int64_t now_us);
  * handled, 0 when none came (time out, or a signal), -1 on a failure, which
  * it reports on stderr prefixed by `program`. */
 int lcm_wait_and_handle(lcm_t *lcm, int64_t wait_us, const char *program);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif /* LCM_WAIT_H */
