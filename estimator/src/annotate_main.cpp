@@ -142,6 +142,24 @@ struct TracePoint {
     std::optional<hkf_estimator::HeadPose> raw, filtered;
 };
 
+// --trace-seconds, --raw-channel or --filtered-channel and its value into o; false (said) when the value is bad.
+bool read_value_option(const std::string &arg, const std::string &value, Options &o)
+{
+    if (arg == "--raw-channel") {
+        o.raw_channel = value;
+    } else if (arg == "--filtered-channel") {
+        o.filtered_channel = value;
+    } else {
+        char *end = nullptr;
+        o.trace_seconds = std::strtod(value.c_str(), &end);
+        if (end == value.c_str() || *end != '\0' || !(o.trace_seconds > 0.0 && o.trace_seconds <= 60.0)) {
+            std::fprintf(stderr, "hkf-annotate: --trace-seconds wants a number in (0, 60], not '%s'\n", value.c_str());
+            return false;
+        }
+    }
+    return true;
+}
+
 int parse(int argc, char **argv, Options &o)
 {
     std::vector<std::string> positional;
@@ -173,20 +191,7 @@ int parse(int argc, char **argv, Options &o)
                 std::fprintf(stderr, "hkf-annotate: %s needs a value\n%s", arg.c_str(), usage);
                 return 2;
             }
-            const std::string value = argv[++i];
-            if (arg == "--raw-channel") {
-                o.raw_channel = value;
-            } else if (arg == "--filtered-channel") {
-                o.filtered_channel = value;
-            } else {
-                char *end = nullptr;
-                o.trace_seconds = std::strtod(value.c_str(), &end);
-                if (end == value.c_str() || *end != '\0' || !(o.trace_seconds > 0.0 && o.trace_seconds <= 60.0)) {
-                    std::fprintf(stderr, "hkf-annotate: --trace-seconds wants a number in (0, 60], not '%s'\n",
-                                 value.c_str());
-                    return 2;
-                }
-            }
+            if (!read_value_option(arg, argv[++i], o)) return 2;
         } else if (!arg.empty() && arg[0] == '-') {
             std::fprintf(stderr, "hkf-annotate: unknown option '%s'\n%s", arg.c_str(), usage);
             return 2;
@@ -237,6 +242,62 @@ int main(int argc, char **argv)
 
 namespace {
 
+// A message's angles and, where measured and finite, its position.
+template <typename Message>
+hkf_estimator::HeadPose pose_of(const Message &m)
+{
+    hkf_estimator::HeadPose pose{m.pitch, m.yaw, m.roll};
+    if (m.z > 0.f && std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.z)) {
+        pose.position = {m.x, m.y, m.z};
+        pose.has_position = true;
+    }
+    return pose;
+}
+
+// The logs' poses, found by frame: raw by seq (the first model's, where a second one measured too),
+// filtered by the raw pose's capture time (posteriors only).
+struct PoseIndex {
+    std::map<int64_t, const hkf::head_pose_measurement_t *> raw_by_seq;
+    std::map<int64_t, const hkf::head_pose_t *> filtered_by_utime;
+    long with_raw = 0, with_filtered = 0;  // frames drawn with each
+};
+
+// One frame's raw and filtered poses (those finite) and its face box, counted in the index.
+TracePoint frame_point(PoseIndex &poses, int64_t seq, double t, std::optional<cv::Rect2f> &box)
+{
+    TracePoint point{t, std::nullopt, std::nullopt};
+    const auto r = poses.raw_by_seq.find(seq);
+    if (r == poses.raw_by_seq.end()) return point;
+    const hkf::head_pose_measurement_t &m = *r->second;
+    const hkf_estimator::HeadPose raw = pose_of(m);
+    if (m.valid && finite(raw)) {
+        point.raw = raw;
+        box = cv::Rect2f(cv::Point2f(m.face_box[0], m.face_box[1]), cv::Point2f(m.face_box[2], m.face_box[3]));
+        ++poses.with_raw;
+    }
+    const auto f = poses.filtered_by_utime.find(m.utime);
+    if (f != poses.filtered_by_utime.end() && finite(pose_of(*f->second))) {
+        point.filtered = pose_of(*f->second);
+        ++poses.with_filtered;
+    }
+    return point;
+}
+
+// The checks after the last frame: the video written whole, the still within it, a raw pose matched.
+int finish(const Options &o, long frames, const PoseIndex &poses)
+{
+    if (frames == 0) return fail("no frames in " + o.video);
+    if (o.still_index >= frames)
+        return fail("--still " + std::to_string(o.still_index) + ": the video has only " + std::to_string(frames) + " frames");
+    if (const std::string problem = hkf_estimator::written_video_problem(o.out, frames); !problem.empty())
+        return fail(problem);
+    if (stop_requested) return fail("stopped by a signal after " + std::to_string(frames) + " frames; " + o.out + " is whole up to there");
+    std::printf("hkf-annotate: %s: %ld frames, %ld with a raw pose, %ld with a filtered pose\n", o.out.c_str(), frames,
+                poses.with_raw, poses.with_filtered);
+    if (poses.with_raw == 0) return fail("no frame of " + o.video + " matched a raw pose (is it the video of " + o.raw_log + "?)");
+    return 0;
+}
+
 int annotate(const Options &o)
 {
     std::vector<hkf::head_pose_measurement_t> raws;
@@ -247,12 +308,10 @@ int annotate(const Options &o)
         return fail(error);
     if (raws.empty()) return fail(o.raw_log + " has no " + o.raw_channel + " messages");
     if (filtered_poses.empty()) return fail(o.filtered_log + " has no " + o.filtered_channel + " messages");
-
-    std::map<int64_t, const hkf::head_pose_measurement_t *> raw_by_seq;
-    for (const auto &m : raws) raw_by_seq.emplace(m.seq, &m);  // the first model's, where a second one measured too
-    std::map<int64_t, const hkf::head_pose_t *> filtered_by_utime;
+    PoseIndex poses;
+    for (const auto &m : raws) poses.raw_by_seq.emplace(m.seq, &m);
     for (const auto &p : filtered_poses)
-        if (!p.extrapolated) filtered_by_utime[p.utime] = &p;
+        if (!p.extrapolated) poses.filtered_by_utime[p.utime] = &p;
 
     cv::VideoCapture video(o.video);
     if (!video.isOpened()) return fail("cannot open video " + o.video);
@@ -260,40 +319,13 @@ int annotate(const Options &o)
     if (!(fps > 0.0 && fps < 1000.0)) fps = 30.0;
     cv::VideoWriter writer;
     std::deque<TracePoint> trace;
-    const int64_t first_seq = raw_by_seq.begin()->first;
-    long frames = 0, with_raw = 0, with_filtered = 0;
+    const int64_t first_seq = poses.raw_by_seq.begin()->first;
+    long frames = 0;
     cv::Mat image;
     for (int64_t index = 0; !stop_requested && video.read(image) && !image.empty(); ++index) {
         const double t = static_cast<double>(index) / fps;
-        TracePoint point{t, std::nullopt, std::nullopt};
-        const auto r = raw_by_seq.find(first_seq + index);
         std::optional<cv::Rect2f> box;
-        if (r != raw_by_seq.end()) {
-            const hkf::head_pose_measurement_t &m = *r->second;
-            hkf_estimator::HeadPose pose{m.pitch, m.yaw, m.roll};
-            if (m.z > 0.f && std::isfinite(m.x) && std::isfinite(m.y) && std::isfinite(m.z)) {
-                pose.position = {m.x, m.y, m.z};
-                pose.has_position = true;
-            }
-            if (m.valid && finite(pose)) {
-                point.raw = pose;
-                box = cv::Rect2f(cv::Point2f(m.face_box[0], m.face_box[1]), cv::Point2f(m.face_box[2], m.face_box[3]));
-                ++with_raw;
-            }
-            const auto f = filtered_by_utime.find(m.utime);
-            if (f != filtered_by_utime.end()) {
-                const hkf::head_pose_t &fp = *f->second;
-                hkf_estimator::HeadPose pose_f{fp.pitch, fp.yaw, fp.roll};
-                if (fp.z > 0.f && std::isfinite(fp.x) && std::isfinite(fp.y) && std::isfinite(fp.z)) {
-                    pose_f.position = {fp.x, fp.y, fp.z};
-                    pose_f.has_position = true;
-                }
-                if (finite(pose_f)) {
-                    point.filtered = pose_f;
-                    ++with_filtered;
-                }
-            }
-        }
+        const TracePoint point = frame_point(poses, first_seq + index, t, box);
         hkf_estimator::draw_annotation(image, box, point.raw, point.filtered);
         trace.push_back(point);
         while (!trace.empty() && trace.front().t < t - o.trace_seconds) trace.pop_front();
@@ -306,17 +338,8 @@ int annotate(const Options &o)
         if (index == o.still_index && !cv::imwrite(o.still_path, image)) return fail("cannot write " + o.still_path);
         ++frames;
     }
-    if (frames == 0) return fail("no frames in " + o.video);
-    if (o.still_index >= frames)
-        return fail("--still " + std::to_string(o.still_index) + ": the video has only " + std::to_string(frames) + " frames");
     writer.release();
-    if (const std::string problem = hkf_estimator::written_video_problem(o.out, frames); !problem.empty())
-        return fail(problem);
-    if (stop_requested) return fail("stopped by a signal after " + std::to_string(frames) + " frames; " + o.out + " is whole up to there");
-    std::printf("hkf-annotate: %s: %ld frames, %ld with a raw pose, %ld with a filtered pose\n", o.out.c_str(), frames,
-                with_raw, with_filtered);
-    if (with_raw == 0) return fail("no frame of " + o.video + " matched a raw pose (is it the video of " + o.raw_log + "?)");
-    return 0;
+    return finish(o, frames, poses);
 }
 
 }  // namespace

@@ -146,106 +146,99 @@ void usage(std::ostream &out)
            "  --help, --version  this text; the version\n";
 }
 
-// 0 = run, 1 = help shown, 2 = bad arguments
-int parse(int argc, char **argv, Options &o)
+// An option whose value is taken as it is; false when arg is not one.
+bool read_text_option(const std::string &arg, const std::string &value, Options &o)
 {
-    if (const char *env = std::getenv("HKF_MODELS_DIR"); env != nullptr && *env != '\0') o.models_dir = env;  // '': unset
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
-            usage(std::cout);
-            return 1;
-        }
-        if (arg == "--version") {
-            std::cout << "hkf-estimator " << HKF_VERSION << "\n";
-            return 1;
-        }
-        if (arg == "--realtime" || arg == "--show") {
-            (arg == "--realtime" ? o.pipeline.realtime : o.pipeline.show) = true;
-            continue;
-        }
-        if (i + 1 >= argc) {
-            std::cerr << "hkf-estimator: unknown or incomplete argument '" << arg << "' (see --help)\n";
-            return 2;
-        }
-        const std::string value = argv[++i];
-        double number = 0.0;
-        if (arg == "--source") o.pipeline.source = value;
-        else if (arg == "--annotate") o.pipeline.annotate_path = value;
-        else if (arg == "--lcm-url") o.pipeline.lcm_url = value;
-        else if (arg == "--channel") o.pipeline.channel = value;
-        else if (arg == "--fps") {
-            if (!parse_number(value, 0.1, 1000.0, o.pipeline.fps_for_images)) {
-                std::cerr << "hkf-estimator: --fps wants a number from 0.1 to 1000, not '" << value << "'\n";
-                return 2;
-            }
-        } else if (arg == "--max-frames") {
-            if (!parse_number(value, 1.0, 1e9, number) || number != static_cast<long>(number)) {
-                std::cerr << "hkf-estimator: --max-frames wants a positive whole number, not '" << value << "'\n";
-                return 2;
-            }
-            o.pipeline.max_frames = static_cast<long>(number);
-        } else if (arg == "--detector") {
-            if (value != "short" && value != "full" && value != "retina") {
-                std::cerr << "hkf-estimator: --detector is short, full or retina, not '" << value << "'\n";
-                return 2;
-            }
-            o.detector = value;
-        } else if (arg == "--region") {
-            float x, y, w, h;
-            char extra;
-            const auto px = [](float v) { return std::isfinite(v) && std::fabs(v) <= static_cast<float>(hkf_estimator::kMaxFrameSide); };
-            if (std::sscanf(value.c_str(), "%f,%f,%f,%f%c", &x, &y, &w, &h, &extra) != 4 || !px(x) || !px(y) || !px(w) ||
-                !px(h) || !(w > 0) || !(h > 0)) {
-                std::cerr << "hkf-estimator: --region wants X,Y,W,H in px (finite, W and H > 0, each within "
-                          << hkf_estimator::kMaxFrameSide << "), not '" << value << "'\n";
-                return 2;
-            }
-            o.pipeline.tracker.region = cv::Rect2f(x, y, w, h);
-        } else if (arg == "--crop") {
-            if (value != "live" && value != "labels") {
-                std::cerr << "hkf-estimator: --crop is live or labels, not '" << value << "'\n";
-                return 2;
-            }
-            o.crop = value == "live" ? hkf_estimator::DatasetCrop::Live : hkf_estimator::DatasetCrop::Labels;
-        } else if (arg == "--second-model") {
-            o.second_model = value == "none" ? "" : value;
-            o.second_model_given = true;
-        }
-        else if (arg == "--second-from-yaw") {
-            double v;
-            if (!parse_number(value, 0.0, 180.0, v)) {
-                std::cerr << "hkf-estimator: --second-from-yaw wants degrees from 0 to 180, not '" << value << "'\n";
-                return 2;
-            }
-            o.pipeline.second_from_yaw = static_cast<float>(v);
-        } else if (arg == "--fov") {
-            if (!parse_number(value, 10.0, 170.0, o.position.fov_deg)) {
-                std::cerr << "hkf-estimator: --fov wants the camera's diagonal field of view, 10 to 170 deg, not '" << value << "'\n";
-                return 2;
-            }
-        } else if (arg == "--pivot") {
-            if (!parse_number(value, 0.0, 30.0, o.position.pivot_cm)) {
-                std::cerr << "hkf-estimator: --pivot wants cm behind the nose tip, 0 to 30, not '" << value << "'\n";
-                return 2;
-            }
-        } else if (arg == "--dataset") o.dataset = value;
-        else if (arg == "--model") o.model = value;
-        else if (arg == "--predictions") o.predictions = value;
-        else if (arg == "--models-dir") o.models_dir = value;
-        else if (arg == "--spec-dir") o.spec_dir = value;
-        else if (arg == "--limit") {
-            char *end = nullptr;
-            o.limit = std::strtol(value.c_str(), &end, 10);
-            if (*end != '\0' || o.limit < 1) {
-                std::cerr << "hkf-estimator: --limit wants a positive whole number, not '" << value << "'\n";
-                return 2;
-            }
-        } else {
-            std::cerr << "hkf-estimator: unknown argument '" << arg << "' (see --help)\n";
-            return 2;
-        }
+    std::string *const field = arg == "--source"        ? &o.pipeline.source
+                               : arg == "--annotate"    ? &o.pipeline.annotate_path
+                               : arg == "--lcm-url"     ? &o.pipeline.lcm_url
+                               : arg == "--channel"     ? &o.pipeline.channel
+                               : arg == "--dataset"     ? &o.dataset
+                               : arg == "--model"       ? &o.model
+                               : arg == "--predictions" ? &o.predictions
+                               : arg == "--models-dir"  ? &o.models_dir
+                               : arg == "--spec-dir"    ? &o.spec_dir
+                                                        : nullptr;
+    if (field != nullptr) *field = value;
+    if (arg == "--second-model") {
+        o.second_model = value == "none" ? "" : value;
+        o.second_model_given = true;
+        return true;
     }
+    return field != nullptr;
+}
+
+// A number option: 0 read, 2 a bad value (said), -1 not a number option.
+int read_number_option(const std::string &arg, const std::string &value, Options &o)
+{
+    double number = 0.0;
+    if (arg == "--fps") {
+        if (parse_number(value, 0.1, 1000.0, o.pipeline.fps_for_images)) return 0;
+        std::cerr << "hkf-estimator: --fps wants a number from 0.1 to 1000, not '" << value << "'\n";
+    } else if (arg == "--max-frames") {
+        if (parse_number(value, 1.0, 1e9, number) && number == static_cast<long>(number)) {
+            o.pipeline.max_frames = static_cast<long>(number);
+            return 0;
+        }
+        std::cerr << "hkf-estimator: --max-frames wants a positive whole number, not '" << value << "'\n";
+    } else if (arg == "--second-from-yaw") {
+        if (parse_number(value, 0.0, 180.0, number)) {
+            o.pipeline.second_from_yaw = static_cast<float>(number);
+            return 0;
+        }
+        std::cerr << "hkf-estimator: --second-from-yaw wants degrees from 0 to 180, not '" << value << "'\n";
+    } else if (arg == "--fov") {
+        if (parse_number(value, 10.0, 170.0, o.position.fov_deg)) return 0;
+        std::cerr << "hkf-estimator: --fov wants the camera's diagonal field of view, 10 to 170 deg, not '" << value << "'\n";
+    } else if (arg == "--pivot") {
+        if (parse_number(value, 0.0, 30.0, o.position.pivot_cm)) return 0;
+        std::cerr << "hkf-estimator: --pivot wants cm behind the nose tip, 0 to 30, not '" << value << "'\n";
+    } else if (arg == "--limit") {
+        char *end = nullptr;
+        o.limit = std::strtol(value.c_str(), &end, 10);
+        if (*end == '\0' && o.limit >= 1) return 0;
+        std::cerr << "hkf-estimator: --limit wants a positive whole number, not '" << value << "'\n";
+    } else {
+        return -1;
+    }
+    return 2;
+}
+
+// A choice or region option: 0 read, 2 a bad value (said), -1 not one of them.
+int read_choice_option(const std::string &arg, const std::string &value, Options &o)
+{
+    if (arg == "--detector") {
+        if (value == "short" || value == "full" || value == "retina") {
+            o.detector = value;
+            return 0;
+        }
+        std::cerr << "hkf-estimator: --detector is short, full or retina, not '" << value << "'\n";
+    } else if (arg == "--crop") {
+        if (value == "live" || value == "labels") {
+            o.crop = value == "live" ? hkf_estimator::DatasetCrop::Live : hkf_estimator::DatasetCrop::Labels;
+            return 0;
+        }
+        std::cerr << "hkf-estimator: --crop is live or labels, not '" << value << "'\n";
+    } else if (arg == "--region") {
+        float x, y, w, h;
+        char extra;
+        const auto px = [](float v) { return std::isfinite(v) && std::fabs(v) <= static_cast<float>(hkf_estimator::kMaxFrameSide); };
+        if (std::sscanf(value.c_str(), "%f,%f,%f,%f%c", &x, &y, &w, &h, &extra) == 4 && px(x) && px(y) && px(w) && px(h) &&
+            w > 0 && h > 0) {
+            o.pipeline.tracker.region = cv::Rect2f(x, y, w, h);
+            return 0;
+        }
+        std::cerr << "hkf-estimator: --region wants X,Y,W,H in px (finite, W and H > 0, each within "
+                  << hkf_estimator::kMaxFrameSide << "), not '" << value << "'\n";
+    } else {
+        return -1;
+    }
+    return 2;
+}
+
+// The rules between options, once all are read: 0, or 2 (said).
+int check_options(Options &o)
+{
     if (o.pipeline.source.empty() == o.dataset.empty()) {
         std::cerr << "hkf-estimator: give either --source SRC or --dataset DIR (see --help)\n";
         return 2;
@@ -269,18 +262,52 @@ int parse(int argc, char **argv, Options &o)
                   << o.pipeline.channel << "'\n";
         return 2;
     }
-    if (!o.pipeline.annotate_path.empty()) {
-        const std::string problem = annotate_path_problem(o.pipeline.annotate_path, o.pipeline.source);
-        if (!problem.empty()) {
-            std::cerr << "hkf-estimator: --annotate " << o.pipeline.annotate_path << ": " << problem << "\n";
-            return 2;
-        }
+    const std::string problem =
+        o.pipeline.annotate_path.empty() ? "" : annotate_path_problem(o.pipeline.annotate_path, o.pipeline.source);
+    if (!problem.empty()) {
+        std::cerr << "hkf-estimator: --annotate " << o.pipeline.annotate_path << ": " << problem << "\n";
+        return 2;
     }
     if (!o.dataset.empty() && o.predictions.empty()) {
         std::cerr << "hkf-estimator: --dataset DIR needs --predictions OUT.csv (see --help)\n";
         return 2;
     }
     return 0;
+}
+
+// 0 = run, 1 = help shown, 2 = bad arguments
+int parse(int argc, char **argv, Options &o)
+{
+    if (const char *env = std::getenv("HKF_MODELS_DIR"); env != nullptr && *env != '\0') o.models_dir = env;  // '': unset
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--help" || arg == "-h") {
+            usage(std::cout);
+            return 1;
+        }
+        if (arg == "--version") {
+            std::cout << "hkf-estimator " << HKF_VERSION << "\n";
+            return 1;
+        }
+        if (arg == "--realtime" || arg == "--show") {
+            (arg == "--realtime" ? o.pipeline.realtime : o.pipeline.show) = true;
+            continue;
+        }
+        if (i + 1 >= argc) {
+            std::cerr << "hkf-estimator: unknown or incomplete argument '" << arg << "' (see --help)\n";
+            return 2;
+        }
+        const std::string value = argv[++i];
+        if (read_text_option(arg, value, o)) continue;
+        int read = read_number_option(arg, value, o);
+        if (read < 0) read = read_choice_option(arg, value, o);
+        if (read == 2) return 2;
+        if (read < 0) {
+            std::cerr << "hkf-estimator: unknown argument '" << arg << "' (see --help)\n";
+            return 2;
+        }
+    }
+    return check_options(o);
 }
 
 // What a dataset run measured: the totals, then faces found and MAE per labelled |yaw| bin.

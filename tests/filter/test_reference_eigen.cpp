@@ -369,6 +369,86 @@ struct Worst {
     long closures = 0, gated = 0, lost = 0, seam_crossings = 0; /* what the run exercised */
 };
 
+/* Random head motion, one step: a random-walk rate that keeps yaw wandering through +-180 and
+ * pitch/roll within +-60. */
+void move_head(sim_rng_t &rng, double dt, double truth[3], double rate[3])
+{
+    for (int a = 0; a < 3; ++a) {
+        rate[a] += 150.0 * std::sqrt(dt) * sim_rng_gaussian(&rng) - 0.5 * rate[a] * dt;
+        truth[a] += rate[a] * dt;
+        if (a != 1 && std::fabs(truth[a]) > 60.0) {
+            rate[a] = -rate[a];
+            truth[a] = std::copysign(60.0, truth[a]);
+        }
+    }
+    truth[1] = wrap180(truth[1]);
+}
+
+/* One frame's measurements, as both filters see them (the same numbers). */
+struct Frame {
+    bool valid = true;
+    hkf_real_t z[3] = {0, 0, 0}, z2[3] = {0, 0, 0}; /* z2: a second estimator's, with its own errors */
+    Vec3 zd = Vec3::Zero(), z2d = Vec3::Zero();
+};
+
+/* The frame's measurements of truth: 2 deg of noise with 25 deg outliers 1 % of the time; with a second
+ * estimator also its measurement, 4 deg of noise (single runs keep their sequences). */
+void measure(sim_rng_t &rng, const double truth[3], bool second, Frame &m)
+{
+    const double spread = sim_rng_uniform(&rng) < 0.01 ? 25.0 : 2.0; /* outliers */
+    for (int a = 0; a < 3; ++a) {
+        m.z[a] = R(truth[a] + spread * sim_rng_gaussian(&rng));
+        m.zd(a) = D(m.z[a]);
+    }
+    m.z[1] = R(wrap180(D(m.z[1])));
+    m.zd(1) = D(m.z[1]);
+    for (int a = 0; a < 3 && second; ++a) {
+        m.z2[a] = R(a == 1 ? wrap180(truth[a] + 4.0 * sim_rng_gaussian(&rng)) : truth[a] + 4.0 * sim_rng_gaussian(&rng));
+        m.z2d(a) = D(m.z2[a]);
+    }
+}
+
+/* One step of libhkf and of the reference: the pair, one measurement, or a prediction without a face. */
+int step_both(hkf_filter_t &f, ReferenceFilter &ref, const Frame &m, const hkf_settings_t *second, hkf_real_t dtr,
+              hkf_output_t &out)
+{
+    if (m.valid && second != nullptr) {
+        ref.updatePair(m.zd, m.z2d, D(dtr), *second);
+        return hkf_update_pair(&f, m.z, m.z2, second, dtr, &out);
+    }
+    if (m.valid) {
+        ref.update(m.zd, D(dtr));
+        return hkf_update(&f, m.z, dtr, &out);
+    }
+    if (ref.started()) {
+        ref.coast(D(dtr));
+    }
+    return hkf_predict(&f, dtr, &out);
+}
+
+/* The step's differences between libhkf and the reference, and what it exercised. */
+void record(Worst &worst, const hkf_output_t &out, const ReferenceFilter &ref, double &previous_yaw)
+{
+    worst.closures += (out.flags & HKF_FLAG_LOOP_CLOSURE) != 0;
+    worst.gated += (out.flags & HKF_FLAG_GATED) != 0;
+    worst.lost += out.status == HKF_STATUS_LOST;
+    worst.seam_crossings += std::fabs(D(out.angle[1]) - previous_yaw) > 180.0;
+    previous_yaw = D(out.angle[1]);
+    for (int a = 0; a < 3; ++a) {
+        double da = std::fabs(D(out.angle[a]) - ref.x()(a));
+        if (a == 1) {
+            da = std::fabs(wrap180(D(out.angle[a]) - ref.x()(a)));
+        }
+        worst.angle_squares += da * da;
+        ++worst.compared;
+        const double v = ref.P()(a, a);
+        worst.angle = std::max(worst.angle, da);
+        worst.rate = std::max(worst.rate, std::fabs(D(out.rate[a]) - ref.x()(a + 3)) / std::max(1.0, std::fabs(ref.x()(a + 3))));
+        worst.variance = std::max(worst.variance, std::fabs(D(out.variance[a]) - v) / std::max(1e-3, v));
+        worst.r = std::max(worst.r, std::fabs(D(out.r[a]) - ref.r()(a)) / ref.r()(a));
+    }
+}
+
 /* One configuration, one long sequence: the largest differences seen. */
 bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *second, std::uint64_t seed, long steps,
              Worst &worst)
@@ -381,57 +461,21 @@ bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *se
     ReferenceFilter ref(s);
     sim_rng_t rng;
     sim_rng_seed(&rng, seed);
-    /* random head motion: a random-walk rate that keeps yaw wandering
-     * through +-180 and pitch/roll within +-60 */
     double truth[3] = {0, 150, 0}, rate[3] = {0, 0, 0};
     double previous_yaw = 0.0;
     int burst = 0; /* frames left without a face */
     for (long i = 0; i < steps; ++i) {
         const double dt = 1.0 / 120.0 + sim_rng_uniform(&rng) * (1.0 / 15.0 - 1.0 / 120.0);
-        for (int a = 0; a < 3; ++a) {
-            rate[a] += 150.0 * std::sqrt(dt) * sim_rng_gaussian(&rng) - 0.5 * rate[a] * dt;
-            truth[a] += rate[a] * dt;
-            if (a != 1 && std::fabs(truth[a]) > 60.0) {
-                rate[a] = -rate[a];
-                truth[a] = std::copysign(60.0, truth[a]);
-            }
-        }
-        truth[1] = wrap180(truth[1]);
+        move_head(rng, dt, truth, rate);
         if (burst == 0 && sim_rng_uniform(&rng) < 0.01) {
             burst = 1 + static_cast<int>(sim_rng_uniform(&rng) * 12.0);
         }
-        const bool valid = burst == 0;
+        Frame m;
+        m.valid = burst == 0;
         burst = burst > 0 ? burst - 1 : 0;
-        const double spread = sim_rng_uniform(&rng) < 0.01 ? 25.0 : 2.0; /* outliers */
-        hkf_real_t z[3];
-        Vec3 zd;
-        for (int a = 0; a < 3; ++a) {
-            z[a] = R(truth[a] + spread * sim_rng_gaussian(&rng));
-            zd(a) = D(z[a]); /* both filters see the same numbers */
-        }
-        z[1] = R(wrap180(D(z[1])));
-        zd(1) = D(z[1]);
-        hkf_real_t z2[3] = {0, 0, 0}; /* a second estimator's measurement of the frame, with its own errors */
-        Vec3 z2d = Vec3::Zero();
-        for (int a = 0; a < 3 && second != nullptr; ++a) { /* (single runs keep their sequences) */
-            z2[a] = R(a == 1 ? wrap180(truth[a] + 4.0 * sim_rng_gaussian(&rng)) : truth[a] + 4.0 * sim_rng_gaussian(&rng));
-            z2d(a) = D(z2[a]);
-        }
-        const hkf_real_t dtr = R(dt);
+        measure(rng, truth, second != nullptr, m);
         hkf_output_t out;
-        int result;
-        if (valid && second != nullptr) {
-            result = hkf_update_pair(&f, z, z2, second, dtr, &out);
-            ref.updatePair(zd, z2d, D(dtr), *second);
-        } else if (valid) {
-            result = hkf_update(&f, z, dtr, &out);
-            ref.update(zd, D(dtr));
-        } else {
-            result = hkf_predict(&f, dtr, &out);
-            if (ref.started()) {
-                ref.coast(D(dtr));
-            }
-        }
+        const int result = step_both(f, ref, m, second, R(dt), out);
         if (!ref.started()) {
             if (result != HKF_ERROR_NOT_INITIALIZED) {
                 std::fprintf(stderr, "%s step %ld: expected NOT_INITIALIZED, got %d\n", name, i, result);
@@ -444,24 +488,7 @@ bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *se
                          static_cast<int>(out.status), ref.status());
             return false;
         }
-        worst.closures += (out.flags & HKF_FLAG_LOOP_CLOSURE) != 0;
-        worst.gated += (out.flags & HKF_FLAG_GATED) != 0;
-        worst.lost += out.status == HKF_STATUS_LOST;
-        worst.seam_crossings += std::fabs(D(out.angle[1]) - previous_yaw) > 180.0;
-        previous_yaw = D(out.angle[1]);
-        for (int a = 0; a < 3; ++a) {
-            double da = std::fabs(D(out.angle[a]) - ref.x()(a));
-            if (a == 1) {
-                da = std::fabs(wrap180(D(out.angle[a]) - ref.x()(a)));
-            }
-            worst.angle_squares += da * da;
-            ++worst.compared;
-            const double v = ref.P()(a, a);
-            worst.angle = std::max(worst.angle, da);
-            worst.rate = std::max(worst.rate, std::fabs(D(out.rate[a]) - ref.x()(a + 3)) / std::max(1.0, std::fabs(ref.x()(a + 3))));
-            worst.variance = std::max(worst.variance, std::fabs(D(out.variance[a]) - v) / std::max(1e-3, v));
-            worst.r = std::max(worst.r, std::fabs(D(out.r[a]) - ref.r()(a)) / ref.r()(a));
-        }
+        record(worst, out, ref, previous_yaw);
     }
     return true;
 }
@@ -476,48 +503,109 @@ bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *se
 #define BOOST 30.0f
 #endif
 
+namespace {
+
+struct Mode {
+    const char *name;
+    hkf_noise_mode_t noise;
+    int loop_closure;
+    float gate;
+    float lc_theta;
+    bool expect_closures; /* the random walk rarely comes within 2 deg of the centre */
+    float q_boost = 0.0f;
+    bool defaults = false; /* all of hkf_default_settings (its q and q_boost too) */
+    bool pair = false;     /* hkf_update_pair, the second model with Hopenet's curves */
+    bool calibrated = false; /* hkf_default_settings (noise calibration on) with the mode's changes */
+};
+const Mode modes[] = {
+    {"constant", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
+    {"adaptive", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
+    {"adaptive_squared", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
+    {"adaptive+lc_norm", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true},
+    {"adaptive+lc_per_axis", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_PER_AXIS, 0.0f, 20.0f, true},
+    {"squared+lc_norm+gate", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true},
+    {"constant+gate", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 3.0f, 2.0f, false},
+    {"adaptive+q_boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, BOOST},
+    {"lc_norm+gate+q_boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true, 10.0f * BOOST},
+    {"paper", hkf_paper_settings.noise_mode, hkf_paper_settings.loop_closure,
+     static_cast<float>(D(hkf_paper_settings.gate_sigma)), static_cast<float>(D(hkf_paper_settings.lc_theta)), false},
+    {"defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure,
+     static_cast<float>(D(hkf_default_settings.gate_sigma)), static_cast<float>(D(hkf_default_settings.lc_theta)), false,
+     static_cast<float>(D(hkf_default_settings.q_boost)), true},
+    {"pair:adaptive", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, 0.0f, false, true},
+    {"pair:squared+lc_norm", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true, 0.0f, false, true},
+    {"pair:lc_per_axis+boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_PER_AXIS, 0.0f, 20.0f, true, BOOST, false, true},
+    {"pair:defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure, 0.0f,
+     static_cast<float>(D(hkf_default_settings.lc_theta)), false, static_cast<float>(D(hkf_default_settings.q_boost)),
+     true, true},
+    {"calibrated+lc_norm", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true,
+     static_cast<float>(D(hkf_default_settings.q_boost)), false, false, true},
+    {"calibrated+gate", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 3.0f, 2.0f, false,
+     static_cast<float>(D(hkf_default_settings.q_boost)), false, false, true},
+    {"pair:calibrated+lc_norm", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true,
+     static_cast<float>(D(hkf_default_settings.q_boost)), false, true, true},
+};
+
+/* The paper's filter with the mode's changes; or the defaults (small q, q_boost) with them. */
+hkf_settings_t settings_of(const Mode &m)
+{
+    hkf_settings_t s = m.calibrated || m.defaults ? hkf_default_settings : hkf_paper_settings;
+    s.noise_mode = m.noise;
+    s.loop_closure = m.loop_closure;
+    s.gate_sigma = R(m.gate);
+    s.lc_theta = R(m.lc_theta); /* wide, so closure happens often */
+    s.coast_time = R(0.15);
+    s.q_boost = R(m.q_boost);
+    return s;
+}
+
+/* Whether the run agreed with the reference closely enough. Calibration's motion detector is a threshold: a
+ * rounding difference can flip a decision near it, and the two filters part for a few frames before they
+ * meet again (the random walk here has 25 deg outliers and rates of hundreds of deg/s). For those modes
+ * the check is the RMS over the run and a looser worst step: 10x and 1000x the tolerance in float and
+ * double; in Q16.16, where flips happen now and then, 0.5 deg RMS and 30 deg (real head motion: the target
+ * test on d10). Every status still matches step by step (compare). */
+bool close_enough(const hkf_settings_t &s, const Worst &w, double rms)
+{
+#if defined(HKF_REAL_FIXED)
+    const double rms_bound = 0.5, worst_bound = 30.0;
+#else
+    const double rms_bound = 10.0 * TEST_TOL, worst_bound = 1000.0 * TEST_TOL;
+#endif
+    if (D(s.noise_time) > 0) {
+        return rms <= rms_bound && w.angle <= worst_bound;
+    }
+    return w.angle <= TEST_TOL && w.rate <= TEST_RATE_TOL && w.variance <= TEST_REL_TOL && w.r <= TEST_REL_TOL;
+}
+
+/* One mode on one seed's sequence, printed; whether it passed. */
+bool run_mode(const Mode &m, std::uint64_t seed, long steps)
+{
+    const hkf_settings_t s = settings_of(m);
+    hkf_settings_t second = s; /* another estimator: Hopenet's curves, its own constant R */
+    for (int a = 0; a < 3; ++a) {
+        second.noise[a] = hkf_noise_hopenet[a];
+        second.r_const[a] = R(2.0 * D(s.r_const[a]));
+    }
+    Worst w;
+    const bool ran = compare(m.name, s, m.pair ? &second : nullptr, seed, steps, w);
+    /* the sequence must have exercised what the mode has */
+    const bool exercised = w.lost > 0 && w.seam_crossings > 0 && (!m.expect_closures || w.closures > 0) &&
+                           (s.loop_closure != HKF_LOOP_CLOSURE_OFF || w.closures == 0) &&
+                           (s.gate_sigma > 0) == (w.gated > 0);
+    const double rms = std::sqrt(w.angle_squares / std::max(w.compared, 1L));
+    const bool ok = ran && exercised && close_enough(s, w, rms);
+    std::printf("%-4s %-23s seed %llu: %ld steps, worst |angle| %.1e deg (RMS %.1e), rate %.1e, variance %.1e, "
+                "R %.1e (rel); %ld closures, %ld gated, %ld lost, %ld seam crossings\n",
+                ok ? "OK" : "FAIL", m.name, static_cast<unsigned long long>(seed), steps, w.angle, rms, w.rate,
+                w.variance, w.r, w.closures, w.gated, w.lost, w.seam_crossings);
+    return ok;
+}
+
+} // namespace
+
 int main(int argc, char **argv)
 {
-    struct Mode {
-        const char *name;
-        hkf_noise_mode_t noise;
-        int loop_closure;
-        float gate;
-        float lc_theta;
-        bool expect_closures; /* the random walk rarely comes within 2 deg of the centre */
-        float q_boost = 0.0f;
-        bool defaults = false; /* all of hkf_default_settings (its q and q_boost too) */
-        bool pair = false;     /* hkf_update_pair, the second model with Hopenet's curves */
-        bool calibrated = false; /* hkf_default_settings (noise calibration on) with the mode's changes */
-    };
-    const Mode modes[] = {
-        {"constant", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
-        {"adaptive", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
-        {"adaptive_squared", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
-        {"adaptive+lc_norm", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true},
-        {"adaptive+lc_per_axis", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_PER_AXIS, 0.0f, 20.0f, true},
-        {"squared+lc_norm+gate", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true},
-        {"constant+gate", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 3.0f, 2.0f, false},
-        {"adaptive+q_boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, BOOST},
-        {"lc_norm+gate+q_boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true, 10.0f * BOOST},
-        {"paper", hkf_paper_settings.noise_mode, hkf_paper_settings.loop_closure,
-         static_cast<float>(D(hkf_paper_settings.gate_sigma)), static_cast<float>(D(hkf_paper_settings.lc_theta)), false},
-        {"defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure,
-         static_cast<float>(D(hkf_default_settings.gate_sigma)), static_cast<float>(D(hkf_default_settings.lc_theta)), false,
-         static_cast<float>(D(hkf_default_settings.q_boost)), true},
-        {"pair:adaptive", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, 0.0f, false, true},
-        {"pair:squared+lc_norm", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true, 0.0f, false, true},
-        {"pair:lc_per_axis+boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_PER_AXIS, 0.0f, 20.0f, true, BOOST, false, true},
-        {"pair:defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure, 0.0f,
-         static_cast<float>(D(hkf_default_settings.lc_theta)), false, static_cast<float>(D(hkf_default_settings.q_boost)),
-         true, true},
-        {"calibrated+lc_norm", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true,
-         static_cast<float>(D(hkf_default_settings.q_boost)), false, false, true},
-        {"calibrated+gate", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 3.0f, 2.0f, false,
-         static_cast<float>(D(hkf_default_settings.q_boost)), false, false, true},
-        {"pair:calibrated+lc_norm", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true,
-         static_cast<float>(D(hkf_default_settings.q_boost)), false, true, true},
-    };
     /* steps per run: 20,000 by default; fewer where only the memory checks are new (the sanitizer build) */
     const long steps = argc > 1 ? std::strtol(argv[1], nullptr, 10) : 20000;
     if (steps < 1000) {
@@ -527,48 +615,7 @@ int main(int argc, char **argv)
     int failures = 0, passed = 0;
     for (const Mode &m : modes) {
         for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-            /* the paper's filter, with the mode's changes; or the defaults (small q, q_boost) */
-            hkf_settings_t s = m.calibrated || m.defaults ? hkf_default_settings : hkf_paper_settings;
-            s.noise_mode = m.noise;
-            s.loop_closure = m.loop_closure;
-            s.gate_sigma = R(m.gate);
-            s.lc_theta = R(m.lc_theta); /* wide, so closure happens often */
-            s.coast_time = R(0.15);
-            s.q_boost = R(m.q_boost);
-            hkf_settings_t second = s; /* another estimator: Hopenet's curves, its own constant R */
-            for (int a = 0; a < 3; ++a) {
-                second.noise[a] = hkf_noise_hopenet[a];
-                second.r_const[a] = R(2.0 * D(s.r_const[a]));
-            }
-            Worst w;
-            const bool ran = compare(m.name, s, m.pair ? &second : nullptr, seed, steps, w);
-            /* the sequence must have exercised what the mode has */
-            const bool exercised = w.lost > 0 && w.seam_crossings > 0 &&
-                                   (!m.expect_closures || w.closures > 0) &&
-                                   (s.loop_closure != HKF_LOOP_CLOSURE_OFF || w.closures == 0) &&
-                                   (s.gate_sigma > 0) == (w.gated > 0);
-            const double rms = std::sqrt(w.angle_squares / std::max(w.compared, 1L));
-            /* Calibration's motion detector is a threshold: a rounding difference can flip a decision near
-             * it, and the two filters part for a few frames before they meet again (the random walk here has
-             * 25 deg outliers and rates of hundreds of deg/s). For those modes the check is the RMS over the
-             * run and a looser worst step: 10x and 1000x the tolerance in float and double; in Q16.16,
-             * where flips happen now and then, 0.5 deg RMS and 30 deg (real head motion: the target test on d10). Every status still matches step by
-             * step (above). */
-            const bool calibrated = D(s.noise_time) > 0;
-#if defined(HKF_REAL_FIXED)
-            const double rms_bound = 0.5, worst_bound = 30.0;
-#else
-            const double rms_bound = 10.0 * TEST_TOL, worst_bound = 1000.0 * TEST_TOL;
-#endif
-            const bool close = calibrated ? rms <= rms_bound && w.angle <= worst_bound
-                                          : w.angle <= TEST_TOL && w.rate <= TEST_RATE_TOL &&
-                                                w.variance <= TEST_REL_TOL && w.r <= TEST_REL_TOL;
-            const bool ok = ran && exercised && close;
-            std::printf("%-4s %-23s seed %llu: %ld steps, worst |angle| %.1e deg (RMS %.1e), rate %.1e, variance %.1e, "
-                        "R %.1e (rel); %ld closures, %ld gated, %ld lost, %ld seam crossings\n",
-                        ok ? "OK" : "FAIL", m.name, static_cast<unsigned long long>(seed), steps, w.angle, rms, w.rate,
-                        w.variance, w.r, w.closures, w.gated, w.lost, w.seam_crossings);
-            ok ? ++passed : ++failures;
+            run_mode(m, seed, steps) ? ++passed : ++failures;
         }
     }
     std::printf("%d passed, %d failed\n", passed, failures);

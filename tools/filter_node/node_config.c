@@ -453,17 +453,44 @@ static int read_line(FILE *in, char *line, size_t size)
     return c == EOF && n == 0 ? 0 : 1;
 }
 
+/* One line's content (comment and blanks removed, not empty): a [model NAME] section, whose name goes to
+ * model, or KEY = VALUE applied to model's settings (the base's when model is ""). 0, or -1 with what is
+ * wrong in message. */
+static int read_config_line(node_config_t *config, char *text, const char *origin, char *model, char *message,
+                            size_t message_size)
+{
+    char *key, *value;
+    if (text[0] == '[') {
+        char name[NODE_MODEL_NAME_MAX + 1];
+        int n = 0;
+        if (sscanf(text, "[model %32[^] \t]]%n", name, &n) != 1 || n == 0 || text[n] != '\0') {
+            snprintf(message, message_size, "a section is [model NAME], not '%s'", text);
+            return -1;
+        }
+        if (find_or_add_model(config, name, message, message_size) == NULL) {
+            return -1;
+        }
+        strcpy(model, name);
+        return 0;
+    }
+    if (split_assignment(text, &key, &value) != 0) {
+        snprintf(message, message_size, "expected KEY = VALUE, got '%s'", text);
+        return -1;
+    }
+    return apply(config, model[0] != '\0' ? model : NULL, key, value, origin, message, message_size);
+}
+
 int node_config_read_file(node_config_t *config, const char *path, char *error, size_t error_size)
 {
     FILE *in = safe_open_input(path, error, error_size); /* a named pipe is refused, not waited on */
     char line[512], model[NODE_MODEL_NAME_MAX + 1] = "";
     char message[400], origin[NODE_ORIGIN_MAX];
-    int number = 0, in_model = 0, got;
+    int number = 0, got;
     if (in == NULL) {
         return -1;
     }
     while ((got = read_line(in, line, sizeof line)) != 0) {
-        char *text, *hash, *key, *value;
+        char *text, *hash;
         ++number;
         if (got < 0) {
             snprintf(error, error_size, "%s:%d: %s", path, number,
@@ -477,32 +504,7 @@ int node_config_read_file(node_config_t *config, const char *path, char *error, 
             *hash = '\0';
         }
         text = trim(line);
-        if (text[0] == '\0') {
-            continue;
-        }
-        if (text[0] == '[') {
-            char name[NODE_MODEL_NAME_MAX + 1];
-            int n = 0;
-            if (sscanf(text, "[model %32[^] \t]]%n", name, &n) != 1 || n == 0 || text[n] != '\0') {
-                snprintf(error, error_size, "%s:%d: a section is [model NAME], not '%s'", path, number, text);
-                fclose(in);
-                return -1;
-            }
-            if (find_or_add_model(config, name, message, sizeof message) == NULL) {
-                snprintf(error, error_size, "%s:%d: %s", path, number, message);
-                fclose(in);
-                return -1;
-            }
-            strcpy(model, name);
-            in_model = 1;
-            continue;
-        }
-        if (split_assignment(text, &key, &value) != 0) {
-            snprintf(error, error_size, "%s:%d: expected KEY = VALUE, got '%s'", path, number, text);
-            fclose(in);
-            return -1;
-        }
-        if (apply(config, in_model ? model : NULL, key, value, origin, message, sizeof message) != 0) {
+        if (text[0] != '\0' && read_config_line(config, text, origin, model, message, sizeof message) != 0) {
             snprintf(error, error_size, "%s:%d: %s", path, number, message);
             fclose(in);
             return -1;
