@@ -21,15 +21,19 @@
  *
  * Noise calibration (settings.noise_time > 0, not in the paper; hkf.h): the
  * filter measures each axis's frame-to-frame noise n (noise_estimate_update)
- * and R and q follow it: R = n e(z) / e(mu) (calibrated_noise_lanes: the
- * paper's Eq. 8 gives the pose-dependent factor, n the scale) and q =
- * process_noise n (process_noise_lanes); q_boost follows a signed motion
- * detector (motion_step) instead of the innovation's squared excess.
+ * and R follows it: R = n e(z) / e(mu) (calibrated_noise_lanes: the paper's
+ * Eq. 8 gives the pose-dependent factor, n the scale).
+ *
+ * The motion adaptation (settings.start_rate > 0, not in the paper): two
+ * models per axis, HOLD and the paper's MOVE, mixed by their likelihoods
+ * (hkf_two_models.h, which derives it).
  */
 #include "hkf/hkf.h"
 #include "hkf_internal.h"
+#include "hkf_kalman.h"
 #include "hkf_math.h"
-#include "hkf_motion.h"
+#include "hkf_noise_estimate.h"
+#include "hkf_two_models.h"
 
 enum { CENTER_NONE = 0, CENTER_FROM_TRACK = 1, CENTER_EXPLICIT = 2 };
 
@@ -77,66 +81,43 @@ static HKF_ALWAYS_INLINE int check_angles(const hkf_real_t v[3])
     return HKF_OK;
 }
 
-/* The angle variance's growth over dt: (F P F' + Q)_00 - p00, with qdt = q dt. */
-static inline hkf_real_t angle_variance_growth(hkf_real_t p01, hkf_real_t p11, hkf_real_t qdt, hkf_real_t dt)
-{
-    const hkf_real_t cross = hkf_mul(dt, hkf_add(hkf_add(p01, p01), hkf_mul(dt, p11)));
-    return hkf_add(cross, hkf_mul(hkf_mul(qdt, dt), hkf_mul(dt, HKF_REAL(0.33333333333333333))));
-}
-
 static inline int calibrated(const hkf_filter_t *f)
 {
     return HKF_SETTINGS(f)->noise_time > 0;
 }
 
-/* q per lane: the setting, or with q_boost on, q (1 + q_boost m) (hkf.h), or
- * calibrated, q n; at most HKF_MAX_BOOSTED_PROCESS_NOISE (or q, where q is
- * larger): within the range every setting of q is checked against, so the
- * boost never takes the filter where no q could (found by fuzz_libhkf: an
- * outlier's y^2 / S of ~1e13 made q, then P, infinite). */
-static inline void process_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t q[restrict HKF_LANES])
+static inline int two_models(const hkf_filter_t *f)
 {
-    const hkf_real_t boost = HKF_SETTINGS(f)->q_boost;
-    const hkf_real_t most = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
-    int a;
-    if (calibrated(f)) { /* q = process_noise n, capped as the boost is; the motion boost is the update's (motion_step) */
-        for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            const hkf_real_t scaled = hkf_mul(HKF_Q(f, a), f->noise[a]);
-            const hkf_real_t cap = HKF_Q(f, a) > most ? HKF_Q(f, a) : most;
-            q[a] = scaled < cap ? scaled : cap;
-        }
-        return;
-    }
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        q[a] = HKF_Q(f, a);
-    }
-    if (boost > 0) {
-        for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            const hkf_real_t boosted = hkf_add(q[a], hkf_mul(q[a], hkf_mul(boost, f->motion[a])));
-            q[a] = boosted > q[a] ? (boosted < most ? boosted : most > q[a] ? most : q[a]) : q[a];
-        }
-    }
+    return HKF_SETTINGS(f)->start_rate > 0;
 }
 
-/* Paper Eq. 1-3, per axis:
- *   x = F x                   angle += rate dt
- *   P = F P F' + Q            Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]]
- * (Q: continuous white-noise acceleration of density q.) The terms of Q are
- * formed as ((q dt) dt) dt so each product keeps its digits in fixed point. */
+/* One axis lane of the filter's state, and back. */
+static HKF_ALWAYS_INLINE hkf_axis_t lane_axis(const hkf_filter_t *restrict f, int a)
+{
+    hkf_axis_t x;
+    x.x = f->angle[a];
+    x.v = f->rate[a];
+    x.p00 = f->p00[a];
+    x.p01 = f->p01[a];
+    x.p11 = f->p11[a];
+    return x;
+}
+
+static HKF_ALWAYS_INLINE void set_lane(hkf_filter_t *restrict f, int a, hkf_axis_t x)
+{
+    f->angle[a] = x.x;
+    f->rate[a] = x.v;
+    f->p00[a] = x.p00;
+    f->p01[a] = x.p01;
+    f->p11[a] = x.p11;
+}
+
+/* Paper Eq. 1-3 on every axis (hkf_kalman.h), yaw wrapped after. */
 static inline void predict_axes(hkf_filter_t *restrict f, hkf_real_t dt)
 {
-    hkf_real_t q[HKF_LANES];
     int a;
-    process_noise_lanes(f, q);
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t qdt = hkf_mul(q[a], dt);
-        const hkf_real_t p01 = f->p01[a];
-        const hkf_real_t p11 = f->p11[a];
-        f->angle[a] = hkf_add(f->angle[a], hkf_mul(f->rate[a], dt));
-        f->p00[a] = hkf_add(f->p00[a], angle_variance_growth(p01, p11, qdt, dt));
-        f->p01[a] = hkf_add(hkf_add(p01, hkf_mul(dt, p11)), hkf_mul(hkf_mul(qdt, dt), HKF_REAL(0.5)));
-        f->p11[a] = hkf_add(p11, qdt);
-        hkf_keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
+        set_lane(f, a, hkf_kalman_predict(lane_axis(f, a), HKF_Q(f, a), dt));
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
 }
@@ -282,7 +263,7 @@ static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
         f->p00[a] = HKF_SETTINGS(f)->p0_angle;
         f->p01[a] = 0;
         f->p11[a] = HKF_SETTINGS(f)->p0_rate;
-        f->motion[a] = 0;
+        f->moving[a] = 0;
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(z[HKF_AXIS_YAW]);
     load_lanes(f->last_z, z); /* the noise estimate's history restarts; its n is kept */
@@ -311,7 +292,7 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
             f->rate[a] = 0;
             f->p01[a] = 0;
             f->p11[a] = 0;
-            f->motion[a] = 0;
+            f->moving[a] = 0;
         }
         f->status = HKF_STATUS_LOST;
     }
@@ -375,7 +356,7 @@ void hkf_reset(hkf_filter_t *f)
         f->p01[a] = 0;
         f->p11[a] = HKF_SETTINGS(f)->p0_rate;
         f->r[a] = 0;
-        f->motion[a] = 0;
+        f->moving[a] = 0;
     }
     for (a = 0; a < HKF_LOOP_LANES; ++a) { /* n starts at e(mu), the estimator's error on a benchmark */
         f->noise[a] = observation_noise(f, a, HKF_MU(f, a));
@@ -416,22 +397,11 @@ static HKF_ALWAYS_INLINE int gated(const hkf_filter_t *restrict f, const hkf_rea
                                hkf_divide(hkf_mul(y[2], y[2]), inv_s[2])) > hkf_mul(gate, gate);
 }
 
-/* Eq. 6-7 with the innovation y, R r and 1/S: the measurement is accepted. */
-static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
-                                           const hkf_real_t r[restrict HKF_LANES],
-                                           const hkf_divisor_t inv_s[restrict HKF_LANES])
+/* The measurement is accepted: bookkeeping after Eq. 6-7 (the track holds). */
+static HKF_ALWAYS_INLINE void accepted(hkf_filter_t *restrict f, const hkf_real_t r[restrict HKF_LANES])
 {
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t k0 = hkf_divide(f->p00[a], inv_s[a]);        /* Eq. 6: K = P H' S^-1 */
-        const hkf_real_t k1 = hkf_divide(f->p01[a], inv_s[a]);
-        const hkf_real_t one_minus_k0 = hkf_divide(r[a], inv_s[a]);   /* 1 - k0 = R / S, without cancellation */
-        f->angle[a] = hkf_add(f->angle[a], hkf_mul(k0, y[a]));        /* Eq. 7: x = x + K y */
-        f->rate[a] = hkf_add(f->rate[a], hkf_mul(k1, y[a]));
-        f->p11[a] = hkf_sub(f->p11[a], hkf_mul(k1, f->p01[a]));       /* Eq. 7: P = (I - K H) P */
-        f->p01[a] = hkf_mul(f->p01[a], one_minus_k0);
-        f->p00[a] = hkf_mul(f->p00[a], one_minus_k0); /* stays > 0 in float even when P >> R (found by fuzz_libhkf) */
-        hkf_keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
         f->r[a] = r[a];
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(f->angle[HKF_AXIS_YAW]);
@@ -440,27 +410,37 @@ static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_r
     f->status = HKF_STATUS_TRACKING;
 }
 
-/* The angle's random walk per s for a detector evidence (hkf_motion.h); f: the filter. */
-static hkf_real_t motion_walk(const void *f, int a, hkf_real_t evidence)
+/* Eq. 6-7 with the innovation y, R r and 1/S (hkf_kalman.h). */
+static HKF_ALWAYS_INLINE void correct_axes(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
+                                           const hkf_real_t r[restrict HKF_LANES],
+                                           const hkf_divisor_t inv_s[restrict HKF_LANES])
 {
-    const hkf_filter_t *filter = (const hkf_filter_t *)f;
-    return hkf_motion_walk(HKF_SETTINGS(filter)->q_boost, HKF_SETTINGS(filter)->motion_threshold, filter->noise[a],
-                           evidence);
-}
-
-/* Noise calibration's motion detector and the boost it drives, for this step
- * (hkf.h; hkf_motion.h), per axis; S recomputed after. */
-static HKF_ALWAYS_INLINE void motion_step(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
-                                          const hkf_real_t r[restrict HKF_LANES],
-                                          hkf_divisor_t inv_s[restrict HKF_LANES], hkf_real_t dt)
-{
-    const hkf_settings_t *s = HKF_SETTINGS(f);
-    const hkf_motion_step_t c = hkf_motion_prepare(dt, &s->q_boost_time, &s->rate_damping_time, &s->still_threshold);
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        hkf_motion_lane(&c, f, a, motion_walk, y[a], r[a], inv_s[a], dt, &f->motion[a], &f->p00[a], &f->rate[a]);
-        inv_s[a] = hkf_divisor(hkf_add(f->p00[a], r[a]));
+        set_lane(f, a, hkf_kalman_correct(lane_axis(f, a), y[a], r[a], inv_s[a]));
     }
+    accepted(f, r);
+}
+
+/* HOLD and MOVE per axis (hkf_two_models.h): the state holds MOVE's
+ * prediction, held_p00 the variances before it, y MOVE's innovations. */
+static HKF_ALWAYS_INLINE void two_models_axes(hkf_filter_t *restrict f, const hkf_real_t held_p00[restrict HKF_LANES],
+                                              const hkf_real_t y[restrict HKF_LANES],
+                                              const hkf_real_t r[restrict HKF_LANES], hkf_real_t dt)
+{
+    const hkf_settings_t *s = HKF_SETTINGS(f);
+    const hkf_two_model_step_t c = hkf_two_models_prepare(dt, s->start_rate, s->stop_rate, s->still_noise);
+    hkf_hold_prior_t hold[HKF_LANES];
+    int a;
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        hold[a].p00 = held_p00[a];
+        hold[a].y = hkf_add(y[a], hkf_mul(f->rate[a], dt));
+    }
+    hold[HKF_AXIS_YAW].y = hkf_wrap180(hold[HKF_AXIS_YAW].y);
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        set_lane(f, a, hkf_two_models_update(&c, lane_axis(f, a), hold[a], y[a], r[a], &f->moving[a]));
+    }
+    accepted(f, r);
 }
 
 /* Noise calibration's estimate of n per axis (hkf.h), from the raw
@@ -504,23 +484,6 @@ static HKF_ALWAYS_INLINE void restart_from(hkf_filter_t *f, const hkf_filter_t *
     write_output(f, flags | HKF_FLAG_REACQUIRED, out);
 }
 
-/* hkf 0.1's motion estimate (q_boost without calibration): m += alpha (e - m),
- * alpha = dt / (dt + time) in [0, 1], e = y^2 / S - 1 within [0, 10^4]: m stays
- * within [0, 10^4] whatever the input (fuzz_libhkf: a reciprocal of a denormal
- * dt + time overflowed alpha, and m went to -inf). */
-static HKF_ALWAYS_INLINE void innovation_excess_step(hkf_filter_t *restrict f, const hkf_real_t y[restrict HKF_LANES],
-                                                     const hkf_divisor_t inv_s[restrict HKF_LANES], hkf_real_t dt)
-{
-    const hkf_real_t most = HKF_REAL(10000.0);
-    const hkf_real_t alpha = hkf_step_weight(dt, HKF_SETTINGS(f)->q_boost_time);
-    int a;
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        const hkf_real_t e = hkf_sub(hkf_divide(hkf_mul(y[a], y[a]), inv_s[a]), HKF_REAL(1.0));
-        const hkf_real_t excess = e > 0 ? (e < most ? e : most) : 0;
-        f->motion[a] = hkf_add(f->motion[a], hkf_mul(alpha, hkf_sub(excess, f->motion[a])));
-    }
-}
-
 /* hkf_update's step for a measurement z whose Eq. 8 curves (and r_const,
  * r_min, r_max) are those of `noise`: f itself, or a second model's prepared
  * curves (hkf_update_pair when only the second model measured). z is checked. */
@@ -528,9 +491,10 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
                                          const hkf_real_t z[restrict 3], hkf_real_t dt, hkf_output_t *restrict out)
 {
     hkf_real_t y[HKF_LANES], r[HKF_LANES]; /* y holds the loop-closed measurement, then the innovation */
+    hkf_real_t held_p00[HKF_LANES];        /* the variances before the prediction: HOLD's prior */
     hkf_divisor_t inv_s[HKF_LANES];
     unsigned flags = 0;
-    int result;
+    int a, result;
     if (f->status == HKF_STATUS_UNINITIALIZED || f->status == HKF_STATUS_LOST) {
         /* the first measurement (dt ignored), or the first after LOST */
         if (f->status == HKF_STATUS_LOST && (result = check_dt(f, dt)) != HKF_OK) {
@@ -544,6 +508,9 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
         return result;
     }
 
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        held_p00[a] = f->p00[a];
+    }
     predict_axes(f, dt);
     if (loop_closure(f, z, y)) {
         flags |= HKF_FLAG_LOOP_CLOSURE;
@@ -567,14 +534,11 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
         return HKF_OK;
     }
 
-    if (calibrated(f)) {
-        if (HKF_SETTINGS(f)->q_boost > 0 || HKF_SETTINGS(f)->rate_damping_time > 0) {
-            motion_step(f, y, r, inv_s, dt);
-        }
-    } else if (HKF_SETTINGS(f)->q_boost > 0) {
-        innovation_excess_step(f, y, inv_s, dt);
+    if (two_models(f)) {
+        two_models_axes(f, held_p00, y, r, dt);                           /* Eq. 6-7 by HOLD and MOVE */
+    } else {
+        correct_axes(f, y, r, inv_s);                                     /* Eq. 6-7 */
     }
-    correct_axes(f, y, r, inv_s);                                         /* Eq. 6-7 */
     if (calibrated(f)) {
         noise_estimate_update(f, z, dt);
     }
@@ -677,7 +641,6 @@ int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out)
 
 int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *out)
 {
-    hkf_real_t q[HKF_LANES];
     int a;
     if (f == 0 || out == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
@@ -693,11 +656,10 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
     }
     /* Eq. 1-2 for the output alone: the filter is not copied (a small stack) */
     write_output(f, HKF_FLAG_EXTRAPOLATED, out);
-    process_noise_lanes(f, q);
     for (a = 0; a < HKF_AXES; ++a) {
         out->angle[a] = hkf_add(out->angle[a], hkf_mul(f->rate[a], dt_ahead));
         out->variance[a] = hkf_add(out->variance[a],
-                                   angle_variance_growth(f->p01[a], f->p11[a], hkf_mul(q[a], dt_ahead), dt_ahead));
+                                   hkf_kalman_growth(f->p01[a], f->p11[a], hkf_mul(HKF_Q(f, a), dt_ahead), dt_ahead));
     }
     out->angle[HKF_AXIS_YAW] = hkf_wrap180(out->angle[HKF_AXIS_YAW]);
     return HKF_OK;

@@ -48,6 +48,9 @@ static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
     return 1.0 - exp(-u);
 }
 
+static inline hkf_real_t hkf_exp_neg(hkf_real_t u) { return exp(-u); }
+static inline hkf_real_t hkf_sqrt(hkf_real_t x) { return sqrt(x); }
+
 static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabs(x); }  /* a bit mask, no call */
 #elif !defined(HKF_REAL_FIXED)
 /* 1 - exp(-u) for u >= 0, inline, without libm and without a branch:
@@ -56,16 +59,52 @@ static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabs(x); }  /* a bit mas
  * relative, about float's rounding). Then 1 - exp(-u) = (1 - 2^n) - 2^n q;
  * for small u, n = 0 and that is -q, computed directly without cancelling,
  * so the roll curves (lambda ~ 1e5) keep their digits near their centre. */
-static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
+typedef struct {
+    float two_n, q; /* exp(-u) = 2^n (1 + q) */
+} hkf_exp_parts_t;
+
+static inline hkf_exp_parts_t hkf_exp_neg_parts(hkf_real_t u)
 {
     const float t0 = -u * 1.44269504088896341f; /* log2(e) */
     const float t = t0 < -126.0f ? -126.0f : t0; /* below 2^-126 the result is 1 anyway */
     const int32_t n = (int32_t)(t - 0.5f);      /* t <= 0: nearest integer */
     const float g = (t - (float)n) * 0.693147180559945309f;
-    const float q = g * (1.0f + g * (0.5f + g * (1.0f / 6.0f + g * (1.0f / 24.0f + g * (1.0f / 120.0f + g * (1.0f / 720.0f))))));
     union { int32_t i; float x; } two_n; /* 2^n from its exponent bits */
+    hkf_exp_parts_t p;
     two_n.i = (n + 127) * 8388608;       /* << 23 */
-    return (1.0f - two_n.x) - two_n.x * q;
+    p.two_n = two_n.x;
+    p.q = g * (1.0f + g * (0.5f + g * (1.0f / 6.0f + g * (1.0f / 24.0f + g * (1.0f / 120.0f + g * (1.0f / 720.0f))))));
+    return p;
+}
+
+static inline hkf_real_t hkf_one_minus_exp_neg(hkf_real_t u)
+{
+    const hkf_exp_parts_t p = hkf_exp_neg_parts(u);
+    return (1.0f - p.two_n) - p.two_n * p.q;
+}
+
+/* exp(-u) for u >= 0, the same way; at least 2^-126 (never 0). */
+static inline hkf_real_t hkf_exp_neg(hkf_real_t u)
+{
+    const hkf_exp_parts_t p = hkf_exp_neg_parts(u);
+    return p.two_n + p.two_n * p.q;
+}
+
+/* sqrt(x) for x >= 0 without libm: x / sqrt(x), the reciprocal root from
+ * its exponent bits (within 3.5 %) and three Newton steps r (3 - x r^2) / 2
+ * (each squares the relative error: float's rounding after the third). */
+static inline hkf_real_t hkf_sqrt(hkf_real_t x)
+{
+    union { float x; int32_t i; } bits;
+    float r;
+    int k;
+    bits.x = x;
+    bits.i = 0x5f3759df - (bits.i >> 1);
+    r = bits.x;
+    for (k = 0; k < 3; ++k) {
+        r = r * (1.5f - 0.5f * x * r * r);
+    }
+    return x > 0 ? x * r : 0.0f;
 }
 
 static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabsf(x); }
@@ -198,6 +237,10 @@ static inline hkf_real_t hkf_wrap180(hkf_real_t x)
  * v = u^2 / (2 sigma^2), u = x - mu. */
 void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c);
 uint32_t hkf_g30(uint32_t v); /* (1 - e^-v) / v for 0 <= v <= 1, Q2.30 */
+
+/* exp(-u) for u >= 0 and sqrt(x) for x >= 0, in Q16.16 (hkf_math_fixed.c). */
+hkf_real_t hkf_exp_neg(hkf_real_t u);
+hkf_real_t hkf_sqrt(hkf_real_t x);
 hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u);
 #endif /* HKF_REAL_FIXED */
 

@@ -113,6 +113,43 @@ hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
                              32768) >> 16);
     }
 }
+
+/* exp(-u) = (e^-(u/16))^16: u/16 < 0.75 through g (e^-v = 1 - v g(v)), then four squarings; 0 from
+ * u >= 12 on (e^-12 is below half a unit). */
+hkf_real_t hkf_exp_neg(hkf_real_t u)
+{
+    uint64_t e;
+    uint32_t v;
+    int k;
+    if (u >= (12 << 16)) {
+        return 0;
+    }
+    v = (uint32_t)(u > 0 ? u : 0) << 10; /* u / 16 in Q2.30 */
+    e = (1u << 30) - (((uint64_t)v * hkf_g30(v)) >> 30);
+    for (k = 0; k < 4; ++k) {
+        e = (e * e) >> 30;
+    }
+    return (hkf_real_t)((e + 8192u) >> 14);
+}
+
+/* sqrt(x) in Q16.16: the integer root of x 2^16, digit by digit (rounded down). */
+hkf_real_t hkf_sqrt(hkf_real_t x)
+{
+    uint64_t n = (uint64_t)(x > 0 ? x : 0) << 16, root = 0, bit = (uint64_t)1 << 46;
+    while (bit > n) {
+        bit >>= 2;
+    }
+    while (bit != 0) {
+        if (n >= root + bit) {
+            n -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    return (hkf_real_t)root;
+}
 #else
 typedef int hkf_math_fixed_unused_t; /* ISO C: a translation unit is not empty */
 #endif

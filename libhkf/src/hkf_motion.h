@@ -1,22 +1,13 @@
 /*
- * hkf_motion.h - noise calibration and the motion detector, one lane at a
- * time, for the angles (hkf_filter.c) and the position (hkf_position.c).
- * hkf.h documents both (hkf_settings_t, from q_boost to still_threshold);
- * neither is in the paper.
+ * hkf_motion.h - the position's motion detector, one lane at a time
+ * (hkf_position.c; hkf_position.h documents its settings). Not in the paper.
  */
 #ifndef HKF_MOTION_H
 #define HKF_MOTION_H
 
 #include "hkf_internal.h"
 #include "hkf_math.h"
-
-/* A low-pass's step weight dt / (dt + time), at most 1: in float the reciprocal of a denormal
- * dt + time overflows (found by fuzz_libhkf), and the weight would be infinite. */
-static inline hkf_real_t hkf_step_weight(hkf_real_t dt, hkf_real_t time)
-{
-    const hkf_real_t ratio = hkf_divide(dt, hkf_divisor(hkf_add(dt, time)));
-    return ratio < HKF_REAL(1.0) ? ratio : HKF_REAL(1.0);
-}
+#include "hkf_noise_estimate.h"
 
 /* The detector's weights for one step of dt (hkf_motion_prepare: from the settings' fields, read in
  * place - the Cortex-M0 build's code is then what it was before the position shared it). */
@@ -89,21 +80,6 @@ static HKF_ALWAYS_INLINE void hkf_motion_lane(const hkf_motion_step_t *c, const 
     *m = now;
     *p00 = hkf_add(hkf_add(*p00, hkf_mul(walk(owner, lane, confirmed), dt)), fresh < r ? fresh : r);
     *rate = hkf_sub(*rate, hkf_mul(hkf_mul(c->damping, calm), *rate));
-}
-
-/* One lane of the noise estimate n (hkf.h), from the second difference d of
- * the raw measurements: power += beta (d^2 / 6 - power) with beta = dt /
- * (dt + noise_time); n = power where that is lower, else n grows by at most
- * the factor rise = 1 + noise_rise dt towards it; n >= *floor (read last). */
-static HKF_ALWAYS_INLINE void hkf_noise_lane(hkf_real_t d, hkf_real_t beta, hkf_real_t rise, const hkf_real_t *floor,
-                                             hkf_real_t *restrict power, hkf_real_t *restrict n)
-{
-    const hkf_real_t sample = hkf_mul(hkf_mul(d, d), HKF_REAL(0.16666666666666667));
-    const hkf_real_t next = hkf_add(*power, hkf_mul(beta, hkf_sub(sample, *power)));
-    const hkf_real_t grown = hkf_mul(*n, rise); /* >= n: so min(grown, power) is power where that is lower */
-    const hkf_real_t estimate = grown < next ? grown : next;
-    *power = next;
-    *n = estimate > *floor ? estimate : *floor;
 }
 
 #endif /* HKF_MOTION_H */

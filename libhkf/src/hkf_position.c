@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 
+#include "hkf_kalman.h"
 #include "hkf_math.h"
 #include "hkf_motion.h"
 
@@ -67,7 +68,7 @@ int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s
     }
     if (!in_range(s->q_boost, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_Q_BOOST)) ||
         !in_range(s->q_boost_time, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_TIME))) {
-        return HKF_ERROR_SETTING_Q_BOOST;
+        return HKF_ERROR_SETTING_MOTION;
     }
     if (!in_range(s->noise_time, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_TIME)) ||
         !in_range(s->noise_rise, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_NOISE_RISE)) ||
@@ -183,19 +184,33 @@ static void keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11)
 }
 
 /* Eq. 1-3 per axis: x += v dt; P = F P F' + Q, Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]] */
+static hkf_axis_t axis_of(const hkf_position_filter_t *f, int a)
+{
+    hkf_axis_t x;
+    x.x = f->x[a];
+    x.v = f->v[a];
+    x.p00 = f->p00[a];
+    x.p01 = f->p01[a];
+    x.p11 = f->p11[a];
+    return x;
+}
+
+static void set_axis(hkf_position_filter_t *f, int a, hkf_axis_t x)
+{
+    f->x[a] = x.x;
+    f->v[a] = x.v;
+    f->p00[a] = x.p00;
+    f->p01[a] = x.p01;
+    f->p11[a] = x.p11;
+    keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
+}
+
+/* Eq. 1-3 per axis (hkf_kalman.h). */
 static void predict_axes(hkf_position_filter_t *f, hkf_real_t dt)
 {
     int a;
     for (a = 0; a < 3; ++a) {
-        const hkf_real_t qdt = hkf_mul(process_noise(f, a), dt);
-        const hkf_real_t qdt2 = hkf_mul(qdt, dt);
-        const hkf_real_t p11dt = hkf_mul(f->p11[a], dt);
-        f->x[a] = hkf_add(f->x[a], hkf_mul(f->v[a], dt));
-        f->p00[a] = hkf_add(f->p00[a], hkf_add(hkf_mul(dt, hkf_add(hkf_add(f->p01[a], f->p01[a]), p11dt)),
-                                               hkf_mul(qdt2, hkf_mul(dt, HKF_REAL(0.33333333)))));
-        f->p01[a] = hkf_add(f->p01[a], hkf_add(p11dt, hkf_mul(qdt2, HKF_REAL(0.5))));
-        f->p11[a] = hkf_add(f->p11[a], qdt);
-        keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
+        set_axis(f, a, hkf_kalman_predict(axis_of(f, a), process_noise(f, a), dt));
     }
 }
 
@@ -342,20 +357,11 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
             const hkf_real_t r = hkf_mul(measurement_noise(f, a), r_scale);
             const hkf_real_t y = hkf_sub(z[a], f->x[a]);                      /* Eq. 4 */
             hkf_divisor_t inv_s = hkf_divisor(hkf_add(f->p00[a], r));         /* Eq. 5 */
-            hkf_real_t k0, k1;
             if (detect) {
                 hkf_motion_lane(&motion, f, a, motion_walk, y, r, inv_s, dt, &f->motion[a], &f->p00[a], &f->v[a]);
                 inv_s = hkf_divisor(hkf_add(f->p00[a], r));
             }
-            k0 = hkf_divide(f->p00[a], inv_s);                                /* Eq. 6 */
-            k1 = hkf_divide(f->p01[a], inv_s);
-            f->x[a] = hkf_add(f->x[a], hkf_mul(k0, y));                       /* Eq. 7 */
-            f->v[a] = hkf_add(f->v[a], hkf_mul(k1, y));
-            /* P' = (I - K H) P: p00 r / s, p01 r / s, p11 - k1 p01 */
-            f->p11[a] = hkf_sub(f->p11[a], hkf_mul(k1, f->p01[a]));
-            f->p00[a] = hkf_mul(k0, r);
-            f->p01[a] = hkf_mul(k1, r);
-            keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
+            set_axis(f, a, hkf_kalman_correct(axis_of(f, a), y, r, inv_s)); /* Eq. 6-7 */
         }
     }
     if (calibrated(f)) {
@@ -406,9 +412,8 @@ int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, h
     coast = t < f->settings.max_dt ? t : f->settings.max_dt;  /* the rate moves it for up to max_dt */
     for (a = 0; a < 3; ++a) {
         /* Eq. 1-3 over t: [1 t] P [1 t]' + q t^3 / 3 */
-        const hkf_real_t qt3 = hkf_mul(hkf_mul(hkf_mul(process_noise(f, a), t), hkf_mul(t, t)), HKF_REAL(0.33333333));
-        const hkf_real_t spread = hkf_mul(t, hkf_add(hkf_add(f->p01[a], f->p01[a]), hkf_mul(t, f->p11[a])));
-        const hkf_real_t variance = hkf_add(hkf_add(f->p00[a], spread), qt3);
+        const hkf_real_t variance = hkf_add(f->p00[a], hkf_kalman_growth(f->p01[a], f->p11[a],
+                                                                          hkf_mul(process_noise(f, a), t), t));
         out->position[a] = bounded(hkf_add(f->x[a], hkf_mul(f->v[a], coast)), HKF_REAL_FROM(HKF_MAX_ABS_POSITION));
         out->rate[a] = ahead > f->settings.max_dt ? 0 : f->v[a];
         out->variance[a] = variance < 0 ? 0 : variance < HKF_REAL_FROM(HKF_MAX_VARIANCE) ? variance

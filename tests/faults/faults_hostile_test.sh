@@ -212,12 +212,12 @@ echo "== 12-13. model names and config errors: one rule, FILE:LINE, the real rea
 for name in 'a b' 'a]' 'a#' "$(printf 'a\nb')"; do
   expect_exit 2 "--set model.'$name'.noise.yaw" "$filter" --set "model.$name.noise.yaw=7 4 0 30" --print-config
 done
-printf 'q_boost = 3000\nlc_xi = 5\n' >"$work/bad.conf"
+printf 'start_rate = 30\nlc_xi = 5\n' >"$work/bad.conf"
 expect_exit 2 "lc_xi = 5 in a file" "$filter" --config "$work/bad.conf" --print-config
 said "bad.conf:2: lc_xi = 5"
 expect_exit 2 "--set lc_theta=1e300" "$filter" --set lc_theta=1e300 --print-config
 said "beyond the range"
-printf 'q_boost = 3000\nlc_xi\0 = 0.5\n' >"$work/nul.conf"
+printf 'start_rate = 30\nlc_xi\0 = 0.5\n' >"$work/nul.conf"
 expect_exit 2 "a NUL byte in a config" "$filter" --config "$work/nul.conf" --print-config
 said "nul.conf:2: a NUL byte"
 

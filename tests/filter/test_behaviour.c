@@ -291,62 +291,109 @@ static void test_constant_vs_adaptive_r(void **state)
                 D(hkf_observation_noise(&fc, HKF_AXIS_YAW, R(-0.35))), 1e-4);
 }
 
-/* Motion-driven process noise (q_boost): on a still, noisy head the output is
- * as steady as with the small q alone (the innovations are what R predicts),
- * and when the head turns at 90 deg/s it follows with far less lag. */
-static void test_q_boost_still_and_moving(void **state)
+/* The motion adaptation (hkf_two_models.h): on a still, noisy head the
+ * output is far stiller than the paper's filter with the same (moving) q, and
+ * when the head turns at 90 deg/s it follows far closer than a filter whose q
+ * is small enough to be as still. */
+static void test_two_models_still_and_moving(void **state)
 {
-    hkf_settings_t plain = hkf_default_settings, boosted;
-    hkf_filter_t fp, fb;
-    hkf_output_t op, ob;
+    hkf_settings_t moving = hkf_default_settings, still, adaptive;
+    hkf_filter_t fm, fs, fa;
+    hkf_output_t om, os, oa;
     sim_rng_t rng;
-    double jitter_p = 0.0, jitter_b = 0.0, prev_p = 0.0, prev_b = 0.0, lag_p = 0.0, lag_b = 0.0;
-    int i;
+    double jitter[3] = {0, 0, 0}, prev[3] = {0, 0, 0}, lag[3] = {0, 0, 0};
+    int i, k;
     (void)state;
-    plain.loop_closure = HKF_LOOP_CLOSURE_OFF;
-    plain.noise_mode = HKF_NOISE_CONSTANT;
-    plain.noise_time = 0; /* q_boost on the paper's R (without noise calibration) */
-    plain.process_noise[1] = R(10);
-    plain.q_boost = 0;
-    boosted = plain;
-    boosted.q_boost = R(100);
-    assert_int_equal(hkf_init(&fp, &plain), HKF_OK);
-    assert_int_equal(hkf_init(&fb, &boosted), HKF_OK);
+    moving.noise_mode = HKF_NOISE_CONSTANT;
+    moving.noise_time = 0; /* R from the settings alone: the frame noise's (calibration would measure it) */
+    moving.r_const[0] = moving.r_const[1] = moving.r_const[2] = R(0.25);
+    moving.start_rate = 0;
+    still = moving;
+    still.process_noise[1] = R(10);
+    adaptive = moving;
+    adaptive.start_rate = hkf_default_settings.start_rate;
+    assert_int_equal(hkf_init(&fm, &moving), HKF_OK);
+    assert_int_equal(hkf_init(&fs, &still), HKF_OK);
+    assert_int_equal(hkf_init(&fa, &adaptive), HKF_OK);
     sim_rng_seed(&rng, 5u);
     for (i = 0; i < 450; ++i) {
         /* still for 10 s, then a turn at 90 deg/s for 0.5 s, then still */
         const double t = i / 30.0;
         const double truth = t < 10.0 ? 0.0 : t < 10.5 ? 90.0 * (t - 10.0) : 45.0;
         hkf_real_t z[3];
+        double yaw[3];
         set3(z, 0, truth + 0.5 * sim_rng_gaussian(&rng), 0); /* frame noise well inside R, as on the real clips */
-        assert_int_equal(hkf_update(&fp, z, frame_dt, &op), HKF_OK);
-        assert_int_equal(hkf_update(&fb, z, frame_dt, &ob), HKF_OK);
-        if (i > 60 && t < 10.0) {
-            jitter_p += (D(op.angle[1]) - prev_p) * (D(op.angle[1]) - prev_p);
-            jitter_b += (D(ob.angle[1]) - prev_b) * (D(ob.angle[1]) - prev_b);
+        assert_int_equal(hkf_update(&fm, z, frame_dt, &om), HKF_OK);
+        assert_int_equal(hkf_update(&fs, z, frame_dt, &os), HKF_OK);
+        assert_int_equal(hkf_update(&fa, z, frame_dt, &oa), HKF_OK);
+        yaw[0] = D(om.angle[1]);
+        yaw[1] = D(os.angle[1]);
+        yaw[2] = D(oa.angle[1]);
+        for (k = 0; k < 3; ++k) {
+            if (i > 60 && t < 10.0) {
+                jitter[k] += (yaw[k] - prev[k]) * (yaw[k] - prev[k]);
+            }
+            if (t >= 10.0 && t < 11.0) {
+                lag[k] += fabs(truth - yaw[k]);
+            }
+            prev[k] = yaw[k];
         }
-        if (t >= 10.0 && t < 11.0) {
-            lag_p += fabs(truth - D(op.angle[1]));
-            lag_b += fabs(truth - D(ob.angle[1]));
-        }
-        prev_p = D(op.angle[1]);
-        prev_b = D(ob.angle[1]);
     }
-    print_message("q_boost: still jitter %.4f vs %.4f deg^2 summed, turn error %.1f vs %.1f deg summed\n", jitter_b,
-                  jitter_p, lag_b, lag_p);
-    assert_true(jitter_b < 1.3 * jitter_p); /* about as still */
-    assert_true(lag_b < 0.6 * lag_p);       /* much closer during the turn */
-    /* and off (0), it is the paper's filter bit for bit */
-    boosted.q_boost = 0;
-    assert_int_equal(hkf_init(&fb, &boosted), HKF_OK);
-    assert_int_equal(hkf_init(&fp, &plain), HKF_OK);
-    for (i = 0; i < 30; ++i) {
-        hkf_real_t z[3];
-        set3(z, 0, 2.0 * i, 0);
-        assert_int_equal(hkf_update(&fp, z, frame_dt, &op), HKF_OK);
-        assert_int_equal(hkf_update(&fb, z, frame_dt, &ob), HKF_OK);
-        assert_memory_equal(op.angle, ob.angle, sizeof op.angle);
-    }
+    print_message("two models: still jitter %.4f (moving q %.4f, small q %.4f) deg^2 summed, turn error %.1f (%.1f, "
+                  "%.1f) deg summed\n", jitter[2], jitter[0], jitter[1], lag[2], lag[0], lag[1]);
+    assert_true(jitter[2] < 0.1 * jitter[0]); /* far stiller than the moving q alone */
+    assert_true(jitter[2] < jitter[1]);       /* stiller than the small q */
+    assert_true(lag[2] < 0.5 * lag[1]);       /* and far closer during the turn than the small q */
+    assert_true(lag[2] < 2.0 * lag[0]);       /* about as close as the moving q */
+}
+
+/* The two models' step, by hand (hkf_two_models.h), from a still track: the
+ * posterior of MOVE from the Markov prior and the two likelihoods, then the
+ * merged angle, rate and variance - each against the formula in double. */
+static void test_two_models_by_hand(void **state)
+{
+    hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_output_t out;
+    hkf_real_t z[3];
+    const double dt = 0.125, q = 12.0, qs = 0.5, start = 0.4, stop = 2.0, r = 2.0, p0 = 4.0, v0 = 8.0, y = 3.0;
+    double pi, m00, m01, m11, h00, s_m, s_h, lm, lh, mu, xm, vm, pm00, xh, ph00, x, v, p00, dx;
+    (void)state;
+    s.process_noise[0] = s.process_noise[1] = s.process_noise[2] = R(q);
+    s.still_noise = R(qs);
+    s.start_rate = R(start);
+    s.stop_rate = R(stop);
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(z, 0, 0, 0);
+    assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_OK); /* angle 0, rate 0, P = diag(4, 8), mu 0 */
+    set3(z, 0, y, 0);
+    assert_int_equal(hkf_update(&f, z, R(dt), &out), HKF_OK);
+    pi = start / (start + stop) * (1 - exp(-(start + stop) * dt)); /* the chain from mu = 0 */
+    m00 = p0 + dt * dt * v0 + q * dt * dt * dt / 3;           /* MOVE: Eq. 1-3 */
+    m01 = dt * v0 + q * dt * dt / 2;
+    m11 = v0 + q * dt;
+    h00 = p0 + qs * dt;                                       /* HOLD */
+    s_m = m00 + r;
+    s_h = h00 + r;
+    lm = exp(-y * y / (2 * s_m)) / sqrt(s_m);
+    lh = exp(-y * y / (2 * s_h)) / sqrt(s_h);
+    mu = pi * lm / (pi * lm + (1 - pi) * lh);
+    xm = m00 / s_m * y;
+    vm = m01 / s_m * y;
+    pm00 = m00 * r / s_m;
+    xh = h00 / s_h * y;
+    ph00 = h00 * r / s_h;
+    x = mu * xm + (1 - mu) * xh;
+    v = mu * vm;
+    dx = xm - xh;
+    p00 = mu * pm00 + (1 - mu) * ph00 + mu * (1 - mu) * dx * dx;
+    assert_near(out.angle[1], x, 4 * TEST_TOL);
+    assert_near(out.rate[1], v, 8 * TEST_TOL);
+    assert_near(out.variance[1], p00, 4 * TEST_TOL);
+    assert_near(out.angle[0], 0.0, TEST_TOL); /* no innovation: HOLD's angle, no rate */
+    assert_near(out.rate[0], 0.0, TEST_TOL);
+    assert_true(mu > 0.01 && mu < 0.99); /* a real mixture, not one model */
+    (void)m11;
 }
 
 /* Two estimators in one step (hkf_update_pair): the track starts from the first
@@ -552,47 +599,6 @@ static void test_coast_boundary_exact(void **state)
     assert_int_equal(hkf_update(&f, z, R(0), &out), HKF_ERROR_DT_RANGE);
 }
 
-/* q_boost's step, by hand. From a still track (m = 0), one measurement y off
- * the prediction: e = y^2 / S - 1, m = alpha e with alpha = dt / (dt +
- * q_boost_time); the next predict uses q (1 + q_boost m). Checked through the
- * variance of a prediction after it: p00 grows by the boosted q's dt^3 / 3 term
- * on top of the unboosted filter's. */
-static void test_q_boost_by_hand(void **state)
-{
-    hkf_settings_t s = plain_settings(), plain;
-    hkf_filter_t fb, fp;
-    hkf_output_t ob, op, pb, pp;
-    hkf_real_t z[3];
-    const double dt = 0.125, boost = 2.0, time = 0.125, q = 12.0;
-    double S, e, m, alpha;
-    (void)state;
-    s.q_boost = R(boost);
-    s.q_boost_time = R(time);
-    s.process_noise[0] = s.process_noise[1] = s.process_noise[2] = R(q);
-    plain = s;
-    plain.q_boost = 0;
-    assert_int_equal(hkf_init(&fb, &s), HKF_OK);
-    assert_int_equal(hkf_init(&fp, &plain), HKF_OK);
-    set3(z, 0, 0, 0);
-    assert_int_equal(hkf_update(&fb, z, R(0), &ob), HKF_OK);
-    assert_int_equal(hkf_update(&fp, z, R(0), &op), HKF_OK);
-    /* the predicted p00 before the update: 4 + dt^2 8 + q dt^3 / 3; S = that + R (2) */
-    S = 4 + dt * dt * 8 + q * dt * dt * dt / 3 + 2;
-    set3(z, 0, 5, 0);
-    assert_int_equal(hkf_update(&fb, z, R(dt), &ob), HKF_OK);
-    assert_int_equal(hkf_update(&fp, z, R(dt), &op), HKF_OK);
-    assert_near(ob.angle[1], D(op.angle[1]), TEST_TOL); /* the boost acts on the next predict */
-    e = 25.0 / S - 1.0;
-    alpha = dt / (dt + time);
-    m = alpha * e;
-    assert_int_equal(hkf_predict(&fb, R(dt), &pb), HKF_OK);
-    assert_int_equal(hkf_predict(&fp, R(dt), &pp), HKF_OK);
-    /* the boosted q adds q boost m (dt^3 / 3) to the yaw variance; pitch (y = 0, e < 0) is not boosted */
-    assert_near(D(pb.variance[1]) - D(pp.variance[1]), q * boost * m * dt * dt * dt / 3, 20 * TEST_TOL);
-    assert_near(pb.variance[0], D(pp.variance[0]), TEST_TOL);
-    assert_true(m > 1.0); /* the case is a real boost, not a rounding */
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -603,14 +609,14 @@ int main(void)
         cmocka_unit_test(test_recenter_and_reset),
         cmocka_unit_test(test_state_carried_across_chunks),
         cmocka_unit_test(test_constant_vs_adaptive_r),
-        cmocka_unit_test(test_q_boost_still_and_moving),
+        cmocka_unit_test(test_two_models_still_and_moving),
         cmocka_unit_test(test_pair_start_weighs_by_each_r),
         cmocka_unit_test(test_pair_of_equals_is_half_r),
         cmocka_unit_test(test_pair_bad_input_changes_nothing),
         cmocka_unit_test(test_pair_with_one_model_missing),
         cmocka_unit_test(test_pair_with_the_gate),
         cmocka_unit_test(test_coast_boundary_exact),
-        cmocka_unit_test(test_q_boost_by_hand),
+        cmocka_unit_test(test_two_models_by_hand),
         cmocka_unit_test(test_settings_copied),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -441,7 +441,7 @@ static void test_errors(void **state)
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_R_RANGE);
     hkf_position_default_settings(&s);
     s.q_boost = R(-1.0);
-    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_Q_BOOST);
+    assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_MOTION);
     hkf_position_default_settings(&s);
     s.still_threshold = R(-1.0);
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);

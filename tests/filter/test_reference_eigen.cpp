@@ -11,6 +11,13 @@
  * of each frame (hkf_update_pair, sequential scalar updates) are checked
  * against one textbook update with both stacked: H = [I 0; I 0] (6x6),
  * R = diag(R1, R2), each R from its own model's Eq. 8 curves.
+ *
+ * The motion adaptation (hkf.h, start_rate > 0) is written the textbook way
+ * too: per axis two 2-state filters in matrix form, HOLD (F = [[1, 0], [0, 0]],
+ * Q = diag(q_s dt, 0)) and MOVE (the paper's F and Q), each predicted from the
+ * common estimate, each updated with the full Gaussian likelihood of its
+ * innovation, the probability of MOVE by Bayes from the Markov prior, and the
+ * two posteriors merged by the mixture's mean and covariance (GPB1).
  */
 #include <cmath>
 #include <cstdio>
@@ -56,12 +63,35 @@ public:
     const Vec3 &r() const { return r_; }
     int status() const { return status_; }
 
+    /* The motion adaptation's probability of MOVE is a feedback: a rounding difference in it (1e-12 in
+     * double) changes the next steps' gains, and over thousands of steps with 25 deg outliers the two
+     * filters part. With it on, each step therefore starts from libhkf's state (the estimate, the
+     * probabilities and the noise estimate), so every step's equations are checked at full precision. */
+    void syncFrom(const hkf_filter_t &f)
+    {
+        if (!started_ || status_ == HKF_STATUS_LOST) {
+            return;
+        }
+        for (int a = 0; a < 3; ++a) {
+            x_(a) = D(f.angle[a]);
+            x_(a + 3) = D(f.rate[a]);
+            P_(a, a) = D(f.p00[a]);
+            P_(a, a + 3) = P_(a + 3, a) = D(f.p01[a]);
+            P_(a + 3, a + 3) = D(f.p11[a]);
+            moving_(a) = D(f.moving[a]);
+            noise_(a) = D(f.noise[a]);
+            power_(a) = D(f.noise_power[a]);
+        }
+    }
+
     void update(const Vec3 &z, double dt)
     {
         if (!started_ || status_ == HKF_STATUS_LOST) {
             start(z);
             return;
         }
+        const Vec6 x_before = x_;
+        const Mat6 P_before = P_;
         predict(dt);
         const Vec3 zc = loopClosure(z);
         Eigen::Matrix3d R = Eigen::Matrix3d::Zero();
@@ -84,18 +114,14 @@ public:
             }
             return;
         }
-        if (calibrated()) {
-            motionStep(y, S, dt);
-        } else if (D(s_.q_boost) > 0) { /* motion-driven q (hkf.h): m follows the normalised innovation's excess */
-            const double alpha = dt / (dt + D(s_.q_boost_time));
-            for (int a = 0; a < 3; ++a) {
-                motion_(a) += alpha * (std::min(std::max(y(a) * y(a) / S(a, a) - 1.0, 0.0), 1e4) - motion_(a));
-            }
+        if (twoModels()) {
+            twoModelsUpdate(x_before, P_before, zc, R.diagonal(), dt);
+        } else {
+            const Eigen::Matrix<double, 6, 3> K = P_ * H.transpose() * (H * P_ * H.transpose() + R).inverse();
+            x_ += K * y;
+            x_(1) = wrap180(x_(1));
+            P_ = (Mat6::Identity() - K * H) * P_;
         }
-        const Eigen::Matrix<double, 6, 3> K = P_ * H.transpose() * (H * P_ * H.transpose() + R).inverse();
-        x_ += K * y;
-        x_(1) = wrap180(x_(1));
-        P_ = (Mat6::Identity() - K * H) * P_;
         r_ = R.diagonal();
         if (calibrated()) {
             noiseUpdate(z, dt);
@@ -131,6 +157,27 @@ public:
             }
             return;
         }
+        if (twoModels()) { /* the first by both models (update), then the second as a plain update */
+            update(z1, dt);
+            r1 = r_;
+            const Vec3 zc2 = loopClosure(z2);
+            Eigen::Matrix3d R2 = Eigen::Matrix3d::Zero();
+            for (int a = 0; a < 3; ++a) {
+                R2(a, a) = calibratedR(second, a, zc2(a));
+            }
+            Mat36 H = Mat36::Zero();
+            H.leftCols<3>().setIdentity();
+            Vec3 y = zc2 - H * x_;
+            y(1) = wrap180(y(1));
+            const Eigen::Matrix<double, 6, 3> K = P_ * H.transpose() * (H * P_ * H.transpose() + R2).inverse();
+            x_ += K * y;
+            x_(1) = wrap180(x_(1));
+            P_ = (Mat6::Identity() - K * H) * P_;
+            for (int a = 0; a < 3; ++a) {
+                r_(a) = r1(a) * R2(a, a) / (r1(a) + R2(a, a));
+            }
+            return;
+        }
         predict(dt);
         const Vec3 zc1 = loopClosure(z1), zc2 = loopClosure(z2);
         Mat6 R = Mat6::Zero();
@@ -138,10 +185,6 @@ public:
             R(a, a) = calibratedR(s_, a, zc1(a));
         }
         if (calibrated()) { /* libhkf updates n from z1 before it weighs z2 */
-            Eigen::Matrix3d S1 = P_.topLeftCorner<3, 3>() + R.topLeftCorner<3, 3>();
-            Vec3 y1 = zc1 - x_.head<3>();
-            y1(1) = wrap180(y1(1));
-            motionStep(y1, S1, dt);
             noiseUpdate(z1, dt);
         }
         for (int a = 0; a < 3; ++a) {
@@ -155,13 +198,6 @@ public:
         y.tail<3>() = zc2 - x_.head<3>();
         y(1) = wrap180(y(1));
         y(4) = wrap180(y(4));
-        if (!calibrated() && D(s_.q_boost) > 0) { /* m follows the first measurement's innovation */
-            const double alpha = dt / (dt + D(s_.q_boost_time));
-            for (int a = 0; a < 3; ++a) {
-                const double e = y(a) * y(a) / (P_(a, a) + R(a, a)) - 1.0;
-                motion_(a) += alpha * (std::min(std::max(e, 0.0), 1e4) - motion_(a));
-            }
-        }
         const Mat6 K = P_ * H.transpose() * (H * P_ * H.transpose() + R).inverse();
         x_ += K * y;
         x_(1) = wrap180(x_(1));
@@ -190,7 +226,7 @@ private:
         x_.head<3>() = z;
         x_(1) = wrap180(z(1));
         P_.setZero();
-        motion_.setZero();
+        moving_.setZero();
         for (int a = 0; a < 3; ++a) {
             P_(a, a) = D(s_.p0_angle);
             P_(a + 3, a + 3) = D(s_.p0_rate);
@@ -220,9 +256,7 @@ private:
         F.topRightCorner<3, 3>() = dt * Eigen::Matrix3d::Identity();
         Mat6 Q = Mat6::Zero();
         for (int a = 0; a < 3; ++a) {
-            const double q = calibrated() ? D(s_.process_noise[a]) * noise_(a)
-                                          : std::min(D(s_.process_noise[a]) * (1.0 + D(s_.q_boost) * motion_(a)),
-                                      std::max(D(s_.process_noise[a]), static_cast<double>(HKF_MAX_BOOSTED_PROCESS_NOISE)));
+            const double q = D(s_.process_noise[a]);
             Q(a, a) = q * dt * dt * dt / 3.0;
             Q(a, a + 3) = Q(a + 3, a) = q * dt * dt / 2.0;
             Q(a + 3, a + 3) = q * dt;
@@ -241,7 +275,7 @@ private:
             x_.tail<3>().setZero();
             P_.bottomRows<3>().setZero();
             P_.rightCols<3>().setZero();
-            motion_.setZero();
+            moving_.setZero();
             status_ = HKF_STATUS_LOST;
         }
     }
@@ -277,35 +311,68 @@ private:
         return std::min<double>(std::max<double>(r * noise_(a) / noise(a, D(s_.noise[a].mu)), D(s_.r_min)), D(s_.r_max));
     }
 
-    /* The angle's random walk per s for an evidence of the motion detector */
-    double motionWalk(int a, double evidence) const
-    {
-        const double excess = std::min(std::max(evidence - D(s_.motion_threshold), 0.0), 1e4);
-        return std::min(noise_(a) * D(s_.q_boost) * excess, static_cast<double>(HKF_MAX_BOOSTED_PROCESS_NOISE));
-    }
+    bool twoModels() const { return D(s_.start_rate) > 0; }
 
-    /* The signed motion detector: the innovation low-passed, against its still spread S alpha / (2 - alpha);
-     * beyond the threshold the angle takes a random walk (the previous frame's evidence in full, this frame's
-     * up to R), else the rate decays */
-    void motionStep(const Vec3 &y, const Eigen::Matrix3d &S, double dt)
+    /* The motion adaptation per axis, from the estimate before this step (x0, P0): HOLD and MOVE each
+     * predicted and updated in matrix form, the probability of MOVE by Bayes, the posteriors merged. */
+    void twoModelsUpdate(const Vec6 &x0, const Mat6 &P0, const Vec3 &z, const Vec3 &R, double dt)
     {
-        if (!(D(s_.q_boost) > 0 || D(s_.rate_damping_time) > 0)) {
-            return;
-        }
-        const double time = D(s_.q_boost_time);
-        const double alpha = std::min(dt / (dt + time), 1.0), spread = 1.0 + 2.0 * time / dt;
-        const double damping = D(s_.rate_damping_time) > 0 ? dt / (dt + D(s_.rate_damping_time)) : 0.0;
+        using Vec2 = Eigen::Vector2d;
+        using Mat2 = Eigen::Matrix2d;
+        /* the two-state chain over dt: P(MOVE | MOVE) and P(MOVE | HOLD) from its generator's solution */
+        const double a_rate = D(s_.start_rate), b_rate = D(s_.stop_rate);
+        const double long_run = a_rate / (a_rate + b_rate), fade = std::exp(-(a_rate + b_rate) * dt);
+        const double stay_moving = long_run + (1.0 - long_run) * fade, start_moving = long_run * (1.0 - fade);
+        const double qs = D(s_.still_noise);
+        const Eigen::RowVector2d H(1.0, 0.0);
+        Mat2 Fm, Fh;
+        Fm << 1.0, dt, 0.0, 1.0;
+        Fh << 1.0, 0.0, 0.0, 0.0;
         for (int a = 0; a < 3; ++a) {
-            const double r = S(a, a) - P_(a, a);
-            const double confirmed = motion_(a) * motion_(a) * spread / S(a, a);
-            motion_(a) += alpha * (y(a) - motion_(a));
-            const double evidence = motion_(a) * motion_(a) * spread / S(a, a);
-            P_(a, a) += motionWalk(a, confirmed) * dt + std::min(motionWalk(a, evidence) * dt, r);
-            if (D(s_.still_threshold) > 0) { /* full decay up to half the threshold, none at it */
-                const double calm = std::min(std::max(2.0 - 2.0 * evidence / D(s_.still_threshold), 0.0), 1.0);
-                x_(a + 3) -= damping * calm * x_(a + 3);
+            const double q = D(s_.process_noise[a]);
+            Mat2 Qm, Qh;
+            Qm << q * dt * dt * dt / 3.0, q * dt * dt / 2.0, q * dt * dt / 2.0, q * dt;
+            Qh << qs * dt, 0.0, 0.0, 0.0;
+            const Vec2 x(x0(a), x0(a + 3));
+            Mat2 P;
+            P << P0(a, a), P0(a, a + 3), P0(a + 3, a), P0(a + 3, a + 3);
+            Vec2 xj[2];
+            Mat2 Pj[2];
+            double logL[2];
+            const Mat2 F[2] = {Fh, Fm}, Q[2] = {Qh, Qm};
+            for (int j = 0; j < 2; ++j) { /* 0: HOLD, 1: MOVE */
+                const Vec2 xp = F[j] * x;
+                const Mat2 Pp = F[j] * P * F[j].transpose() + Q[j];
+                double y = z(a) - H * xp;
+                if (a == 1) {
+                    y = wrap180(y);
+                }
+                const double S = H * Pp * H.transpose() + R(a);
+                const Vec2 K = Pp * H.transpose() / S;
+                xj[j] = xp + K * y;
+                Pj[j] = (Mat2::Identity() - K * H) * Pp;
+                logL[j] = -0.5 * y * y / S - 0.5 * std::log(2.0 * M_PI * S); /* log N(y; 0, S) */
             }
+            const double prior = moving_(a) * stay_moving + (1.0 - moving_(a)) * start_moving;
+            /* Bayes, mu = prior L1 / (prior L1 + (1 - prior) L0), in logs (an outlier underflows both L) */
+            const double mu = prior <= 0.0 ? 0.0
+                            : prior >= 1.0 ? 1.0
+                                           : 1.0 / (1.0 + std::exp(std::log1p(-prior) + logL[0] - std::log(prior) - logL[1]));
+            const double w[2] = {1.0 - mu, mu};
+            const Vec2 xm = w[0] * xj[0] + w[1] * xj[1];
+            Mat2 Pm = Mat2::Zero();
+            for (int j = 0; j < 2; ++j) {
+                const Vec2 d = xj[j] - xm;
+                Pm += w[j] * (Pj[j] + d * d.transpose());
+            }
+            moving_(a) = mu;
+            x_(a) = xm(0);
+            x_(a + 3) = xm(1);
+            P_(a, a) = Pm(0, 0);
+            P_(a, a + 3) = P_(a + 3, a) = Pm(0, 1);
+            P_(a + 3, a + 3) = Pm(1, 1);
         }
+        x_(1) = wrap180(x_(1));
     }
 
     /* n from the second difference of the raw measurements (hkf.h) */
@@ -353,7 +420,7 @@ private:
     Mat6 P_ = Mat6::Zero();
     Vec3 r_ = Vec3::Zero();
     Vec3 centre_ = Vec3::Zero();
-    Vec3 motion_ = Vec3::Zero();
+    Vec3 moving_ = Vec3::Zero(); /* the probability of MOVE per axis */
     Vec3 noise_ = Vec3::Zero(), power_ = Vec3::Zero(), lastZ_ = Vec3::Zero(), lastStep_ = Vec3::Zero();
     int history_ = 0;
     bool started_ = false, centred_ = false;
@@ -475,6 +542,9 @@ bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *se
         burst = burst > 0 ? burst - 1 : 0;
         measure(rng, truth, second != nullptr, m);
         hkf_output_t out;
+        if (s.start_rate > 0) {
+            ref.syncFrom(f);
+        }
         const int result = step_both(f, ref, m, second, R(dt), out);
         if (!ref.started()) {
             if (result != HKF_ERROR_NOT_INITIALIZED) {
@@ -495,14 +565,6 @@ bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *se
 
 } // namespace
 
-/* q_boost for the random walk (25 deg outliers make y^2 / S ~ 100): in fixed point small enough
- * that the boosted q stays inside Q16.16 (beyond, it saturates, and the double reference does not) */
-#if defined(HKF_REAL_FIXED)
-#define BOOST 0.02f
-#else
-#define BOOST 30.0f
-#endif
-
 namespace {
 
 struct Mode {
@@ -512,8 +574,8 @@ struct Mode {
     float gate;
     float lc_theta;
     bool expect_closures; /* the random walk rarely comes within 2 deg of the centre */
-    float q_boost = 0.0f;
-    bool defaults = false; /* all of hkf_default_settings (its q and q_boost too) */
+    float start_rate = 0.0f; /* the motion adaptation, with the defaults' still_noise and stop_rate */
+    bool defaults = false; /* all of hkf_default_settings (its q and motion adaptation too) */
     bool pair = false;     /* hkf_update_pair, the second model with Hopenet's curves */
     bool calibrated = false; /* hkf_default_settings (noise calibration on) with the mode's changes */
 };
@@ -525,28 +587,28 @@ const Mode modes[] = {
     {"adaptive+lc_per_axis", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_PER_AXIS, 0.0f, 20.0f, true},
     {"squared+lc_norm+gate", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true},
     {"constant+gate", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 3.0f, 2.0f, false},
-    {"adaptive+q_boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, BOOST},
-    {"lc_norm+gate+q_boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true, 10.0f * BOOST},
+    {"adaptive+two_models", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, 0.5f},
+    {"lc_norm+gate+two_models", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 4.0f, 30.0f, true, 5.0f},
     {"paper", hkf_paper_settings.noise_mode, hkf_paper_settings.loop_closure,
      static_cast<float>(D(hkf_paper_settings.gate_sigma)), static_cast<float>(D(hkf_paper_settings.lc_theta)), false},
     {"defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure,
      static_cast<float>(D(hkf_default_settings.gate_sigma)), static_cast<float>(D(hkf_default_settings.lc_theta)), false,
-     static_cast<float>(D(hkf_default_settings.q_boost)), true},
+     static_cast<float>(D(hkf_default_settings.start_rate)), true},
     {"pair:adaptive", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false, 0.0f, false, true},
     {"pair:squared+lc_norm", HKF_NOISE_ADAPTIVE_SQUARED, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true, 0.0f, false, true},
-    {"pair:lc_per_axis+boost", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_PER_AXIS, 0.0f, 20.0f, true, BOOST, false, true},
+    {"pair:lc_per_axis+two", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_PER_AXIS, 0.0f, 20.0f, true, 0.5f, false, true},
     {"pair:defaults", hkf_default_settings.noise_mode, hkf_default_settings.loop_closure, 0.0f,
-     static_cast<float>(D(hkf_default_settings.lc_theta)), false, static_cast<float>(D(hkf_default_settings.q_boost)),
+     static_cast<float>(D(hkf_default_settings.lc_theta)), false, static_cast<float>(D(hkf_default_settings.start_rate)),
      true, true},
     {"calibrated+lc_norm", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true,
-     static_cast<float>(D(hkf_default_settings.q_boost)), false, false, true},
+     static_cast<float>(D(hkf_default_settings.start_rate)), false, false, true},
     {"calibrated+gate", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 3.0f, 2.0f, false,
-     static_cast<float>(D(hkf_default_settings.q_boost)), false, false, true},
+     static_cast<float>(D(hkf_default_settings.start_rate)), false, false, true},
     {"pair:calibrated+lc_norm", HKF_NOISE_ADAPTIVE, HKF_LOOP_CLOSURE_NORM, 0.0f, 30.0f, true,
-     static_cast<float>(D(hkf_default_settings.q_boost)), false, true, true},
+     static_cast<float>(D(hkf_default_settings.start_rate)), false, true, true},
 };
 
-/* The paper's filter with the mode's changes; or the defaults (small q, q_boost) with them. */
+/* The paper's filter with the mode's changes; or the defaults (with the motion adaptation) with them. */
 hkf_settings_t settings_of(const Mode &m)
 {
     hkf_settings_t s = m.calibrated || m.defaults ? hkf_default_settings : hkf_paper_settings;
@@ -555,7 +617,9 @@ hkf_settings_t settings_of(const Mode &m)
     s.gate_sigma = R(m.gate);
     s.lc_theta = R(m.lc_theta); /* wide, so closure happens often */
     s.coast_time = R(0.15);
-    s.q_boost = R(m.q_boost);
+    s.start_rate = R(m.start_rate);
+    s.still_noise = hkf_default_settings.still_noise;
+    s.stop_rate = hkf_default_settings.stop_rate;
     return s;
 }
 
@@ -571,6 +635,12 @@ bool close_enough(const hkf_settings_t &s, const Worst &w, double rms)
     const double rms_bound = 0.5, worst_bound = 30.0;
 #else
     const double rms_bound = 10.0 * TEST_TOL, worst_bound = 1000.0 * TEST_TOL;
+#endif
+#if defined(HKF_REAL_FIXED)
+    if (D(s.start_rate) > 0 && D(s.noise_time) <= 0) { /* each step from libhkf's state (syncFrom): Q16.16's
+                                                           rounding of one step's exp, root and mixture */
+        return rms <= 1e-3 && w.angle <= 0.05;
+    }
 #endif
     if (D(s.noise_time) > 0) {
         return rms <= rms_bound && w.angle <= worst_bound;

@@ -80,7 +80,7 @@ static inline void assert_near_at(double actual, double expected, double tol, co
     assert_near_at(TO_DOUBLE(actual), (double)(expected), (double)(tol), #actual, __FILE__, __LINE__)
 
 /* Plain settings that make hand arithmetic easy: constant R, constant q (no
- * q_boost), no loop closure, no gate, unit-ish numbers, no coasting limit
+ * motion adaptation), no loop closure, no gate, unit-ish numbers, no coasting limit
  * within 10 s. */
 static inline hkf_settings_t plain_settings(void)
 {
@@ -92,7 +92,7 @@ static inline hkf_settings_t plain_settings(void)
     }
     s.noise_mode = HKF_NOISE_CONSTANT;
     s.loop_closure = HKF_LOOP_CLOSURE_OFF;
-    s.q_boost = 0;
+    s.start_rate = 0; /* no motion adaptation */
     s.noise_time = 0; /* the paper's filter: no noise calibration */
     s.p0_angle = R(4);
     s.p0_rate = R(8);

@@ -23,7 +23,7 @@ def main():
     shutil.copy(config, os.path.join(configs, "hkf-filter.conf"))
     with open(os.path.join(configs, "set_lines"), "w") as f:  # --set lines: model names at the rule's edges
         f.write("model.mine-2_b.noise.yaw = 7 4 0 30\nmodel.a b.r_const = 1 2 3\nlc_xi = 5\nr_min = 200\n"
-                "model.Abc_def-0123456789abcdefghijklm.noise.roll = 9 3 0 40\nq_boost = 1e300\n")
+                "model.Abc_def-0123456789abcdefghijklm.noise.roll = 9 3 0 40\nstart_rate = 1e300\n")
     events = [e for e in lcm.EventLog(log, "r") if e.channel == "HEAD_POSE_RAW" and len(e.data) < 256]
     recenter = struct.pack(">qqb", 0x0D6A1A80B0A5B7E2, 0, 1)  # placeholder hash is fine: fuzzing mutates it
     for start in range(0, min(len(events), 300), 30):

@@ -172,7 +172,7 @@ static void test_print_reads_back(void **state)
     node_config_defaults(&c);
     assert_int_equal(node_config_set(&c, "lc_xi=0.25", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "model.whenet.r_const=1 2 3", error, sizeof error), 0);
-    assert_int_equal(node_config_set(&c, "model.whenet.q_boost=100", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "model.whenet.start_rate=100", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_measurement_noise = 0.01 0.02 0.5", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_process_noise = 1 2 3", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_process_noise = 1 2", error, sizeof error), -1);
@@ -204,7 +204,7 @@ static void test_print_reads_back(void **state)
     {
         int known;
         const hkf_settings_t a = node_config_for_model(&c, "whenet", &known), b = node_config_for_model(&back, "whenet", &known);
-        assert_true(same_settings(&a, &b) && b.q_boost == 100.0f);
+        assert_true(same_settings(&a, &b) && b.start_rate == 100.0f);
     }
     remove(path);
 }
@@ -258,7 +258,7 @@ static void test_check_names_where(void **state)
     (void)state;
     node_config_defaults(&c);
     assert_int_equal(node_config_check(&c, error, sizeof error), 0);
-    path = write_temp("q_boost = 3\nlc_xi = 5\n");
+    path = write_temp("start_rate = 3\nlc_xi = 5\n");
     assert_int_equal(node_config_read_file(&c, path, error, sizeof error), 0);
     assert_int_equal(node_config_check(&c, error, sizeof error), -1);
     snprintf(where, sizeof where, "%s:2: lc_xi = 5", path);

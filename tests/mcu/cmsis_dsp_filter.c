@@ -218,8 +218,8 @@ int main(void)
     uint32_t ticks = 0, updates = 0;
     int i, a, failures = 0, started = 0;
     filter.s = &hkf_paper_settings;
-    if (filter.s->noise_mode != HKF_NOISE_ADAPTIVE || filter.s->gate_sigma > 0.0f || filter.s->q_boost > 0.0f) {
-        semihosting_write("cmsis_dsp_filter: the paper's settings changed (adaptive R, no gate, no q_boost expected)\n");
+    if (filter.s->noise_mode != HKF_NOISE_ADAPTIVE || filter.s->gate_sigma > 0.0f || filter.s->start_rate > 0.0f) {
+        semihosting_write("cmsis_dsp_filter: the paper's settings changed (adaptive R, no gate, no motion adaptation expected)\n");
         return 1;
     }
     matrices_init(&filter);

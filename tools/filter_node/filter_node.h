@@ -50,7 +50,7 @@
  *   frame by the running mean of their difference over the last
  *   FILTER_NODE_ALIGN_FRAMES frames both measured, so that the pose does not
  *   step when the second model comes and goes, and the first's innovations
- *   do not read the gap as motion (q_boost).
+ *   do not read the gap as motion (the motion adaptation).
  * - position (hkf 0.2): a measurement's x, y, z (z > 0: measured) go through
  *   libhkf's position filter (hkf/hkf_position.h), with R scaled by
  *   FILTER_NODE_BOX_POSITION_R_SCALE for a model that measures position from

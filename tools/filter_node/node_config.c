@@ -50,7 +50,7 @@ static const position_key_t position_keys[] = {
 #define POSITION_KEY_COUNT (sizeof position_keys / sizeof position_keys[0])
 
 static const config_key_t keys[] = {
-    {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll): deg^2/s^3; calibrated: x n, 1/s^3"},
+    {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll): deg^2/s^3, the moving head's acceleration"},
     {"noise_mode", KIND_NOISE_MODE, FIELD(noise_mode), "constant | adaptive | adaptive_squared"},
     {"noise.pitch", KIND_CURVE, FIELD(noise[0]), "Eq. 8 curve: tau lambda mu sigma, deg"},
     {"noise.yaw", KIND_CURVE, FIELD(noise[1]), "Eq. 8 curve: tau lambda mu sigma, deg"},
@@ -67,13 +67,11 @@ static const config_key_t keys[] = {
     {"max_gate_rejections", KIND_UINT, FIELD(max_gate_rejections), "gated measurements in a row before restarting"},
     {"coast_time", KIND_REAL, FIELD(coast_time), "s without a face before the track is LOST"},
     {"max_dt", KIND_REAL, FIELD(max_dt), "s; a longer gap restarts the track"},
-    {"q_boost", KIND_REAL, FIELD(q_boost), "motion boost: q (1 + q_boost e); calibrated: the angle's walk n q_boost e per s; 0 = off (the paper)"},
-    {"q_boost_time", KIND_REAL, FIELD(q_boost_time), "s; time constant of the motion detector"},
+    {"still_noise", KIND_REAL, FIELD(still_noise), "deg^2/s; motion adaptation: the still head's angle random walk"},
+    {"start_rate", KIND_REAL, FIELD(start_rate), "1/s; motion adaptation: how often a still head starts to move, 0 = off (the paper)"},
+    {"stop_rate", KIND_REAL, FIELD(stop_rate), "1/s; motion adaptation: how often a moving head stops"},
     {"noise_time", KIND_REAL, FIELD(noise_time), "s; noise calibration's time constant, 0 = off (the paper)"},
     {"noise_rise", KIND_REAL, FIELD(noise_rise), "1/s; how fast the noise estimate may rise"},
-    {"motion_threshold", KIND_REAL, FIELD(motion_threshold), "calibrated motion detector's threshold"},
-    {"rate_damping_time", KIND_REAL, FIELD(rate_damping_time), "s; the rate's decay while still, 0 = never"},
-    {"still_threshold", KIND_REAL, FIELD(still_threshold), "calibrated motion detector: still below this"},
 };
 #define KEY_COUNT (sizeof keys / sizeof keys[0])
 typedef char origin_slots_fit[KEY_COUNT + 1 + POSITION_KEY_COUNT <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys, the pair and position keys */
@@ -534,9 +532,8 @@ static const char *const *keys_of_result(int result)
     static const char *const gate[] = {"gate_sigma", "max_gate_rejections", NULL};
     static const char *const coast[] = {"coast_time", NULL};
     static const char *const max_dt[] = {"max_dt", NULL};
-    static const char *const boost[] = {"q_boost", "q_boost_time", NULL};
-    static const char *const calibration[] = {"noise_time",        "noise_rise",      "motion_threshold",
-                                              "rate_damping_time", "still_threshold", NULL};
+    static const char *const motion[] = {"still_noise", "start_rate", "stop_rate", NULL};
+    static const char *const calibration[] = {"noise_time", "noise_rise", NULL};
     static const char *const none[] = {NULL};
     switch (result) {
     case HKF_ERROR_SETTING_NOISE_MODE: return noise_mode;
@@ -552,7 +549,7 @@ static const char *const *keys_of_result(int result)
     case HKF_ERROR_SETTING_GATE: return gate;
     case HKF_ERROR_SETTING_COAST_TIME: return coast;
     case HKF_ERROR_SETTING_MAX_DT: return max_dt;
-    case HKF_ERROR_SETTING_Q_BOOST: return boost;
+    case HKF_ERROR_SETTING_MOTION: return motion;
     case HKF_ERROR_SETTING_CALIBRATION: return calibration;
     default: return none;
     }

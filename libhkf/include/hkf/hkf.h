@@ -53,10 +53,11 @@ typedef enum {
     HKF_ERROR_SETTING_COAST_TIME = -31,  /* coast_time outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_MAX_DT = -32,      /* max_dt outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
-    HKF_ERROR_SETTING_Q_BOOST = -34,     /* q_boost outside [0, HKF_MAX_Q_BOOST] or q_boost_time outside [0, HKF_MAX_TIME] */
-    HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time or rate_damping_time outside [0, HKF_MAX_TIME], noise_rise outside
-                                            [0, HKF_MAX_NOISE_RISE], motion_threshold or still_threshold outside
-                                            [0, HKF_MAX_MOTION_THRESHOLD] */
+    HKF_ERROR_SETTING_MOTION = -34,      /* still_noise outside [0, HKF_MAX_PROCESS_NOISE], start_rate or stop_rate
+                                            outside [0, HKF_MAX_RATE] (the position's q_boost and q_boost_time:
+                                            hkf_position.h) */
+    HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time outside [0, HKF_MAX_TIME] or noise_rise outside
+                                            [0, HKF_MAX_NOISE_RISE] (the position's detector: hkf_position.h) */
 } hkf_result_t;
 
 /* A short English description of a hkf_result_t, for logs. Never NULL. */
@@ -87,15 +88,9 @@ const char *hkf_result_string(int result);
 #define HKF_MAX_LC_THETA 360     /* deg */
 #define HKF_MAX_GATE_SIGMA 1000
 #endif
-#define HKF_MAX_TIME 10          /* s: max_dt, coast_time, q_boost_time, noise_time, rate_damping_time */
+#define HKF_MAX_TIME 10          /* s: max_dt, coast_time, noise_time */
 #define HKF_MAX_NOISE_RISE 100   /* 1/s: noise_rise */
-#define HKF_MAX_MOTION_THRESHOLD 10000
-#define HKF_MAX_Q_BOOST 16384    /* q_boost */
-/* q_boost raises q to at most this, or to q itself where q is larger: the
- * same in every build (fixed point's whole range), so that a float, double
- * and fixed-point filter give the same output. (On the real clips a cap of
- * 1e6 instead changes the lag by 1-2 ms.) */
-#define HKF_MAX_BOOSTED_PROCESS_NOISE 16384 /* deg^2/s^3; calibrated: the angle's random walk, deg^2/s */
+#define HKF_MAX_RATE 1000        /* 1/s: start_rate, stop_rate */
 
 /* Measurements beyond this magnitude are rejected (HKF_ERROR_ANGLE_RANGE):
  * no head pose is that large, and it keeps every value inside the range of
@@ -143,7 +138,7 @@ typedef enum {
 } hkf_loop_closure_t;
 
 typedef struct {
-    hkf_real_t process_noise[3];   /* q per axis, deg^2/s^3 (white-noise acceleration density) */
+    hkf_real_t process_noise[3];   /* q per axis, deg^2/s^3: white-noise acceleration density (the moving head's) */
     hkf_noise_mode_t noise_mode;   /* how R is chosen */
     hkf_noise_curve_t noise[3];    /* e(x) per axis, deg */
     hkf_real_t r_const[3];         /* R per axis in HKF_NOISE_CONSTANT mode, deg^2 */
@@ -156,54 +151,38 @@ typedef struct {
     unsigned max_gate_rejections;  /* gated measurements in a row; the next gated one restarts the track */
     hkf_real_t coast_time;         /* s without a measurement before the track is LOST */
     hkf_real_t max_dt;             /* s; a larger dt is rejected */
-    /* Motion-driven process noise (not in the paper; 0 = off, the paper's filter):
-     * q_eff = q (1 + q_boost m), where m is the excess of the normalised
-     * innovation y^2 / S over 1, low-passed with time constant q_boost_time.
-     * A still head (innovations as R predicts) keeps the small q, so a still
-     * output; a moving one (innovations beyond R) raises q, so little lag.
-     * m is updated after each accepted measurement, m += a (e - m) with
-     * a = dt / (dt + q_boost_time) and e = y^2 / S - 1 clamped to [0, 1e4];
-     * the boosted q is at most HKF_MAX_BOOSTED_PROCESS_NOISE (or q). */
-    hkf_real_t q_boost;
-    hkf_real_t q_boost_time;       /* s */
-    /* Noise calibration (not in the paper; noise_time 0 = off, the paper's filter).
-     * The filter measures each axis's frame-to-frame noise n from the measurements
-     * (the second difference d = z_k - 2 z_k-1 + z_k-2 cancels a constant-velocity
-     * motion, and E[d^2] = 6 n for white noise): d^2 / 6 low-passed with time
-     * constant noise_time gives the noise power; the estimate n follows the power
-     * down at once and up by at most a factor (1 + noise_rise dt) per step, so a
-     * head's motion (which raises the power) does not pass for noise.
-     * With it on, the two parts of R multiply (libhkf/src/hkf_filter.c):
-     *   R = n e(z) / e(mu)    n: this camera's noise; e(z) / e(mu): Eq. 8's
-     *                         dependence on the pose (1 at the curve's centre)
-     *   q = process_noise n   process_noise is then in 1/s^3 (per deg^2 of noise)
-     * and q_boost follows a motion detector on that basis: m, the innovation
-     * low-passed with time constant q_boost_time, against the spread it has when
-     * the head is still (S alpha / (2 - alpha)); beyond motion_threshold the
-     * excess e gives the angle a random walk of n q_boost e per s (q_boost is
-     * then in 1/s) for this step: the previous frame's excess in full, this
-     * frame's adding at most R (a one-frame blip is trusted about half);
-     * below still_threshold (the head still) the rate decays, with time
-     * constant rate_damping_time (0 = never) up to half of it and less and
-     * less above, so a stop does not overshoot; between the two the filter
-     * runs with its plain q. */
+    /* The motion adaptation (not in the paper; start_rate 0 = off, the paper's
+     * filter). Two models of each axis's motion over a step, mixed by how well
+     * each predicted the measurement (libhkf/src/hkf_two_models.h; docs/libhkf.md):
+     * HOLD, the head still (the angle holds, with a random walk of still_noise,
+     * the rate 0), and MOVE, the paper's constant velocity with process_noise.
+     * A still head starts to move at start_rate per s, a moving one stops at
+     * stop_rate per s. */
+    hkf_real_t still_noise;        /* deg^2/s: the still head's angle random walk */
+    hkf_real_t start_rate;         /* 1/s: how often a still head starts to move; 0 = off */
+    hkf_real_t stop_rate;          /* 1/s: how often a moving head stops */
+    /* Noise calibration (not in the paper; noise_time 0 = off, the paper's R).
+     * The filter measures each axis's frame-to-frame noise n from the
+     * measurements (the second difference d = z_k - 2 z_k-1 + z_k-2 cancels a
+     * constant-velocity motion, and E[d^2] = 6 n for white noise): d^2 / 6
+     * low-passed with time constant noise_time gives the noise power; the
+     * estimate n follows the power down at once and up by at most a factor
+     * (1 + noise_rise dt) per step, so a head's motion (which raises the power)
+     * does not pass for noise. R = n e(z) / e(mu): this camera's noise n, times
+     * Eq. 8's dependence on the pose (1 at the curve's centre). */
     hkf_real_t noise_time;         /* s */
     hkf_real_t noise_rise;         /* 1/s */
-    hkf_real_t motion_threshold;   /* in units of the still detector's variance */
-    hkf_real_t rate_damping_time;  /* s */
-    hkf_real_t still_threshold;    /* same units as motion_threshold */
 } hkf_settings_t;
 
 /* The defaults: the paper's adaptive R (Eq. 8, FSA-Net curves of Table I)
- * with noise calibration (noise_time 0.3 s, noise_rise 0.2 per s): q = 1.0 n
- * per s^3, the signed motion detector driving the angle's random walk
- * (q_boost 100 per s, q_boost_time 0.2 s, motion_threshold 128,
- * still_threshold 64), rate damping 0.1 s, loop closure off, gate off; chosen
- * leaving one real clip out at a time (docs/evaluation.md, "Noise calibration, one clip
- * left out"). */
+ * with noise calibration (noise_time 0.3 s, noise_rise 0.2 per s), the
+ * motion adaptation (process_noise 16000 deg^2/s^3 while moving, still_noise
+ * 0, start_rate 0.05 per s, stop_rate 16 per s), loop closure off, gate off;
+ * chosen on truth by construction (docs/evaluation.md, "Truth by
+ * construction"). */
 extern const hkf_settings_t hkf_default_settings;
 /* The paper's filter alone: adaptive R, loop closure (xi 0.618, theta 2 deg),
- * q 500 / 1000 / 500 deg^2/s^3, no calibration, q_boost or damping. */
+ * q 500 / 1000 / 500 deg^2/s^3, no calibration or motion adaptation. */
 extern const hkf_settings_t hkf_paper_settings;
 
 /* Noise curves of the paper's Table I, per axis (pitch, yaw, roll). Table I
@@ -266,7 +245,7 @@ typedef struct {
     hkf_real_t p00[HKF_LANES], p01[HKF_LANES], p11[HKF_LANES];
     hkf_real_t r[HKF_LANES];
     hkf_real_t center[HKF_LANES];
-    hkf_real_t motion[HKF_LANES];       /* m of q_boost: the low-passed innovation excess (calibrated: the low-passed innovation) */
+    hkf_real_t moving[HKF_LANES];       /* the motion adaptation's probability of MOVE */
     /* noise calibration (hkf_settings_t.noise_time) */
     hkf_real_t noise[HKF_LANES];        /* n: the frame-to-frame noise estimate, deg^2 */
     hkf_real_t noise_power[HKF_LANES];  /* d^2 / 6 low-passed, deg^2 */

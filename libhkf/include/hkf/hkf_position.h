@@ -46,6 +46,11 @@ enum { HKF_POSITION_X = 0, HKF_POSITION_Y = 1, HKF_POSITION_Z = 2 };
 #define HKF_MAX_POSITION_SCALE 1000    /* the largest R scale of one measurement */
 #define HKF_MAX_SPEED 10000            /* cm/s: the largest max_speed */
 #define HKF_POSITION_GATE_SIGMAS 3     /* the gate's allowance for noise, in sigmas of the innovation */
+/* The position's motion detector (its settings below; the angles have the motion adaptation of hkf.h). */
+#define HKF_MAX_MOTION_THRESHOLD 10000 /* motion_threshold, still_threshold */
+#define HKF_MAX_Q_BOOST 16384          /* q_boost, 1/s */
+/* The detector's walk and the calibrated q are at most this: the same in every build (fixed point's range). */
+#define HKF_MAX_BOOSTED_PROCESS_NOISE 16384 /* cm^2/s^3 */
 
 typedef struct {
     hkf_real_t process_noise[3];      /* q per axis: cm^2/s^3; calibrated: x n, 1/s^3 */
