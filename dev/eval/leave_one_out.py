@@ -46,20 +46,17 @@ NOISE_GOAL = 0.20       # the share changes by at most this with x1.5 and x2 noi
 MIN_STILL_PAIRS = 25
 MIN_MOVING = 40
 NOISE_FACTORS = [1.0, 1.5, 2.0]
-# hkf with noise calibration: every combination is one setting
+# hkf with noise calibration and the motion adaptation: every combination is one setting
 CALIBRATED = {
-    "process_noise": [1.0],                 # 1/s^3 (times the measured noise); 0.01-3 swept before, 1 won
-    "q_boost": [10, 30, 100],               # 1/s: the angle's random walk, n q_boost per unit of excess
-    "q_boost_time": [0.05, 0.1, 0.2],
-    "motion_threshold": [32, 64, 128, 256],
-    "still_threshold": [16, 32, 64],
-    "rate_damping_time": [0.1, 0.3, 1.0],
+    "process_noise": [4000, 8000, 16000],   # deg^2/s^3: MOVE's q (16384 is fixed point's limit)
+    "start_rate": [0.01, 0.03, 0.05, 0.1, 0.3],  # 1/s: how often a still head starts to move
+    "stop_rate": [4, 16, 64],               # 1/s: how often a moving head stops
+    "still_noise": [0],                     # deg^2/s: HOLD's random walk (0 won on truth)
     "loop_closure": ["off", "norm"],
 }
 CALIBRATED_FIXED = ["noise_time=0.3", "noise_rise=0.2", "noise_mode=adaptive"]
-# the defaults of hkf 0.1 (q_boost on the innovation's excess over Eq. 8's R, no calibration), for comparison
-PREVIOUS_DEFAULTS = ["noise_time=0", "process_noise=5 10 5", "q_boost=3000", "q_boost_time=0.05", "loop_closure=norm",
-                     "noise_mode=adaptive"]
+# the paper's filter (hkf_paper_settings), for comparison
+PAPER = ["noise_time=0", "process_noise=500 1000 500", "start_rate=0", "loop_closure=norm", "noise_mode=adaptive"]
 ONE_EURO_MIN_CUTOFF = [0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0]
 ONE_EURO_BETA = [0.0, 0.001, 0.003, 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 1.0, 2.0, 3.0]
 ACCELA_SMOOTHING = evaluate.ACCELA_SMOOTHING
@@ -255,7 +252,7 @@ def report(clips, grid, folder, build, types, work):
     noise_lines = ["Noise robustness: white noise added to the raw poses (frame noise x1.5 and x2 of the clip's "
                    "own); still jitter as a share of raw, and its largest change from x1.\n",
                    "| settings | clip | x1 | x1.5 | x2 | largest change |", "| --- | --- | ---: | ---: | ---: | ---: |"]
-    compared = (("defaults as shipped", []), ("hkf 0.1 defaults", PREVIOUS_DEFAULTS))
+    compared = (("defaults as shipped", []), ("the paper's filter", PAPER))
     shares = {label: {name: [] for name in names} for label, _ in compared}
     for i, name in enumerate(names):  # each noisy log made once, every setting run on it
         c = clips[name]

@@ -325,6 +325,71 @@ def report(rows, clips):
     return text
 
 
+FRONTIER_SHARES = [0.08, 0.10, 0.125, 0.15, 0.20, 0.25]  # still jitter as a share of raw's
+FRONTIER_FAMILIES = [(evaluate.TWO_MODELS_NAME, "C3", "o"), ("1 euro", "C0", "s"), ("hkf adaptive R", "C2", "^")]
+
+
+def front_points(pooled, name):
+    """(jitter, RMSE moving) of a family's settings that no other of its settings beats on both."""
+    points = sorted((p["jitter"], p["rmse_moving"]) for p in pooled if p["filter"] == name and np.isfinite(p["rmse_moving"]))
+    front, best = [], float("inf")
+    for jitter, rmse in points:
+        if rmse < best:
+            front.append((jitter, rmse))
+            best = rmse
+    return front
+
+
+def frontier_report(groups):
+    """The jitter-RMSE frontier: per group of clips, each family's best moving RMSE at a still jitter of at most
+    each share of raw's, and hkf's ratio to the 1 euro filter's there."""
+    lines = ["### The jitter-RMSE frontier: the best moving RMSE (deg) at a still jitter of at most a share of raw's", "",
+             "| clips | filter | " + " | ".join(f"<= {100 * s:g} %" for s in FRONTIER_SHARES) + " |",
+             "| --- | --- | " + " | ".join("---:" for _ in FRONTIER_SHARES) + " |"]
+    for label, pooled in groups:
+        raw = next(p for p in pooled if p["filter"] == "raw")
+        best = {}
+        for name, _, _ in FRONTIER_FAMILIES:
+            row = []
+            for share in FRONTIER_SHARES:
+                fits = [p["rmse_moving"] for p in pooled if p["filter"] == name and p["jitter"] <= share * raw["jitter"]]
+                row.append(min(fits) if fits else float("nan"))
+            best[name] = row
+            lines.append(f"| {label} | {name} | " + " | ".join("-" if np.isnan(v) else f"{v:.2f}" for v in row) + " |")
+        ratio = [a / b if np.isfinite(a) and np.isfinite(b) else float("nan")
+                 for a, b in zip(best[evaluate.TWO_MODELS_NAME], best["1 euro"])]
+        lines.append(f"| {label} | hkf / 1 euro | " + " | ".join("-" if np.isnan(v) else f"**{v:.2f}**" for v in ratio) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def plot_frontier(groups, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(groups), figsize=(6.5 * len(groups), 4.6), squeeze=False)
+    for ax, (label, pooled) in zip(axes[0], groups):
+        raw = next(p for p in pooled if p["filter"] == "raw")
+        for name, colour, marker in FRONTIER_FAMILIES:
+            cloud = [(p["jitter"] / raw["jitter"], p["rmse_moving"]) for p in pooled if p["filter"] == name]
+            ax.plot([c[0] for c in cloud], [c[1] for c in cloud], marker, color=colour, alpha=0.18, ms=4)
+            front = front_points(pooled, name)
+            ax.plot([j / raw["jitter"] for j, _ in front], [r for _, r in front], "-" + marker, color=colour, ms=4,
+                    label=f"{name} (front)")
+        mine = next(p for p in pooled if p["filter"] == evaluate.DEFAULTS_NAME)
+        ax.plot([mine["jitter"] / raw["jitter"]], [mine["rmse_moving"]], "*", color="k", ms=14, label="hkf defaults")
+        ax.axvline(0.25, color="0.5", ls=":", lw=1)
+        ax.set_xlim(0, 0.6)
+        ax.set_ylim(0, 3.0)
+        ax.set_xlabel("still jitter, share of raw's")
+        ax.set_ylabel("roll RMSE on moving frames, deg")
+        ax.set_title(label)
+        ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def moving_report(moving_clips, rows_by_clip, chosen):
     lines = ["### Real-motion variant: whole real clips turned along a trajectory", "",
              "| clip | frames | reference error (RMS of raw - its low-pass, unturned clip) | raw RMSE moving | "
@@ -404,6 +469,12 @@ def main():
         writer.writeheader()
         writer.writerows(rows)
     text = report([r for r in rows if r["kind"] == "still frame"], clips)
+    held_names = {c.name for c in clips if c.source not in evaluate.TUNING_CLIPS}
+    tuned_names = {c.name for c in clips if c.source in evaluate.TUNING_CLIPS}
+    groups = [(label, pool([r for r in rows if r["clip"] in names]))
+              for label, names in (("tuning clips", tuned_names), ("held out", held_names)) if names]
+    text += "\n" + frontier_report(groups)
+    plot_frontier(groups, os.path.join(out, "truth", "truth_frontier.png"))
     held = [c for c in clips if c.source not in evaluate.TUNING_CLIPS] or clips
     pooled = pool([r for r in rows if r["clip"] in {c.name for c in held}])
     defaults = next(p for p in pooled if p["filter"] == evaluate.DEFAULTS_NAME)
