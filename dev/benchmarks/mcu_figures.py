@@ -129,7 +129,7 @@ def main():
           "presets are dropped there. Stack: own frame + deepest callee, from "
           "-fcallgraph-info=su; memcpy is the firmware's own and not counted. Instructions: qemu -icount, "
           "SysTick calibrated on a loop of known length; with the paper's settings (hkf_paper_settings) and, in brackets, "
-          "the defaults (q_boost on). Cycles: Cortex-M4 only, the instructions hkf_update executes "
+          "the defaults (noise calibration and the motion adaptation). Cycles: Cortex-M4 only, the instructions hkf_update executes "
           "(qemu, one at a time) priced by the Cortex-M4 TRM, low..high for what the pipeline decides (branch "
           "refill 1-3, load/store pipelining). Error: the largest angle difference over the 448 frames of d10.mp4; "
           "fixed point against the double build fed the same Q16.16 input.)")

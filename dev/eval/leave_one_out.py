@@ -48,13 +48,13 @@ MIN_MOVING = 40
 NOISE_FACTORS = [1.0, 1.5, 2.0]
 # hkf with noise calibration and the motion adaptation: every combination is one setting
 CALIBRATED = {
-    "process_noise": [4000, 8000, 16000],   # deg^2/s^3: MOVE's q (16384 is fixed point's limit)
-    "start_rate": [0.01, 0.03, 0.05, 0.1, 0.3],  # 1/s: how often a still head starts to move
-    "stop_rate": [4, 16, 64],               # 1/s: how often a moving head stops
-    "still_noise": [0],                     # deg^2/s: HOLD's random walk (0 won on truth)
+    "process_noise": [4000, 16000],         # deg^2/s^3: MOVE's q (16384 is fixed point's limit)
+    "start_rate": [0.01, 0.05, 0.3],        # 1/s: how often a still head starts to move
+    "stop_rate": [16, 64],                  # 1/s: how often a moving head stops
+    "r_min": [0.01, 0.1, 0.2, 0.3],         # deg^2: R's floor (the calibrated n reads a clip's colored noise low)
     "loop_closure": ["off", "norm"],
 }
-CALIBRATED_FIXED = ["noise_time=0.3", "noise_rise=0.2", "noise_mode=adaptive"]
+CALIBRATED_FIXED = ["noise_time=0.3", "noise_rise=0.2", "noise_mode=adaptive", "still_noise=0"]
 # the paper's filter (hkf_paper_settings), for comparison
 PAPER = ["noise_time=0", "process_noise=500 1000 500", "start_rate=0", "loop_closure=norm", "noise_mode=adaptive"]
 ONE_EURO_MIN_CUTOFF = [0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0]
@@ -161,6 +161,8 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "eval"))
+    parser.add_argument("--baseline", metavar="BUILD",
+                        help="another build (e.g. of the last release) whose hkf-filter defaults are compared per clip")
     args = parser.parse_args()
     build, out = os.path.abspath(args.build), os.path.abspath(args.out)
     types = os.path.join(build, "lcmtypes", "python")
@@ -170,11 +172,16 @@ def main():
     work = os.path.join(folder, "work")
     os.makedirs(work, exist_ok=True)
     grid = calibrated_grid()
-    clips = measure_all(build, out, types, work, grid)
+    baseline = os.path.abspath(args.baseline) if args.baseline else None
+    if baseline and not os.path.exists(os.path.join(baseline, "tools", "hkf-filter")):
+        evaluate.fail(f"no {baseline}/tools/hkf-filter: build the baseline first")
+    clips = measure_all(build, out, types, work, grid, baseline)
     report(clips, grid, folder, build, types, work)
+    if baseline:
+        baseline_report(clips, baseline, folder)
 
 
-def measure_all(build, out, types, work, grid):
+def measure_all(build, out, types, work, grid, baseline=None):
     """Per clip: its raw log and poses, the raw, hkf (every grid setting and the defaults), 1 euro and Accela metrics."""
     clips = {}
     for path in evaluate.clips():
@@ -188,6 +195,8 @@ def measure_all(build, out, types, work, grid):
         clip["hkf"] = [evaluate.measure(t, valid, z, hkf_output(build, raw, work, utime, options))
                        for _, options in grid]
         clip["defaults"] = evaluate.measure(t, valid, z, hkf_output(build, raw, work, utime, []))
+        if baseline:
+            clip["baseline"] = evaluate.measure(t, valid, z, hkf_output(baseline, raw, work, utime, []))
         clips[name] = clip
         log(f"{name}: {len(grid)} hkf settings, {len(clip['euro'])} 1 euro, {len(clip['accela'])} Accela "
             f"({time.time() - started:.0f} s)")
@@ -280,6 +289,24 @@ def report(clips, grid, folder, build, types, work):
         f.write(text)
     print(text)
     plot(clips, names, loo_points, os.path.join(folder, "loo.png"))
+
+
+def baseline_report(clips, baseline, folder):
+    """The defaults against another build's defaults on the same raw logs, per clip with still frames."""
+    lines = [f"The defaults against {baseline}'s hkf-filter defaults, on the same raw logs:\n",
+             "| clip | raw jitter | baseline: jitter, share | baseline lag | defaults: jitter, share | defaults lag |",
+             "| --- | ---: | ---: | ---: | ---: | ---: |"]
+    for name, c in clips.items():
+        if np.isnan(c["raw"]["jitter"]):
+            continue
+        b, m = c["baseline"], c["defaults"]
+        lines.append(f"| {name} | {c['raw']['jitter']:.3f} deg | {b['jitter']:.3f} deg, "
+                     f"{100 * b['jitter'] / c['raw']['jitter']:.0f} % | {b['lag_ms']:.0f} ms | {m['jitter']:.3f} deg, "
+                     f"{100 * m['jitter'] / c['raw']['jitter']:.0f} % | {m['lag_ms']:.0f} ms |")
+    text = "\n".join(lines) + "\n"
+    with open(os.path.join(folder, "baseline.md"), "w") as f:
+        f.write(text)
+    print(text)
 
 
 def plot(clips, names, loo_points, path):

@@ -16,7 +16,7 @@
  *   since the last accepted measurement. Once that time reaches coast_time the
  *   track is LOST: the rate and its covariance are zeroed, and later predicts
  *   hold the angle (and its variance) still. The next measurement re-acquires:
- *   the track restarts from it as from the first one, keeping the centre.
+ *   the track restarts from it as from the first one, keeping the center.
  *   A measurement the innovation gate rejects counts as a missing one.
  *
  * Noise calibration (settings.noise_time > 0, not in the paper; hkf.h): the
@@ -183,20 +183,20 @@ static HKF_ALWAYS_INLINE int loop_closure(const hkf_filter_t *restrict f, const 
 
 /* Noise calibration, R = n e(z) / e(mu): the mode's R at the measured angles
  * (Eq. 8, clamped: the pose-dependent factor) scaled by the measured noise n
- * over the same R at the curve's centre, clamped again. */
+ * over the same R at the curve's center, clamped again. */
 static HKF_ALWAYS_INLINE void calibrated_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t r[restrict HKF_LANES])
 {
     const hkf_real_t low = HKF_SETTINGS(f)->r_min, high = HKF_SETTINGS(f)->r_max;
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        r[a] = clamp(hkf_divide(hkf_mul(r[a], f->noise[a]), f->r_centre[a]), low, high);
+        r[a] = clamp(hkf_divide(hkf_mul(r[a], f->noise[a]), f->r_center[a]), low, high);
     }
 }
 
 /* Paper Eq. 8, amplitude form:  e(x) = tau - lambda exp(-(x - mu)^2 / (2 sigma^2)).
  * The paper prints Eq. 8 with the normalising factor 1/(sqrt(2 pi) sigma),
  * but its Table I only makes sense without it (FSA-Net yaw: 7.64 - 4.11 =
- * 3.53 deg at the centre, ~7.6 deg at +-90 deg; normalised, pitch R would be a
+ * 3.53 deg at the center, ~7.6 deg at +-90 deg; normalised, pitch R would be a
  * near-constant 315). Written as (tau - lambda) + lambda (1 - exp(.)) so the
  * roll curves (tau, lambda ~ 1e5) do not cancel catastrophically in float;
  * the rise lambda (1 - exp(.)) is the math layer's (hkf_math.h). */
@@ -363,7 +363,7 @@ void hkf_reset(hkf_filter_t *f)
         f->noise_power[a] = f->noise[a];
         f->last_z[a] = 0;
         f->last_step[a] = 0;
-        f->r_centre[a] = hkf_divisor(f->noise[a]);
+        f->r_center[a] = hkf_divisor(f->noise[a]);
     }
     f->noise_history = 0u;
     if (f->center_source != CENTER_EXPLICIT) {
@@ -589,7 +589,7 @@ int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], co
     if (result != HKF_OK) {
         return result;
     }
-    /* the second as a sequential update: Eq. 9 against the same centre, Eq. 8 with its own curves */
+    /* the second as a sequential update: Eq. 9 against the same center, Eq. 8 with its own curves */
     if (loop_closure(f, z2, y)) {
         first.flags |= HKF_FLAG_LOOP_CLOSURE;
     }

@@ -58,7 +58,7 @@ static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabs(x); }  /* a bit mas
  * e^g = 1 + q(g), q a degree-6 Taylor polynomial (truncation < 1.2e-7
  * relative, about float's rounding). Then 1 - exp(-u) = (1 - 2^n) - 2^n q;
  * for small u, n = 0 and that is -q, computed directly without cancelling,
- * so the roll curves (lambda ~ 1e5) keep their digits near their centre. */
+ * so the roll curves (lambda ~ 1e5) keep their digits near their center. */
 typedef struct {
     float two_n, q; /* exp(-u) = 2^n (1 + q) */
 } hkf_exp_parts_t;
@@ -165,7 +165,7 @@ static inline hkf_real_t hkf_wrap180(hkf_real_t x)
  * arithmetic (GCC and Clang define them so).
  *
  * Range analysis (limits from hkf.h, which hkf_init enforces):
- *   angles      |z| <= 3600; yaw wrapped to +-180; centre and mu likewise.
+ *   angles      |z| <= 3600; yaw wrapped to +-180; center and mu likewise.
  *               Differences |z - x| <= 7200 fit, and squares of them
  *               saturate only beyond 181 deg (loop closure and the gate
  *               compare squares against theta^2 <= 180^2 = 32400 and gate^2).
@@ -184,7 +184,7 @@ static inline hkf_real_t hkf_wrap180(hkf_real_t x)
  *   Eq. 8       in floor / curvature form (hkf.h; curvature in Q8.24): the rise above the floor
  *               is curvature u^2 g(v) with v = u^2 / (2 sigma^2) and
  *               g(v) = (1 - e^-v) / v for v < 1 (a polynomial in Q2.30, so
- *               the small rises near the centre keep their digits), and
+ *               the small rises near the center keep their digits), and
  *               lambda (1 - e^-v) for v >= 1 (e^-v = (e^-(v/32))^32, the
  *               same polynomial then five squarings). A rise that saturates
  *               (|rise| >= 32768 > 16384 + |floor|) is beyond r_max either way.

@@ -253,7 +253,7 @@ static void noise_estimate_update(hkf_position_filter_t *f, const hkf_real_t z[3
     f->history = 2;
 }
 
-/* A new track at the measurement z: rate 0, P = diag(R, p0_rate); the centre there if none is set. */
+/* A new track at the measurement z: rate 0, P = diag(R, p0_rate); the center there if none is set. */
 static void start_track(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale,
                         hkf_position_output_t *out)
 {

@@ -9,7 +9,7 @@
 /* Paper Table I, amplitude form of Eq. 8, as {tau, lambda, mu, sigma}.
  * Roll: Table I gives tau and lambda as 3.29e5 (FSA-Net) and 9.35e4
  * (Hopenet) to three digits, so tau - lambda is lost; lambda is set so that
- * tau - lambda equals the same model's pitch centre error. */
+ * tau - lambda equals the same model's pitch center error. */
 #define HKF_FSANET_PITCH HKF_NOISE_CURVE(315.43, 312.07, -5.19, 132.41)
 #define HKF_FSANET_YAW   HKF_NOISE_CURVE(7.64, 4.11, -0.35, 30.87)
 #define HKF_FSANET_ROLL  HKF_NOISE_CURVE(329000.0, 328996.64, -0.562, 4440.0)
@@ -24,7 +24,7 @@ const hkf_noise_curve_t hkf_noise_hopenet[3] = {
 
 /* The paper's filter (adaptive R with the FSA-Net curves of Table I) as the
  * base of both setting sets:
- * - r_const: the FSA-Net curves' error at the centre (Table I), so constant
+ * - r_const: the FSA-Net curves' error at the center (Table I), so constant
  *   and adaptive R differ only in their dependence on the angle.
  * - R clamp: 0.01 deg^2 keeps S > 0 (and is the least n); 1e4 deg^2 is a
  *   100 deg standard deviation, i.e. "ignore".
@@ -36,7 +36,6 @@ const hkf_noise_curve_t hkf_noise_hopenet[3] = {
     .noise_mode = HKF_NOISE_ADAPTIVE,                                           \
     .noise = {HKF_FSANET_PITCH, HKF_FSANET_YAW, HKF_FSANET_ROLL},               \
     .r_const = {HKF_REAL(3.6), HKF_REAL(3.53), HKF_REAL(3.36)},                 \
-    .r_min = HKF_REAL(0.01),                                                    \
     .r_max = HKF_REAL(10000.0),                                                 \
     .lc_xi = HKF_REAL(0.618),                                                   \
     .lc_theta = HKF_REAL(2.0),                                                  \
@@ -58,6 +57,7 @@ const hkf_noise_curve_t hkf_noise_hopenet[3] = {
 const hkf_settings_t hkf_default_settings = {
     HKF_PAPER_BASE,
     .process_noise = {HKF_REAL(16000.0), HKF_REAL(16000.0), HKF_REAL(16000.0)},
+    .r_min = HKF_REAL(0.2),
     .loop_closure = HKF_LOOP_CLOSURE_OFF,
     .still_noise = HKF_REAL(0.0),
     .start_rate = HKF_REAL(0.05),
@@ -72,6 +72,7 @@ const hkf_settings_t hkf_default_settings = {
 const hkf_settings_t hkf_paper_settings = {
     HKF_PAPER_BASE,
     .process_noise = {HKF_REAL(500.0), HKF_REAL(1000.0), HKF_REAL(500.0)},
+    .r_min = HKF_REAL(0.01),
     .loop_closure = HKF_LOOP_CLOSURE_NORM,
 };
 

@@ -232,9 +232,9 @@ private:
             P_(a + 3, a + 3) = D(s_.p0_rate);
             r_(a) = noise(a, a == 1 ? wrap180(z(a)) : z(a)); /* Eq. 8 at the wrapped yaw */
         }
-        if (!centred_) {
-            centre_ = x_.head<3>();
-            centred_ = true;
+        if (!centerd_) {
+            center_ = x_.head<3>();
+            centerd_ = true;
         }
         if (!started_) { /* n starts at e(mu), and is kept across restarts */
             for (int a = 0; a < 3; ++a) {
@@ -282,7 +282,7 @@ private:
 
     Vec3 loopClosure(const Vec3 &z) const
     {
-        Vec3 d = z - centre_;
+        Vec3 d = z - center_;
         d(1) = wrap180(d(1));
         Vec3 zc = z;
         const double theta = D(s_.lc_theta), xi = D(s_.lc_xi);
@@ -291,7 +291,7 @@ private:
                               : s_.loop_closure == HKF_LOOP_CLOSURE_PER_AXIS ? std::fabs(d(a)) <= theta
                                                                              : false;
             if (inside) {
-                zc(a) = centre_(a) + xi * d(a); /* Eq. 9: xi z + (1 - xi) kappa */
+                zc(a) = center_(a) + xi * d(a); /* Eq. 9: xi z + (1 - xi) kappa */
             }
         }
         zc(1) = wrap180(zc(1));
@@ -300,7 +300,7 @@ private:
 
     double noise(int a, double x) const { return noise(s_, a, x); }
 
-    /* Noise calibration (hkf.h): on, the curves' R at x times n over the first model's R at its centre */
+    /* Noise calibration (hkf.h): on, the curves' R at x times n over the first model's R at its center */
     bool calibrated() const { return D(s_.noise_time) > 0; }
     double calibratedR(const hkf_settings_t &curves, int a, double x) const
     {
@@ -419,11 +419,11 @@ private:
     Vec6 x_ = Vec6::Zero();
     Mat6 P_ = Mat6::Zero();
     Vec3 r_ = Vec3::Zero();
-    Vec3 centre_ = Vec3::Zero();
+    Vec3 center_ = Vec3::Zero();
     Vec3 moving_ = Vec3::Zero(); /* the probability of MOVE per axis */
     Vec3 noise_ = Vec3::Zero(), power_ = Vec3::Zero(), lastZ_ = Vec3::Zero(), lastStep_ = Vec3::Zero();
     int history_ = 0;
-    bool started_ = false, centred_ = false;
+    bool started_ = false, centerd_ = false;
     double sinceMeasurement_ = 0.0;
     unsigned rejections_ = 0;
     int status_ = HKF_STATUS_UNINITIALIZED;
@@ -573,7 +573,7 @@ struct Mode {
     int loop_closure;
     float gate;
     float lc_theta;
-    bool expect_closures; /* the random walk rarely comes within 2 deg of the centre */
+    bool expect_closures; /* the random walk rarely comes within 2 deg of the center */
     float start_rate = 0.0f; /* the motion adaptation, with the defaults' still_noise and stop_rate */
     bool defaults = false; /* all of hkf_default_settings (its q and motion adaptation too) */
     bool pair = false;     /* hkf_update_pair, the second model with Hopenet's curves */

@@ -4,9 +4,8 @@
  * filtered with the paper's settings and then with the defaults, each against
  * the x86 double build's output of the same sequence with the same settings
  * (sequence.h, written by make_mcu_sequence). Prints the largest angle error
- * per axis and exits 0 when all are within their tolerances (the defaults'
- * is wider: q_boost feeds y^2 / S back into q, which amplifies the rounding
- * differences of the types). In the fixed-point build everything here is integer
+ * per axis and exits 0 when all are within their tolerances (the paper's
+ * settings' and the defaults', tests/CMakeLists.txt). In the fixed-point build everything here is integer
  * (Q16.16 input, errors in Q16.16, printed as micro-degrees), so the
  * program links no floating-point routine at all. Also counts hkf_update's
  * instructions (instruction_counter.h).

@@ -5,7 +5,7 @@
  * Estimation with Adaptive Kalman Filter" (Hu, Lv et al.): a constant-velocity
  * Kalman filter over head (pitch, yaw, roll) whose observation noise R follows
  * an inverted Gaussian of the measured angle (Eq. 8), with a "loop closure"
- * that pulls measurements near the driver's centre pose onto it (Eq. 9).
+ * that pulls measurements near the driver's center pose onto it (Eq. 9).
  *
  * Pure C99, no malloc, no stdio, no mutable globals. The caller owns the
  * hkf_filter_t; all its members are private. Units: degrees and seconds.
@@ -47,9 +47,9 @@ typedef enum {
     HKF_ERROR_SETTING_PROCESS_NOISE = -25, /* a process_noise outside [0, HKF_MAX_PROCESS_NOISE] */
     HKF_ERROR_SETTING_LOOP_CLOSURE = -26,  /* loop_closure not a hkf_loop_closure_t */
     HKF_ERROR_SETTING_LC_XI = -27,       /* not 0 <= lc_xi <= 1 */
-    HKF_ERROR_SETTING_LC_THETA = -28,    /* lc_theta outside [0, 360] */
+    HKF_ERROR_SETTING_LC_THETA = -28,    /* lc_theta outside [0, HKF_MAX_LC_THETA] */
     HKF_ERROR_SETTING_P0 = -29,          /* p0_angle or p0_rate outside (0, HKF_MAX_VARIANCE] */
-    HKF_ERROR_SETTING_GATE = -30,        /* gate_sigma outside [0, 1000], or gate on with max_gate_rejections 0 */
+    HKF_ERROR_SETTING_GATE = -30,        /* gate_sigma outside [0, HKF_MAX_GATE_SIGMA], or gate on with max_gate_rejections 0 */
     HKF_ERROR_SETTING_COAST_TIME = -31,  /* coast_time outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_MAX_DT = -32,      /* max_dt outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
@@ -133,8 +133,8 @@ typedef enum {
 
 typedef enum {
     HKF_LOOP_CLOSURE_OFF = 0,
-    HKF_LOOP_CLOSURE_NORM = 1,    /* the paper: |z - centre| over the three axes <= lc_theta */
-    HKF_LOOP_CLOSURE_PER_AXIS = 2 /* each axis on its own: |z_a - centre_a| <= lc_theta */
+    HKF_LOOP_CLOSURE_NORM = 1,    /* the paper: |z - center| over the three axes <= lc_theta */
+    HKF_LOOP_CLOSURE_PER_AXIS = 2 /* each axis on its own: |z_a - center_a| <= lc_theta */
 } hkf_loop_closure_t;
 
 typedef struct {
@@ -169,7 +169,7 @@ typedef struct {
      * estimate n follows the power down at once and up by at most a factor
      * (1 + noise_rise dt) per step, so a head's motion (which raises the power)
      * does not pass for noise. R = n e(z) / e(mu): this camera's noise n, times
-     * Eq. 8's dependence on the pose (1 at the curve's centre). */
+     * Eq. 8's dependence on the pose (1 at the curve's center). */
     hkf_real_t noise_time;         /* s */
     hkf_real_t noise_rise;         /* 1/s */
 } hkf_settings_t;
@@ -187,8 +187,8 @@ extern const hkf_settings_t hkf_paper_settings;
 
 /* Noise curves of the paper's Table I, per axis (pitch, yaw, roll). Table I
  * prints roll to three significant digits, which loses tau - lambda (the
- * error at the centre); these presets set the roll centre error to that
- * model's pitch centre error (3.36 deg FSA-Net, 3.70 deg Hopenet). */
+ * error at the center); these presets set the roll center error to that
+ * model's pitch center error (3.36 deg FSA-Net, 3.70 deg Hopenet). */
 extern const hkf_noise_curve_t hkf_noise_fsanet[3];
 extern const hkf_noise_curve_t hkf_noise_hopenet[3];
 
@@ -206,7 +206,7 @@ typedef enum {
 } hkf_status_t;
 
 /* Bits of hkf_output_t.flags: what happened in this call. */
-#define HKF_FLAG_LOOP_CLOSURE 0x1u  /* Eq. 9 moved the measurement onto the centre */
+#define HKF_FLAG_LOOP_CLOSURE 0x1u  /* Eq. 9 moved the measurement onto the center */
 #define HKF_FLAG_GATED        0x2u  /* the innovation gate rejected the measurement */
 #define HKF_FLAG_REACQUIRED   0x4u  /* the track (re)started from this measurement */
 #define HKF_FLAG_EXTRAPOLATED 0x8u  /* hkf_extrapolate: a prediction, not a posterior */
@@ -251,7 +251,7 @@ typedef struct {
     hkf_real_t noise_power[HKF_LANES];  /* d^2 / 6 low-passed, deg^2 */
     hkf_real_t last_z[HKF_LANES];       /* the last measurement */
     hkf_real_t last_step[HKF_LANES];    /* the last measurement's step from the one before */
-    hkf_real_t r_centre[HKF_LANES];     /* e(mu), R at the curves' centre, as hkf_math.h's divisor */
+    hkf_real_t r_center[HKF_LANES];     /* e(mu), R at the curves' center, as hkf_math.h's divisor */
     unsigned noise_history;             /* measurements in a row behind last_z and last_step (0..2) */
     hkf_real_t time_since_measurement;
     unsigned gate_rejections;
@@ -264,7 +264,7 @@ typedef struct {
  * nothing (to change the settings, call hkf_init again). */
 int hkf_init(hkf_filter_t *f, const hkf_settings_t *s);
 
-/* Forgets the track (and a centre not set by hkf_set_center); keeps the settings. */
+/* Forgets the track (and a center not set by hkf_set_center); keeps the settings. */
 void hkf_reset(hkf_filter_t *f);
 
 /* One measurement z (deg) taken dt s after the previous call: predict, loop
@@ -280,13 +280,13 @@ int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output
  * own angles); everything else is the filter's. One predict, then z as
  * hkf_update takes it, then z2 as a sequential scalar update (loop closure
  * and gate as for z): for independent noise the same posterior as one update
- * with both stacked (H = [I; I], R = diag(R1, R2)). q_boost follows z's
- * innovations. out->r is the R of both, R1 R2 / (R1 + R2) (or of the one
+ * with both stacked (H = [I; I], R = diag(R1, R2)). The motion adaptation
+ * weighs its two models by z alone; z2 then corrects the merged state. out->r is the R of both, R1 R2 / (R1 + R2) (or of the one
  * accepted); HKF_FLAG_GATED: one of them was gated. On error (including a
  * bad `second`, checked as hkf_init checks settings) the filter is untouched.
  * Either z or z2 may be NULL (that model found no face this frame, or has not
  * run on it): then the other alone is taken, as hkf_update takes it but with
- * its own model's R (and q_boost follows it). Both NULL: an error.
+ * its own model's R (and the adaptation weighs by it). Both NULL: an error.
  * Costs a filter-sized temporary on the stack. */
 int hkf_update_pair(hkf_filter_t *f, const hkf_real_t z[3], const hkf_real_t z2[3], const hkf_settings_t *second,
                     hkf_real_t dt, hkf_output_t *out);
@@ -302,7 +302,7 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
 /* The current state, as the last update or predict left it. */
 int hkf_get_output(const hkf_filter_t *f, hkf_output_t *out);
 
-/* The loop-closure centre kappa: set it explicitly (it then survives
+/* The loop-closure center kappa: set it explicitly (it then survives
  * hkf_reset), or to the current estimate. By default the first measurement
  * sets it. */
 int hkf_set_center(hkf_filter_t *f, const hkf_real_t center[3]);

@@ -78,7 +78,7 @@ typedef struct {
     hkf_position_settings_t settings;
     hkf_real_t x[3], v[3];            /* cm, cm/s */
     hkf_real_t p00[3], p01[3], p11[3]; /* covariance of (x, v) per axis */
-    hkf_real_t center[3];             /* cm: the centre position (first measurement, or hkf_position_recenter) */
+    hkf_real_t center[3];             /* cm: the center position (first measurement, or hkf_position_recenter) */
     hkf_real_t noise[3];              /* cm^2: calibrated, the measured noise n per axis */
     hkf_real_t noise_power[3];        /* cm^2: the low-passed d^2 / 6 n follows */
     hkf_real_t motion[3];             /* cm: the detector's low-passed innovation */
@@ -87,7 +87,7 @@ typedef struct {
     int history;                      /* measurements in the history, 0-2 */
     unsigned gate_rejections;         /* measurements the gate refused in a row */
     int started;                      /* a measurement has started the track */
-    int centered;                     /* the centre is set (a restart keeps it; a reset clears it) */
+    int centered;                     /* the center is set (a restart keeps it; a reset clears it) */
 } hkf_position_filter_t;
 
 typedef struct {
@@ -105,15 +105,15 @@ void hkf_position_default_settings(hkf_position_settings_t *s);
 /* Checks the settings (HKF_ERROR_SETTING_*) and clears the track. */
 int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s);
 
-/* Forgets the track, the centre and the measured noise; the next measurement starts anew. */
+/* Forgets the track, the center and the measured noise; the next measurement starts anew. */
 void hkf_position_reset(hkf_position_filter_t *f);
 
-/* Forgets the track but keeps the centre and the measured noise (a new clock, a change of estimator). */
+/* Forgets the track but keeps the center and the measured noise (a new clock, a change of estimator). */
 void hkf_position_restart(hkf_position_filter_t *f);
 
 /* Predicts by dt (s) and takes the measurement z (cm) with R = r_scale x the
  * setting's R. The first measurement, or one after a gap beyond max_dt,
- * starts the track there (and sets the centre if none is set). A measurement
+ * starts the track there (and sets the center if none is set). A measurement
  * the gate refuses leaves the prediction and sets HKF_FLAG_GATED (HKF_OK). */
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out);
@@ -127,10 +127,10 @@ int hkf_position_predict(hkf_position_filter_t *f, hkf_real_t dt, hkf_position_o
  * grows with ahead (up to HKF_MAX_TIME, capped at HKF_MAX_VARIANCE). */
 int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, hkf_position_output_t *out);
 
-/* The centre := the current position (a recentre; with the angles', hkf_recenter). */
+/* The center := the current position (a recenter; with the angles', hkf_recenter). */
 int hkf_position_recenter(hkf_position_filter_t *f);
 
-/* The centre := the position hkf_position_extrapolate gives `ahead` s on (what was published then). */
+/* The center := the position hkf_position_extrapolate gives `ahead` s on (what was published then). */
 int hkf_position_recenter_at(hkf_position_filter_t *f, hkf_real_t ahead);
 
 #ifdef __cplusplus
