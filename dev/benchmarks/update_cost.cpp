@@ -282,7 +282,7 @@ int main(int argc, char **argv)
         return 1;
     }
     hkf_position_settings_t position_settings;
-    hkf_position_default_settings(&position_settings);
+    position_settings = hkf_position_default_settings;
     hkf_position_filter_t f_position;
     if (hkf_position_init(&f_position, &position_settings) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: hkf_position_init failed\n");

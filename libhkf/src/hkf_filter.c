@@ -429,7 +429,7 @@ static HKF_ALWAYS_INLINE void two_models_axes(hkf_filter_t *restrict f, const hk
                                               const hkf_real_t r[restrict HKF_LANES], hkf_real_t dt)
 {
     const hkf_settings_t *s = HKF_SETTINGS(f);
-    const hkf_two_model_step_t c = hkf_two_models_prepare(dt, s->start_rate, s->stop_rate, s->still_noise);
+    const hkf_two_model_step_t c = hkf_two_models_prepare(dt, s->start_rate, s->stop_rate, s->still_wander, s->p0_rate);
     hkf_hold_prior_t hold[HKF_LANES];
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {

@@ -241,6 +241,8 @@ uint32_t hkf_g30(uint32_t v); /* (1 - e^-v) / v for 0 <= v <= 1, Q2.30 */
 /* exp(-u) for u >= 0 and sqrt(x) for x >= 0, in Q16.16 (hkf_math_fixed.c). */
 hkf_real_t hkf_exp_neg(hkf_real_t u);
 hkf_real_t hkf_sqrt(hkf_real_t x);
+/* The motion adaptation's posterior mu' from its prior pi, d and r (hkf_two_models.h). */
+hkf_real_t hkf_two_models_posterior_q16(hkf_real_t pi, hkf_real_t d, hkf_real_t r);
 hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u);
 #endif /* HKF_REAL_FIXED */
 

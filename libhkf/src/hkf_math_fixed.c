@@ -114,14 +114,14 @@ hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
     }
 }
 
-/* exp(-u) = (e^-(u/16))^16: u/16 < 0.75 through g (e^-v = 1 - v g(v)), then four squarings; 0 from
- * u >= 12 on (e^-12 is below half a unit). */
-hkf_real_t hkf_exp_neg(hkf_real_t u)
+/* exp(-u) = (e^-(u/16))^16 in Q2.30: u/16 < 1 through g (e^-v = 1 - v g(v)), then four squarings; 0 from
+ * u >= 16 on (e^-16 is 120 units). */
+static uint32_t exp_neg_q30(hkf_real_t u)
 {
     uint64_t e;
     uint32_t v;
     int k;
-    if (u >= (12 << 16)) {
+    if (u >= (16 << 16)) {
         return 0;
     }
     v = (uint32_t)(u > 0 ? u : 0) << 10; /* u / 16 in Q2.30 */
@@ -129,7 +129,48 @@ hkf_real_t hkf_exp_neg(hkf_real_t u)
     for (k = 0; k < 4; ++k) {
         e = (e * e) >> 30;
     }
-    return (hkf_real_t)((e + 8192u) >> 14);
+    return (uint32_t)e;
+}
+
+/* exp(-u) in Q16.16 (e^-12 is below half a unit). */
+hkf_real_t hkf_exp_neg(hkf_real_t u)
+{
+    return (hkf_real_t)((exp_neg_q30(u) + 8192u) >> 14);
+}
+
+/* The motion adaptation's posterior (hkf_two_models.h), mu' = move / (move + hold) with move = pi r e^min(d, 0)
+ * and hold = (1 - pi) e^-max(d, 0), formed in 64 bits with e in Q2.30: where the two models are about even,
+ * pi (~ start_rate dt) and e are both small, and a Q16.16 e would keep a few digits (1e-3 is 66 units). */
+hkf_real_t hkf_two_models_posterior_q16(hkf_real_t pi, hkf_real_t d, hkf_real_t r)
+{
+    const uint64_t e = exp_neg_q30(d > 0 ? d : -d);
+    const uint64_t p = (uint64_t)(pi > 0 ? (pi < 65536 ? pi : 65536) : 0);
+    const uint64_t ratio = (uint64_t)(r > 0 ? (r < (256 << 16) ? r : (256 << 16)) : 0); /* <= 256 */
+    uint64_t move = p * ratio, hold = (65536 - p) << 16; /* Q32: <= 2^40, <= 2^32 */
+    uint64_t mu = 0;
+    int k;
+    if (d > 0) {
+        hold = (hold * e) >> 30;
+    } else {
+        move = ((move >> 8) * e) >> 22;
+    }
+    while (move + hold >= ((uint64_t)1 << 31)) {
+        move >>= 1;
+        hold >>= 1;
+    }
+    if (move + hold == 0) {
+        return pi;
+    }
+    hold += move; /* the sum, > 0 and < 2^31; mu' = move / sum, bit by bit (no divide instruction on the M0) */
+    for (k = 0; k < 17; ++k) {
+        mu <<= 1;
+        if (move >= hold) {
+            move -= hold;
+            mu |= 1u;
+        }
+        move <<= 1;
+    }
+    return (hkf_real_t)(mu + (move >= hold)); /* rounded */
 }
 
 /* sqrt(x) in Q16.16: the integer root of x 2^16, digit by digit (rounded down). */

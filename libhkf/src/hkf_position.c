@@ -11,35 +11,27 @@
 #include "hkf_math.h"
 #include "hkf_motion.h"
 
-void hkf_position_default_settings(hkf_position_settings_t *s)
-{
-    int a;
-    if (s == NULL) {
-        return;
-    }
-    /* chosen on truth by construction (dev/eval/position_truth.py, docs/estimator.md "Head position"): the
-     * least moving z error whose still z jitter is <= 0.025 cm a frame at 60 cm (the goal, 0.05, with a
-     * margin for noisier cameras), on d0 d3 d9 d11 d14;
-     * the detector's constants are the angles' (hkf_default_settings) */
-    for (a = 0; a < 3; ++a) {
-        s->process_noise[a] = HKF_REAL(3.0);  /* x n, 1/s^3 */
-        s->measurement_noise[a] = a == HKF_POSITION_Z ? HKF_REAL(0.05) : HKF_REAL(0.002);  /* cm^2: n's start */
-    }
-    s->p0_rate = HKF_REAL(100.0);  /* (cm/s)^2 */
-    s->max_dt = HKF_REAL(0.5);
-    s->noise_time = HKF_REAL(0.3);
-    s->noise_rise = HKF_REAL(0.2);
-    s->noise_floor = HKF_REAL_FROM(HKF_MIN_VARIANCE);
-    s->q_boost = HKF_REAL(100.0);
-    s->q_boost_time = HKF_REAL(0.2);
-    s->motion_threshold = HKF_REAL(128.0);
-    s->rate_damping_time = HKF_REAL(0.1);
-    s->still_threshold = HKF_REAL(64.0);
-    /* a head leans at well under 1 m/s; a mesh that misreads the face's scale, or a forged message, jumps
-     * further in one step */
-    s->max_speed = HKF_REAL(300.0);  /* cm/s */
-    s->max_gate_rejections = 5u;     /* 6 frames (0.2 s at 30 fps) that agree with each other restart the track */
-}
+/* Chosen on truth by construction (dev/eval/position_truth.py, docs/estimator.md "Head position"): the
+ * least moving z error whose still z jitter is <= 0.025 cm a frame at 60 cm (the goal, 0.05, with a margin
+ * for noisier cameras), on d0 d3 d9 d11 d14. A head leans at well under 1 m/s; a mesh that misreads the
+ * face's scale, or a forged message, jumps further in one step (max_speed); 6 refused frames that agree
+ * with each other (0.2 s at 30 fps) restart the track. */
+const hkf_position_settings_t hkf_position_default_settings = {
+    .process_noise = {HKF_REAL(3.0), HKF_REAL(3.0), HKF_REAL(3.0)},          /* x n, 1/s^3 */
+    .measurement_noise = {HKF_REAL(0.002), HKF_REAL(0.002), HKF_REAL(0.05)}, /* cm^2: n's start */
+    .p0_rate = HKF_REAL(100.0),                                              /* (cm/s)^2 */
+    .max_dt = HKF_REAL(0.5),
+    .noise_time = HKF_REAL(0.3),
+    .noise_rise = HKF_REAL(0.2),
+    .noise_floor = HKF_REAL_FROM(HKF_MIN_VARIANCE),
+    .q_boost = HKF_REAL(100.0),
+    .q_boost_time = HKF_REAL(0.2),
+    .motion_threshold = HKF_REAL(128.0),
+    .rate_damping_time = HKF_REAL(0.1),
+    .still_threshold = HKF_REAL(64.0),
+    .max_speed = HKF_REAL(300.0), /* cm/s */
+    .max_gate_rejections = 5u,
+};
 
 static int in_range(hkf_real_t x, hkf_real_t low, hkf_real_t high) { return hkf_is_finite(x) && x >= low && x <= high; }
 
@@ -309,14 +301,14 @@ static int check_measurement(const hkf_real_t z[3], hkf_real_t r_scale, hkf_real
             return HKF_ERROR_NON_FINITE;
         }
         if (hkf_abs(z[a]) > HKF_REAL_FROM(HKF_MAX_ABS_POSITION)) {
-            return HKF_ERROR_ANGLE_RANGE;
+            return HKF_ERROR_POSITION_RANGE;
         }
     }
     if (!hkf_is_finite(r_scale) || !hkf_is_finite(dt)) {
         return HKF_ERROR_NON_FINITE;
     }
     if (!(r_scale >= HKF_REAL(1.0) && r_scale <= HKF_REAL_FROM(HKF_MAX_POSITION_SCALE))) {
-        return HKF_ERROR_SETTING_R_CONST;
+        return HKF_ERROR_SCALE_RANGE;
     }
     return HKF_OK;
 }
@@ -329,6 +321,9 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
         return HKF_ERROR_NULL_ARGUMENT;
     }
     result = check_measurement(z, r_scale, dt);
+    if (result == HKF_OK && f->started && dt <= 0) { /* as the angles' rule: a step back in time is refused */
+        result = HKF_ERROR_DT_RANGE;
+    }
     if (result != HKF_OK) {
         return result;
     }

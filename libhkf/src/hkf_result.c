@@ -13,7 +13,9 @@ const char *hkf_result_string(int result)
     case HKF_ERROR_NULL_ARGUMENT: return "a pointer argument is NULL";
     case HKF_ERROR_NON_FINITE: return "a measurement or dt is NaN or infinite";
     case HKF_ERROR_DT_RANGE: return "dt is not in (0, max_dt]";
-    case HKF_ERROR_ANGLE_RANGE: return "an angle is beyond +-" HKF_TEXT(HKF_MAX_ABS_ANGLE) " degrees (a position: +-" HKF_TEXT(HKF_MAX_ABS_POSITION) " cm)";
+    case HKF_ERROR_ANGLE_RANGE: return "an angle is beyond +-" HKF_TEXT(HKF_MAX_ABS_ANGLE) " degrees";
+    case HKF_ERROR_POSITION_RANGE: return "a position is beyond +-" HKF_TEXT(HKF_MAX_ABS_POSITION) " cm";
+    case HKF_ERROR_SCALE_RANGE: return "a position's R scale is not in [1, " HKF_TEXT(HKF_MAX_POSITION_SCALE) "]";
     case HKF_ERROR_NOT_INITIALIZED: return "no measurement has started a track yet";
     case HKF_ERROR_SETTING_NON_FINITE: return "a setting is NaN or infinite";
     case HKF_ERROR_SETTING_NOISE_MODE: return "noise_mode is not a hkf_noise_mode_t";
@@ -32,7 +34,7 @@ const char *hkf_result_string(int result)
     case HKF_ERROR_SETTING_MAX_DT: return "max_dt is not in (0, " HKF_TEXT(HKF_MAX_TIME) "] s";
     case HKF_ERROR_SETTING_CURVE: return "a noise curve's tau, lambda or mu is beyond its range";
     case HKF_ERROR_SETTING_MOTION:
-        return "still_noise is not in [0, " HKF_TEXT(HKF_MAX_PROCESS_NOISE) "], start_rate or stop_rate not in [0, "
+        return "still_wander is not in [0, " HKF_TEXT(HKF_MAX_VARIANCE) "] deg^2, start_rate or stop_rate not in [0, "
                HKF_TEXT(HKF_MAX_RATE) "] 1/s (the position's q_boost not in [0, " HKF_TEXT(HKF_MAX_Q_BOOST) "] or "
                "q_boost_time not in [0, " HKF_TEXT(HKF_MAX_TIME) "] s)";
     case HKF_ERROR_SETTING_CALIBRATION:

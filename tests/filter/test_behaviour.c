@@ -348,19 +348,21 @@ static void test_two_models_still_and_moving(void **state)
 }
 
 /* The two models' step, by hand (hkf_two_models.h), from a still track: the
- * posterior of MOVE from the Markov prior and the two likelihoods, then the
- * merged angle, rate and variance - each against the formula in double. */
+ * posterior of MOVE from the Markov prior and the two likelihoods (HOLD's with
+ * R + still_wander), then the merged angle, rate and variance, and the merged
+ * rate variance (HOLD's being p0_rate) through the next prediction - each
+ * against the formula in double. */
 static void test_two_models_by_hand(void **state)
 {
     hkf_settings_t s = plain_settings();
     hkf_filter_t f;
     hkf_output_t out;
     hkf_real_t z[3];
-    const double dt = 0.125, q = 12.0, qs = 0.5, start = 0.4, stop = 2.0, r = 2.0, p0 = 4.0, v0 = 8.0, y = 3.0;
-    double pi, m00, m01, m11, h00, s_m, s_h, lm, lh, mu, xm, vm, pm00, xh, ph00, x, v, p00, dx;
+    const double dt = 0.125, q = 12.0, w = 0.5, start = 0.4, stop = 2.0, r = 2.0, p0 = 4.0, v0 = 8.0, y = 3.0;
+    double pi, m00, m01, m11, h00, s_m, s_h, lm, lh, mu, xm, vm, pm00, pm01, pm11, xh, ph00, x, v, p00, p01, p11, dx;
     (void)state;
     s.process_noise[0] = s.process_noise[1] = s.process_noise[2] = R(q);
-    s.still_noise = R(qs);
+    s.still_wander = R(w);
     s.start_rate = R(start);
     s.stop_rate = R(stop);
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
@@ -372,28 +374,33 @@ static void test_two_models_by_hand(void **state)
     m00 = p0 + dt * dt * v0 + q * dt * dt * dt / 3;           /* MOVE: Eq. 1-3 */
     m01 = dt * v0 + q * dt * dt / 2;
     m11 = v0 + q * dt;
-    h00 = p0 + qs * dt;                                       /* HOLD */
+    h00 = p0;                                                 /* HOLD */
     s_m = m00 + r;
-    s_h = h00 + r;
+    s_h = h00 + r + w;
     lm = exp(-y * y / (2 * s_m)) / sqrt(s_m);
     lh = exp(-y * y / (2 * s_h)) / sqrt(s_h);
     mu = pi * lm / (pi * lm + (1 - pi) * lh);
     xm = m00 / s_m * y;
     vm = m01 / s_m * y;
     pm00 = m00 * r / s_m;
+    pm01 = m01 * r / s_m;
+    pm11 = m11 - m01 * m01 / s_m;
     xh = h00 / s_h * y;
-    ph00 = h00 * r / s_h;
+    ph00 = h00 * (r + w) / s_h;
     x = mu * xm + (1 - mu) * xh;
     v = mu * vm;
     dx = xm - xh;
     p00 = mu * pm00 + (1 - mu) * ph00 + mu * (1 - mu) * dx * dx;
+    p01 = mu * pm01 + mu * (1 - mu) * dx * vm;
+    p11 = mu * pm11 + (1 - mu) * v0 + mu * (1 - mu) * vm * vm; /* HOLD's rate variance: p0_rate */
     assert_near(out.angle[1], x, 4 * TEST_TOL);
     assert_near(out.rate[1], v, 8 * TEST_TOL);
     assert_near(out.variance[1], p00, 4 * TEST_TOL);
     assert_near(out.angle[0], 0.0, TEST_TOL); /* no innovation: HOLD's angle, no rate */
     assert_near(out.rate[0], 0.0, TEST_TOL);
     assert_true(mu > 0.01 && mu < 0.99); /* a real mixture, not one model */
-    (void)m11;
+    assert_int_equal(hkf_predict(&f, R(dt), &out), HKF_OK); /* Eq. 3 from the merged covariance */
+    assert_near(out.variance[1], p00 + 2 * dt * p01 + dt * dt * p11 + q * dt * dt * dt / 3, 8 * TEST_TOL);
 }
 
 /* Two estimators in one step (hkf_update_pair): the track starts from the first

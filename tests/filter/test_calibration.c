@@ -206,7 +206,7 @@ static void test_off_is_the_paper(void **state)
     int i;
     (void)state;
     b.noise_rise = R(5);
-    b.still_noise = R(3);
+    b.still_wander = R(3);
     b.stop_rate = R(0.1);
     assert_int_equal(hkf_init(&fa, &a), HKF_OK);
     assert_int_equal(hkf_init(&fb, &b), HKF_OK);
@@ -233,7 +233,7 @@ static void test_calibration_settings_checked(void **state)
     s.noise_rise = R(200);
     assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
     s = hkf_default_settings;
-    s.still_noise = R(-0.5);
+    s.still_wander = R(-0.5);
     assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_MOTION);
     s = hkf_default_settings;
     s.start_rate = R(2 * HKF_MAX_RATE);

@@ -24,7 +24,7 @@ static hkf_position_filter_t started_filter_with(const hkf_position_settings_t *
 static hkf_position_filter_t started_filter(double x, double y, double z)
 {
     hkf_position_settings_t s;
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     return started_filter_with(&s, x, y, z);
 }
 
@@ -33,7 +33,7 @@ static hkf_position_filter_t started_constant_filter(double x, double y, double 
 {
     hkf_position_settings_t s;
     int a;
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.noise_time = 0;
     for (a = 0; a < 3; ++a) {
         s.process_noise[a] = R(10.0);
@@ -334,7 +334,7 @@ static void test_gate(void **state)
         assert_int_equal(hkf_position_update(&f, lean, R(1.0), R(frame_s), &out), HKF_OK);
         assert_int_equal(out.flags, 0u);
     }
-    hkf_position_default_settings(&s); /* a noisy still head (R 1 cm^2), a gate of 6 cm/s: the noise passes, 3 sigmas */
+    s = hkf_position_default_settings; /* a noisy still head (R 1 cm^2), a gate of 6 cm/s: the noise passes, 3 sigmas */
     s.noise_time = 0;
     s.measurement_noise[0] = s.measurement_noise[1] = s.measurement_noise[2] = R(1.0);
     s.max_speed = R(6.0);
@@ -345,7 +345,7 @@ static void test_gate(void **state)
         assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), &out), HKF_OK);
         assert_int_equal(out.flags & HKF_FLAG_GATED, 0u);
     }
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.max_speed = 0;
     f = started_filter_with(&s, 0.0, 0.0, 60.0);
     assert_int_equal(hkf_position_update(&f, forged, R(1.0), R(frame_s), &out), HKF_OK);
@@ -361,7 +361,7 @@ static void test_range(void **state)
     hkf_position_filter_t f;
     hkf_position_output_t out;
     int i, a;
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.max_speed = 0; /* no gate: the worst case */
     f = started_filter_with(&s, -1000.0, 0.0, 1.0);
     for (i = 0; i < 40; ++i) {
@@ -427,28 +427,28 @@ static void test_errors(void **state)
     hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0), before;
     const hkf_real_t beyond[3] = {R(0.0), R(0.0), R(2000.0)};
     const hkf_real_t fine[3] = {R(0.0), R(0.0), R(60.0)};
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.process_noise[1] = R(-1.0);
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_PROCESS_NOISE);
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.measurement_noise[2] = 0;
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_R_CONST);
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.max_dt = 0;
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_MAX_DT);
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.noise_floor = 0;
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_R_RANGE);
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.q_boost = R(-1.0);
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_MOTION);
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.still_threshold = R(-1.0);
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.max_speed = R(-1.0);
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_GATE);
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     s.max_gate_rejections = 0u;
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_GATE);
     s.max_speed = 0; /* no gate: no count needed */
@@ -460,8 +460,10 @@ static void test_errors(void **state)
 
     f = started_filter(0.0, 0.0, 60.0);
     before = f;
-    assert_int_equal(hkf_position_update(&f, beyond, R(1.0), R(frame_s), NULL), HKF_ERROR_ANGLE_RANGE);
-    assert_int_equal(hkf_position_update(&f, fine, R(0.5), R(frame_s), NULL), HKF_ERROR_SETTING_R_CONST);
+    assert_int_equal(hkf_position_update(&f, beyond, R(1.0), R(frame_s), NULL), HKF_ERROR_POSITION_RANGE);
+    assert_int_equal(hkf_position_update(&f, fine, R(0.5), R(frame_s), NULL), HKF_ERROR_SCALE_RANGE);
+    assert_int_equal(hkf_position_update(&f, fine, R(1.0), R(0.0), NULL), HKF_ERROR_DT_RANGE); /* as hkf_update */
+    assert_int_equal(hkf_position_update(&f, fine, R(1.0), R(-frame_s), NULL), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_position_update(&f, NULL, R(1.0), R(frame_s), NULL), HKF_ERROR_NULL_ARGUMENT);
     assert_int_equal(hkf_position_predict(&f, R(0.0), NULL), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_position_predict(&f, R(-1.0), NULL), HKF_ERROR_DT_RANGE);

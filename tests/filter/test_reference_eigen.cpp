@@ -313,8 +313,9 @@ private:
 
     bool twoModels() const { return D(s_.start_rate) > 0; }
 
-    /* The motion adaptation per axis, from the estimate before this step (x0, P0): HOLD and MOVE each
-     * predicted and updated in matrix form, the probability of MOVE by Bayes, the posteriors merged. */
+    /* The motion adaptation per axis, from the estimate before this step (x0, P0): HOLD (F = [1 0; 0 0],
+     * Q = diag(0, p0_rate), R + still_wander) and MOVE (the constant-velocity model) each predicted and
+     * updated in matrix form, the probability of MOVE by Bayes, the posteriors merged. */
     void twoModelsUpdate(const Vec6 &x0, const Mat6 &P0, const Vec3 &z, const Vec3 &R, double dt)
     {
         using Vec2 = Eigen::Vector2d;
@@ -323,7 +324,7 @@ private:
         const double a_rate = D(s_.start_rate), b_rate = D(s_.stop_rate);
         const double long_run = a_rate / (a_rate + b_rate), fade = std::exp(-(a_rate + b_rate) * dt);
         const double stay_moving = long_run + (1.0 - long_run) * fade, start_moving = long_run * (1.0 - fade);
-        const double qs = D(s_.still_noise);
+        const double wander = D(s_.still_wander), start_var = D(s_.p0_rate);
         const Eigen::RowVector2d H(1.0, 0.0);
         Mat2 Fm, Fh;
         Fm << 1.0, dt, 0.0, 1.0;
@@ -332,7 +333,7 @@ private:
             const double q = D(s_.process_noise[a]);
             Mat2 Qm, Qh;
             Qm << q * dt * dt * dt / 3.0, q * dt * dt / 2.0, q * dt * dt / 2.0, q * dt;
-            Qh << qs * dt, 0.0, 0.0, 0.0;
+            Qh << 0.0, 0.0, 0.0, start_var; /* HOLD: the rate is 0, a fresh N(0, p0_rate) for a move from rest */
             const Vec2 x(x0(a), x0(a + 3));
             Mat2 P;
             P << P0(a, a), P0(a, a + 3), P0(a + 3, a), P0(a + 3, a + 3);
@@ -347,7 +348,7 @@ private:
                 if (a == 1) {
                     y = wrap180(y);
                 }
-                const double S = H * Pp * H.transpose() + R(a);
+                const double S = H * Pp * H.transpose() + R(a) + (j == 0 ? wander : 0.0); /* HOLD: R + still_wander */
                 const Vec2 K = Pp * H.transpose() / S;
                 xj[j] = xp + K * y;
                 Pj[j] = (Mat2::Identity() - K * H) * Pp;
@@ -574,7 +575,7 @@ struct Mode {
     float gate;
     float lc_theta;
     bool expect_closures; /* the random walk rarely comes within 2 deg of the center */
-    float start_rate = 0.0f; /* the motion adaptation, with the defaults' still_noise and stop_rate */
+    float start_rate = 0.0f; /* the motion adaptation, with the defaults' still_wander and stop_rate */
     bool defaults = false; /* all of hkf_default_settings (its q and motion adaptation too) */
     bool pair = false;     /* hkf_update_pair, the second model with Hopenet's curves */
     bool calibrated = false; /* hkf_default_settings (noise calibration on) with the mode's changes */
@@ -618,7 +619,7 @@ hkf_settings_t settings_of(const Mode &m)
     s.lc_theta = R(m.lc_theta); /* wide, so closure happens often */
     s.coast_time = R(0.15);
     s.start_rate = R(m.start_rate);
-    s.still_noise = hkf_default_settings.still_noise;
+    s.still_wander = hkf_default_settings.still_wander;
     s.stop_rate = hkf_default_settings.stop_rate;
     return s;
 }

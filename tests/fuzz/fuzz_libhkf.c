@@ -68,7 +68,7 @@ static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
     case 13: s->max_dt = v; break;
     case 14: s->noise_mode = (hkf_noise_mode_t)(int)(field % 5) - 1; break;
     case 15: /* the motion adaptation */
-        axis == 0 ? (void)(s->start_rate = v) : axis == 1 ? (void)(s->stop_rate = v) : (void)(s->still_noise = v);
+        axis == 0 ? (void)(s->start_rate = v) : axis == 1 ? (void)(s->stop_rate = v) : (void)(s->still_wander = v);
         break;
     case 16: axis == 0 ? (void)(s->noise_time = v) : (void)(s->noise_rise = v); break; /* noise calibration */
     case 17: s->start_rate = v > 0 ? v : -v; break; /* the adaptation on more often */

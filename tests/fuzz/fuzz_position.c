@@ -82,13 +82,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     memset(&s, 0, sizeof s); /* padding too: filters are compared byte for byte */
     memset(&f, 0, sizeof f);
-    hkf_position_default_settings(&s);
+    s = hkf_position_default_settings;
     (void)take_byte(&in, &edits);
     while (edits-- > 0 && take_byte(&in, &field)) {
         edit_setting(&s, field, &in);
     }
     if (hkf_position_init(&f, &s) != HKF_OK) {
-        hkf_position_default_settings(&s);
+        s = hkf_position_default_settings;
         check(hkf_position_init(&f, &s) == HKF_OK, "the defaults refused");
     }
     while (take_byte(&in, &op)) {

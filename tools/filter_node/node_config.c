@@ -62,12 +62,12 @@ static const config_key_t keys[] = {
     {"lc_xi", KIND_REAL, FIELD(lc_xi), "loop-closure fusion factor, 0..1"},
     {"lc_theta", KIND_REAL, FIELD(lc_theta), "loop-closure threshold, deg"},
     {"p0_angle", KIND_REAL, FIELD(p0_angle), "initial angle variance, deg^2"},
-    {"p0_rate", KIND_REAL, FIELD(p0_rate), "initial rate variance, (deg/s)^2"},
+    {"p0_rate", KIND_REAL, FIELD(p0_rate), "initial rate variance, and a move's from rest, (deg/s)^2"},
     {"gate_sigma", KIND_REAL, FIELD(gate_sigma), "innovation gate in sigmas, 0 = off"},
     {"max_gate_rejections", KIND_UINT, FIELD(max_gate_rejections), "gated measurements in a row before restarting"},
     {"coast_time", KIND_REAL, FIELD(coast_time), "s without a face before the track is LOST"},
     {"max_dt", KIND_REAL, FIELD(max_dt), "s; a longer gap restarts the track"},
-    {"still_noise", KIND_REAL, FIELD(still_noise), "deg^2/s; motion adaptation: the still head's angle random walk"},
+    {"still_wander", KIND_REAL, FIELD(still_wander), "deg^2; motion adaptation: how far a resting head's estimate wanders, beyond R"},
     {"start_rate", KIND_REAL, FIELD(start_rate), "1/s; motion adaptation: how often a still head starts to move, 0 = off (the paper)"},
     {"stop_rate", KIND_REAL, FIELD(stop_rate), "1/s; motion adaptation: how often a moving head stops"},
     {"noise_time", KIND_REAL, FIELD(noise_time), "s; noise calibration's time constant, 0 = off (the paper)"},
@@ -96,7 +96,7 @@ void node_config_defaults(node_config_t *config)
     memset(config, 0, sizeof *config);
     config->settings = hkf_default_settings;
     config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
-    hkf_position_default_settings(&config->position);
+    config->position = hkf_position_default_settings;
     add_builtin_model(config, "fsanet", hkf_noise_fsanet);
     add_builtin_model(config, "hopenet", hkf_noise_hopenet);
     add_builtin_model(config, "mesh_pnp", hkf_noise_mesh_pnp); /* fitted by dev/fit */
@@ -532,7 +532,7 @@ static const char *const *keys_of_result(int result)
     static const char *const gate[] = {"gate_sigma", "max_gate_rejections", NULL};
     static const char *const coast[] = {"coast_time", NULL};
     static const char *const max_dt[] = {"max_dt", NULL};
-    static const char *const motion[] = {"still_noise", "start_rate", "stop_rate", NULL};
+    static const char *const motion[] = {"still_wander", "start_rate", "stop_rate", NULL};
     static const char *const calibration[] = {"noise_time", "noise_rise", NULL};
     static const char *const none[] = {NULL};
     switch (result) {

@@ -38,6 +38,8 @@ typedef enum {
     HKF_ERROR_DT_RANGE = -3,           /* dt <= 0 or dt > settings.max_dt */
     HKF_ERROR_ANGLE_RANGE = -4,        /* |angle| > HKF_MAX_ABS_ANGLE */
     HKF_ERROR_NOT_INITIALIZED = -5,    /* no measurement has started a track yet */
+    HKF_ERROR_POSITION_RANGE = -6,     /* a position beyond +-HKF_MAX_ABS_POSITION cm (hkf_position.h) */
+    HKF_ERROR_SCALE_RANGE = -7,        /* a position's R scale outside [1, HKF_MAX_POSITION_SCALE] (hkf_position.h) */
     /* hkf_init: settings that make no sense */
     HKF_ERROR_SETTING_NON_FINITE = -20,  /* a setting is NaN or infinite */
     HKF_ERROR_SETTING_NOISE_MODE = -21,  /* noise_mode is not a hkf_noise_mode_t */
@@ -53,7 +55,7 @@ typedef enum {
     HKF_ERROR_SETTING_COAST_TIME = -31,  /* coast_time outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_MAX_DT = -32,      /* max_dt outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
-    HKF_ERROR_SETTING_MOTION = -34,      /* still_noise outside [0, HKF_MAX_PROCESS_NOISE], start_rate or stop_rate
+    HKF_ERROR_SETTING_MOTION = -34,      /* still_wander outside [0, HKF_MAX_VARIANCE], start_rate or stop_rate
                                             outside [0, HKF_MAX_RATE] (the position's q_boost and q_boost_time:
                                             hkf_position.h) */
     HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time outside [0, HKF_MAX_TIME] or noise_rise outside
@@ -146,7 +148,7 @@ typedef struct {
     int loop_closure;              /* a hkf_loop_closure_t; 0 = off, 1 = on (vector norm) */
     hkf_real_t lc_xi;              /* fusion factor xi of Eq. 9, 0..1 */
     hkf_real_t lc_theta;           /* loop-closure threshold, deg */
-    hkf_real_t p0_angle, p0_rate;  /* initial variances: deg^2, (deg/s)^2 */
+    hkf_real_t p0_angle, p0_rate;  /* initial variances: deg^2, (deg/s)^2 (p0_rate also a move's from rest) */
     hkf_real_t gate_sigma;         /* innovation gate, in sigmas; 0 = off */
     unsigned max_gate_rejections;  /* gated measurements in a row; the next gated one restarts the track */
     hkf_real_t coast_time;         /* s without a measurement before the track is LOST */
@@ -154,11 +156,12 @@ typedef struct {
     /* The motion adaptation (not in the paper; start_rate 0 = off, the paper's
      * filter). Two models of each axis's motion over a step, mixed by how well
      * each predicted the measurement (libhkf/src/hkf_two_models.h; docs/libhkf.md):
-     * HOLD, the head still (the angle holds, with a random walk of still_noise,
-     * the rate 0), and MOVE, the paper's constant velocity with process_noise.
-     * A still head starts to move at start_rate per s, a moving one stops at
-     * stop_rate per s. */
-    hkf_real_t still_noise;        /* deg^2/s: the still head's angle random walk */
+     * HOLD, the head at rest (the angle holds, the rate is 0; a measurement
+     * wanders about the rest by still_wander beyond R, and a move that starts
+     * from rest has a rate of variance p0_rate), and MOVE, the paper's
+     * constant velocity with process_noise. A still head starts to move at
+     * start_rate per s, a moving one stops at stop_rate per s. */
+    hkf_real_t still_wander;       /* deg^2: how far a resting head's estimate wanders, beyond R */
     hkf_real_t start_rate;         /* 1/s: how often a still head starts to move; 0 = off */
     hkf_real_t stop_rate;          /* 1/s: how often a moving head stops */
     /* Noise calibration (not in the paper; noise_time 0 = off, the paper's R).
@@ -176,10 +179,10 @@ typedef struct {
 
 /* The defaults: the paper's adaptive R (Eq. 8, FSA-Net curves of Table I)
  * with noise calibration (noise_time 0.3 s, noise_rise 0.2 per s), the
- * motion adaptation (process_noise 16000 deg^2/s^3 while moving, still_noise
- * 0, start_rate 0.05 per s, stop_rate 16 per s), loop closure off, gate off;
- * chosen on truth by construction (docs/evaluation.md, "Truth by
- * construction"). */
+ * motion adaptation (process_noise 16000 deg^2/s^3 while moving, still_wander
+ * 0.3 deg^2, start_rate 0.05 per s, stop_rate 16 per s), loop closure off,
+ * gate off; chosen on truth by construction and on real clips
+ * (docs/evaluation.md). */
 extern const hkf_settings_t hkf_default_settings;
 /* The paper's filter alone: adaptive R, loop closure (xi 0.618, theta 2 deg),
  * q 500 / 1000 / 500 deg^2/s^3, no calibration or motion adaptation. */

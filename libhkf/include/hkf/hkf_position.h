@@ -24,9 +24,7 @@
  * does not link it (its size does not change).
  *
  *     hkf_position_filter_t p;
- *     hkf_position_settings_t s;
- *     hkf_position_default_settings(&s);
- *     if (hkf_position_init(&p, &s) != HKF_OK) ...
+ *     if (hkf_position_init(&p, &hkf_position_default_settings) != HKF_OK) ...
  *     hkf_position_update(&p, xyz, HKF_REAL(1.0), dt, &out);   // each frame with a position
  *     hkf_position_predict(&p, dt, &out);                      // a frame without one
  */
@@ -42,7 +40,7 @@ extern "C" {
 enum { HKF_POSITION_X = 0, HKF_POSITION_Y = 1, HKF_POSITION_Z = 2 };
 
 /* The ranges hkf_position_init and the updates accept. */
-#define HKF_MAX_ABS_POSITION 1000      /* cm: a measurement beyond is refused (HKF_ERROR_ANGLE_RANGE) */
+#define HKF_MAX_ABS_POSITION 1000      /* cm: a measurement beyond is refused (HKF_ERROR_POSITION_RANGE) */
 #define HKF_MAX_POSITION_SCALE 1000    /* the largest R scale of one measurement */
 #define HKF_MAX_SPEED 10000            /* cm/s: the largest max_speed */
 #define HKF_POSITION_GATE_SIGMAS 3     /* the gate's allowance for noise, in sigmas of the innovation */
@@ -100,7 +98,7 @@ typedef struct {
 
 /* Defaults chosen on truth by construction with the estimator's mesh position
  * (dev/eval/position_truth.py; docs/estimator.md "Head position"). */
-void hkf_position_default_settings(hkf_position_settings_t *s);
+extern const hkf_position_settings_t hkf_position_default_settings;
 
 /* Checks the settings (HKF_ERROR_SETTING_*) and clears the track. */
 int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s);
@@ -112,9 +110,11 @@ void hkf_position_reset(hkf_position_filter_t *f);
 void hkf_position_restart(hkf_position_filter_t *f);
 
 /* Predicts by dt (s) and takes the measurement z (cm) with R = r_scale x the
- * setting's R. The first measurement, or one after a gap beyond max_dt,
- * starts the track there (and sets the center if none is set). A measurement
- * the gate refuses leaves the prediction and sets HKF_FLAG_GATED (HKF_OK). */
+ * setting's R. The first measurement (which ignores dt), or one after a gap
+ * beyond max_dt, starts the track there (and sets the center if none is set);
+ * dt <= 0 after the first is refused (HKF_ERROR_DT_RANGE), as hkf_update
+ * refuses it. A measurement the gate refuses leaves the prediction and sets
+ * HKF_FLAG_GATED (HKF_OK). On error the filter is untouched. */
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out);
 
