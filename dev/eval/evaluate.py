@@ -49,11 +49,12 @@ PAPER_OPTIONS = ["noise_time=0", "noise_mode=adaptive", "loop_closure=norm",
                  "process_noise=" + " ".join(f"{v:g}" for v in Q_PAPER), "start_rate=0"]  # = hkf_paper_settings
 DEFAULTS_NAME = "hkf defaults"  # hkf-filter as shipped: one setting
 # hkf's defaults (noise calibration and the motion adaptation: two models, not in the paper; hkf.h) with
-# MOVE's q, how often a still head starts to move and R's floor swept: the family the defaults were chosen from
+# MOVE's q, how often a still head starts to move and how far a resting head's estimate wanders swept: the
+# family the defaults were chosen from
 TWO_MODELS_NAME = "hkf two models"
 TWO_MODEL_Q = [4000, 16000]
 TWO_MODEL_START = [0.01, 0.03, 0.05, 0.1, 0.3, 1.0]
-TWO_MODEL_R_MIN = [0.01, 0.05, 0.1, 0.2, 0.3]
+TWO_MODEL_WANDER = [0, 0.1, 0.2, 0.3]
 # every filter compared, in the tables' order
 FILTER_NAMES = list(HKF_VARIANTS) + [TWO_MODELS_NAME, "1 euro", "Accela", "EWMA"]
 GOAL_LAG_CUT = 0.30  # the goal set for the filter on real clips: the defaults lag at least 30 % less than the best 1 euro and Accela at equal jitter
@@ -165,9 +166,9 @@ def settings_grid():
             grid.append((name, f"q x{scale:g}", options + ["process_noise=" + " ".join(f"{v:g}" for v in q)]))
     for q in TWO_MODEL_Q:
         for start in TWO_MODEL_START:
-            for r_min in TWO_MODEL_R_MIN:
-                grid.append((TWO_MODELS_NAME, f"q {q:g}, start_rate {start:g}, r_min {r_min:g}",
-                             [f"process_noise={q:g} {q:g} {q:g}", f"start_rate={start:g}", f"r_min={r_min:g}"]))
+            for wander in TWO_MODEL_WANDER:
+                grid.append((TWO_MODELS_NAME, f"q {q:g}, start_rate {start:g}, still_wander {wander:g}",
+                             [f"process_noise={q:g} {q:g} {q:g}", f"start_rate={start:g}", f"still_wander={wander:g}"]))
     grid.append((DEFAULTS_NAME, "as shipped", []))
     for mc in ONE_EURO_MIN_CUTOFF:
         for beta in ONE_EURO_BETA:
