@@ -198,7 +198,8 @@ def pooled(rows):
         jit = np.array([r["jitter"] for r in rs], float)
         lag = np.array([r["lag_ms"] for r in rs], float)
         err = np.array([r["lag_error"] for r in rs], float)
-        ok_s, ok_m = w_still > 0, w_moving > 0
+        ok_s = w_still > 0
+        ok_m = (w_moving > 0) & np.isfinite(lag)  # a clip with too few moving frames for a lag fit has none
         centre = [r for r in rs if r["returns"] > 0]
         result.append({
             "estimator": estimator, "filter": name, "setting": setting,

@@ -133,49 +133,37 @@ public:
 
     /* Two measurements of one frame, both stacked in one update (gate off): z1 with this
      * filter's curves, z2 with `second`'s. */
+    /* z2 as a plain 6-state update after z1 (whose R was r1), with `second`'s curves; R of both as the result. */
+    void updateSecond(const Vec3 &z2, const hkf_settings_t &second, const Vec3 r1)
+    {
+        const Vec3 zc2 = loopClosure(z2);
+        Eigen::Matrix3d R2 = Eigen::Matrix3d::Zero();
+        for (int a = 0; a < 3; ++a) {
+            R2(a, a) = calibratedR(second, a, zc2(a));
+        }
+        Mat36 H = Mat36::Zero();
+        H.leftCols<3>().setIdentity();
+        Vec3 y = zc2 - H * x_;
+        y(1) = wrap180(y(1));
+        const Eigen::Matrix<double, 6, 3> K = P_ * H.transpose() * (H * P_ * H.transpose() + R2).inverse();
+        x_ += K * y;
+        x_(1) = wrap180(x_(1));
+        P_ = (Mat6::Identity() - K * H) * P_;
+        for (int a = 0; a < 3; ++a) {
+            r_(a) = r1(a) * R2(a, a) / (r1(a) + R2(a, a));
+        }
+    }
+
     void updatePair(const Vec3 &z1, const Vec3 &z2, double dt, const hkf_settings_t &second)
     {
-        Vec3 r1;
-        if (!started_ || status_ == HKF_STATUS_LOST) { /* the track starts from z1, then z2 updates it */
-            start(z1);
-            r1 = r_;
-            const Vec3 zc2 = loopClosure(z2);
-            Eigen::Matrix3d R2 = Eigen::Matrix3d::Zero();
-            for (int a = 0; a < 3; ++a) {
-                R2(a, a) = calibratedR(second, a, zc2(a));
+        const bool starts = !started_ || status_ == HKF_STATUS_LOST;
+        if (starts || twoModels()) { /* the track starts from z1, or z1 goes through both models; then z2 */
+            if (starts) {
+                start(z1);
+            } else {
+                update(z1, dt);
             }
-            Mat36 H = Mat36::Zero();
-            H.leftCols<3>().setIdentity();
-            Vec3 y = zc2 - H * x_;
-            y(1) = wrap180(y(1));
-            const Eigen::Matrix<double, 6, 3> K = P_ * H.transpose() * (H * P_ * H.transpose() + R2).inverse();
-            x_ += K * y;
-            x_(1) = wrap180(x_(1));
-            P_ = (Mat6::Identity() - K * H) * P_;
-            for (int a = 0; a < 3; ++a) {
-                r_(a) = r1(a) * R2(a, a) / (r1(a) + R2(a, a));
-            }
-            return;
-        }
-        if (twoModels()) { /* the first by both models (update), then the second as a plain update */
-            update(z1, dt);
-            r1 = r_;
-            const Vec3 zc2 = loopClosure(z2);
-            Eigen::Matrix3d R2 = Eigen::Matrix3d::Zero();
-            for (int a = 0; a < 3; ++a) {
-                R2(a, a) = calibratedR(second, a, zc2(a));
-            }
-            Mat36 H = Mat36::Zero();
-            H.leftCols<3>().setIdentity();
-            Vec3 y = zc2 - H * x_;
-            y(1) = wrap180(y(1));
-            const Eigen::Matrix<double, 6, 3> K = P_ * H.transpose() * (H * P_ * H.transpose() + R2).inverse();
-            x_ += K * y;
-            x_(1) = wrap180(x_(1));
-            P_ = (Mat6::Identity() - K * H) * P_;
-            for (int a = 0; a < 3; ++a) {
-                r_(a) = r1(a) * R2(a, a) / (r1(a) + R2(a, a));
-            }
+            updateSecond(z2, second, r_);
             return;
         }
         predict(dt);
