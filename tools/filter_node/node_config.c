@@ -91,18 +91,6 @@ static void add_builtin_model(node_config_t *config, const char *name, const hkf
     m->r_const[2] = noise[2].tau - noise[2].lambda;
 }
 
-void node_config_defaults(node_config_t *config)
-{
-    memset(config, 0, sizeof *config);
-    config->settings = hkf_default_settings;
-    config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
-    config->position = hkf_position_default_settings;
-    add_builtin_model(config, "fsanet", hkf_noise_fsanet);
-    add_builtin_model(config, "hopenet", hkf_noise_hopenet);
-    add_builtin_model(config, "mesh_pnp", hkf_noise_mesh_pnp); /* fitted by dev/fit */
-    add_builtin_model(config, "whenet", hkf_noise_whenet);
-}
-
 static const config_key_t *find_key(const char *name)
 {
     size_t i;
@@ -113,6 +101,30 @@ static const config_key_t *find_key(const char *name)
     }
     return NULL;
 }
+
+/* A built-in model's own value of a real setting (as a `[model NAME]` section sets it). */
+static void own_builtin_real(node_model_t *m, const char *name, hkf_real_t value)
+{
+    const config_key_t *key = find_key(name);
+    *(hkf_real_t *)(void *)((char *)&m->own + key->offset) = value;
+    m->own_keys |= 1ul << (key - keys);
+}
+
+void node_config_defaults(node_config_t *config)
+{
+    memset(config, 0, sizeof *config);
+    config->settings = hkf_default_settings;
+    config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
+    config->position = hkf_position_default_settings;
+    add_builtin_model(config, "fsanet", hkf_noise_fsanet);
+    add_builtin_model(config, "hopenet", hkf_noise_hopenet);
+    add_builtin_model(config, "mesh_pnp", hkf_noise_mesh_pnp); /* fitted by dev/fit */
+    add_builtin_model(config, "whenet", hkf_noise_whenet);
+    /* WHENet's estimate of a resting face wanders further than the mesh's: at the mesh's 0.3 deg^2 its still
+     * jitter was 2.9x the mesh's on the shared clips, at 1 deg^2 level with it (docs/evaluation.md) */
+    own_builtin_real(&config->models[config->model_count - 1], "still_wander", (hkf_real_t)1.0);
+}
+
 
 /* Reads exactly n numbers separated by blanks: 0, -1 when it is not n numbers,
  * -2 when one is NaN, infinite, or beyond what a hkf_real_t holds (1e300 in a
