@@ -290,7 +290,10 @@ def measure_run(clip, datagrams, raw, poses, estimator_summary, player_axis, sca
     frame_t = truth.t + SAMPLE_DELAY_S * 1e6
     held_index = np.searchsorted(arrival, frame_t, side="right") - 1
     held = np.where(held_index >= 0, value[np.clip(held_index, 0, None)], np.nan)
+    # a sample SAMPLE_DELAY_S after frame i's capture may already hold frame i + 1's pose (captured one frame
+    # period later and sent within the rest): a pair counts only when the frame after it is still too
     still = still_frames(truth.values, clip.fps)
+    still[:-1] &= still[1:]
     steps = np.diff(held)
     pairs = still[1:] & still[:-1] & np.isfinite(steps)
     jitter = float(np.sqrt(np.mean(steps[pairs] ** 2))) if pairs.any() else np.nan
