@@ -75,6 +75,12 @@ const hkf_settings_t hkf_paper_settings = {
     .loop_closure = HKF_LOOP_CLOSURE_NORM,
 };
 
+/* start_rate, stop_rate: 0 (off; a moving head never stops) or within [HKF_MIN_RATE, HKF_MAX_RATE] */
+static int rate_in_range(hkf_real_t rate)
+{
+    return rate == 0 || (rate >= HKF_REAL_FROM(HKF_MIN_RATE) && rate <= HKF_REAL_FROM(HKF_MAX_RATE));
+}
+
 static int all_finite(const hkf_real_t *v, int n)
 {
     int i;
@@ -171,8 +177,8 @@ int hkf_settings_check(const hkf_settings_t *s)
     if (!(s->max_dt > 0 && s->max_dt <= HKF_REAL_FROM(HKF_MAX_TIME))) {
         return HKF_ERROR_SETTING_MAX_DT;
     }
-    if (!(s->still_wander >= 0 && s->still_wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE) && s->start_rate >= 0 &&
-          s->start_rate <= HKF_REAL_FROM(HKF_MAX_RATE) && s->stop_rate >= 0 && s->stop_rate <= HKF_REAL_FROM(HKF_MAX_RATE))) {
+    if (!(s->still_wander >= 0 && s->still_wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE) && rate_in_range(s->start_rate) &&
+          rate_in_range(s->stop_rate))) {
         return HKF_ERROR_SETTING_MOTION;
     }
     if (!(s->noise_time >= 0 && s->noise_time <= HKF_REAL_FROM(HKF_MAX_TIME) && s->noise_rise >= 0 &&

@@ -72,7 +72,7 @@ static HKF_ALWAYS_INLINE hkf_real_t hkf_two_models_posterior(hkf_real_t pi, hkf_
     const hkf_real_t move = d > 0 ? hkf_mul(pi, r) : hkf_mul(hkf_mul(pi, r), e);
     const hkf_real_t hold = d > 0 ? hkf_mul(hkf_sub(HKF_REAL(1.0), pi), e) : hkf_sub(HKF_REAL(1.0), pi);
     const hkf_real_t sum = hkf_add(move, hold);
-    return sum > 0 ? hkf_divide(move, hkf_divisor(sum)) : pi;
+    return sum > 0 ? move / sum : pi; /* a true quotient: 1 / sum overflows when both sides are denormal */
 #endif
 }
 

@@ -50,6 +50,7 @@ static void huge_gate(hkf_settings_t *s) { s->gate_sigma = R(1e10); }
 static void long_coast(hkf_settings_t *s) { s->coast_time = R(HKF_MAX_TIME + 1); }
 static void long_max_dt(hkf_settings_t *s) { s->max_dt = R(1e30); }
 static void negative_still_wander(hkf_settings_t *s) { s->still_wander = R(-1); }
+static void start_rate_below_min(hkf_settings_t *s) { s->start_rate = R(HKF_MIN_RATE / 2); }
 static void huge_start_rate(hkf_settings_t *s) { s->start_rate = R(2 * HKF_MAX_RATE); }
 static void negative_stop_rate(hkf_settings_t *s) { s->stop_rate = R(-1); }
 #if defined(HKF_REAL_FIXED)
@@ -119,6 +120,7 @@ static void test_init_rejects_each_bad_setting(void **state)
         {"coast_time > max", long_coast, HKF_ERROR_SETTING_COAST_TIME},
         {"max_dt 1e30", long_max_dt, HKF_ERROR_SETTING_MAX_DT},
         {"still_wander < 0", negative_still_wander, HKF_ERROR_SETTING_MOTION},
+        {"start_rate above 0 but below HKF_MIN_RATE", start_rate_below_min, HKF_ERROR_SETTING_MOTION},
         {"start_rate > max", huge_start_rate, HKF_ERROR_SETTING_MOTION},
         {"stop_rate < 0", negative_stop_rate, HKF_ERROR_SETTING_MOTION},
 #if defined(HKF_REAL_FIXED)
@@ -155,6 +157,7 @@ static void edge_motion_max(hkf_settings_t *s)
     s->stop_rate = R(HKF_MAX_RATE);
 }
 static void edge_motion_0(hkf_settings_t *s) { s->still_wander = 0; s->start_rate = 0; s->stop_rate = 0; }
+static void edge_rates_min(hkf_settings_t *s) { s->start_rate = R(HKF_MIN_RATE); s->stop_rate = R(HKF_MIN_RATE); }
 static void edge_sigma_min(hkf_settings_t *s) { s->noise[1] = table_curve(8, 4, 0, HKF_MIN_SIGMA); }
 static void edge_sigma_max(hkf_settings_t *s) { s->noise[1] = table_curve(8, 4, 0, HKF_MAX_SIGMA); }
 static void edge_mu_max(hkf_settings_t *s) { s->noise[1] = table_curve(8, 4, -HKF_MAX_ABS_ANGLE, 30); }
@@ -178,6 +181,7 @@ static void test_init_accepts_every_endpoint(void **state)
         {"max_dt HKF_MAX_TIME", edge_max_dt_max, HKF_OK},
         {"still_wander, start_rate, stop_rate at their maxima", edge_motion_max, HKF_OK},
         {"still_wander, start_rate, stop_rate 0", edge_motion_0, HKF_OK},
+        {"start_rate, stop_rate at HKF_MIN_RATE", edge_rates_min, HKF_OK},
         {"sigma HKF_MIN_SIGMA", edge_sigma_min, HKF_OK},
         {"sigma HKF_MAX_SIGMA", edge_sigma_max, HKF_OK},
         {"mu -HKF_MAX_ABS_ANGLE", edge_mu_max, HKF_OK},

@@ -71,7 +71,7 @@ static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
         axis == 0 ? (void)(s->start_rate = v) : axis == 1 ? (void)(s->stop_rate = v) : (void)(s->still_wander = v);
         break;
     case 16: axis == 0 ? (void)(s->noise_time = v) : (void)(s->noise_rise = v); break; /* noise calibration */
-    case 17: s->start_rate = v > 0 ? v : -v; break; /* the adaptation on more often */
+    case 17: s->start_rate = v >= 0 ? v : -(v + 1); break; /* the adaptation on more often (-(v + 1): INT32_MIN too) */
     default: s->loop_closure = (int)(field % 5) - 1; s->max_gate_rejections = field % 4u; break;
     }
 }

@@ -56,7 +56,7 @@ typedef enum {
     HKF_ERROR_SETTING_MAX_DT = -32,      /* max_dt outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
     HKF_ERROR_SETTING_MOTION = -34,      /* still_wander outside [0, HKF_MAX_VARIANCE], start_rate or stop_rate
-                                            outside [0, HKF_MAX_RATE] (the position's q_boost and q_boost_time:
+                                            neither 0 nor in [HKF_MIN_RATE, HKF_MAX_RATE] (the position's q_boost and q_boost_time:
                                             hkf_position.h) */
     HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time outside [0, HKF_MAX_TIME] or noise_rise outside
                                             [0, HKF_MAX_NOISE_RISE] (the position's detector: hkf_position.h) */
@@ -92,6 +92,7 @@ const char *hkf_result_string(int result);
 #endif
 #define HKF_MAX_TIME 10          /* s: max_dt, coast_time, noise_time */
 #define HKF_MAX_NOISE_RISE 100   /* 1/s: noise_rise */
+#define HKF_MIN_RATE 1e-3        /* 1/s: start_rate, stop_rate other than 0 (a denormal rate made the prior's 1/rate infinite) */
 #define HKF_MAX_RATE 1000        /* 1/s: start_rate, stop_rate */
 
 /* Measurements beyond this magnitude are rejected (HKF_ERROR_ANGLE_RANGE):
