@@ -228,7 +228,8 @@ NOINLINE void step_eigen(EigenFilter *k, const Input *in, float yaw_out[1])
 
 } // extern "C"
 
-int main(int argc, char **argv)
+/* --version, --help and STEPS: -1 to run with *steps, else the exit code. */
+static int parse_arguments(int argc, char **argv, long *steps)
 {
     if (argc > 1 && std::strcmp(argv[1], "--version") == 0) {
         std::printf("hkf-bench-update %s\n", HKF_VERSION);
@@ -241,17 +242,21 @@ int main(int argc, char **argv)
                     "dev/benchmarks/update_cost.py, which runs this under callgrind.\n");
         return 0;
     }
-    long steps = 20000;
+    *steps = 20000;
     if (argc > 1) {
         char *end = nullptr;
-        steps = std::strtol(argv[1], &end, 10);
-        if (*end != '\0' || steps < 10 || steps > 10000000) {
+        *steps = std::strtol(argv[1], &end, 10);
+        if (*end != '\0' || *steps < 10 || *steps > 10000000) {
             std::fprintf(stderr, "hkf-bench-update: STEPS must be a whole number from 10 to 10000000, not '%s'\n", argv[1]);
             return 2;
         }
     }
+    return -1;
+}
 
-    /* every frame has a face, so every step is a full update */
+/* The simulated drive's measurements; every frame has a face, so every step is a full update. */
+static std::vector<Input> drive_inputs(long steps)
+{
     sim_config_t config = sim_default_config();
     config.dropout_rate = 0.0;
     sim_t sim;
@@ -267,6 +272,17 @@ int main(int argc, char **argv)
         in.dt = static_cast<float>(frame.time - previous);
         previous = frame.time;
     }
+    return inputs;
+}
+
+int main(int argc, char **argv)
+{
+    long steps = 0;
+    const int exit_code = parse_arguments(argc, argv, &steps);
+    if (exit_code >= 0) {
+        return exit_code;
+    }
+    const std::vector<Input> inputs = drive_inputs(steps);
 
     hkf_settings_t paper = hkf_paper_settings;
     hkf_settings_t constant = paper;
@@ -281,10 +297,8 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "hkf-bench-update: hkf_init failed\n");
         return 1;
     }
-    hkf_position_settings_t position_settings;
-    position_settings = hkf_position_default_settings;
     hkf_position_filter_t f_position;
-    if (hkf_position_init(&f_position, &position_settings) != HKF_OK) {
+    if (hkf_position_init(&f_position, &hkf_position_default_settings) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: hkf_position_init failed\n");
         return 1;
     }

@@ -113,16 +113,10 @@ static int settings_finite(const hkf_settings_t *s)
            all_finite(scalars, (int)(sizeof scalars / sizeof scalars[0]));
 }
 
-int hkf_settings_check(const hkf_settings_t *s)
+/* Eq. 8's curves: their widths, and their floor, depth and centre within the build's range. */
+static int check_curves(const hkf_settings_t *s)
 {
     int a;
-    if (!settings_finite(s)) {
-        return HKF_ERROR_SETTING_NON_FINITE;
-    }
-    if (s->noise_mode != HKF_NOISE_CONSTANT && s->noise_mode != HKF_NOISE_ADAPTIVE &&
-        s->noise_mode != HKF_NOISE_ADAPTIVE_SQUARED) {
-        return HKF_ERROR_SETTING_NOISE_MODE;
-    }
     for (a = 0; a < HKF_AXES; ++a) {
         const hkf_noise_curve_t *c = &s->noise[a];
         if (!(c->sigma >= HKF_REAL_FROM(HKF_MIN_SIGMA) && c->sigma <= HKF_REAL_FROM(HKF_MAX_SIGMA))) {
@@ -141,6 +135,21 @@ int hkf_settings_check(const hkf_settings_t *s)
         }
 #endif
     }
+    return HKF_OK;
+}
+
+/* How R and q are chosen: the mode, the curves, R's clamp, the constant R and q per axis. */
+static int check_noise(const hkf_settings_t *s)
+{
+    int a, result;
+    if (s->noise_mode != HKF_NOISE_CONSTANT && s->noise_mode != HKF_NOISE_ADAPTIVE &&
+        s->noise_mode != HKF_NOISE_ADAPTIVE_SQUARED) {
+        return HKF_ERROR_SETTING_NOISE_MODE;
+    }
+    result = check_curves(s);
+    if (result != HKF_OK) {
+        return result;
+    }
     if (!(s->r_min >= HKF_REAL_FROM(HKF_MIN_VARIANCE) && s->r_min <= s->r_max &&
           s->r_max <= HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
         return HKF_ERROR_SETTING_R_RANGE;
@@ -153,6 +162,12 @@ int hkf_settings_check(const hkf_settings_t *s)
             return HKF_ERROR_SETTING_PROCESS_NOISE;
         }
     }
+    return HKF_OK;
+}
+
+/* The track: loop closure (Eq. 9), the first variances, the gate, coasting and the longest step. */
+static int check_track(const hkf_settings_t *s)
+{
     if (s->loop_closure != HKF_LOOP_CLOSURE_OFF && s->loop_closure != HKF_LOOP_CLOSURE_NORM &&
         s->loop_closure != HKF_LOOP_CLOSURE_PER_AXIS) {
         return HKF_ERROR_SETTING_LOOP_CLOSURE;
@@ -177,6 +192,12 @@ int hkf_settings_check(const hkf_settings_t *s)
     if (!(s->max_dt > 0 && s->max_dt <= HKF_REAL_FROM(HKF_MAX_TIME))) {
         return HKF_ERROR_SETTING_MAX_DT;
     }
+    return HKF_OK;
+}
+
+/* The motion adaptation and the noise calibration (not in the paper). */
+static int check_adaptation(const hkf_settings_t *s)
+{
     if (!(s->still_wander >= 0 && s->still_wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE) && rate_in_range(s->start_rate) &&
           rate_in_range(s->stop_rate))) {
         return HKF_ERROR_SETTING_MOTION;
@@ -186,4 +207,21 @@ int hkf_settings_check(const hkf_settings_t *s)
         return HKF_ERROR_SETTING_CALIBRATION;
     }
     return HKF_OK;
+}
+
+/* The first bad setting's error, in the order of hkf_result_t, or HKF_OK. */
+int hkf_settings_check(const hkf_settings_t *s)
+{
+    int result;
+    if (!settings_finite(s)) {
+        return HKF_ERROR_SETTING_NON_FINITE;
+    }
+    result = check_noise(s);
+    if (result == HKF_OK) {
+        result = check_track(s);
+    }
+    if (result == HKF_OK) {
+        result = check_adaptation(s);
+    }
+    return result;
 }

@@ -124,12 +124,101 @@ static void print_steps(void)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
+/* op 7: two estimators' measurements, the second's settings edited once (maybe to nonsense); either
+ * measurement may be missing (that model found no face); both missing is an error. */
+static void pair_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t *s, input_t *in)
+{
+    hkf_settings_t second = *s;
+    hkf_output_t out;
+    hkf_real_t v[3], v2[3], dt;
+    uint8_t field, missing = 0;
+    int result;
+    memset(&out, 0, sizeof out);
+    if (take_byte(in, &field)) {
+        edit_setting(&second, field, in);
+    }
+    v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
+    v2[0] = take_real(in), v2[1] = take_real(in), v2[2] = take_real(in);
+    if (hkf_init(before, &second) == HKF_OK) { /* (before is rewritten below) */
+        const hkf_real_t low = second.r_min < s->r_min ? second.r_min : s->r_min;
+#if defined(HKF_REAL_FIXED)
+        allow_r(low / 2 - 1, second.r_max); /* less a unit for the quotient's rounding */
+#else
+        allow_r(low * HKF_REAL(0.4999), second.r_max);
+#endif
+    }
+    *before = *f;
+    (void)take_byte(in, &missing);
+    dt = take_real(in);
+    result = hkf_update_pair(f, missing % 4 == 1 ? NULL : v, missing % 4 == 2 ? NULL : v2, &second, dt, &out);
+    if (missing % 4 == 3) {
+        *before = *f;
+        result = hkf_update_pair(f, NULL, NULL, &second, dt, &out);
+        if (result != HKF_ERROR_NULL_ARGUMENT) {
+            abort();
+        }
+    }
+    ++steps;
+    after_call(before, f, result, &out);
+}
+
+/* One API call on the filter, chosen by op, its arguments from the input. */
+static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t *s, input_t *in, uint8_t op)
+{
+    hkf_output_t out;
+    hkf_real_t v[3];
+    int result;
+    *before = *f;
+    memset(&out, 0, sizeof out);
+    switch (op % 9) {
+    case 0:
+        v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
+        result = hkf_update(f, v, take_real(in), &out);
+        ++steps;
+        after_call(before, f, result, &out);
+        break;
+    case 1:
+        result = hkf_predict(f, take_real(in), &out);
+        ++steps;
+        after_call(before, f, result, &out);
+        break;
+    case 2:
+        result = hkf_extrapolate(f, take_real(in), &out);
+        check(memcmp(before, f, sizeof *f) == 0, "hkf_extrapolate changed the filter");
+        after_call(before, f, result, result == HKF_OK ? &out : NULL);
+        break;
+    case 3:
+        v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
+        result = hkf_set_center(f, v);
+        after_call(before, f, result, NULL);
+        break;
+    case 4:
+        result = hkf_recenter(f);
+        after_call(before, f, result, NULL);
+        break;
+    case 5:
+        hkf_reset(f);
+        break;
+    case 6:
+        result = hkf_get_output(f, &out);
+        check(memcmp(before, f, sizeof *f) == 0, "hkf_get_output changed the filter");
+        after_call(before, f, result, result == HKF_OK ? &out : NULL);
+        break;
+    case 7:
+        pair_step(f, before, s, in);
+        break;
+    default:
+        result = hkf_init(f, s);
+        after_call(before, f, result, NULL);
+        break;
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static hkf_filter_t f, before;
     input_t in = {data, size};
     hkf_settings_t s = hkf_default_settings;
-    hkf_output_t out;
     uint8_t count = 0, op, field;
     int result, i;
 
@@ -152,84 +241,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     r_low = s.r_min;
     r_high = s.r_max;
     while (take_byte(&in, &op)) {
-        hkf_real_t v[3];
-        before = f;
-        memset(&out, 0, sizeof out);
-        switch (op % 9) {
-        case 0:
-            v[0] = take_real(&in), v[1] = take_real(&in), v[2] = take_real(&in);
-            result = hkf_update(&f, v, take_real(&in), &out);
-            ++steps;
-            after_call(&before, &f, result, &out);
-            break;
-        case 1:
-            result = hkf_predict(&f, take_real(&in), &out);
-            ++steps;
-            after_call(&before, &f, result, &out);
-            break;
-        case 2:
-            result = hkf_extrapolate(&f, take_real(&in), &out);
-            check(memcmp(&before, &f, sizeof f) == 0, "hkf_extrapolate changed the filter");
-            after_call(&before, &f, result, result == HKF_OK ? &out : NULL);
-            break;
-        case 3:
-            v[0] = take_real(&in), v[1] = take_real(&in), v[2] = take_real(&in);
-            result = hkf_set_center(&f, v);
-            after_call(&before, &f, result, NULL);
-            break;
-        case 4:
-            result = hkf_recenter(&f);
-            after_call(&before, &f, result, NULL);
-            break;
-        case 5:
-            hkf_reset(&f);
-            break;
-        case 6:
-            result = hkf_get_output(&f, &out);
-            check(memcmp(&before, &f, sizeof f) == 0, "hkf_get_output changed the filter");
-            after_call(&before, &f, result, result == HKF_OK ? &out : NULL);
-            break;
-        case 7: { /* two estimators' measurements, the second's settings edited once (maybe to nonsense) */
-            hkf_settings_t second = s;
-            hkf_real_t v2[3];
-            if (take_byte(&in, &field)) {
-                edit_setting(&second, field, &in);
-            }
-            v[0] = take_real(&in), v[1] = take_real(&in), v[2] = take_real(&in);
-            v2[0] = take_real(&in), v2[1] = take_real(&in), v2[2] = take_real(&in);
-            if (hkf_init(&before, &second) == HKF_OK) { /* (before is rewritten below) */
-                const hkf_real_t low = second.r_min < s.r_min ? second.r_min : s.r_min;
-#if defined(HKF_REAL_FIXED)
-                allow_r(low / 2 - 1, second.r_max); /* less a unit for the quotient's rounding */
-#else
-                allow_r(low * HKF_REAL(0.4999), second.r_max);
-#endif
-            }
-            before = f;
-            { /* either measurement may be missing (that model found no face); both missing is an error */
-                uint8_t missing = 0;
-                hkf_real_t dt;
-                (void)take_byte(&in, &missing);
-                dt = take_real(&in);
-                result = hkf_update_pair(&f, missing % 4 == 1 ? NULL : v, missing % 4 == 2 ? NULL : v2, &second, dt,
-                                         &out);
-                if (missing % 4 == 3) {
-                    before = f;
-                    result = hkf_update_pair(&f, NULL, NULL, &second, dt, &out);
-                    if (result != HKF_ERROR_NULL_ARGUMENT) {
-                        abort();
-                    }
-                }
-            }
-            ++steps;
-            after_call(&before, &f, result, &out);
-            break;
-        }
-        default:
-            result = hkf_init(&f, &s);
-            after_call(&before, &f, result, NULL);
-            break;
-        }
+        api_step(&f, &before, &s, &in, op);
     }
     return 0;
 }

@@ -211,6 +211,33 @@ static float angle_error(float a, float b)
     return d < 0.0f ? -d : d;
 }
 
+/* The largest error per axis, the tolerance, the instructions per update and the memory. */
+static void report(const float worst[M], uint32_t ticks, uint32_t updates)
+{
+    semihosting_write("cmsis_dsp_filter: " SEQ_NAME ", ");
+    semihosting_write_int(SEQ_FRAMES);
+    semihosting_write(" frames; largest error against the x86 double build: pitch ");
+    semihosting_write_int((long)(worst[0] * 1e6f + 0.5f));
+    semihosting_write(" udeg, yaw ");
+    semihosting_write_int((long)(worst[1] * 1e6f + 0.5f));
+    semihosting_write(" udeg, roll ");
+    semihosting_write_int((long)(worst[2] * 1e6f + 0.5f));
+    semihosting_write(" udeg (tolerance ");
+    semihosting_write_int((long)(seq_tolerance_deg[0] * 1e6f + 0.5f));
+    semihosting_write(" udeg); cmsis_filter_update: ");
+    semihosting_write_int((long)updates);
+    semihosting_write(" calls, ");
+    semihosting_write_int(counter_instructions_per_call(ticks, updates));
+    semihosting_write(" instructions each; sizeof(cmsis_filter_t) ");
+    semihosting_write_int((long)sizeof(cmsis_filter_t));
+    semihosting_write(" B; work matrices ");
+    semihosting_write_int((long)(sizeof f_data + sizeof ft_data + sizeof q_data + sizeof fp_data + sizeof tmp_data +
+                                 sizeof i_data + sizeof h_data + sizeof ht_data + sizeof pht_data + sizeof s_data +
+                                 sizeof s_inv_data + sizeof r_data + sizeof k_data + sizeof kh_data + sizeof hx_data + sizeof y_data +
+                                 sizeof ky_data + sizeof x_new + sizeof F * 20u));
+    semihosting_write(" B\n");
+}
+
 int main(void)
 {
     static cmsis_filter_t filter;
@@ -246,28 +273,7 @@ int main(void)
             worst[a] = e > worst[a] ? e : worst[a];
         }
     }
-    semihosting_write("cmsis_dsp_filter: " SEQ_NAME ", ");
-    semihosting_write_int(SEQ_FRAMES);
-    semihosting_write(" frames; largest error against the x86 double build: pitch ");
-    semihosting_write_int((long)(worst[0] * 1e6f + 0.5f));
-    semihosting_write(" udeg, yaw ");
-    semihosting_write_int((long)(worst[1] * 1e6f + 0.5f));
-    semihosting_write(" udeg, roll ");
-    semihosting_write_int((long)(worst[2] * 1e6f + 0.5f));
-    semihosting_write(" udeg (tolerance ");
-    semihosting_write_int((long)(seq_tolerance_deg[0] * 1e6f + 0.5f));
-    semihosting_write(" udeg); cmsis_filter_update: ");
-    semihosting_write_int((long)updates);
-    semihosting_write(" calls, ");
-    semihosting_write_int(counter_instructions_per_call(ticks, updates));
-    semihosting_write(" instructions each; sizeof(cmsis_filter_t) ");
-    semihosting_write_int((long)sizeof(cmsis_filter_t));
-    semihosting_write(" B; work matrices ");
-    semihosting_write_int((long)(sizeof f_data + sizeof ft_data + sizeof q_data + sizeof fp_data + sizeof tmp_data +
-                                 sizeof i_data + sizeof h_data + sizeof ht_data + sizeof pht_data + sizeof s_data +
-                                 sizeof s_inv_data + sizeof r_data + sizeof k_data + sizeof kh_data + sizeof hx_data + sizeof y_data +
-                                 sizeof ky_data + sizeof x_new + sizeof F * 20u));
-    semihosting_write(" B\n");
+    report(worst, ticks, updates);
     for (a = 0; a < M; ++a) {
         failures += !(worst[a] <= seq_tolerance_deg[0]);
     }

@@ -71,6 +71,32 @@ static void write_micro_degrees(const char *name, error_t e)
     semihosting_write(" udeg");
 }
 
+/* One line per settings set: the largest error per axis, the tolerance, hkf_update's instructions. */
+static void report(int k, const char *name, const error_t worst[3], uint32_t ticks, uint32_t updates)
+{
+    semihosting_write("target (");
+    semihosting_write(name);
+    semihosting_write("): " SEQ_NAME ", ");
+    semihosting_write_int(SEQ_FRAMES);
+    semihosting_write(" frames; largest error against the x86 double build: ");
+    write_micro_degrees("pitch ", worst[0]);
+    write_micro_degrees(", yaw ", worst[1]);
+    write_micro_degrees(", roll ", worst[2]);
+    semihosting_write(" (tolerance ");
+    semihosting_write_int(micro_degrees(TOLERANCE(k)));
+    semihosting_write(" udeg); hkf_update: ");
+    semihosting_write_int((long)updates);
+    semihosting_write(" calls, ");
+    semihosting_write_int(counter_instructions_per_call(ticks, updates));
+    semihosting_write(" instructions each (SysTick: ");
+    semihosting_write_int((long)ticks);
+    semihosting_write(" ticks; ");
+    semihosting_write_int((long)counter_calibration_ticks());
+    semihosting_write(" for 200000 instructions); sizeof(hkf_filter_t) ");
+    semihosting_write_int((long)sizeof(hkf_filter_t));
+    semihosting_write(" B\n");
+}
+
 /* The sequence with settings set k (0: the paper's, 1: the defaults); returns the failures.
  * Not inlined: dev/benchmarks/cortex_m4_cycles.py looks for hkf_update's calls from here. */
 __attribute__((noinline)) static int run_sequence(int k, const char *name, const hkf_settings_t *settings)
@@ -112,27 +138,7 @@ __attribute__((noinline)) static int run_sequence(int k, const char *name, const
             worst[a] = e > worst[a] ? e : worst[a];
         }
     }
-    semihosting_write("target (");
-    semihosting_write(name);
-    semihosting_write("): " SEQ_NAME ", ");
-    semihosting_write_int(SEQ_FRAMES);
-    semihosting_write(" frames; largest error against the x86 double build: ");
-    write_micro_degrees("pitch ", worst[0]);
-    write_micro_degrees(", yaw ", worst[1]);
-    write_micro_degrees(", roll ", worst[2]);
-    semihosting_write(" (tolerance ");
-    semihosting_write_int(micro_degrees(TOLERANCE(k)));
-    semihosting_write(" udeg); hkf_update: ");
-    semihosting_write_int((long)updates);
-    semihosting_write(" calls, ");
-    semihosting_write_int(counter_instructions_per_call(ticks, updates));
-    semihosting_write(" instructions each (SysTick: ");
-    semihosting_write_int((long)ticks);
-    semihosting_write(" ticks; ");
-    semihosting_write_int((long)counter_calibration_ticks());
-    semihosting_write(" for 200000 instructions); sizeof(hkf_filter_t) ");
-    semihosting_write_int((long)sizeof(hkf_filter_t));
-    semihosting_write(" B\n");
+    report(k, name, worst, ticks, updates);
     for (a = 0; a < 3; ++a) {
         failures += !(worst[a] <= TOLERANCE(k));
     }

@@ -164,39 +164,59 @@ static int parse_name(const char *text, const char *const *names, int count)
     return -1;
 }
 
-static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value, char *error, size_t error_size)
+/* A key of one, three or four numbers (a curve: tau lambda mu sigma) into its field at base. */
+static int set_reals(char *base, const config_key_t *key, const char *value, char *error, size_t error_size)
 {
     static const char *const wants[] = {"a number", "three numbers (pitch yaw roll)",
                                         "four numbers (tau lambda mu sigma)"};
-    char *base = (char *)s + key->offset;
+    const int n = key->kind == KIND_REAL ? 1 : key->kind == KIND_REAL3 ? 3 : 4;
     hkf_real_t v[4];
+    switch (parse_reals(value, v, n)) {
+    case 0:
+        if (key->kind == KIND_CURVE) {
+            hkf_noise_curve_t *c = (hkf_noise_curve_t *)(void *)base;
+            c->tau = v[0];
+            c->lambda = v[1];
+            c->mu = v[2];
+            c->sigma = v[3];
+        } else {
+            memcpy(base, v, (size_t)n * sizeof v[0]);
+        }
+        return 0;
+    case -2:
+        snprintf(error, error_size, "%s = %s: a value is NaN, infinite or beyond the range of a number here",
+                 key->name, value);
+        return -1;
+    default:
+        snprintf(error, error_size, "%s wants %s, not '%s'", key->name, wants[n == 1 ? 0 : n == 3 ? 1 : 2], value);
+        return -1;
+    }
+}
+
+/* A whole number from 0 to 1000000 into the unsigned at base. */
+static int set_uint(char *base, const config_key_t *key, const char *value, char *error, size_t error_size)
+{
+    char *end = NULL;
+    unsigned long whole;
+    errno = 0;
+    whole = strtoul(value, &end, 10);
+    if (end != value && *end == '\0' && errno == 0 && whole <= 1000000ul && value[0] != '-') {
+        *(unsigned *)(void *)base = (unsigned)whole;
+        return 0;
+    }
+    snprintf(error, error_size, "%s wants a whole number from 0 to 1000000, not '%s'", key->name, value);
+    return -1;
+}
+
+static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value, char *error, size_t error_size)
+{
+    char *base = (char *)s + key->offset;
     int n;
     switch (key->kind) {
     case KIND_REAL:
     case KIND_REAL3:
     case KIND_CURVE:
-        n = key->kind == KIND_REAL ? 1 : key->kind == KIND_REAL3 ? 3 : 4;
-        switch (parse_reals(value, v, n)) {
-        case 0:
-            if (key->kind == KIND_CURVE) {
-                hkf_noise_curve_t *c = (hkf_noise_curve_t *)(void *)base;
-                c->tau = v[0];
-                c->lambda = v[1];
-                c->mu = v[2];
-                c->sigma = v[3];
-            } else {
-                memcpy(base, v, (size_t)n * sizeof v[0]);
-            }
-            return 0;
-        case -2:
-            snprintf(error, error_size, "%s = %s: a value is NaN, infinite or beyond the range of a number here",
-                     key->name, value);
-            return -1;
-        default:
-            snprintf(error, error_size, "%s wants %s, not '%s'", key->name, wants[n == 1 ? 0 : n == 3 ? 1 : 2],
-                     value);
-            return -1;
-        }
+        return set_reals(base, key, value, error, error_size);
     case KIND_NOISE_MODE:
         n = parse_name(value, noise_mode_names, 3);
         if (n >= 0) {
@@ -213,18 +233,8 @@ static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value
         }
         snprintf(error, error_size, "loop_closure is off, norm or per_axis, not '%s'", value);
         return -1;
-    case KIND_UINT: {
-        char *end = NULL;
-        unsigned long whole;
-        errno = 0;
-        whole = strtoul(value, &end, 10);
-        if (end != value && *end == '\0' && errno == 0 && whole <= 1000000ul && value[0] != '-') {
-            *(unsigned *)(void *)base = (unsigned)whole;
-            return 0;
-        }
-        snprintf(error, error_size, "%s wants a whole number from 0 to 1000000, not '%s'", key->name, value);
-        return -1;
-    }
+    case KIND_UINT:
+        return set_uint(base, key, value, error, error_size);
     }
     return -1;
 }
