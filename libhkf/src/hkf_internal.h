@@ -7,6 +7,9 @@
 /* HKF_OK, or the hkf_result_t of the first setting that makes no sense. */
 int hkf_settings_check(const hkf_settings_t *s);
 
+/* HKF_OK, or why one Eq. 8 curve makes no sense (HKF_ERROR_SETTING_SIGMA or _CURVE). */
+int hkf_curve_check(const hkf_noise_curve_t *c);
+
 /* The axis loops run over all HKF_LANES where the compiler turns them into
  * SIMD (the idle fourth lane fills a vector), and over the 3 axes alone on
  * scalar cores (Cortex-M), where the idle lane would only cost time. The

@@ -113,29 +113,34 @@ static int settings_finite(const hkf_settings_t *s)
            all_finite(scalars, (int)(sizeof scalars / sizeof scalars[0]));
 }
 
-/* Eq. 8's curves: their widths, and their floor, depth and centre within the build's range. */
+/* One Eq. 8 curve: its width, and its floor, depth and centre within the build's range. */
+int hkf_curve_check(const hkf_noise_curve_t *c)
+{
+    if (!(c->sigma >= HKF_REAL_FROM(HKF_MIN_SIGMA) && c->sigma <= HKF_REAL_FROM(HKF_MAX_SIGMA))) {
+        return HKF_ERROR_SETTING_SIGMA;
+    }
+#if defined(HKF_REAL_FIXED)
+    if (!(hkf_abs(c->floor) <= HKF_REAL_FROM(HKF_MAX_CURVE_FLOOR) &&
+          c->curvature_q24 >= -HKF_MAX_CURVATURE * 16777216 && c->curvature_q24 <= HKF_MAX_CURVATURE * 16777216 &&
+          hkf_abs(c->mu) <= HKF_REAL_FROM(HKF_MAX_ABS_ANGLE))) {
+        return HKF_ERROR_SETTING_CURVE;
+    }
+#else
+    if (!(hkf_abs(c->tau) <= HKF_REAL_FROM(HKF_MAX_VARIANCE) && hkf_abs(c->lambda) <= HKF_REAL_FROM(HKF_MAX_VARIANCE) &&
+          hkf_abs(c->mu) <= HKF_REAL_FROM(HKF_MAX_ABS_ANGLE))) {
+        return HKF_ERROR_SETTING_CURVE;
+    }
+#endif
+    return HKF_OK;
+}
+
 static int check_curves(const hkf_settings_t *s)
 {
-    int a;
-    for (a = 0; a < HKF_AXES; ++a) {
-        const hkf_noise_curve_t *c = &s->noise[a];
-        if (!(c->sigma >= HKF_REAL_FROM(HKF_MIN_SIGMA) && c->sigma <= HKF_REAL_FROM(HKF_MAX_SIGMA))) {
-            return HKF_ERROR_SETTING_SIGMA;
-        }
-#if defined(HKF_REAL_FIXED)
-        if (!(hkf_abs(c->floor) <= HKF_REAL_FROM(HKF_MAX_CURVE_FLOOR) &&
-              c->curvature_q24 >= -HKF_MAX_CURVATURE * 16777216 && c->curvature_q24 <= HKF_MAX_CURVATURE * 16777216 &&
-              hkf_abs(c->mu) <= HKF_REAL_FROM(HKF_MAX_ABS_ANGLE))) {
-            return HKF_ERROR_SETTING_CURVE;
-        }
-#else
-        if (!(hkf_abs(c->tau) <= HKF_REAL_FROM(HKF_MAX_VARIANCE) && hkf_abs(c->lambda) <= HKF_REAL_FROM(HKF_MAX_VARIANCE) &&
-              hkf_abs(c->mu) <= HKF_REAL_FROM(HKF_MAX_ABS_ANGLE))) {
-            return HKF_ERROR_SETTING_CURVE;
-        }
-#endif
+    int a, result = HKF_OK;
+    for (a = 0; a < HKF_AXES && result == HKF_OK; ++a) {
+        result = hkf_curve_check(&s->noise[a]);
     }
-    return HKF_OK;
+    return result;
 }
 
 /* How R and q are chosen: the mode, the curves, R's clamp, the constant R and q per axis. */

@@ -214,7 +214,11 @@ for name in 'a b' 'a]' 'a#' "$(printf 'a\nb')"; do
 done
 printf 'start_rate = 30\nlc_xi = 5\n' >"$work/bad.conf"
 expect_exit 2 "lc_xi = 5 in a file" "$filter" --config "$work/bad.conf" --print-config
-said "bad.conf:2: lc_xi = 5"
+said "bad.conf:2: lc_xi wants a number 0 to 1, not '5'"
+printf 'r_min = 200\nr_max = 100\n' >"$work/bad_pair.conf"  # each in range, not together: both lines named
+expect_exit 2 "r_min above r_max in a file" "$filter" --config "$work/bad_pair.conf" --print-config
+said "bad_pair.conf:1: r_min = 200; "
+said "bad_pair.conf:2: r_max = 100; invalid settings"
 expect_exit 2 "--set lc_theta=1e300" "$filter" --set lc_theta=1e300 --print-config
 said "beyond the range"
 printf 'start_rate = 30\nlc_xi\0 = 0.5\n' >"$work/nul.conf"

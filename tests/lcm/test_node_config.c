@@ -14,6 +14,7 @@
 
 #include <cmocka.h>
 
+#include "hkf/hkf_settings_table.h"
 #include "model_name.h"
 #include "node_config.h"
 
@@ -254,14 +255,13 @@ static void test_check_names_where(void **state)
 {
     node_config_t c;
     const char *path;
-    char where[80];
+    char where[400];
     (void)state;
     node_config_defaults(&c);
     assert_int_equal(node_config_check(&c, error, sizeof error), 0);
-    path = write_temp("start_rate = 3\nlc_xi = 5\n");
-    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), 0);
-    assert_int_equal(node_config_check(&c, error, sizeof error), -1);
-    snprintf(where, sizeof where, "%s:2: lc_xi = 5", path);
+    path = write_temp("start_rate = 3\nlc_xi = 5\n"); /* a value outside its range: refused at its line */
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), -1);
+    snprintf(where, sizeof where, "%s:2: lc_xi wants a number 0 to 1, not '5'", path);
     assert_non_null(strstr(error, where));
     node_config_defaults(&c);
     assert_int_equal(node_config_set(&c, "r_min=200", error, sizeof error), 0);
@@ -271,17 +271,25 @@ static void test_check_names_where(void **state)
     assert_non_null(strstr(error, "--set: r_max = 100"));
     node_config_defaults(&c);
     path = write_temp("[model mine]\nnoise.yaw = 1 2 3 -4\n");
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), -1);
+    snprintf(where, sizeof where, "%s:2: noise.yaw wants four numbers (tau lambda mu sigma) sigma 0.001 to 10000 deg", path);
+    assert_non_null(strstr(error, where));
+    node_config_defaults(&c); /* a model's own key, refused where it was set */
+    path = write_temp("[model mine]\nnoise_time = 20\n");
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), -1);
+    snprintf(where, sizeof where, "%s:2: noise_time wants a number 0 to 10 s", path);
+    assert_non_null(strstr(error, where));
+    node_config_defaults(&c); /* settings each in range but not together, in a model: named where they were set */
+    path = write_temp("gate_sigma = 3\n[model mine]\nmax_gate_rejections = 0\n");
     assert_int_equal(node_config_read_file(&c, path, error, sizeof error), 0);
     assert_int_equal(node_config_check(&c, error, sizeof error), -1);
-    snprintf(where, sizeof where, "%s:2: noise.yaw = 1 2 3 -4", path);
+    snprintf(where, sizeof where, "%s:1: gate_sigma = 3; %s:3: max_gate_rejections = 0; ", path, path);
     assert_non_null(strstr(error, where));
     assert_non_null(strstr(error, "'mine'"));
-    node_config_defaults(&c); /* a model's own key, named where it was set */
-    path = write_temp("[model mine]\nnoise_time = 20\n");
-    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), 0);
+    node_config_defaults(&c); /* the position's too */
+    assert_int_equal(node_config_set(&c, "position_max_gate_rejections=0", error, sizeof error), 0);
     assert_int_equal(node_config_check(&c, error, sizeof error), -1);
-    snprintf(where, sizeof where, "%s:2: noise_time = 20", path);
-    assert_non_null(strstr(error, where));
+    assert_non_null(strstr(error, "--set: position_max_gate_rejections = 0; invalid position settings"));
 }
 
 /* A value beyond the number type, NaN or infinite is said to be that (not
@@ -323,6 +331,39 @@ static void test_values_and_files_reported_as_they_are(void **state)
     rmdir(fifo);
 }
 
+/* Every setting of libhkf's tables is a key (the position's as position_NAME), printed and set one way:
+ * each takes the value --print-config printed for it, and a value beyond its range is refused. */
+static void test_every_setting_is_a_key(void **state)
+{
+    static node_config_t c;
+    static char printed[16384];
+    FILE *f = fmemopen(printed, sizeof printed, "w");
+    int i;
+    (void)state;
+    assert_true(hkf_settings_table_count + 1 + hkf_position_settings_table_count <= NODE_KEY_SLOTS);
+    assert_true(hkf_settings_table_count <= 32); /* a bit each in node_model_t.own_keys */
+    node_config_defaults(&c);
+    node_config_print(&c, f);
+    fclose(f);
+    for (i = 0; i < hkf_settings_table_count + hkf_position_settings_table_count; ++i) {
+        const int angles = i < hkf_settings_table_count;
+        const hkf_setting_t *d = angles ? &hkf_settings_table[i] : &hkf_position_settings_table[i - hkf_settings_table_count];
+        char name[64], line[200], *at, *end;
+        snprintf(name, sizeof name, "\n%s%s ", angles ? "" : "position_", d->name);
+        at = strstr(printed, name);
+        assert_non_null(at);
+        end = strchr(at + 1, '#');
+        assert_non_null(end);
+        snprintf(line, sizeof line, "%.*s", (int)(end - at - 1), at + 1); /* "name = value  " */
+        assert_int_equal(node_config_set(&c, line, error, sizeof error), 0);
+        if (d->type == HKF_SETTING_REAL) {
+            snprintf(line, sizeof line, "%s=%g%s", name + 1, d->max * 2 + 1, d->count == 3 ? " 1 1" : "");
+            assert_int_equal(node_config_set(&c, line, error, sizeof error), -1);
+            assert_non_null(strstr(error, "wants"));
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -332,6 +373,7 @@ int main(void)
         cmocka_unit_test(test_print_reads_back),
         cmocka_unit_test(test_model_names_one_rule),
         cmocka_unit_test(test_check_names_where),
+        cmocka_unit_test(test_every_setting_is_a_key),
         cmocka_unit_test(test_values_and_files_reported_as_they_are),
     };
     return cmocka_run_group_tests(tests, NULL, remove_temp_files);

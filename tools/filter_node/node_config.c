@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "node_config.h"
 
+#include "hkf/hkf_settings_table.h"
 #include "model_name.h"
 #include "safe_files.h"
 
@@ -12,73 +13,77 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef enum { KIND_REAL, KIND_REAL3, KIND_CURVE, KIND_NOISE_MODE, KIND_LOOP_CLOSURE, KIND_UINT } key_kind_t;
+/* Every key is a setting described as libhkf describes its own (hkf/hkf_settings_table.h): the angle
+ * filter's, then the node's own, then the position filter's (named "position_" + its name). A key's index
+ * is its slot in the origin arrays; a model may own the angle filter's (own_keys has a bit per index). */
+typedef enum { GROUP_ANGLES, GROUP_NODE, GROUP_POSITION } key_group_t;
 
-typedef struct {
-    const char *name;
-    key_kind_t kind;
-    size_t offset; /* in hkf_settings_t */
-    const char *comment;
-} config_key_t;
-
-#define FIELD(f) offsetof(hkf_settings_t, f)
-#define PAIR_KEY "pair_second_alone_from_yaw"
-
-/* The position filter's keys (hkf_position_settings_t): one or three values within [low, high]. */
-typedef struct {
-    const char *name;
-    int count;
-    size_t offset;
-    double low, high;
-    const char *unit; /* of the range, in the error message */
-    const char *comment;
-} position_key_t;
-
-#define POSITION_FIELD(f) offsetof(hkf_position_settings_t, f)
-static const position_key_t position_keys[] = {
-    {"position_process_noise", 3, POSITION_FIELD(process_noise), 0, HKF_MAX_PROCESS_NOISE,
-     "", "position filter's q per axis (x y z): cm^2/s^3; calibrated: x n, 1/s^3"},
-    {"position_measurement_noise", 3, POSITION_FIELD(measurement_noise), HKF_MIN_VARIANCE, HKF_MAX_VARIANCE,
-     " cm^2", "position R per axis (x y z), cm^2; calibrated: n's start (face box: 25 x)"},
-    {"position_noise_time", 1, POSITION_FIELD(noise_time), 0, HKF_MAX_TIME, " s",
-     "s; position noise calibration's time constant, 0 = off (constant R and q)"},
-    {"position_q_boost", 1, POSITION_FIELD(q_boost), 0, HKF_MAX_Q_BOOST, " per s",
-     "1/s; calibrated: the position's walk n q_boost e per s while moving, 0 = off"},
-    {"position_max_speed", 1, POSITION_FIELD(max_speed), 0, HKF_MAX_SPEED, " cm/s",
-     "cm/s; the outlier gate: a position farther from the prediction than this x dt + 3 sigmas is refused, 0 = off"},
+static const hkf_setting_t node_settings[] = {
+    {"pair_second_alone_from_yaw", offsetof(node_config_t, second_alone_from_yaw), HKF_SETTING_REAL, 1, "deg", 0, 180,
+     0, 0, NULL, "two models on one channel: the second alone where the first's |yaw| >= this"},
 };
-#define POSITION_KEY_COUNT (sizeof position_keys / sizeof position_keys[0])
+#define NODE_SETTING_COUNT ((int)(sizeof node_settings / sizeof node_settings[0]))
+#define POSITION_PREFIX "position_"
 
-static const config_key_t keys[] = {
-    {"process_noise", KIND_REAL3, FIELD(process_noise), "q per axis (pitch yaw roll): deg^2/s^3, the moving head's acceleration"},
-    {"noise_mode", KIND_NOISE_MODE, FIELD(noise_mode), "constant | adaptive | adaptive_squared"},
-    {"noise.pitch", KIND_CURVE, FIELD(noise[0]), "Eq. 8 curve: tau lambda mu sigma, deg"},
-    {"noise.yaw", KIND_CURVE, FIELD(noise[1]), "Eq. 8 curve: tau lambda mu sigma, deg"},
-    {"noise.roll", KIND_CURVE, FIELD(noise[2]), "Eq. 8 curve: tau lambda mu sigma, deg"},
-    {"r_const", KIND_REAL3, FIELD(r_const), "R per axis in constant mode, deg^2"},
-    {"r_min", KIND_REAL, FIELD(r_min), "lower clamp of R, deg^2"},
-    {"r_max", KIND_REAL, FIELD(r_max), "upper clamp of R, deg^2"},
-    {"loop_closure", KIND_LOOP_CLOSURE, FIELD(loop_closure), "off | norm | per_axis (Eq. 9)"},
-    {"lc_xi", KIND_REAL, FIELD(lc_xi), "loop-closure fusion factor, 0..1"},
-    {"lc_theta", KIND_REAL, FIELD(lc_theta), "loop-closure threshold, deg"},
-    {"p0_angle", KIND_REAL, FIELD(p0_angle), "initial angle variance, deg^2"},
-    {"p0_rate", KIND_REAL, FIELD(p0_rate), "initial rate variance, and a move's from rest, (deg/s)^2"},
-    {"gate_sigma", KIND_REAL, FIELD(gate_sigma), "innovation gate in sigmas, 0 = off"},
-    {"max_gate_rejections", KIND_UINT, FIELD(max_gate_rejections), "gated measurements in a row before restarting"},
-    {"coast_time", KIND_REAL, FIELD(coast_time), "s without a face before the track is LOST"},
-    {"max_dt", KIND_REAL, FIELD(max_dt), "s; a longer gap restarts the track"},
-    {"still_wander", KIND_REAL, FIELD(still_wander), "deg^2; motion adaptation: how far a resting head's estimate wanders, beyond R"},
-    {"start_rate", KIND_REAL, FIELD(start_rate), "1/s; motion adaptation: how often a still head starts to move, 0 = off (the paper)"},
-    {"stop_rate", KIND_REAL, FIELD(stop_rate), "1/s; motion adaptation: how often a moving head stops"},
-    {"noise_time", KIND_REAL, FIELD(noise_time), "s; noise calibration's time constant, 0 = off (the paper)"},
-    {"noise_rise", KIND_REAL, FIELD(noise_rise), "1/s; how fast the noise estimate may rise"},
-};
-#define KEY_COUNT (sizeof keys / sizeof keys[0])
-typedef char origin_slots_fit[KEY_COUNT + 1 + POSITION_KEY_COUNT <= NODE_KEY_SLOTS ? 1 : -1]; /* the keys, the pair and position keys */
-typedef char own_keys_fit[KEY_COUNT <= 32 ? 1 : -1];                     /* a bit per key in node_model_t.own_keys */
+static int key_count(void)
+{
+    return hkf_settings_table_count + NODE_SETTING_COUNT + hkf_position_settings_table_count;
+}
 
-static const char *const noise_mode_names[] = {"constant", "adaptive", "adaptive_squared"};
-static const char *const loop_closure_names[] = {"off", "norm", "per_axis"};
+static const hkf_setting_t *key_setting(int k, key_group_t *group)
+{
+    if (k < hkf_settings_table_count) {
+        *group = GROUP_ANGLES;
+        return &hkf_settings_table[k];
+    }
+    k -= hkf_settings_table_count;
+    if (k < NODE_SETTING_COUNT) {
+        *group = GROUP_NODE;
+        return &node_settings[k];
+    }
+    *group = GROUP_POSITION;
+    return &hkf_position_settings_table[k - NODE_SETTING_COUNT];
+}
+
+/* The key's name as the config file writes it. */
+static const char *key_name(int k, char *text, size_t size)
+{
+    key_group_t group;
+    const hkf_setting_t *d = key_setting(k, &group);
+    snprintf(text, size, "%s%s", group == GROUP_POSITION ? POSITION_PREFIX : "", d->name);
+    return text;
+}
+
+/* The index of the key `name`, or -1. */
+static int find_key(const char *name)
+{
+    int k;
+    for (k = 0; k < key_count(); ++k) {
+        char text[64];
+        if (strcmp(key_name(k, text, sizeof text), name) == 0) {
+            return k;
+        }
+    }
+    return -1;
+}
+
+/* The struct a key's offset is in: the angle settings given, the node's config, or its position settings. */
+static char *key_base(node_config_t *config, hkf_settings_t *angles, key_group_t group)
+{
+    return group == GROUP_ANGLES ? (char *)angles : group == GROUP_NODE ? (char *)config : (char *)&config->position;
+}
+
+static size_t value_size(const hkf_setting_t *d)
+{
+    switch (d->type) {
+    case HKF_SETTING_UINT: return sizeof(unsigned);
+    case HKF_SETTING_CHOICE: return sizeof(int);
+    case HKF_SETTING_CURVE: return sizeof(hkf_noise_curve_t);
+    case HKF_SETTING_REAL:
+    case HKF_SETTING_RATE: break;
+    }
+    return (size_t)d->count * sizeof(hkf_real_t);
+}
 
 /* The paper's two estimators and ours are in the table from the start. */
 static void add_builtin_model(node_config_t *config, const char *name, const hkf_noise_curve_t noise[3])
@@ -91,23 +96,12 @@ static void add_builtin_model(node_config_t *config, const char *name, const hkf
     m->r_const[2] = noise[2].tau - noise[2].lambda;
 }
 
-static const config_key_t *find_key(const char *name)
-{
-    size_t i;
-    for (i = 0; i < KEY_COUNT; ++i) {
-        if (strcmp(keys[i].name, name) == 0) {
-            return &keys[i];
-        }
-    }
-    return NULL;
-}
-
-/* A built-in model's own value of a real setting (as a `[model NAME]` section sets it). */
+/* A built-in model's own value of a real setting of the angles (as a `[model NAME]` section sets it). */
 static void own_builtin_real(node_model_t *m, const char *name, hkf_real_t value)
 {
-    const config_key_t *key = find_key(name);
-    *(hkf_real_t *)(void *)((char *)&m->own + key->offset) = value;
-    m->own_keys |= 1ul << (key - keys);
+    const int k = find_key(name);
+    *(hkf_real_t *)(void *)((char *)&m->own + hkf_settings_table[k].offset) = value;
+    m->own_keys |= 1ul << k;
 }
 
 void node_config_defaults(node_config_t *config)
@@ -164,77 +158,113 @@ static int parse_name(const char *text, const char *const *names, int count)
     return -1;
 }
 
-/* A key of one, three or four numbers (a curve: tau lambda mu sigma) into its field at base. */
-static int set_reals(char *base, const config_key_t *key, const char *value, char *error, size_t error_size)
-{
-    static const char *const wants[] = {"a number", "three numbers (pitch yaw roll)",
-                                        "four numbers (tau lambda mu sigma)"};
-    const int n = key->kind == KIND_REAL ? 1 : key->kind == KIND_REAL3 ? 3 : 4;
-    hkf_real_t v[4];
-    switch (parse_reals(value, v, n)) {
-    case 0:
-        if (key->kind == KIND_CURVE) {
-            hkf_noise_curve_t *c = (hkf_noise_curve_t *)(void *)base;
-            c->tau = v[0];
-            c->lambda = v[1];
-            c->mu = v[2];
-            c->sigma = v[3];
-        } else {
-            memcpy(base, v, (size_t)n * sizeof v[0]);
-        }
-        return 0;
-    case -2:
-        snprintf(error, error_size, "%s = %s: a value is NaN, infinite or beyond the range of a number here",
-                 key->name, value);
-        return -1;
-    default:
-        snprintf(error, error_size, "%s wants %s, not '%s'", key->name, wants[n == 1 ? 0 : n == 3 ? 1 : 2], value);
-        return -1;
-    }
-}
+/* A key's value as parsed, before it is checked and stored (room for a curve's four numbers). */
+typedef union {
+    hkf_real_t real[4];
+    hkf_noise_curve_t curve;
+    unsigned whole;
+    int choice;
+} key_value_t;
 
-/* A whole number from 0 to 1000000 into the unsigned at base. */
-static int set_uint(char *base, const config_key_t *key, const char *value, char *error, size_t error_size)
+/* A whole number (no sign) at most max into *out: 0, or -1. */
+static int parse_whole(const char *text, double max, unsigned *out)
 {
     char *end = NULL;
     unsigned long whole;
     errno = 0;
-    whole = strtoul(value, &end, 10);
-    if (end != value && *end == '\0' && errno == 0 && whole <= 1000000ul && value[0] != '-') {
-        *(unsigned *)(void *)base = (unsigned)whole;
-        return 0;
+    whole = strtoul(text, &end, 10);
+    if (end == text || *end != '\0' || errno != 0 || text[0] == '-' || (double)whole > max) {
+        return -1;
     }
-    snprintf(error, error_size, "%s wants a whole number from 0 to 1000000, not '%s'", key->name, value);
-    return -1;
+    *out = (unsigned)whole;
+    return 0;
 }
 
-static int set_key(hkf_settings_t *s, const config_key_t *key, const char *value, char *error, size_t error_size)
+/* The text of a value of setting d: 0, -1 when it is not what d takes, -2 for a number beyond the type. */
+static int parse_value(const hkf_setting_t *d, const char *text, key_value_t *v)
 {
-    char *base = (char *)s + key->offset;
-    int n;
-    switch (key->kind) {
-    case KIND_REAL:
-    case KIND_REAL3:
-    case KIND_CURVE:
-        return set_reals(base, key, value, error, error_size);
-    case KIND_NOISE_MODE:
-        n = parse_name(value, noise_mode_names, 3);
-        if (n >= 0) {
-            *(hkf_noise_mode_t *)(void *)base = (hkf_noise_mode_t)n;
-            return 0;
+    int result;
+    switch (d->type) {
+    case HKF_SETTING_CURVE:
+        result = parse_reals(text, v->real, 4);
+        if (result == 0) {
+            const hkf_real_t tau = v->real[0], lambda = v->real[1], mu = v->real[2], sigma = v->real[3];
+            v->curve.tau = tau;
+            v->curve.lambda = lambda;
+            v->curve.mu = mu;
+            v->curve.sigma = sigma;
         }
-        snprintf(error, error_size, "noise_mode is constant, adaptive or adaptive_squared, not '%s'", value);
-        return -1;
-    case KIND_LOOP_CLOSURE:
-        n = parse_name(value, loop_closure_names, 3);
-        if (n >= 0) {
-            *(int *)(void *)base = n;
-            return 0;
+        return result;
+    case HKF_SETTING_CHOICE:
+        v->choice = parse_name(text, d->choices, (int)d->max + 1);
+        return v->choice >= 0 ? 0 : -1;
+    case HKF_SETTING_UINT: return parse_whole(text, d->max, &v->whole);
+    case HKF_SETTING_REAL:
+    case HKF_SETTING_RATE: break;
+    }
+    return parse_reals(text, v->real, d->count);
+}
+
+/* What a key takes, for its error message: "a number", "three numbers (x y z)", ... */
+static const char *wants(const hkf_setting_t *d, key_group_t group)
+{
+    switch (d->type) {
+    case HKF_SETTING_CURVE: return "four numbers (tau lambda mu sigma)";
+    case HKF_SETTING_CHOICE: return "one of";
+    case HKF_SETTING_UINT: return "a whole number";
+    case HKF_SETTING_REAL:
+    case HKF_SETTING_RATE: break;
+    }
+    return d->count == 1 ? "a number" : group == GROUP_POSITION ? "three numbers (x y z)" : "three numbers (pitch yaw roll)";
+}
+
+/* The values d takes, from the table: "0 to 10 s", "more than 0, up to 10 s", "0 or 0.001 to 1000 1/s",
+ * "off, norm, per_axis". */
+static const char *describe_range(const hkf_setting_t *d, char *text, size_t size)
+{
+    const char *space = d->unit[0] != '\0' ? " " : "";
+    int i;
+    switch (d->type) {
+    case HKF_SETTING_CHOICE:
+        text[0] = '\0';
+        for (i = 0; i <= (int)d->max; ++i) {
+            const size_t used = strlen(text);
+            snprintf(text + used, size - used, "%s%s", i > 0 ? ", " : "", d->choices[i]);
         }
-        snprintf(error, error_size, "loop_closure is off, norm or per_axis, not '%s'", value);
-        return -1;
-    case KIND_UINT:
-        return set_uint(base, key, value, error, error_size);
+        return text;
+    case HKF_SETTING_CURVE: snprintf(text, size, "sigma %g to %g%s%s", d->min, d->max, space, d->unit); return text;
+    case HKF_SETTING_RATE: snprintf(text, size, "0 or %g to %g%s%s", d->min, d->max, space, d->unit); return text;
+    case HKF_SETTING_UINT: snprintf(text, size, "%.0f to %.0f", d->min, d->max); return text;
+    case HKF_SETTING_REAL: break;
+    }
+    if (d->above_min) {
+        snprintf(text, size, "more than %g, up to %g%s%s", d->min, d->max, space, d->unit);
+    } else {
+        snprintf(text, size, "%g to %g%s%s", d->min, d->max, space, d->unit);
+    }
+    return text;
+}
+
+/* Key k := the text, into its field in the struct at base, once it parses and is within its range;
+ * else -1 with what it should have been. */
+static int set_value(char *base, int k, const char *text, char *error, size_t error_size)
+{
+    key_group_t group;
+    const hkf_setting_t *d = key_setting(k, &group);
+    key_value_t v;
+    char name[64], range[160];
+    const int parsed = parse_value(d, text, &v);
+    if (parsed == 0 && hkf_setting_in_range(d, &v)) {
+        memcpy(base + d->offset, &v, value_size(d));
+        return 0;
+    }
+    key_name(k, name, sizeof name);
+    if (parsed == -2) {
+        snprintf(error, error_size, "%s = %s: a value is NaN, infinite or beyond the range of a number here", name,
+                 text);
+    } else {
+        snprintf(error, error_size, "%s wants %s %s, not '%s'", name, wants(d, group),
+                 describe_range(d, range, sizeof range), text);
     }
     return -1;
 }
@@ -270,71 +300,61 @@ static void set_origin(char *slot, const char *origin)
     snprintf(slot, NODE_ORIGIN_MAX, "%s", origin);
 }
 
-/* A model's keys: noise.pitch, noise.yaw, noise.roll (0-2) and r_const (3). */
-/* Every model entry has its curves and r_const; any other key it may set too. */
-static int model_always_owns(const config_key_t *key)
+/* Every model entry has its curves and r_const; any other angle key it may set too. */
+static int model_always_owns(const hkf_setting_t *d)
 {
-    return key->kind == KIND_CURVE || strcmp(key->name, "r_const") == 0;
+    return d->type == HKF_SETTING_CURVE || strcmp(d->name, "r_const") == 0;
 }
 
-static size_t key_size(const config_key_t *key)
+static int model_owns(const node_model_t *m, int k)
 {
-    switch (key->kind) {
-    case KIND_REAL: return sizeof(hkf_real_t);
-    case KIND_REAL3: return 3 * sizeof(hkf_real_t);
-    case KIND_CURVE: return sizeof(hkf_noise_curve_t);
-    case KIND_NOISE_MODE: return sizeof(hkf_noise_mode_t);
-    case KIND_LOOP_CLOSURE: return sizeof(int);
-    case KIND_UINT: return sizeof(unsigned);
-    }
-    return 0;
-}
-
-static int model_owns(const node_model_t *m, const config_key_t *key)
-{
-    return model_always_owns(key) || (m->own_keys >> (key - keys) & 1ul) != 0;
+    return k < hkf_settings_table_count &&
+           (model_always_owns(&hkf_settings_table[k]) || (m->own_keys >> k & 1ul) != 0);
 }
 
 /* The base settings with a model's curves, r_const and own keys. */
 static hkf_settings_t settings_of_model(const node_config_t *config, const node_model_t *m)
 {
     hkf_settings_t s = config->settings;
-    size_t k;
+    int k;
     memcpy(s.noise, m->noise, sizeof s.noise);
     memcpy(s.r_const, m->r_const, sizeof s.r_const);
-    for (k = 0; k < KEY_COUNT; ++k) {
-        if (!model_always_owns(&keys[k]) && (m->own_keys >> k & 1ul) != 0) {
-            memcpy((char *)&s + keys[k].offset, (const char *)&m->own + keys[k].offset, key_size(&keys[k]));
+    for (k = 0; k < hkf_settings_table_count; ++k) {
+        const hkf_setting_t *d = &hkf_settings_table[k];
+        if (!model_always_owns(d) && (m->own_keys >> k & 1ul) != 0) {
+            memcpy((char *)&s + d->offset, (const char *)&m->own + d->offset, value_size(d));
         }
     }
     return s;
 }
 
-static int set_model_key(node_config_t *config, const char *model, const char *key_name, const char *value,
+static int set_model_key(node_config_t *config, const char *model, const char *name, const char *value,
                          const char *origin, char *error, size_t error_size)
 {
-    const config_key_t *key = find_key(key_name);
+    const int k = find_key(name);
+    const hkf_setting_t *d;
     node_model_t *m;
     hkf_settings_t scratch;
-    if (key == NULL) {
-        snprintf(error, error_size, "unknown key '%s' for a model (--print-config lists them)", key_name);
+    if (k < 0 || k >= hkf_settings_table_count) {
+        snprintf(error, error_size, "unknown key '%s' for a model (--print-config lists them)", name);
         return -1;
     }
+    d = &hkf_settings_table[k];
     m = find_or_add_model(config, model, error, error_size);
     if (m == NULL) {
         return -1;
     }
     scratch = settings_of_model(config, m);
-    if (set_key(&scratch, key, value, error, error_size) != 0) {
+    if (set_value((char *)&scratch, k, value, error, error_size) != 0) {
         return -1;
     }
     memcpy(m->noise, scratch.noise, sizeof m->noise);
     memcpy(m->r_const, scratch.r_const, sizeof m->r_const);
-    if (!model_always_owns(key)) {
-        memcpy((char *)&m->own + key->offset, (const char *)&scratch + key->offset, key_size(key));
-        m->own_keys |= 1ul << (key - keys);
+    if (!model_always_owns(d)) {
+        memcpy((char *)&m->own + d->offset, (const char *)&scratch + d->offset, value_size(d));
+        m->own_keys |= 1ul << k;
     }
-    set_origin(m->origin[key - keys], origin);
+    set_origin(m->origin[k], origin);
     return 0;
 }
 
@@ -364,44 +384,11 @@ static int split_assignment(char *line, char **key, char **value)
     return (*key)[0] != '\0' && (*value)[0] != '\0' ? 0 : -1;
 }
 
-/* The index of a base key in keys[], KEY_COUNT for the pair key, then the position keys. */
-#define PAIR_SLOT KEY_COUNT
-#define POSITION_SLOT(i) (KEY_COUNT + 1 + (i))
-
-static const position_key_t *find_position_key(const char *name)
-{
-    size_t i;
-    for (i = 0; i < POSITION_KEY_COUNT; ++i) {
-        if (strcmp(position_keys[i].name, name) == 0) {
-            return &position_keys[i];
-        }
-    }
-    return NULL;
-}
-
-/* A position key's value(s) into config->position: 0, or -1 with the error. */
-static int set_position_key(node_config_t *config, const position_key_t *k, const char *value, const char *origin,
-                            char *error, size_t error_size)
-{
-    hkf_real_t v[3];
-    int i, ok = parse_reals(value, v, k->count) == 0;
-    for (i = 0; ok && i < k->count; ++i) {
-        ok = v[i] >= (hkf_real_t)k->low && v[i] <= (hkf_real_t)k->high;
-    }
-    if (!ok) {
-        snprintf(error, error_size, "%s wants %s, %g to %g%s, not '%s'", k->name,
-                 k->count == 3 ? "three values (x y z)" : "a value", k->low, k->high, k->unit, value);
-        return -1;
-    }
-    memcpy((char *)&config->position + k->offset, v, (size_t)k->count * sizeof v[0]);
-    set_origin(config->origin[POSITION_SLOT(k - position_keys)], origin);
-    return 0;
-}
-
 static int apply(node_config_t *config, const char *model, char *key, char *value, const char *origin, char *error,
                  size_t error_size)
 {
-    const config_key_t *k;
+    key_group_t group;
+    int k;
     if (strncmp(key, "model.", 6) == 0 && model == NULL) {
         char *name = key + 6, *dot = strchr(name, '.');
         if (dot == NULL) {
@@ -414,28 +401,16 @@ static int apply(node_config_t *config, const char *model, char *key, char *valu
     if (model != NULL) {
         return set_model_key(config, model, key, value, origin, error, error_size);
     }
-    if (strcmp(key, PAIR_KEY) == 0) { /* the node's own setting, not libhkf's */
-        hkf_real_t v;
-        if (parse_reals(value, &v, 1) == 0 && v >= 0 && v <= 180) {
-            config->second_alone_from_yaw = v;
-            set_origin(config->origin[PAIR_SLOT], origin);
-            return 0;
-        }
-        snprintf(error, error_size, "%s wants degrees from 0 to 180, not '%s'", key, value);
-        return -1;
-    }
-    if (find_position_key(key) != NULL) { /* the position filter's */
-        return set_position_key(config, find_position_key(key), value, origin, error, error_size);
-    }
     k = find_key(key);
-    if (k == NULL) {
+    if (k < 0) {
         snprintf(error, error_size, "unknown key '%s' (--print-config lists them)", key);
         return -1;
     }
-    if (set_key(&config->settings, k, value, error, error_size) != 0) {
+    (void)key_setting(k, &group);
+    if (set_value(key_base(config, &config->settings, group), k, value, error, error_size) != 0) {
         return -1;
     }
-    set_origin(config->origin[k - keys], origin);
+    set_origin(config->origin[k], origin);
     return 0;
 }
 
@@ -539,64 +514,27 @@ int node_config_read_file(node_config_t *config, const char *path, char *error, 
     return 0;
 }
 
-/* The keys a hkf_init error is about (NULL-terminated). */
-static const char *const *keys_of_result(int result)
-{
-    static const char *const noise_mode[] = {"noise_mode", NULL};
-    static const char *const curves[] = {"noise.pitch", "noise.yaw", "noise.roll", NULL};
-    static const char *const r_range[] = {"r_min", "r_max", NULL};
-    static const char *const r_const[] = {"r_const", NULL};
-    static const char *const q[] = {"process_noise", NULL};
-    static const char *const lc[] = {"loop_closure", NULL};
-    static const char *const lc_xi[] = {"lc_xi", NULL};
-    static const char *const lc_theta[] = {"lc_theta", NULL};
-    static const char *const p0[] = {"p0_angle", "p0_rate", NULL};
-    static const char *const gate[] = {"gate_sigma", "max_gate_rejections", NULL};
-    static const char *const coast[] = {"coast_time", NULL};
-    static const char *const max_dt[] = {"max_dt", NULL};
-    static const char *const motion[] = {"still_wander", "start_rate", "stop_rate", NULL};
-    static const char *const calibration[] = {"noise_time", "noise_rise", NULL};
-    static const char *const none[] = {NULL};
-    switch (result) {
-    case HKF_ERROR_SETTING_NOISE_MODE: return noise_mode;
-    case HKF_ERROR_SETTING_SIGMA:
-    case HKF_ERROR_SETTING_CURVE: return curves;
-    case HKF_ERROR_SETTING_R_RANGE: return r_range;
-    case HKF_ERROR_SETTING_R_CONST: return r_const;
-    case HKF_ERROR_SETTING_PROCESS_NOISE: return q;
-    case HKF_ERROR_SETTING_LOOP_CLOSURE: return lc;
-    case HKF_ERROR_SETTING_LC_XI: return lc_xi;
-    case HKF_ERROR_SETTING_LC_THETA: return lc_theta;
-    case HKF_ERROR_SETTING_P0: return p0;
-    case HKF_ERROR_SETTING_GATE: return gate;
-    case HKF_ERROR_SETTING_COAST_TIME: return coast;
-    case HKF_ERROR_SETTING_MAX_DT: return max_dt;
-    case HKF_ERROR_SETTING_MOTION: return motion;
-    case HKF_ERROR_SETTING_CALIBRATION: return calibration;
-    default: return none;
-    }
-}
+static void format_value(const hkf_setting_t *d, const char *at, char *value, size_t size);
 
-static void print_key_value(const hkf_settings_t *s, const config_key_t *key, char *value, size_t size);
-
-/* "where: key = value; " for each key of the error that was given somewhere
- * (a model's curves from its entry), appended to text. */
-static void describe_origins(const node_config_t *config, const node_model_t *model, int result, char *text,
-                             size_t size)
+/* "where: key = value; " for each key of `group` that the init error `result` is about and that was given
+ * somewhere (for a model: its own or the base's), appended to text. */
+static void describe_origins(const node_config_t *config, const node_model_t *model, key_group_t want, int result,
+                             char *text, size_t size)
 {
-    const char *const *names = keys_of_result(result);
-    const hkf_settings_t s = model != NULL ? settings_of_model(config, model) : config->settings;
-    for (; *names != NULL; ++names) {
-        const config_key_t *key = find_key(*names);
-        const char *origin = model != NULL && model_owns(model, key) ? model->origin[key - keys]
-                                                                      : config->origin[key - keys];
-        char value[160];
+    hkf_settings_t s = model != NULL ? settings_of_model(config, model) : config->settings;
+    int k;
+    for (k = 0; k < key_count(); ++k) {
+        key_group_t group;
+        const hkf_setting_t *d = key_setting(k, &group);
+        const char *origin = model != NULL && model_owns(model, k) ? model->origin[k] : config->origin[k];
+        const char *base = group == GROUP_ANGLES ? (const char *)&s : (const char *)&config->position;
+        char name[64], value[160];
         const size_t used = strlen(text);
-        if (origin[0] == '\0') {
-            continue; /* a default: not what the user wrote */
+        if (group != want || !hkf_setting_is_about(d, result) || origin[0] == '\0') {
+            continue; /* another group's, not this error's, or a default: not what the user wrote */
         }
-        print_key_value(&s, key, value, sizeof value);
-        snprintf(text + used, size - used, "%s: %s = %s; ", origin, key->name, value);
+        format_value(d, base + d->offset, value, sizeof value);
+        snprintf(text + used, size - used, "%s: %s = %s; ", origin, key_name(k, name, sizeof name), value);
     }
 }
 
@@ -604,15 +542,16 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
 {
     hkf_filter_t probe;
     hkf_position_filter_t position_probe;
-    int m, result = hkf_init(&probe, &config->settings);
+    int m, result = hkf_position_init(&position_probe, &config->position);
     char where[600] = "";
-    if (hkf_position_init(&position_probe, &config->position) != HKF_OK) {
-        snprintf(error, error_size, "invalid position settings (position_*): %s",
-                 hkf_result_string(hkf_position_init(&position_probe, &config->position)));
+    if (result != HKF_OK) {
+        describe_origins(config, NULL, GROUP_POSITION, result, where, sizeof where);
+        snprintf(error, error_size, "%sinvalid position settings (position_*): %s", where, hkf_result_string(result));
         return -1;
     }
+    result = hkf_init(&probe, &config->settings);
     if (result != HKF_OK) {
-        describe_origins(config, NULL, result, where, sizeof where);
+        describe_origins(config, NULL, GROUP_ANGLES, result, where, sizeof where);
         snprintf(error, error_size, "%sinvalid settings: %s", where, hkf_result_string(result));
         return -1;
     }
@@ -621,7 +560,7 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
         const hkf_settings_t s = node_config_for_model(config, config->models[m].name, &known);
         result = hkf_init(&probe, &s);
         if (result != HKF_OK) {
-            describe_origins(config, &config->models[m], result, where, sizeof where);
+            describe_origins(config, &config->models[m], GROUP_ANGLES, result, where, sizeof where);
             snprintf(error, error_size, "%sinvalid settings for model '%s': %s", where, config->models[m].name,
                      hkf_result_string(result));
             return -1;
@@ -656,27 +595,29 @@ static const char *format_real(hkf_real_t v, char *text, size_t size)
     return text;
 }
 
-static void print_key_value(const hkf_settings_t *s, const config_key_t *key, char *value, size_t size)
+/* The value(s) of setting d at `at` (its field) as the config file writes them. */
+static void format_value(const hkf_setting_t *d, const char *at, char *value, size_t size)
 {
-    char a[32], b[32], c[32], d[32];
-    const char *base = (const char *)s + key->offset;
-    const hkf_real_t *v = (const hkf_real_t *)(const void *)base;
-    switch (key->kind) {
-    case KIND_REAL: snprintf(value, size, "%s", format_real(v[0], a, sizeof a)); break;
-    case KIND_REAL3:
-        snprintf(value, size, "%s %s %s", format_real(v[0], a, sizeof a), format_real(v[1], b, sizeof b),
-                 format_real(v[2], c, sizeof c));
-        break;
-    case KIND_CURVE: {
-        const hkf_noise_curve_t *curve = (const hkf_noise_curve_t *)(const void *)base;
+    const hkf_real_t *v = (const hkf_real_t *)(const void *)at;
+    char a[32], b[32], c[32], e[32];
+    switch (d->type) {
+    case HKF_SETTING_CURVE: {
+        const hkf_noise_curve_t *curve = (const hkf_noise_curve_t *)(const void *)at;
         snprintf(value, size, "%s %s %s %s", format_real(curve->tau, a, sizeof a),
                  format_real(curve->lambda, b, sizeof b), format_real(curve->mu, c, sizeof c),
-                 format_real(curve->sigma, d, sizeof d));
-        break;
+                 format_real(curve->sigma, e, sizeof e));
+        return;
     }
-    case KIND_NOISE_MODE: snprintf(value, size, "%s", noise_mode_names[*(const hkf_noise_mode_t *)(const void *)base]); break;
-    case KIND_LOOP_CLOSURE: snprintf(value, size, "%s", loop_closure_names[*(const int *)(const void *)base]); break;
-    case KIND_UINT: snprintf(value, size, "%u", *(const unsigned *)(const void *)base); break;
+    case HKF_SETTING_CHOICE: snprintf(value, size, "%s", d->choices[*(const int *)(const void *)at]); return;
+    case HKF_SETTING_UINT: snprintf(value, size, "%u", *(const unsigned *)(const void *)at); return;
+    case HKF_SETTING_REAL:
+    case HKF_SETTING_RATE: break;
+    }
+    if (d->count == 3) {
+        snprintf(value, size, "%s %s %s", format_real(v[0], a, sizeof a), format_real(v[1], b, sizeof b),
+                 format_real(v[2], c, sizeof c));
+    } else {
+        snprintf(value, size, "%s", format_real(v[0], a, sizeof a));
     }
 }
 
@@ -686,50 +627,41 @@ static void print_line(const char *name, const char *value, const char *comment,
                        const char *unset, FILE *out)
 {
     const char *where = origin == NULL ? NULL : origin[0] != '\0' ? origin : unset;
-    fprintf(out, "%-20s = %-40s # %s%s%s\n", name, value, where != NULL ? where : "", where != NULL ? "; " : "",
+    fprintf(out, "%-28s = %-36s # %s%s%s\n", name, value, where != NULL ? where : "", where != NULL ? "; " : "",
             comment);
 }
 
-static void print_key(const hkf_settings_t *s, const config_key_t *key, const char *origin, const char *unset,
-                      FILE *out)
+/* Key k's line, its value in the struct at base, its comment "unit; what". */
+static void print_key(int k, const char *base, const char *origin, const char *unset, FILE *out)
 {
-    char value[160];
-    print_key_value(s, key, value, sizeof value);
-    print_line(key->name, value, key->comment, origin, unset, out);
-}
-
-static void print_position_key(const node_config_t *config, size_t i, int origins, FILE *out)
-{
-    const position_key_t *k = &position_keys[i];
-    const hkf_real_t *v = (const hkf_real_t *)(const void *)((const char *)&config->position + k->offset);
-    char three[3][32], line[100];
-    if (k->count == 3) {
-        snprintf(line, sizeof line, "%s %s %s", format_real(v[0], three[0], 32), format_real(v[1], three[1], 32),
-                 format_real(v[2], three[2], 32));
-    } else {
-        snprintf(line, sizeof line, "%s", format_real(v[0], three[0], 32));
-    }
-    print_line(k->name, line, k->comment, origins ? config->origin[POSITION_SLOT(i)] : NULL, "default", out);
+    key_group_t group;
+    const hkf_setting_t *d = key_setting(k, &group);
+    char name[64], value[160], comment[200];
+    format_value(d, base + d->offset, value, sizeof value);
+    snprintf(comment, sizeof comment, "%s%s%s", d->unit, d->unit[0] != '\0' ? "; " : "", d->what);
+    print_line(key_name(k, name, sizeof name), value, comment, origin, unset, out);
 }
 
 static void print_all(const node_config_t *config, int origins, FILE *out)
 {
-    char text[32];
+    int k, m;
     fprintf(out, "# hkf-filter effective configuration%s\n",
             origins ? " (after each value: where it was set, or default / built in)" : "");
-    for (size_t i = 0; i < KEY_COUNT; ++i) {
-        print_key(&config->settings, &keys[i], origins ? config->origin[i] : NULL, "default", out);
+    for (k = 0; k < key_count(); ++k) {
+        key_group_t group;
+        (void)key_setting(k, &group);
+        print_key(k, group == GROUP_ANGLES ? (const char *)&config->settings
+                     : group == GROUP_NODE ? (const char *)config : (const char *)&config->position,
+                  origins ? config->origin[k] : NULL, "default", out);
     }
-    print_line(PAIR_KEY, format_real(config->second_alone_from_yaw, text, sizeof text),
-               "deg; two models on one channel: the second alone where the first's |yaw| >= this",
-               origins ? config->origin[PAIR_SLOT] : NULL, "default", out);
-    for (size_t i = 0; i < POSITION_KEY_COUNT; ++i) print_position_key(config, i, origins, out);
-    for (int m = 0; m < config->model_count; ++m) {
+    for (m = 0; m < config->model_count; ++m) {
         const node_model_t *model = &config->models[m];
         const hkf_settings_t s = settings_of_model(config, model);
         fprintf(out, "\n[model %s]\n", model->name);
-        for (size_t i = 0; i < KEY_COUNT; ++i) {
-            if (model_owns(model, &keys[i])) print_key(&s, &keys[i], origins ? model->origin[i] : NULL, "built in", out);
+        for (k = 0; k < hkf_settings_table_count; ++k) {
+            if (model_owns(model, k)) {
+                print_key(k, (const char *)&s, origins ? model->origin[k] : NULL, "built in", out);
+            }
         }
     }
 }

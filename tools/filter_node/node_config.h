@@ -21,7 +21,7 @@ extern "C" {
 /* a model id and its NUL: the limit stated in head_pose_measurement_t.lcm */
 #define NODE_MODEL_NAME_MAX (HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX + 1)
 #define NODE_ORIGIN_MAX 96 /* "FILE:LINE" or "--set", where a setting was last given */
-#define NODE_KEY_SLOTS 32  /* settings keys (node_config.c's table), with room to grow */
+#define NODE_KEY_SLOTS 48  /* keys: libhkf's settings tables and the node's own, with room to grow */
 
 typedef struct {
     char name[NODE_MODEL_NAME_MAX];  /* the measurement's `model` field */
