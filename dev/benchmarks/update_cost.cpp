@@ -120,7 +120,7 @@ NOINLINE int step_libhkf_defaults(hkf_filter_t *f, const Input *in, hkf_output_t
     return hkf_update(f, in->z, in->dt, out);
 }
 
-NOINLINE int step_libhkf_pair(hkf_filter_t *f, const Input *in, const hkf_settings_t *second, hkf_output_t *out)
+NOINLINE int step_libhkf_pair(hkf_filter_t *f, const Input *in, const hkf_model_noise_t *second, hkf_output_t *out)
 {
     const hkf_real_t z2[3] = {in->z[0] + 1.5f, in->z[1] - 2.0f, in->z[2] + 0.5f};
     return hkf_update_pair(f, in->z, z2, second, in->dt, out);
@@ -289,8 +289,9 @@ int main(int argc, char **argv)
     constant.noise_mode = HKF_NOISE_CONSTANT;
     constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
     paper.lc_theta = 6.0f; /* wider than the paper's 2 deg so this noisy drive closes the loop often */
-    hkf_settings_t second = paper;
-    for (int a = 0; a < 3; ++a) second.noise[a] = hkf_noise_hopenet[a];
+    hkf_settings_t hopenet = paper;
+    for (int a = 0; a < 3; ++a) hopenet.noise[a] = hkf_noise_hopenet[a];
+    const hkf_model_noise_t second = hkf_model_noise_of(&hopenet);
     hkf_filter_t f_paper, f_constant, f_defaults, f_pair;
     if (hkf_init(&f_paper, &paper) != HKF_OK || hkf_init(&f_constant, &constant) != HKF_OK ||
         hkf_init(&f_defaults, &hkf_default_settings) != HKF_OK || hkf_init(&f_pair, &paper) != HKF_OK) {

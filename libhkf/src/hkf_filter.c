@@ -559,8 +559,25 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     return update_with(f, f, z, dt, out);
 }
 
+/* The filter's settings with a second model's noise, prepared in `noise2` as hkf_init prepares a filter's
+ * (its Eq. 8 curves in the filter's layout), and checked as hkf_init checks them. */
+static int prepare_second(hkf_filter_t *noise2, const hkf_filter_t *f, const hkf_model_noise_t *second)
+{
+    hkf_settings_t *s = &noise2->settings;
+    int a;
+    *s = *HKF_SETTINGS(f);
+    s->noise_mode = second->noise_mode;
+    for (a = 0; a < HKF_AXES; ++a) {
+        s->noise[a] = second->noise[a];
+        s->r_const[a] = second->r_const[a];
+    }
+    s->r_min = second->r_min;
+    s->r_max = second->r_max;
+    return prepare_settings(noise2, s);
+}
+
 int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], const hkf_real_t z2[restrict 3],
-                    const hkf_settings_t *second, hkf_real_t dt, hkf_output_t *restrict out)
+                    const hkf_model_noise_t *second, hkf_real_t dt, hkf_output_t *restrict out)
 {
     hkf_filter_t noise2; /* the second model's Eq. 8 curves, prepared as hkf_init prepares a filter's */
     hkf_real_t y[HKF_LANES], r[HKF_LANES], r1[HKF_LANES];
@@ -571,7 +588,7 @@ int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], co
         return HKF_ERROR_NULL_ARGUMENT;
     }
     /* everything about the second measurement is checked before the state changes */
-    result = prepare_settings(&noise2, second);
+    result = prepare_second(&noise2, f, second);
     if (result == HKF_OK && z2 != 0) {
         result = check_angles(z2);
     }

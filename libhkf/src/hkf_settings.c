@@ -75,6 +75,20 @@ const hkf_settings_t hkf_paper_settings = {
     .loop_closure = HKF_LOOP_CLOSURE_NORM,
 };
 
+hkf_model_noise_t hkf_model_noise_of(const hkf_settings_t *s)
+{
+    hkf_model_noise_t m;
+    int a;
+    m.noise_mode = s->noise_mode;
+    for (a = 0; a < HKF_AXES; ++a) {
+        m.noise[a] = s->noise[a];
+        m.r_const[a] = s->r_const[a];
+    }
+    m.r_min = s->r_min;
+    m.r_max = s->r_max;
+    return m;
+}
+
 /* start_rate, stop_rate: 0 (off; a moving head never stops) or within [HKF_MIN_RATE, HKF_MAX_RATE] */
 static int rate_in_range(hkf_real_t rate)
 {

@@ -422,7 +422,7 @@ static void test_pair_start_weighs_by_each_r(void **state)
     assert_int_equal(hkf_init(&f, &first), HKF_OK);
     set3(z1, 0, 0, 0);
     set3(z2, z2v[0], z2v[1], z2v[2]);
-    assert_int_equal(hkf_update_pair(&f, z1, z2, &second, R(0.033), &out), HKF_OK);
+    assert_int_equal(update_pair(&f, z1, z2, &second, R(0.033), &out), HKF_OK);
     assert_int_equal(out.status, HKF_STATUS_TRACKING);
     assert_true(out.flags & HKF_FLAG_REACQUIRED);
     for (a = 0; a < HKF_AXES; ++a) {
@@ -456,7 +456,7 @@ static void test_pair_of_equals_is_half_r(void **state)
             continue;
         }
         assert_int_equal(hkf_update(&fh, z, R(0.033), &oh), HKF_OK);
-        assert_int_equal(hkf_update_pair(&fp, z, z, &s, R(0.033), &op), HKF_OK);
+        assert_int_equal(update_pair(&fp, z, z, &s, R(0.033), &op), HKF_OK);
         for (a = 0; a < HKF_AXES; ++a) {
             assert_near(op.angle[a], D(oh.angle[a]), TEST_TOL);
             assert_near(op.rate[a], D(oh.rate[a]), 10 * TEST_TOL);
@@ -479,14 +479,14 @@ static void test_pair_bad_input_changes_nothing(void **state)
     assert_int_equal(hkf_update(&f, z, R(0.033), &out), HKF_OK);
     memcpy(&before, &f, sizeof f);
     set3(far, 0, 4000, 0);
-    assert_int_equal(hkf_update_pair(&f, z, z, &bad, R(0.033), &out), HKF_ERROR_SETTING_SIGMA);
-    assert_int_equal(hkf_update_pair(&f, z, far, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
-    assert_int_equal(hkf_update_pair(&f, far, z, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
-    assert_int_equal(hkf_update_pair(&f, z, z, &s, R(-1), &out), HKF_ERROR_DT_RANGE);
-    assert_int_equal(hkf_update_pair(&f, z, z, NULL, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
-    assert_int_equal(hkf_update_pair(&f, NULL, NULL, &s, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
-    assert_int_equal(hkf_update_pair(&f, z, NULL, &bad, R(0.033), &out), HKF_ERROR_SETTING_SIGMA);
-    assert_int_equal(hkf_update_pair(&f, NULL, far, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
+    assert_int_equal(update_pair(&f, z, z, &bad, R(0.033), &out), HKF_ERROR_SETTING_SIGMA);
+    assert_int_equal(update_pair(&f, z, far, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
+    assert_int_equal(update_pair(&f, far, z, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
+    assert_int_equal(update_pair(&f, z, z, &s, R(-1), &out), HKF_ERROR_DT_RANGE);
+    assert_int_equal(update_pair(&f, z, z, NULL, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(update_pair(&f, NULL, NULL, &s, R(0.033), &out), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(update_pair(&f, z, NULL, &bad, R(0.033), &out), HKF_ERROR_SETTING_SIGMA);
+    assert_int_equal(update_pair(&f, NULL, far, &s, R(0.033), &out), HKF_ERROR_ANGLE_RANGE);
     assert_memory_equal(&before, &f, sizeof f);
 }
 
@@ -510,7 +510,7 @@ static void test_pair_with_one_model_missing(void **state)
     for (i = 0; i < 40; ++i) {
         hkf_real_t z[3];
         set3(z, 8.0 * sin(0.2 * i), 2.0 * i - 40.0, (i % 5) - 2.0);
-        assert_int_equal(hkf_update_pair(&fp, NULL, z, &second, R(0.033), &op), HKF_OK);
+        assert_int_equal(update_pair(&fp, NULL, z, &second, R(0.033), &op), HKF_OK);
         assert_int_equal(hkf_update(&fs, z, R(0.033), &os), HKF_OK);
         assert_int_equal(hkf_update(&fu, z, R(0.033), &ou), HKF_OK);
         for (a = 0; a < HKF_AXES; ++a) {
@@ -526,7 +526,7 @@ static void test_pair_with_one_model_missing(void **state)
     for (i = 0; i < 10; ++i) {
         hkf_real_t z[3];
         set3(z, 1.0, 40.0 + i, -2.0);
-        assert_int_equal(hkf_update_pair(&fu, z, NULL, &second, R(0.033), &ou), HKF_OK);
+        assert_int_equal(update_pair(&fu, z, NULL, &second, R(0.033), &ou), HKF_OK);
         assert_int_equal(hkf_update(&fs, z, R(0.033), &os), HKF_OK);
         assert_memory_equal(&fu, &fs, sizeof fu);
         assert_memory_equal(&ou, &os, sizeof ou);
@@ -555,16 +555,16 @@ static void test_pair_with_the_gate(void **state)
     only_first = f;
     set3(good, 0, 0.5, 0);
     set3(outlier, 0, 60, 0);
-    assert_int_equal(hkf_update_pair(&f, outlier, good, &second, frame_dt, &out), HKF_OK);
+    assert_int_equal(update_pair(&f, outlier, good, &second, frame_dt, &out), HKF_OK);
     assert_true(out.flags & HKF_FLAG_GATED);
-    assert_int_equal(hkf_update_pair(&only_second, NULL, good, &second, frame_dt, &ref), HKF_OK);
+    assert_int_equal(update_pair(&only_second, NULL, good, &second, frame_dt, &ref), HKF_OK);
     for (a = 0; a < HKF_AXES; ++a) {
         assert_near(out.r[a], 6, TEST_TOL);                   /* not 1 / (1/2 + 1/6) = 1.5 */
         assert_near(out.angle[a], D(ref.angle[a]), 10 * TEST_TOL); /* the second's update, after the prediction */
     }
     /* the second gated: the first's outcome, R included */
     f = only_first;
-    assert_int_equal(hkf_update_pair(&f, good, outlier, &second, frame_dt, &out), HKF_OK);
+    assert_int_equal(update_pair(&f, good, outlier, &second, frame_dt, &out), HKF_OK);
     assert_true(out.flags & HKF_FLAG_GATED);
     assert_int_equal(hkf_update(&only_first, good, frame_dt, &ref), HKF_OK);
     for (a = 0; a < HKF_AXES; ++a) {

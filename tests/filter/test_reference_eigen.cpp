@@ -470,7 +470,8 @@ int step_both(hkf_filter_t &f, ReferenceFilter &ref, const Frame &m, const hkf_s
 {
     if (m.valid && second != nullptr) {
         ref.updatePair(m.zd, m.z2d, D(dtr), *second);
-        return hkf_update_pair(&f, m.z, m.z2, second, dtr, &out);
+        const hkf_model_noise_t noise = hkf_model_noise_of(second);
+        return hkf_update_pair(&f, m.z, m.z2, &noise, dtr, &out);
     }
     if (m.valid) {
         ref.update(m.zd, D(dtr));

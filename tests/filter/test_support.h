@@ -50,6 +50,18 @@ static inline double D(hkf_real_t x) { return (double)x; }
 static inline double plain_double(double x) { return x; }
 #define TO_DOUBLE(x) _Generic((x), hkf_real_t: D, default: plain_double)(x)
 
+/* hkf_update_pair with the second model's noise as a settings set gives it (second may be NULL). */
+static inline int update_pair(hkf_filter_t *f, const hkf_real_t *z, const hkf_real_t *z2, const hkf_settings_t *second,
+                              hkf_real_t dt, hkf_output_t *out)
+{
+    hkf_model_noise_t noise;
+    if (second == NULL) {
+        return hkf_update_pair(f, z, z2, NULL, dt, out);
+    }
+    noise = hkf_model_noise_of(second);
+    return hkf_update_pair(f, z, z2, &noise, dt, out);
+}
+
 /* A noise curve from Table I's (tau, lambda, mu, sigma), in every build. */
 static inline hkf_noise_curve_t table_curve(double tau, double lambda, double mu, double sigma)
 {

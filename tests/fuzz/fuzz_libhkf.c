@@ -124,11 +124,13 @@ static void print_steps(void)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-/* op 7: two estimators' measurements, the second's settings edited once (maybe to nonsense); either
- * measurement may be missing (that model found no face); both missing is an error. */
+/* op 7: two estimators' measurements, the second's settings edited once (maybe to nonsense; the pair
+ * takes their noise, hkf_model_noise_of); either measurement may be missing (that model found no face);
+ * both missing is an error. */
 static void pair_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t *s, input_t *in)
 {
     hkf_settings_t second = *s;
+    hkf_model_noise_t noise;
     hkf_output_t out;
     hkf_real_t v[3], v2[3], dt;
     uint8_t field, missing = 0;
@@ -137,6 +139,13 @@ static void pair_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_
     if (take_byte(in, &field)) {
         edit_setting(&second, field, in);
     }
+    noise = hkf_model_noise_of(&second);
+    second = *s; /* what the pair checks: the filter's settings with the second model's noise */
+    second.noise_mode = noise.noise_mode;
+    memcpy(second.noise, noise.noise, sizeof second.noise);
+    memcpy(second.r_const, noise.r_const, sizeof second.r_const);
+    second.r_min = noise.r_min;
+    second.r_max = noise.r_max;
     v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
     v2[0] = take_real(in), v2[1] = take_real(in), v2[2] = take_real(in);
     if (hkf_init(before, &second) == HKF_OK) { /* (before is rewritten below) */
@@ -150,10 +159,10 @@ static void pair_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_
     *before = *f;
     (void)take_byte(in, &missing);
     dt = take_real(in);
-    result = hkf_update_pair(f, missing % 4 == 1 ? NULL : v, missing % 4 == 2 ? NULL : v2, &second, dt, &out);
+    result = hkf_update_pair(f, missing % 4 == 1 ? NULL : v, missing % 4 == 2 ? NULL : v2, &noise, dt, &out);
     if (missing % 4 == 3) {
         *before = *f;
-        result = hkf_update_pair(f, NULL, NULL, &second, dt, &out);
+        result = hkf_update_pair(f, NULL, NULL, &noise, dt, &out);
         if (result != HKF_ERROR_NULL_ARGUMENT) {
             abort();
         }

@@ -998,7 +998,8 @@ static void test_second_model_fused_into_its_frame(void **state)
     hkf_output_t ours, theirs;
     int known1, known2, i, a, published = 0, second_only = 0; /* frames only the second model measured */
     const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known1);
-    const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known2);
+    const hkf_settings_t hopenet = node_config_for_model(&config, "hopenet", &known2);
+    const hkf_model_noise_t s2 = hkf_model_noise_of(&hopenet);
     (void)state;
     node.second.align_frames = 0; /* the models' offset is another test's */
     config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
@@ -1255,7 +1256,8 @@ static void test_second_model_alone_at_large_yaw(void **state)
     hkf_output_t ours, theirs;
     int known, i, a;
     const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known);
-    const hkf_settings_t s2 = node_config_for_model(&config, "hopenet", &known);
+    const hkf_settings_t hopenet = node_config_for_model(&config, "hopenet", &known);
+    const hkf_model_noise_t s2 = hkf_model_noise_of(&hopenet);
     (void)state;
     node.second.align_frames = 0;
     assert_float_equal(config.second_alone_from_yaw, 25.0, 0.0);

@@ -91,7 +91,8 @@ static int redo_step(const node_config_t *config, hkf_filter_t *f, const second_
     int result;
     if (frame->paired) {
         int known;
-        const hkf_settings_t second = node_config_for_model(config, frame->second_model, &known);
+        const hkf_settings_t settings = node_config_for_model(config, frame->second_model, &known);
+        const hkf_model_noise_t second = hkf_model_noise_of(&settings);
         const int first = frame->valid && !first_set_aside(config, frame);
         return hkf_update_pair(f, first ? frame->z : NULL, frame->z2, &second, frame->dt, NULL);
     }

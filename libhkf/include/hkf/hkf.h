@@ -277,22 +277,34 @@ void hkf_reset(hkf_filter_t *f);
  * filter is untouched. */
 int hkf_update(hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt, hkf_output_t *out);
 
+/* How one estimator model's R is chosen: its mode, Eq. 8 curves, constant R
+ * and clamp (the members of hkf_settings_t of the same names). What
+ * hkf_update_pair takes of a second model; hkf_model_noise_of picks it out of
+ * a settings set. */
+typedef struct {
+    hkf_noise_mode_t noise_mode;
+    hkf_noise_curve_t noise[3];    /* deg */
+    hkf_real_t r_const[3];         /* deg^2 */
+    hkf_real_t r_min, r_max;       /* deg^2 */
+} hkf_model_noise_t;
+
+hkf_model_noise_t hkf_model_noise_of(const hkf_settings_t *s);
+
 /* Two measurements of the same frame from two estimators whose errors are
- * independent (e.g. a face mesh and an angle-regression network), each with
- * its own R: `second` holds the second model's settings, of which its
- * noise_mode, noise curves, r_const, r_min and r_max give its R (Eq. 8 at its
- * own angles); everything else is the filter's. One predict, then z as
- * hkf_update takes it, then z2 as a sequential scalar update (loop closure
- * and gate as for z): for independent noise the same posterior as one update
- * with both stacked (H = [I; I], R = diag(R1, R2)). The motion adaptation
- * weighs its two models by z alone; z2 then corrects the merged state. out->r is the R of both, R1 R2 / (R1 + R2) (or of the one
- * accepted); HKF_FLAG_GATED: one of them was gated. On error (including a
- * bad `second`, checked as hkf_init checks settings) the filter is untouched.
- * Either z or z2 may be NULL (that model found no face this frame, or has not
- * run on it): then the other alone is taken, as hkf_update takes it but with
- * its own model's R (and the adaptation weighs by it). Both NULL: an error.
- * Costs a filter-sized temporary on the stack. */
-int hkf_update_pair(hkf_filter_t *f, const hkf_real_t z[3], const hkf_real_t z2[3], const hkf_settings_t *second,
+ * independent (e.g. a face mesh and an angle-regression network): z with the
+ * filter's own R, z2 with the R that `second` gives at z2's angles (Eq. 8).
+ * One predict, then z as hkf_update takes it, then z2 as a sequential scalar
+ * update (loop closure and gate as for z): for independent noise the same
+ * posterior as one update with both stacked (H = [I; I], R = diag(R1, R2)).
+ * The motion adaptation weighs its two models by z alone; z2 then corrects
+ * the merged state. out->r is the R of both, R1 R2 / (R1 + R2) (or of the
+ * one accepted); HKF_FLAG_GATED: one of them was gated. On error (including
+ * a bad `second`, checked as hkf_init checks those settings) the filter is
+ * untouched. Either z or z2 may be NULL (that model found no face this
+ * frame, or has not run on it): then the other alone is taken, as hkf_update
+ * takes it but with its own model's R (and the adaptation weighs by it).
+ * Both NULL: an error. Costs a filter-sized temporary on the stack. */
+int hkf_update_pair(hkf_filter_t *f, const hkf_real_t z[3], const hkf_real_t z2[3], const hkf_model_noise_t *second,
                     hkf_real_t dt, hkf_output_t *out);
 
 /* No measurement this frame (face lost): predict dt s ahead. See the coasting
