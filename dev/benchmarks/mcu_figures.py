@@ -55,16 +55,18 @@ def size_of_archive(archive):
 
 def linked_share(map_file):
     """Bytes of text and rodata the firmware took from libhkf.a (from the linker map), less
-    hkf_paper_settings: the target test runs both setting sets, a firmware needs one."""
+    hkf_paper_settings: the target test runs both setting sets, a firmware needs one; and of them,
+    those of the noise calibration (hkf_calibration.c), which a firmware may leave out."""
     text = open(map_file).read()
     text = text[text.index("Linker script and memory map"):]
-    total = 0
+    total = calibration = 0
     for section, address, size, origin in re.findall(r"^ (\.[\w.]+)\s*\n?\s+0x([0-9a-f]+)\s+0x([0-9a-f]+)\s+(\S+)",
                                                      text, re.M):
         if "libhkf.a" in origin and int(address, 16) != 0 and section.split(".")[1] in ("text", "rodata") \
                 and section != ".rodata.hkf_paper_settings":
             total += int(size, 16)
-    return total
+            calibration += int(size, 16) if "hkf_calibration.c" in origin else 0
+    return total, calibration
 
 
 def runtime_routines(archive):
@@ -100,23 +102,28 @@ def main():
             runs[settings] = (int(re.search(r"(\d+) instructions each", line.group(0)).group(1)),
                               max(int(e) for e in errors.groups()) / 1000.0)
         state = re.search(r"sizeof\(hkf_filter_t\) (\d+) B", text_out)
+        calibration = re.search(r"hkf_calibration_update: (\d+) instructions each; sizeof\(hkf_calibration_t\) (\d+) B",
+                                text_out)
+        if calibration is None:
+            sys.exit(f"mcu_figures: no calibration result in {output}: rerun `ctest -R hkf.mcu`")
         lib = os.path.join(tree, "build", "libhkf", "libhkf.a")
         text, data, bss = size_of_archive(lib)
         own, calls = call_graph(os.path.join(tree, "build", "libhkf", "CMakeFiles", "hkf.dir", "src"))
         stacks = {f: worst_stack(f, own, calls) for f in PUBLIC}
         soft, libm = runtime_routines(lib)
-        linked = linked_share(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.map"))
+        linked, calibration_linked = linked_share(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.map"))
         elf = os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.elf")
         frames = len(re.findall(r"^\d", open(os.path.join(build, "mcu", "sequence.csv")).read(), re.M))
         cycles = [m4_cycles(elf, "hkf_update", "run_sequence", first, frames) for first in (0, frames)] \
             if cpu == "cortex-m4f" else None
         rows.append((cpu, real, text, linked, data, bss, int(state.group(1)), max(stacks.values()),
-                     max(stacks, key=stacks.get), stacks["hkf_update"], runs, soft, libm, cycles))
+                     max(stacks, key=stacks.get), stacks["hkf_update"], runs, soft, libm, cycles,
+                     (calibration_linked, int(calibration.group(1)), int(calibration.group(2)))))
     print("| target | type | flash: library (linked) | data + bss | hkf_filter_t | worst stack (function) "
           "| stack of hkf_update | instructions per hkf_update: paper (defaults) | cycles (M4 estimate): paper "
           "(defaults) | largest error vs x86 double: paper (defaults) | runtime routines called |")
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
-    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, runs, soft, libm, cycles in rows:
+    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, runs, soft, libm, cycles, _ in rows:
         routines = ", ".join(libm + soft) if (soft or libm) else "none"
         if len(soft) > 6:
             routines = ", ".join(libm) + (", " if libm else "") + f"{len(soft)} soft-float routines ({', '.join(soft[:4])}, …)"
@@ -124,15 +131,25 @@ def main():
               f"| {runs['paper'][0]:,} ({runs['defaults'][0]:,}) | {f'{cycles[0]} ({cycles[1]})' if cycles else '–'} "
               f"| {runs['paper'][1]:.3f} ({runs['defaults'][1]:.3f}) mdeg | {routines} |")
     print("\n(Cortex-M0 built with -Os, the others with -O3. Flash: the whole libhkf.a, and in brackets what the "
-          "target test firmware (hkf_init, hkf_update, hkf_predict, the default settings; --gc-sections) took from "
+          "target test firmware (hkf_init, hkf_update, hkf_predict, the default settings and the noise calibration; "
+          "--gc-sections) took from "
           "it, less the second setting set the test also runs (hkf_paper_settings); error strings and unused "
           "presets are dropped there. Stack: own frame + deepest callee, from "
           "-fcallgraph-info=su; memcpy is the firmware's own and not counted. Instructions: qemu -icount, "
           "SysTick calibrated on a loop of known length; with the paper's settings (hkf_paper_settings) and, in brackets, "
-          "the defaults (noise calibration and the motion adaptation). Cycles: Cortex-M4 only, the instructions hkf_update executes "
+          "the defaults (the motion adaptation; hkf_update alone, the calibration's step below). Cycles: Cortex-M4 only, the instructions hkf_update executes "
           "(qemu, one at a time) priced by the Cortex-M4 TRM, low..high for what the pipeline decides (branch "
           "refill 1-3, load/store pipelining). Error: the largest angle difference over the 448 frames of d10.mp4; "
           "fixed point against the double build fed the same Q16.16 input.)")
+    print("\n| target | type | linked without the calibration | the calibration: linked | its state "
+          "| instructions per hkf_calibration_update |")
+    print("| --- | --- | ---: | ---: | ---: | ---: |")
+    for row in rows:
+        calibration_linked, calibration_insns, calibration_state = row[14]
+        print(f"| {row[0]} | {row[1]} | {row[3] - calibration_linked:,} B | {calibration_linked:,} B "
+              f"| {calibration_state} B | {calibration_insns:,} |")
+    print("\n(The noise calibration (hkf/hkf_calibration.h) is its own part beside the filter: the defaults' run "
+          "above has it; a firmware that leaves it out links the first column.)")
     cmsis_tree = os.path.join(build, "mcu", "cortex-m4f-cmsis_dsp")
     if not os.path.exists(os.path.join(cmsis_tree, "output.txt")):
         sys.exit(f"mcu_figures: no CMSIS-DSP comparison in {cmsis_tree}: run `ctest -R hkf.mcu.cortex-m4f.cmsis_dsp`")

@@ -4,7 +4,9 @@
  *
  *   step_libhkf_paper     hkf_update, adaptive R (Eq. 8) + loop closure (Eq. 9)
  *   step_libhkf_constant  hkf_update, constant R, no loop closure
- *   step_libhkf_defaults  hkf_update with hkf_default_settings (noise calibration, motion detector)
+ *   step_libhkf_defaults  hkf_update with hkf_default_settings (the motion adaptation; R at the noise
+ *                         level the calibration beside it measured)
+ *   step_libhkf_calibration  hkf_calibration_update after it: the noise calibration's step
  *   step_libhkf_position  hkf_position_update: the head's position (x, y, z), default settings
  *   step_libhkf_pair      hkf_update_pair: the paper's filter, a second estimator's measurement
  *                         with Hopenet's curves (two measurements, not the same work)
@@ -27,6 +29,7 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 #include "hkf/hkf_position.h"
 #include "head_motion_sim.h"
 
@@ -118,6 +121,11 @@ NOINLINE int step_libhkf_constant(hkf_filter_t *f, const Input *in, hkf_output_t
 NOINLINE int step_libhkf_defaults(hkf_filter_t *f, const Input *in, hkf_output_t *out)
 {
     return hkf_update(f, in->z, in->dt, out);
+}
+
+NOINLINE int step_libhkf_calibration(hkf_calibration_t *c, hkf_filter_t *f, const Input *in)
+{
+    return hkf_calibration_update(c, f, in->z, in->dt);
 }
 
 NOINLINE int step_libhkf_pair(hkf_filter_t *f, const Input *in, const hkf_model_noise_t *second, hkf_output_t *out)
@@ -293,8 +301,10 @@ int main(int argc, char **argv)
     for (int a = 0; a < 3; ++a) hopenet.noise[a] = hkf_noise_hopenet[a];
     const hkf_model_noise_t second = hkf_model_noise_of(&hopenet);
     hkf_filter_t f_paper, f_constant, f_defaults, f_pair;
+    hkf_calibration_t calibration;
     if (hkf_init(&f_paper, &paper) != HKF_OK || hkf_init(&f_constant, &constant) != HKF_OK ||
-        hkf_init(&f_defaults, &hkf_default_settings) != HKF_OK || hkf_init(&f_pair, &paper) != HKF_OK) {
+        hkf_init(&f_defaults, &hkf_default_settings) != HKF_OK || hkf_init(&f_pair, &paper) != HKF_OK ||
+        hkf_calibration_init(&calibration, &hkf_default_calibration_settings, &f_defaults) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: hkf_init failed\n");
         return 1;
     }
@@ -312,7 +322,9 @@ int main(int argc, char **argv)
         hkf_output_t a, b, c, d;
         float yaw_cv, yaw_eigen;
         if (step_libhkf_paper(&f_paper, &in, &a) != HKF_OK || step_libhkf_constant(&f_constant, &in, &b) != HKF_OK ||
-            step_libhkf_defaults(&f_defaults, &in, &c) != HKF_OK || step_libhkf_pair(&f_pair, &in, &second, &d) != HKF_OK) {
+            step_libhkf_defaults(&f_defaults, &in, &c) != HKF_OK ||
+            step_libhkf_calibration(&calibration, &f_defaults, &in) != HKF_OK ||
+            step_libhkf_pair(&f_pair, &in, &second, &d) != HKF_OK) {
             std::fprintf(stderr, "hkf-bench-update: hkf_update failed\n");
             return 1;
         }

@@ -19,10 +19,10 @@
  *   the track restarts from it as from the first one, keeping the center.
  *   A measurement the innovation gate rejects counts as a missing one.
  *
- * Noise calibration (settings.noise_time > 0, not in the paper; hkf.h): the
- * filter measures each axis's frame-to-frame noise n (noise_estimate_update)
- * and R follows it: R = n e(z) / e(mu) (calibrated_noise_lanes: the paper's
- * Eq. 8 gives the pose-dependent factor, n the scale).
+ * A noise level from outside (hkf_set_noise, not in the paper; the noise
+ * calibration of hkf_calibration.h measures one): R = n e(z) / e(mu)
+ * (calibrated_noise_lanes: the paper's Eq. 8 gives the pose-dependent factor,
+ * n the scale).
  *
  * The motion adaptation (settings.start_rate > 0, not in the paper): two
  * models per axis, HOLD and the paper's MOVE, mixed by their likelihoods
@@ -32,7 +32,6 @@
 #include "hkf_internal.h"
 #include "hkf_kalman.h"
 #include "hkf_math.h"
-#include "hkf_noise_estimate.h"
 #include "hkf_two_models.h"
 
 enum { CENTER_NONE = 0, CENTER_FROM_TRACK = 1, CENTER_EXPLICIT = 2 };
@@ -81,9 +80,10 @@ static HKF_ALWAYS_INLINE int check_angles(const hkf_real_t v[3])
     return HKF_OK;
 }
 
+/* hkf_set_noise has given a noise level (n > 0; 0 = none, Eq. 8's own R). */
 static inline int calibrated(const hkf_filter_t *f)
 {
-    return HKF_SETTINGS(f)->noise_time > 0;
+    return f->noise[0] > 0;
 }
 
 static inline int two_models(const hkf_filter_t *f)
@@ -266,8 +266,6 @@ static void start_track(hkf_filter_t *f, const hkf_real_t z[3])
         f->moving[a] = 0;
     }
     f->angle[HKF_AXIS_YAW] = hkf_wrap180(z[HKF_AXIS_YAW]);
-    load_lanes(f->last_z, z); /* the noise estimate's history restarts; its n is kept */
-    f->noise_history = 1u;
     if (f->center_source == CENTER_NONE) {
         for (a = 0; a < HKF_AXES; ++a) {
             f->center[a] = f->angle[a];
@@ -286,7 +284,6 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
     int a;
     f->time_since_measurement = hkf_add(f->time_since_measurement, dt);
     f->status = HKF_STATUS_COASTING;
-    f->noise_history = 0u; /* a missing frame breaks the second difference */
     if (f->time_since_measurement >= HKF_SETTINGS(f)->coast_time) {
         for (a = 0; a < HKF_LOOP_LANES; ++a) {
             f->rate[a] = 0;
@@ -337,6 +334,8 @@ int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
     }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         f->center[a] = 0;
+        f->noise[a] = 0; /* no noise level given: Eq. 8's own R */
+        f->r_center[a] = hkf_divisor(observation_noise(f, a, HKF_MU(f, a))); /* e(mu), R = n e(z) / e(mu)'s divisor */
     }
     f->center_source = CENTER_NONE;
     hkf_reset(f);
@@ -358,14 +357,6 @@ void hkf_reset(hkf_filter_t *f)
         f->r[a] = 0;
         f->moving[a] = 0;
     }
-    for (a = 0; a < HKF_LOOP_LANES; ++a) { /* n starts at e(mu), the estimator's error on a benchmark */
-        f->noise[a] = observation_noise(f, a, HKF_MU(f, a));
-        f->noise_power[a] = f->noise[a];
-        f->last_z[a] = 0;
-        f->last_step[a] = 0;
-        f->r_center[a] = hkf_divisor(f->noise[a]);
-    }
-    f->noise_history = 0u;
     if (f->center_source != CENTER_EXPLICIT) {
         f->center_source = CENTER_NONE;
     }
@@ -443,35 +434,6 @@ static HKF_ALWAYS_INLINE void two_models_axes(hkf_filter_t *restrict f, const hk
     accepted(f, r);
 }
 
-/* Noise calibration's estimate of n per axis (hkf.h), from the raw
- * measurement z after the update: d = (z - z_k-1) - (z_k-1 - z_k-2), yaw
- * steps on the circle; power += beta (d^2 / 6 - power) with beta = dt / (dt
- * + noise_time); n = power where that is lower, else n grows by at most
- * (1 + noise_rise dt) towards it; n >= r_min. */
-static void noise_estimate_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_real_t dt)
-{
-    const hkf_settings_t *s = HKF_SETTINGS(f);
-    hkf_real_t lanes[HKF_LANES], step[HKF_LANES];
-    int a;
-    load_lanes(lanes, z);
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        step[a] = hkf_sub(lanes[a], f->last_z[a]);
-    }
-    step[HKF_AXIS_YAW] = hkf_wrap180(step[HKF_AXIS_YAW]);
-    if (f->noise_history >= 2u) {
-        const hkf_real_t beta = hkf_step_weight(dt, s->noise_time);
-        const hkf_real_t rise = hkf_add(HKF_REAL(1.0), hkf_mul(s->noise_rise, dt));
-        for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            hkf_noise_lane(hkf_sub(step[a], f->last_step[a]), beta, rise, &s->r_min, &f->noise_power[a], &f->noise[a]);
-        }
-    }
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        f->last_z[a] = lanes[a];
-        f->last_step[a] = step[a];
-    }
-    f->noise_history += f->noise_history < 2u ? 1u : 0u;
-}
-
 /* The track starts (again) from z, with R from `noise`'s curves (lanes: the
  * caller's scratch, so the step's stack does not grow). */
 static HKF_ALWAYS_INLINE void restart_from(hkf_filter_t *f, const hkf_filter_t *noise, const hkf_real_t z[restrict 3],
@@ -538,9 +500,6 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
         two_models_axes(f, held_p00, y, r, dt);                           /* Eq. 6-7 by HOLD and MOVE */
     } else {
         correct_axes(f, y, r, inv_s);                                     /* Eq. 6-7 */
-    }
-    if (calibrated(f)) {
-        noise_estimate_update(f, z, dt);
     }
     write_output(f, flags, out);
     return HKF_OK;
@@ -632,6 +591,26 @@ int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], co
         }
     }
     write_output(f, first.flags, out);
+    return HKF_OK;
+}
+
+int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3])
+{
+    int a;
+    if (f == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    for (a = 0; noise != 0 && a < HKF_AXES; ++a) {
+        if (!hkf_is_finite(noise[a])) {
+            return HKF_ERROR_NON_FINITE;
+        }
+        if (!(noise[a] > 0)) {
+            return HKF_ERROR_NOISE_RANGE;
+        }
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        f->noise[a] = noise != 0 ? noise[a] : 0;
+    }
     return HKF_OK;
 }
 

@@ -16,6 +16,7 @@ const char *hkf_result_string(int result)
     case HKF_ERROR_ANGLE_RANGE: return "an angle is beyond +-" HKF_TEXT(HKF_MAX_ABS_ANGLE) " degrees";
     case HKF_ERROR_POSITION_RANGE: return "a position is beyond +-" HKF_TEXT(HKF_MAX_ABS_POSITION) " cm";
     case HKF_ERROR_SCALE_RANGE: return "a position's R scale is not in [1, " HKF_TEXT(HKF_MAX_POSITION_SCALE) "]";
+    case HKF_ERROR_NOISE_RANGE: return "a noise level is not above 0";
     case HKF_ERROR_NOT_INITIALIZED: return "no measurement has started a track yet";
     case HKF_ERROR_SETTING_NON_FINITE: return "a setting is NaN or infinite";
     case HKF_ERROR_SETTING_NOISE_MODE: return "noise_mode is not a hkf_noise_mode_t";

@@ -47,8 +47,8 @@ const hkf_noise_curve_t hkf_noise_hopenet[3] = {
     .coast_time = HKF_REAL(0.25),                                               \
     .max_dt = HKF_REAL(1.0)
 
-/* Defaults: noise calibration on (hkf.h): R = n e(z) / e(mu), noise_time
- * 0.3 s, noise_rise 0.2 per s; the motion adaptation: MOVE's q 16000
+/* Defaults (chosen with the noise calibration's defaults beside them,
+ * hkf_calibration.c): the motion adaptation: MOVE's q 16000
  * deg^2/s^3 (within fixed point's range), a resting head's estimate wandering
  * by 0.3 deg^2 beyond R, a still head starting to move at 0.05 per s, a
  * moving one stopping at 16 per s; loop closure off. q, start_rate and
@@ -62,8 +62,6 @@ const hkf_settings_t hkf_default_settings = {
     .still_wander = HKF_REAL(0.3),
     .start_rate = HKF_REAL(0.05),
     .stop_rate = HKF_REAL(16.0),
-    .noise_time = HKF_REAL(0.3),
-    .noise_rise = HKF_REAL(0.2),
 };
 
 /* The paper's filter alone: loop closure on (xi 0.618, theta 2 deg), q by
@@ -110,7 +108,7 @@ static int settings_finite(const hkf_settings_t *s)
 {
     const hkf_real_t scalars[] = {s->r_min, s->r_max, s->lc_xi, s->lc_theta, s->p0_angle, s->p0_rate,
                                   s->gate_sigma, s->coast_time, s->max_dt, s->still_wander, s->start_rate,
-                                  s->stop_rate, s->noise_time, s->noise_rise};
+                                  s->stop_rate};
     int a;
     for (a = 0; a < HKF_AXES; ++a) {
         const hkf_noise_curve_t *c = &s->noise[a];
@@ -214,16 +212,12 @@ static int check_track(const hkf_settings_t *s)
     return HKF_OK;
 }
 
-/* The motion adaptation and the noise calibration (not in the paper). */
+/* The motion adaptation (not in the paper). */
 static int check_adaptation(const hkf_settings_t *s)
 {
     if (!(s->still_wander >= 0 && s->still_wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE) && rate_in_range(s->start_rate) &&
           rate_in_range(s->stop_rate))) {
         return HKF_ERROR_SETTING_MOTION;
-    }
-    if (!(s->noise_time >= 0 && s->noise_time <= HKF_REAL_FROM(HKF_MAX_TIME) && s->noise_rise >= 0 &&
-          s->noise_rise <= HKF_REAL_FROM(HKF_MAX_NOISE_RISE))) {
-        return HKF_ERROR_SETTING_CALIBRATION;
     }
     return HKF_OK;
 }

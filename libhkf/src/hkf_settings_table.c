@@ -55,12 +55,17 @@ const hkf_setting_t hkf_settings_table[] = {
            HKF_ERROR_SETTING_MOTION, "motion adaptation: how often a still head starts to move, 0 = off (the paper)"),
     ANGLES("stop_rate", stop_rate, HKF_SETTING_RATE, 1, "1/s", HKF_MIN_RATE, HKF_MAX_RATE, 0,
            HKF_ERROR_SETTING_MOTION, "motion adaptation: how often a moving head stops"),
-    ANGLES("noise_time", noise_time, HKF_SETTING_REAL, 1, "s", 0, HKF_MAX_TIME, 0, HKF_ERROR_SETTING_CALIBRATION,
-           "noise calibration's time constant, 0 = off (the paper's R)"),
-    ANGLES("noise_rise", noise_rise, HKF_SETTING_REAL, 1, "1/s", 0, HKF_MAX_NOISE_RISE, 0,
-           HKF_ERROR_SETTING_CALIBRATION, "how fast the noise estimate may rise"),
 };
 const int hkf_settings_table_count = (int)(sizeof hkf_settings_table / sizeof hkf_settings_table[0]);
+
+const hkf_setting_t hkf_calibration_settings_table[] = {
+    {"noise_time", offsetof(hkf_calibration_settings_t, noise_time), HKF_SETTING_REAL, 1, "s", 0, HKF_MAX_TIME, 0,
+     HKF_ERROR_SETTING_CALIBRATION, NULL, "noise calibration's time constant, 0 = off (the paper's R)"},
+    {"noise_rise", offsetof(hkf_calibration_settings_t, noise_rise), HKF_SETTING_REAL, 1, "1/s", 0, HKF_MAX_NOISE_RISE,
+     0, HKF_ERROR_SETTING_CALIBRATION, NULL, "how fast the noise estimate may rise"},
+};
+const int hkf_calibration_settings_table_count =
+    (int)(sizeof hkf_calibration_settings_table / sizeof hkf_calibration_settings_table[0]);
 
 #define POSITION(name, type, count, unit, min, max, above, error, what) \
     {#name, offsetof(hkf_position_settings_t, name), type, count, unit, min, max, above, error, NULL, what}

@@ -266,7 +266,6 @@ static void test_constant_vs_adaptive_r(void **state)
     constant.noise_mode = HKF_NOISE_CONSTANT;
     constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
     adaptive.loop_closure = HKF_LOOP_CLOSURE_OFF;
-    constant.noise_time = adaptive.noise_time = 0; /* R from the settings alone (the paper's) */
     assert_int_equal(hkf_init(&fc, &constant), HKF_OK);
     assert_int_equal(hkf_init(&fa, &adaptive), HKF_OK);
     sim_rng_seed(&rng, 3u);
@@ -305,7 +304,6 @@ static void test_two_models_still_and_moving(void **state)
     int i, k;
     (void)state;
     moving.noise_mode = HKF_NOISE_CONSTANT;
-    moving.noise_time = 0; /* R from the settings alone: the frame noise's (calibration would measure it) */
     moving.r_const[0] = moving.r_const[1] = moving.r_const[2] = R(0.25);
     moving.start_rate = 0;
     still = moving;

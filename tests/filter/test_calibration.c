@@ -1,15 +1,35 @@
 /*
- * test_calibration.c - noise calibration (hkf.h, settings.noise_time): the
- * frame-noise estimate n and what it does to R; the defaults' motion
- * adaptation on a glance and a blip; and Eq. 8 read at the wrapped yaw.
+ * test_calibration.c - noise calibration (hkf_calibration.h) beside the
+ * filter: the frame-noise estimate n and what it does to R (hkf_set_noise);
+ * the defaults' motion adaptation on a glance and a blip; and Eq. 8 read at
+ * the wrapped yaw.
  */
 #include "test_support.h"
 
 #include "head_motion_sim.h"
+#include "hkf/hkf_calibration.h"
 
 static const double frame_s = 1.0 / 30.0;
 
-/* The defaults (calibration on) with R = n (constant mode: no pose factor). */
+/* A filter with the noise calibration beside it, stepped as hkf_calibration.h says. */
+typedef struct {
+    hkf_filter_t f;
+    hkf_calibration_t c;
+} calibrated_t;
+
+static void calibrated_init(calibrated_t *t, const hkf_settings_t *s)
+{
+    assert_int_equal(hkf_init(&t->f, s), HKF_OK);
+    assert_int_equal(hkf_calibration_init(&t->c, &hkf_default_calibration_settings, &t->f), HKF_OK);
+}
+
+static void calibrated_update(calibrated_t *t, const hkf_real_t z[3], hkf_real_t dt, hkf_output_t *out)
+{
+    assert_int_equal(hkf_update(&t->f, z, dt, out), HKF_OK);
+    assert_int_equal(hkf_calibration_update(&t->c, &t->f, z, dt), HKF_OK);
+}
+
+/* The defaults (the calibration beside them) with R = n (constant mode: no pose factor). */
 static hkf_settings_t calibrated_settings(void)
 {
     hkf_settings_t s = hkf_default_settings;
@@ -25,18 +45,18 @@ static hkf_settings_t calibrated_settings(void)
 static double run_still(const hkf_settings_t *s, double sigma, double rate, int frames, unsigned seed,
                         double *jitter)
 {
-    hkf_filter_t f;
+    calibrated_t t;
     hkf_output_t out;
     sim_rng_t rng;
     double sum = 0.0, prev = 0.0;
     int i, counted = 0;
-    assert_int_equal(hkf_init(&f, s), HKF_OK);
+    calibrated_init(&t, s);
     sim_rng_seed(&rng, seed);
     for (i = 0; i < frames; ++i) {
         hkf_real_t z[3];
         const double truth = rate * frame_s * i;
         set3(z, sigma * sim_rng_gaussian(&rng), truth + sigma * sim_rng_gaussian(&rng), sigma * sim_rng_gaussian(&rng));
-        assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+        calibrated_update(&t, z, R(frame_s), &out);
         if (i > frames / 2) {
             const double step = D(out.angle[1]) - prev - rate * frame_s;
             sum += step * step;
@@ -94,7 +114,7 @@ static void test_jitter_share_holds_with_more_noise(void **state)
 static void test_glance_followed_without_overshoot(void **state)
 {
     hkf_settings_t with = calibrated_settings(), small_q, moving_q;
-    hkf_filter_t fw, fs, fm;
+    calibrated_t fw, fs, fm;
     hkf_output_t ow, os, om;
     sim_rng_t rng;
     double turn_w = 0.0, turn_s = 0.0, over_w = 0.0, rate_w = 0.0, rate_m = 0.0;
@@ -106,18 +126,18 @@ static void test_glance_followed_without_overshoot(void **state)
     for (a = 0; a < HKF_AXES; ++a) {
         small_q.process_noise[a] = R(1);
     }
-    assert_int_equal(hkf_init(&fw, &with), HKF_OK);
-    assert_int_equal(hkf_init(&fs, &small_q), HKF_OK);
-    assert_int_equal(hkf_init(&fm, &moving_q), HKF_OK);
+    calibrated_init(&fw, &with);
+    calibrated_init(&fs, &small_q);
+    calibrated_init(&fm, &moving_q);
     sim_rng_seed(&rng, 3u);
     for (i = 0; i < 300; ++i) {
         const double t = i * frame_s;
         const double truth = t < 5.0 ? 0.0 : t < 5.15 ? 200.0 * (t - 5.0) : 30.0;
         hkf_real_t z[3];
         set3(z, 0, truth + 0.3 * sim_rng_gaussian(&rng), 0);
-        assert_int_equal(hkf_update(&fw, z, R(frame_s), &ow), HKF_OK);
-        assert_int_equal(hkf_update(&fs, z, R(frame_s), &os), HKF_OK);
-        assert_int_equal(hkf_update(&fm, z, R(frame_s), &om), HKF_OK);
+        calibrated_update(&fw, z, R(frame_s), &ow);
+        calibrated_update(&fs, z, R(frame_s), &os);
+        calibrated_update(&fm, z, R(frame_s), &om);
         if (t >= 5.0 && t < 5.3) {
             turn_w += fabs(truth - D(ow.angle[1]));
             turn_s += fabs(truth - D(os.angle[1]));
@@ -144,22 +164,22 @@ static void test_glance_followed_without_overshoot(void **state)
 static void test_blip_gone_motion_followed(void **state)
 {
     const hkf_settings_t s = calibrated_settings();
-    hkf_filter_t blip, held;
+    calibrated_t blip, held;
     hkf_output_t ob, oh;
     sim_rng_t rng;
     double blip_after = 0.0, held_after = 0.0;
     int i;
     (void)state;
-    assert_int_equal(hkf_init(&blip, &s), HKF_OK);
-    assert_int_equal(hkf_init(&held, &s), HKF_OK);
+    calibrated_init(&blip, &s);
+    calibrated_init(&held, &s);
     sim_rng_seed(&rng, 4u);
     for (i = 0; i < 200; ++i) {
         const double noise = 0.1 * sim_rng_gaussian(&rng);
         hkf_real_t zb[3], zh[3];
         set3(zb, 0, 0, (i == 150 ? 2.0 : 0.0) + noise);
         set3(zh, 0, 0, (i >= 150 ? 2.0 : 0.0) + noise);
-        assert_int_equal(hkf_update(&blip, zb, R(frame_s), &ob), HKF_OK);
-        assert_int_equal(hkf_update(&held, zh, R(frame_s), &oh), HKF_OK);
+        calibrated_update(&blip, zb, R(frame_s), &ob);
+        calibrated_update(&held, zh, R(frame_s), &oh);
         if (i >= 152) {
             blip_after = fmax(blip_after, fabs(D(ob.angle[2])));
         }
@@ -196,28 +216,114 @@ static void test_yaw_r_read_wrapped(void **state)
     assert_true(D(o359.r[1]) < 4.0);
 }
 
-/* Off (noise_time 0, start_rate 0), the other settings of calibration and the
- * motion adaptation change nothing: the paper's filter bit for bit. */
+/* Off (start_rate 0), the motion adaptation's other settings change nothing, and a calibration with
+ * noise_time 0 beside the filter leaves it alone: the paper's filter bit for bit. */
 static void test_off_is_the_paper(void **state)
 {
     hkf_settings_t a = hkf_paper_settings, b = hkf_paper_settings;
+    hkf_calibration_settings_t off = hkf_default_calibration_settings;
+    hkf_calibration_t c;
     hkf_filter_t fa, fb;
     hkf_output_t oa, ob;
     int i;
     (void)state;
-    b.noise_rise = R(5);
     b.still_wander = R(3);
     b.stop_rate = R(0.1);
+    off.noise_time = 0;
+    off.noise_rise = R(5);
     assert_int_equal(hkf_init(&fa, &a), HKF_OK);
     assert_int_equal(hkf_init(&fb, &b), HKF_OK);
+    assert_int_equal(hkf_calibration_init(&c, &off, &fb), HKF_OK);
     for (i = 0; i < 60; ++i) {
         hkf_real_t z[3];
         set3(z, 0.5 * i, 2.0 * i, -0.3 * i);
         assert_int_equal(hkf_update(&fa, z, R(frame_s), &oa), HKF_OK);
         assert_int_equal(hkf_update(&fb, z, R(frame_s), &ob), HKF_OK);
+        assert_int_equal(hkf_calibration_update(&c, &fb, z, R(frame_s)), HKF_OK);
         assert_memory_equal(oa.angle, ob.angle, sizeof oa.angle);
         assert_memory_equal(oa.variance, ob.variance, sizeof oa.variance);
     }
+}
+
+/* hkf_set_noise: R at the curve's center is n, Eq. 8's shape around it; NULL is Eq. 8's own R again; a
+ * bad n is refused and changes nothing; hkf_reset keeps n. */
+static void test_set_noise(void **state)
+{
+    hkf_settings_t s = hkf_paper_settings;
+    hkf_filter_t f, before;
+    hkf_output_t out;
+    hkf_real_t z[3], n[3], bad[3];
+    (void)state;
+    s.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    set3(n, 0.5, 0.25, 2.0);
+    assert_int_equal(hkf_set_noise(&f, n), HKF_OK);
+    set3(z, D(hkf_paper_settings.noise[0].mu), D(hkf_paper_settings.noise[1].mu), D(hkf_paper_settings.noise[2].mu));
+    assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK); /* the track's start */
+    assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+    assert_near_at(D(out.r[0]), 0.5, 2e-3, "R at mu, pitch", __FILE__, __LINE__);
+    assert_near_at(D(out.r[1]), 0.25, 2e-3, "R at mu, yaw", __FILE__, __LINE__);
+    assert_near_at(D(out.r[2]), 2.0, 2e-3, "R at mu, roll", __FILE__, __LINE__);
+    set3(z, 0, 60, 0); /* yaw far out: Eq. 8's rise, scaled by n / e(mu) */
+    assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+    assert_near_at(D(out.r[1]), 0.25 * D(hkf_observation_noise(&f, 1, R(60))) /
+                                    D(hkf_observation_noise(&f, 1, hkf_paper_settings.noise[1].mu)),
+                   2e-3, "R far out, yaw", __FILE__, __LINE__);
+    hkf_reset(&f);
+    assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+    assert_true(D(out.r[1]) < 0.5 * D(hkf_observation_noise(&f, 1, R(60)))); /* kept */
+    before = f;
+    set3(bad, 0.5, 0, 1);
+    assert_int_equal(hkf_set_noise(&f, bad), HKF_ERROR_NOISE_RANGE);
+#if TEST_HAS_NON_FINITE
+    set3(bad, 0.5, NAN, 1);
+    assert_int_equal(hkf_set_noise(&f, bad), HKF_ERROR_NON_FINITE);
+#endif
+    assert_memory_equal(&f, &before, sizeof f);
+    assert_int_equal(hkf_set_noise(NULL, n), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_set_noise(&f, NULL), HKF_OK);
+    assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+    assert_near_at(D(out.r[1]), D(hkf_observation_noise(&f, 1, R(60))), 1e-3, "Eq. 8's own R", __FILE__, __LINE__);
+}
+
+/* The estimate's history: a frame without a measurement breaks the second difference (n holds for the
+ * next two measurements, however far they jump); hkf_calibration_reset starts n again at e(mu). */
+static void test_history_and_reset(void **state)
+{
+    const hkf_settings_t s = calibrated_settings();
+    calibrated_t t;
+    hkf_output_t out;
+    hkf_real_t z[3], held[3], now[3], start[3];
+    int i;
+    (void)state;
+    calibrated_init(&t, &s);
+    assert_int_equal(hkf_calibration_get_noise(&t.c, start), HKF_OK);
+    assert_true(D(start[1]) > 1.0); /* e(mu): the constant R of the settings, 3.53 */
+    for (i = 0; i < 90; ++i) {
+        set3(z, 0, 0.1 * ((i * 7) % 5 - 2), 0);
+        calibrated_update(&t, z, R(frame_s), &out);
+    }
+    assert_int_equal(hkf_calibration_get_noise(&t.c, held), HKF_OK);
+    assert_true(D(held[1]) < 0.1 * D(start[1])); /* it fell to this noise */
+    assert_int_equal(hkf_predict(&t.f, R(frame_s), &out), HKF_OK);
+    assert_int_equal(hkf_calibration_update(&t.c, &t.f, NULL, R(frame_s)), HKF_OK);
+    for (i = 0; i < 2; ++i) { /* two measurements rebuild the history: no second difference yet */
+        set3(z, 0, 20.0 * (i + 1), 0);
+        calibrated_update(&t, z, R(frame_s), &out);
+        assert_int_equal(hkf_calibration_get_noise(&t.c, now), HKF_OK);
+        assert_memory_equal(now, held, sizeof now);
+    }
+    set3(z, 0, 90, 0); /* the third: a second difference of 30 deg */
+    calibrated_update(&t, z, R(frame_s), &out);
+    assert_int_equal(hkf_calibration_get_noise(&t.c, now), HKF_OK);
+    assert_true(D(now[1]) > D(held[1]));
+    hkf_reset(&t.f);
+    assert_int_equal(hkf_calibration_reset(&t.c, &t.f), HKF_OK);
+    assert_int_equal(hkf_calibration_get_noise(&t.c, now), HKF_OK);
+    assert_memory_equal(now, start, sizeof now);
+    assert_int_equal(hkf_calibration_update(NULL, &t.f, z, R(frame_s)), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_calibration_get_noise(&t.c, NULL), HKF_ERROR_NULL_ARGUMENT);
 }
 
 /* Out-of-range calibration and motion settings are refused by name. */
@@ -225,13 +331,21 @@ static void test_calibration_settings_checked(void **state)
 {
     hkf_filter_t f;
     hkf_settings_t s;
+    hkf_calibration_settings_t c = hkf_default_calibration_settings;
+    hkf_calibration_t cal;
     (void)state;
-    s = hkf_default_settings;
-    s.noise_time = R(-1);
-    assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
-    s = hkf_default_settings;
-    s.noise_rise = R(200);
-    assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_CALIBRATION);
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    c.noise_time = R(-1);
+    assert_int_equal(hkf_calibration_init(&cal, &c, &f), HKF_ERROR_SETTING_CALIBRATION);
+    c = hkf_default_calibration_settings;
+    c.noise_rise = R(200);
+    assert_int_equal(hkf_calibration_init(&cal, &c, &f), HKF_ERROR_SETTING_CALIBRATION);
+#if TEST_HAS_NON_FINITE
+    c = hkf_default_calibration_settings;
+    c.noise_time = R(NAN);
+    assert_int_equal(hkf_calibration_init(&cal, &c, &f), HKF_ERROR_SETTING_NON_FINITE);
+#endif
+    assert_int_equal(hkf_calibration_init(NULL, &c, &f), HKF_ERROR_NULL_ARGUMENT);
     s = hkf_default_settings;
     s.still_wander = R(-0.5);
     assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_MOTION);
@@ -252,6 +366,8 @@ int main(void)
         cmocka_unit_test(test_blip_gone_motion_followed),
         cmocka_unit_test(test_yaw_r_read_wrapped),
         cmocka_unit_test(test_off_is_the_paper),
+        cmocka_unit_test(test_set_noise),
+        cmocka_unit_test(test_history_and_reset),
         cmocka_unit_test(test_calibration_settings_checked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

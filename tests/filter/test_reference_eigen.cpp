@@ -27,6 +27,7 @@
 #include <Eigen/Dense>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 #include "head_motion_sim.h"
 
 namespace {
@@ -55,7 +56,17 @@ double wrap180(double x)
  * and the same coasting, re-acquisition and gate rules as documented in hkf.h. */
 class ReferenceFilter {
 public:
-    explicit ReferenceFilter(const hkf_settings_t &s) : s_(s) {}
+    /* cal: the noise calibration beside it (hkf_calibration.h), or nullptr */
+    ReferenceFilter(const hkf_settings_t &s, const hkf_calibration_settings_t *cal) : s_(s)
+    {
+        if (cal != nullptr && D(cal->noise_time) > 0) {
+            noiseTime_ = D(cal->noise_time);
+            noiseRise_ = D(cal->noise_rise);
+            for (int a = 0; a < 3; ++a) { /* n starts at e(mu), and is kept across restarts */
+                noise_(a) = power_(a) = noise(a, D(s_.noise[a].mu));
+            }
+        }
+    }
 
     bool started() const { return started_; }
     const Vec6 &x() const { return x_; }
@@ -63,11 +74,26 @@ public:
     const Vec3 &r() const { return r_; }
     int status() const { return status_; }
 
+    /* Noise calibration (hkf_calibration.h), after each step the filter was given: the raw measurement z
+     * (gated or not), or nullptr for a frame without one, which breaks the second difference. */
+    void calibrate(const Vec3 *z, double dt)
+    {
+        if (!calibrated()) {
+            return;
+        }
+        if (z == nullptr) {
+            history_ = 0;
+            return;
+        }
+        noiseUpdate(*z, dt);
+    }
+
+
     /* The motion adaptation's probability of MOVE is a feedback: a rounding difference in it (1e-12 in
      * double) changes the next steps' gains, and over thousands of steps with 25 deg outliers the two
      * filters part. With it on, each step therefore starts from libhkf's state (the estimate, the
      * probabilities and the noise estimate), so every step's equations are checked at full precision. */
-    void syncFrom(const hkf_filter_t &f)
+    void syncFrom(const hkf_filter_t &f, const hkf_calibration_t &cal)
     {
         if (!started_ || status_ == HKF_STATUS_LOST) {
             return;
@@ -79,8 +105,8 @@ public:
             P_(a, a + 3) = P_(a + 3, a) = D(f.p01[a]);
             P_(a + 3, a + 3) = D(f.p11[a]);
             moving_(a) = D(f.moving[a]);
-            noise_(a) = D(f.noise[a]);
-            power_(a) = D(f.noise_power[a]);
+            noise_(a) = D(cal.noise[a]);
+            power_(a) = D(cal.power[a]);
         }
     }
 
@@ -123,9 +149,6 @@ public:
             P_ = (Mat6::Identity() - K * H) * P_;
         }
         r_ = R.diagonal();
-        if (calibrated()) {
-            noiseUpdate(z, dt);
-        }
         sinceMeasurement_ = 0.0;
         rejections_ = 0;
         status_ = HKF_STATUS_TRACKING;
@@ -169,13 +192,8 @@ public:
         predict(dt);
         const Vec3 zc1 = loopClosure(z1), zc2 = loopClosure(z2);
         Mat6 R = Mat6::Zero();
-        for (int a = 0; a < 3; ++a) {
+        for (int a = 0; a < 3; ++a) { /* both at the noise level measured before this frame */
             R(a, a) = calibratedR(s_, a, zc1(a));
-        }
-        if (calibrated()) { /* libhkf updates n from z1 before it weighs z2 */
-            noiseUpdate(z1, dt);
-        }
-        for (int a = 0; a < 3; ++a) {
             R(a + 3, a + 3) = calibratedR(second, a, zc2(a));
         }
         Mat6 H = Mat6::Zero();
@@ -224,14 +242,6 @@ private:
             center_ = x_.head<3>();
             centerd_ = true;
         }
-        if (!started_) { /* n starts at e(mu), and is kept across restarts */
-            for (int a = 0; a < 3; ++a) {
-                noise_(a) = power_(a) = noise(a, D(s_.noise[a].mu));
-            }
-        }
-        lastZ_ = z;
-        lastZ_(1) = wrap180(z(1));
-        history_ = 1;
         started_ = true;
         sinceMeasurement_ = 0.0;
         rejections_ = 0;
@@ -258,7 +268,6 @@ private:
     {
         sinceMeasurement_ += dt;
         status_ = HKF_STATUS_COASTING;
-        history_ = 0;
         if (sinceMeasurement_ >= D(s_.coast_time)) {
             x_.tail<3>().setZero();
             P_.bottomRows<3>().setZero();
@@ -288,8 +297,8 @@ private:
 
     double noise(int a, double x) const { return noise(s_, a, x); }
 
-    /* Noise calibration (hkf.h): on, the curves' R at x times n over the first model's R at its center */
-    bool calibrated() const { return D(s_.noise_time) > 0; }
+    /* On, R is the curves' R at x times n over the first model's R at its center */
+    bool calibrated() const { return noiseTime_ > 0; }
     double calibratedR(const hkf_settings_t &curves, int a, double x) const
     {
         const double r = noise(curves, a, x);
@@ -372,7 +381,7 @@ private:
         Vec3 step = zw - lastZ_;
         step(1) = wrap180(step(1));
         if (history_ >= 2) {
-            const double beta = dt / (dt + D(s_.noise_time)), rise = 1.0 + D(s_.noise_rise) * dt;
+            const double beta = dt / (dt + noiseTime_), rise = 1.0 + noiseRise_ * dt;
             for (int a = 0; a < 3; ++a) {
                 const double d = step(a) - lastStep_(a);
                 power_(a) += beta * (d * d / 6.0 - power_(a));
@@ -405,6 +414,7 @@ private:
     }
 
     hkf_settings_t s_;
+    double noiseTime_ = 0.0, noiseRise_ = 0.0; /* the calibration's settings; noiseTime_ 0: none */
     Vec6 x_ = Vec6::Zero();
     Mat6 P_ = Mat6::Zero();
     Vec3 r_ = Vec3::Zero();
@@ -465,8 +475,8 @@ void measure(sim_rng_t &rng, const double truth[3], bool second, Frame &m)
 }
 
 /* One step of libhkf and of the reference: the pair, one measurement, or a prediction without a face. */
-int step_both(hkf_filter_t &f, ReferenceFilter &ref, const Frame &m, const hkf_settings_t *second, hkf_real_t dtr,
-              hkf_output_t &out)
+int filter_step(hkf_filter_t &f, ReferenceFilter &ref, const Frame &m, const hkf_settings_t *second, hkf_real_t dtr,
+                hkf_output_t &out)
 {
     if (m.valid && second != nullptr) {
         ref.updatePair(m.zd, m.z2d, D(dtr), *second);
@@ -481,6 +491,18 @@ int step_both(hkf_filter_t &f, ReferenceFilter &ref, const Frame &m, const hkf_s
         ref.coast(D(dtr));
     }
     return hkf_predict(&f, dtr, &out);
+}
+
+/* The filter's step, then (when it was made) the noise calibration's in both, with the raw measurement. */
+int step_both(hkf_filter_t &f, hkf_calibration_t *cal, ReferenceFilter &ref, const Frame &m,
+              const hkf_settings_t *second, hkf_real_t dtr, hkf_output_t &out)
+{
+    const int result = filter_step(f, ref, m, second, dtr, out);
+    if (result == HKF_OK && cal != nullptr) {
+        ref.calibrate(m.valid ? &m.zd : nullptr, D(dtr));
+        return hkf_calibration_update(cal, &f, m.valid ? m.z : nullptr, dtr);
+    }
+    return result;
 }
 
 /* The step's differences between libhkf and the reference, and what it exercised. */
@@ -507,15 +529,17 @@ void record(Worst &worst, const hkf_output_t &out, const ReferenceFilter &ref, d
 }
 
 /* One configuration, one long sequence: the largest differences seen. */
-bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *second, std::uint64_t seed, long steps,
-             Worst &worst)
+bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *second, bool calibrated,
+             std::uint64_t seed, long steps, Worst &worst)
 {
     hkf_filter_t f;
-    if (hkf_init(&f, &s) != HKF_OK) {
-        std::fprintf(stderr, "%s: hkf_init failed\n", name);
+    hkf_calibration_t cal{};
+    if (hkf_init(&f, &s) != HKF_OK ||
+        (calibrated && hkf_calibration_init(&cal, &hkf_default_calibration_settings, &f) != HKF_OK)) {
+        std::fprintf(stderr, "%s: hkf_init or hkf_calibration_init failed\n", name);
         return false;
     }
-    ReferenceFilter ref(s);
+    ReferenceFilter ref(s, calibrated ? &hkf_default_calibration_settings : nullptr);
     sim_rng_t rng;
     sim_rng_seed(&rng, seed);
     double truth[3] = {0, 150, 0}, rate[3] = {0, 0, 0};
@@ -533,9 +557,9 @@ bool compare(const char *name, const hkf_settings_t &s, const hkf_settings_t *se
         measure(rng, truth, second != nullptr, m);
         hkf_output_t out;
         if (s.start_rate > 0) {
-            ref.syncFrom(f);
+            ref.syncFrom(f, cal);
         }
-        const int result = step_both(f, ref, m, second, R(dt), out);
+        const int result = step_both(f, calibrated ? &cal : nullptr, ref, m, second, R(dt), out);
         if (!ref.started()) {
             if (result != HKF_ERROR_NOT_INITIALIZED) {
                 std::fprintf(stderr, "%s step %ld: expected NOT_INITIALIZED, got %d\n", name, i, result);
@@ -567,7 +591,7 @@ struct Mode {
     float start_rate = 0.0f; /* the motion adaptation, with the defaults' still_wander and stop_rate */
     bool defaults = false; /* all of hkf_default_settings (its q and motion adaptation too) */
     bool pair = false;     /* hkf_update_pair, the second model with Hopenet's curves */
-    bool calibrated = false; /* hkf_default_settings (noise calibration on) with the mode's changes */
+    bool calibrated = false; /* hkf_default_settings with the mode's changes, the noise calibration beside */
 };
 const Mode modes[] = {
     {"constant", HKF_NOISE_CONSTANT, HKF_LOOP_CLOSURE_OFF, 0.0f, 2.0f, false},
@@ -619,20 +643,21 @@ hkf_settings_t settings_of(const Mode &m)
  * the check is the RMS over the run and a looser worst step: 10x and 1000x the tolerance in float and
  * double; in Q16.16, where flips happen now and then, 0.5 deg RMS and 30 deg (real head motion: the target
  * test on d10). Every status still matches step by step (compare). */
-bool close_enough(const hkf_settings_t &s, const Worst &w, double rms)
+bool close_enough(const hkf_settings_t &s, bool calibrated, const Worst &w, double rms)
 {
+    (void)s;
 #if defined(HKF_REAL_FIXED)
     const double rms_bound = 0.5, worst_bound = 30.0;
 #else
     const double rms_bound = 10.0 * TEST_TOL, worst_bound = 1000.0 * TEST_TOL;
 #endif
 #if defined(HKF_REAL_FIXED)
-    if (D(s.start_rate) > 0 && D(s.noise_time) <= 0) { /* each step from libhkf's state (syncFrom): Q16.16's
+    if (D(s.start_rate) > 0 && !calibrated) { /* each step from libhkf's state (syncFrom): Q16.16's
                                                            rounding of one step's exp, root and mixture */
         return rms <= 1e-3 && w.angle <= 0.05;
     }
 #endif
-    if (D(s.noise_time) > 0) {
+    if (calibrated) {
         return rms <= rms_bound && w.angle <= worst_bound;
     }
     return w.angle <= TEST_TOL && w.rate <= TEST_RATE_TOL && w.variance <= TEST_REL_TOL && w.r <= TEST_REL_TOL;
@@ -648,13 +673,14 @@ bool run_mode(const Mode &m, std::uint64_t seed, long steps)
         second.r_const[a] = R(2.0 * D(s.r_const[a]));
     }
     Worst w;
-    const bool ran = compare(m.name, s, m.pair ? &second : nullptr, seed, steps, w);
+    const bool calibrated = m.calibrated || m.defaults;
+    const bool ran = compare(m.name, s, m.pair ? &second : nullptr, calibrated, seed, steps, w);
     /* the sequence must have exercised what the mode has */
     const bool exercised = w.lost > 0 && w.seam_crossings > 0 && (!m.expect_closures || w.closures > 0) &&
                            (s.loop_closure != HKF_LOOP_CLOSURE_OFF || w.closures == 0) &&
                            (s.gate_sigma > 0) == (w.gated > 0);
     const double rms = std::sqrt(w.angle_squares / std::max(w.compared, 1L));
-    const bool ok = ran && exercised && close_enough(s, w, rms);
+    const bool ok = ran && exercised && close_enough(s, calibrated, w, rms);
     std::printf("%-4s %-23s seed %llu: %ld steps, worst |angle| %.1e deg (RMS %.1e), rate %.1e, variance %.1e, "
                 "R %.1e (rel); %ld closures, %ld gated, %ld lost, %ld seam crossings\n",
                 ok ? "OK" : "FAIL", m.name, static_cast<unsigned long long>(seed), steps, w.angle, rms, w.rate,

@@ -105,7 +105,6 @@ static inline hkf_settings_t plain_settings(void)
     s.noise_mode = HKF_NOISE_CONSTANT;
     s.loop_closure = HKF_LOOP_CLOSURE_OFF;
     s.start_rate = 0; /* no motion adaptation */
-    s.noise_time = 0; /* the paper's filter: no noise calibration */
     s.p0_angle = R(4);
     s.p0_rate = R(8);
     s.coast_time = R(10);

@@ -2,8 +2,10 @@
  * fuzz_libhkf.c - libFuzzer target for libhkf's whole API: arbitrary settings,
  * then an arbitrary sequence of init / update / update_pair (with a second
  * model's settings edited, perhaps to nonsense) / predict / extrapolate /
- * set_center / recenter / reset / get_output with arbitrary values (NaN,
- * infinities, denormals, huge numbers included). It checks, after every call:
+ * set_center / recenter / reset / get_output / set_noise with arbitrary values
+ * (NaN, infinities, denormals, huge numbers included), with the noise
+ * calibration (its settings edited too) beside the filter when its settings
+ * pass, stepped after each update and predict. It checks, after every call:
  *   - a rejected call (negative result) left the filter bit-identical;
  *   - an accepted call wrote only finite outputs, the yaw in [-180, 180),
  *     variances positive and bounded, R within its clamp. (Pitch and roll are
@@ -26,6 +28,7 @@
 #include <string.h>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 
 /* The largest angle variance any accepted call may report (deg^2). */
 #define VARIANCE_BOUND 1e12
@@ -40,6 +43,20 @@
 #define SETTINGS_OF(f) (&(f)->settings) /* hkf_init's copy, in every build */
 
 #include "fuzz_input.h"
+
+/* The noise calibration beside the filter, and whether its settings passed (calibrating). */
+static hkf_calibration_settings_t calibration_settings;
+static hkf_calibration_t calibration;
+static int calibrating;
+
+/* After a call that stepped the filter (result HKF_OK): the calibration's step with the raw measurement z
+ * (NULL: none); n stays within what R may be scaled by (checked through R by after_call). */
+static void calibrate(hkf_filter_t *f, int result, const hkf_real_t *z, hkf_real_t dt)
+{
+    if (calibrating && result == HKF_OK && hkf_calibration_update(&calibration, f, z, dt) != HKF_OK) {
+        abort();
+    }
+}
 
 /* One settings field by number, to an arbitrary value. */
 static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
@@ -70,7 +87,9 @@ static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
     case 15: /* the motion adaptation */
         axis == 0 ? (void)(s->start_rate = v) : axis == 1 ? (void)(s->stop_rate = v) : (void)(s->still_wander = v);
         break;
-    case 16: axis == 0 ? (void)(s->noise_time = v) : (void)(s->noise_rise = v); break; /* noise calibration */
+    case 16: /* the noise calibration's */
+        axis == 0 ? (void)(calibration_settings.noise_time = v) : (void)(calibration_settings.noise_rise = v);
+        break;
     case 17: s->start_rate = v >= 0 ? v : -(v + 1); break; /* the adaptation on more often (-(v + 1): INT32_MIN too) */
     default: s->loop_closure = (int)(field % 5) - 1; s->max_gate_rejections = field % 4u; break;
     }
@@ -160,15 +179,17 @@ static void pair_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_
     (void)take_byte(in, &missing);
     dt = take_real(in);
     result = hkf_update_pair(f, missing % 4 == 1 ? NULL : v, missing % 4 == 2 ? NULL : v2, &noise, dt, &out);
+    after_call(before, f, result, &out);
+    calibrate(f, result, missing % 4 == 1 ? v2 : v, dt);
     if (missing % 4 == 3) {
         *before = *f;
         result = hkf_update_pair(f, NULL, NULL, &noise, dt, &out);
         if (result != HKF_ERROR_NULL_ARGUMENT) {
             abort();
         }
+        after_call(before, f, result, &out);
     }
     ++steps;
-    after_call(before, f, result, &out);
 }
 
 /* One API call on the filter, chosen by op, its arguments from the input. */
@@ -179,18 +200,25 @@ static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t
     int result;
     *before = *f;
     memset(&out, 0, sizeof out);
-    switch (op % 9) {
-    case 0:
+    switch (op % 10) {
+    case 0: {
+        hkf_real_t dt;
         v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
-        result = hkf_update(f, v, take_real(in), &out);
+        dt = take_real(in);
+        result = hkf_update(f, v, dt, &out);
         ++steps;
         after_call(before, f, result, &out);
+        calibrate(f, result, v, dt);
         break;
-    case 1:
-        result = hkf_predict(f, take_real(in), &out);
+    }
+    case 1: {
+        const hkf_real_t dt = take_real(in);
+        result = hkf_predict(f, dt, &out);
         ++steps;
         after_call(before, f, result, &out);
+        calibrate(f, result, NULL, dt);
         break;
+    }
     case 2:
         result = hkf_extrapolate(f, take_real(in), &out);
         check(memcmp(before, f, sizeof *f) == 0, "hkf_extrapolate changed the filter");
@@ -207,6 +235,9 @@ static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t
         break;
     case 5:
         hkf_reset(f);
+        if (calibrating && hkf_calibration_reset(&calibration, f) != HKF_OK) {
+            abort();
+        }
         break;
     case 6:
         result = hkf_get_output(f, &out);
@@ -216,9 +247,17 @@ static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t
     case 7:
         pair_step(f, before, s, in);
         break;
+    case 8: /* a noise level from outside: an arbitrary one is refused or scales R within its clamp */
+        v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
+        result = hkf_set_noise(f, v);
+        after_call(before, f, result, NULL);
+        break;
     default:
         result = hkf_init(f, s);
         after_call(before, f, result, NULL);
+        if (calibrating && result == HKF_OK && hkf_calibration_init(&calibration, &calibration_settings, f) != HKF_OK) {
+            abort();
+        }
         break;
     }
 }
@@ -236,6 +275,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         registered = atexit(print_steps) == 0;
     }
     memset(&f, 0, sizeof f);
+    calibration_settings = hkf_default_calibration_settings;
     if (take_byte(&in, &count)) {
         for (i = 0; i < count % 8 && take_byte(&in, &field); ++i) {
             edit_setting(&s, field, &in);
@@ -249,6 +289,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     r_low = s.r_min;
     r_high = s.r_max;
+    calibrating = hkf_calibration_init(&calibration, &calibration_settings, &f) == HKF_OK;
     while (take_byte(&in, &op)) {
         api_step(&f, &before, &s, &in, op);
     }

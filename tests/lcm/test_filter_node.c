@@ -50,11 +50,13 @@ static void test_poses_match_libhkf(void **state)
     sim_config_t sc = sim_default_config();
     sim_t sim;
     hkf_filter_t reference;
+    hkf_calibration_t calibration; /* the node's, beside its filter */
     int known, i, published = 0, coasting = 0, lost = 0;
     const hkf_settings_t s = node_config_for_model(&config, "fsanet", &known);
     (void)state;
     assert_true(known);
     assert_int_equal(hkf_init(&reference, &s), HKF_OK);
+    assert_int_equal(hkf_calibration_init(&calibration, &config.calibration, &reference), HKF_OK);
     sim_init(&sim, &sc, 11u);
     for (i = 0; i < 900; ++i) {
         sim_frame_t frame;
@@ -69,8 +71,14 @@ static void test_poses_match_libhkf(void **state)
         if (frame.valid) {
             const hkf_real_t z[3] = {m.pitch, m.yaw, m.roll};
             ref_result = hkf_update(&reference, z, dt, &out);
+            if (ref_result == HKF_OK) {
+                assert_int_equal(hkf_calibration_update(&calibration, &reference, z, dt), HKF_OK);
+            }
         } else {
             ref_result = hkf_predict(&reference, dt, &out);
+            if (ref_result == HKF_OK) {
+                assert_int_equal(hkf_calibration_update(&calibration, &reference, NULL, dt), HKF_OK);
+            }
         }
         if (filter_node_measurement(&node, &m, &pose)) {
             ++published;
@@ -995,6 +1003,7 @@ static void test_second_model_fused_into_its_frame(void **state)
     sim_config_t sc = sim_default_config();
     sim_t sim;
     hkf_filter_t reference, before;
+    hkf_calibration_t calibration;
     hkf_output_t ours, theirs;
     int known1, known2, i, a, published = 0, second_only = 0; /* frames only the second model measured */
     const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known1);
@@ -1005,6 +1014,7 @@ static void test_second_model_fused_into_its_frame(void **state)
     config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
     assert_true(known1 && known2);
     assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
+    assert_int_equal(hkf_calibration_init(&calibration, &config.calibration, &reference), HKF_OK);
     sim_init(&sim, &sc, 5u);
     for (i = 0; i < FRAMES; ++i) {
         sim_frame_t frame;
@@ -1021,8 +1031,9 @@ static void test_second_model_fused_into_its_frame(void **state)
         {
             const hkf_real_t z[3] = {first[i].pitch, first[i].yaw, first[i].roll};
             const hkf_real_t z2[3] = {second[i].pitch, second[i].yaw, second[i].roll};
-            assert_int_equal(hkf_update_pair(&reference, first[i].valid ? z : NULL, z2, &s2,
-                                             (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6), NULL), HKF_OK);
+            const hkf_real_t dt = (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6);
+            assert_int_equal(hkf_update_pair(&reference, first[i].valid ? z : NULL, z2, &s2, dt, NULL), HKF_OK);
+            assert_int_equal(hkf_calibration_update(&calibration, &reference, first[i].valid ? z : z2, dt), HKF_OK);
         }
     }
     for (i = 0; i < FRAMES + LATE; ++i) {
@@ -1253,6 +1264,7 @@ static void test_second_model_alone_at_large_yaw(void **state)
     hkf_head_pose_measurement_t m, second;
     hkf_head_pose_t pose;
     hkf_filter_t reference;
+    hkf_calibration_t calibration;
     hkf_output_t ours, theirs;
     int known, i, a;
     const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known);
@@ -1262,6 +1274,7 @@ static void test_second_model_alone_at_large_yaw(void **state)
     node.second.align_frames = 0;
     assert_float_equal(config.second_alone_from_yaw, 25.0, 0.0);
     assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
+    assert_int_equal(hkf_calibration_init(&calibration, &config.calibration, &reference), HKF_OK);
     for (i = 0; i < 60; ++i) {
         const double yaw = 1.5 * i; /* 0 .. 88.5 deg: fused below 25, the second alone from there */
         const hkf_real_t z[3] = {(hkf_real_t)(2.0 + 0.3 * sin(i)), (hkf_real_t)yaw, -1.0f};
@@ -1276,6 +1289,8 @@ static void test_second_model_alone_at_large_yaw(void **state)
         assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
         assert_int_equal(hkf_update_pair(&reference, yaw >= 25.0 ? NULL : z, z2, &s2,
                                          (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6), NULL), HKF_OK);
+        assert_int_equal(hkf_calibration_update(&calibration, &reference, yaw >= 25.0 ? z2 : z,
+                                                (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6)), HKF_OK);
     }
     assert_int_equal(hkf_get_output(&node.filter, &ours), HKF_OK);
     assert_int_equal(hkf_get_output(&reference, &theirs), HKF_OK);

@@ -275,10 +275,17 @@ static void test_check_names_where(void **state)
     snprintf(where, sizeof where, "%s:2: noise.yaw wants four numbers (tau lambda mu sigma) sigma 0.001 to 10000 deg", path);
     assert_non_null(strstr(error, where));
     node_config_defaults(&c); /* a model's own key, refused where it was set */
-    path = write_temp("[model mine]\nnoise_time = 20\n");
+    path = write_temp("[model mine]\nstill_wander = -1\n");
     assert_int_equal(node_config_read_file(&c, path, error, sizeof error), -1);
-    snprintf(where, sizeof where, "%s:2: noise_time wants a number 0 to 10 s", path);
+    snprintf(where, sizeof where, "%s:2: still_wander wants a number 0 to 1e+08 deg^2", path);
     assert_non_null(strstr(error, where));
+    path = write_temp("noise_time = 20\n"); /* the calibration's, beside the filter */
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), -1);
+    snprintf(where, sizeof where, "%s:1: noise_time wants a number 0 to 10 s", path);
+    assert_non_null(strstr(error, where));
+    path = write_temp("[model mine]\nnoise_time = 0.5\n"); /* one calibration for the node, not per model */
+    assert_int_equal(node_config_read_file(&c, path, error, sizeof error), -1);
+    assert_non_null(strstr(error, "unknown key 'noise_time' for a model"));
     node_config_defaults(&c); /* settings each in range but not together, in a model: named where they were set */
     path = write_temp("gate_sigma = 3\n[model mine]\nmax_gate_rejections = 0\n");
     assert_int_equal(node_config_read_file(&c, path, error, sizeof error), 0);
@@ -340,16 +347,22 @@ static void test_every_setting_is_a_key(void **state)
     FILE *f = fmemopen(printed, sizeof printed, "w");
     int i;
     (void)state;
-    assert_true(hkf_settings_table_count + 1 + hkf_position_settings_table_count <= NODE_KEY_SLOTS);
+    assert_true(hkf_settings_table_count + hkf_calibration_settings_table_count + 1 + hkf_position_settings_table_count <=
+                NODE_KEY_SLOTS);
     assert_true(hkf_settings_table_count <= 32); /* a bit each in node_model_t.own_keys */
     node_config_defaults(&c);
     node_config_print(&c, f);
     fclose(f);
-    for (i = 0; i < hkf_settings_table_count + hkf_position_settings_table_count; ++i) {
+    for (i = 0; i < hkf_settings_table_count + hkf_calibration_settings_table_count + hkf_position_settings_table_count;
+         ++i) {
         const int angles = i < hkf_settings_table_count;
-        const hkf_setting_t *d = angles ? &hkf_settings_table[i] : &hkf_position_settings_table[i - hkf_settings_table_count];
+        const int calibration = !angles && i < hkf_settings_table_count + hkf_calibration_settings_table_count;
+        const hkf_setting_t *d = angles        ? &hkf_settings_table[i]
+                                 : calibration ? &hkf_calibration_settings_table[i - hkf_settings_table_count]
+                                               : &hkf_position_settings_table[i - hkf_settings_table_count -
+                                                                              hkf_calibration_settings_table_count];
         char name[64], line[200], *at, *end;
-        snprintf(name, sizeof name, "\n%s%s ", angles ? "" : "position_", d->name);
+        snprintf(name, sizeof name, "\n%s%s ", angles || calibration ? "" : "position_", d->name);
         at = strstr(printed, name);
         assert_non_null(at);
         end = strchr(at + 1, '#');

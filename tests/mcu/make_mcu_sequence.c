@@ -3,7 +3,8 @@
  * pose sequence as CSV (dt_s,valid,pitch,yaw,roll per frame; made from an LCM
  * log by raw_log_to_csv.py), runs it through libhkf built for double on this
  * machine with the two setting sets the target test runs (the paper's filter,
- * hkf_paper_settings; the defaults, hkf_default_settings), and writes
+ * hkf_paper_settings; the defaults, hkf_default_settings with the noise
+ * calibration beside, hkf_default_calibration_settings), and writes
  * sequence.h for target_test.c: the input as float and as Q16.16, and the
  * double build's angles for each (a fixed-point target is compared with the
  * double build fed the same Q16.16-rounded numbers it sees).
@@ -15,6 +16,7 @@
 #include <string.h>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 
 #define MAX_FRAMES 4096
 
@@ -25,14 +27,16 @@ static long q16(double x) { return lround(x * 65536.0); }
 static double to_float(double x) { return (double)(float)x; }
 static double to_q16(double x) { return (double)q16(x) / 65536.0; }
 
-/* The sequence through the double build, fed the numbers as `seen` makes them;
- * the angles after each frame (0 before the first measurement). */
-static int filter_sequence(const hkf_settings_t *settings, int n, const double *dt, const int *valid, double (*z)[3],
-                           double (*seen)(double), double (*expected)[3])
+/* The sequence through the double build, fed the numbers as `seen` makes them, with the noise calibration
+ * beside the filter when `calibrated`; the angles after each frame (0 before the first measurement). */
+static int filter_sequence(const hkf_settings_t *settings, int calibrated, int n, const double *dt, const int *valid,
+                           double (*z)[3], double (*seen)(double), double (*expected)[3])
 {
     hkf_filter_t filter;
+    hkf_calibration_t calibration;
     int i;
-    if (hkf_init(&filter, settings) != HKF_OK) {
+    if (hkf_init(&filter, settings) != HKF_OK ||
+        (calibrated && hkf_calibration_init(&calibration, &hkf_default_calibration_settings, &filter) != HKF_OK)) {
         fprintf(stderr, "make_mcu_sequence: hkf_init failed\n");
         return 1;
     }
@@ -41,6 +45,11 @@ static int filter_sequence(const hkf_settings_t *settings, int n, const double *
         const hkf_real_t zi[3] = {seen(z[i][0]), seen(z[i][1]), seen(z[i][2])};
         const int result = valid[i] ? hkf_update(&filter, zi, seen(dt[i]), &o) : hkf_predict(&filter, seen(dt[i]), &o);
         expected[i][0] = expected[i][1] = expected[i][2] = 0.0;
+        if (result == HKF_OK && calibrated &&
+            hkf_calibration_update(&calibration, &filter, valid[i] ? zi : NULL, seen(dt[i])) != HKF_OK) {
+            fprintf(stderr, "make_mcu_sequence: frame %d: the calibration failed\n", i);
+            return 1;
+        }
         if (result == HKF_OK) {
             expected[i][0] = o.angle[0];
             expected[i][1] = o.angle[1];
@@ -87,8 +96,8 @@ int main(int argc, char **argv)
         return 1;
     }
     for (k = 0; k < 2; ++k) {
-        if (filter_sequence(settings[k], n, dt, valid, z, to_float, expected[k]) != 0 ||
-            filter_sequence(settings[k], n, dt, valid, z, to_q16, expected_q16[k]) != 0) {
+        if (filter_sequence(settings[k], k == 1, n, dt, valid, z, to_float, expected[k]) != 0 ||
+            filter_sequence(settings[k], k == 1, n, dt, valid, z, to_q16, expected_q16[k]) != 0) {
             return 1;
         }
     }

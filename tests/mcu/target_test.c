@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 #include "instruction_counter.h"
 #include "semihosting.h"
 #include "sequence.h"
@@ -97,15 +98,28 @@ static void report(int k, const char *name, const error_t worst[3], uint32_t tic
     semihosting_write(" B\n");
 }
 
-/* The sequence with settings set k (0: the paper's, 1: the defaults); returns the failures.
- * Not inlined: dev/benchmarks/cortex_m4_cycles.py looks for hkf_update's calls from here. */
+/* The calibration's line: its instructions per hkf_calibration_update after an hkf_update, and its size. */
+static void report_calibration(uint32_t ticks, uint32_t updates)
+{
+    semihosting_write("target (calibration): hkf_calibration_update: ");
+    semihosting_write_int(counter_instructions_per_call(ticks, updates));
+    semihosting_write(" instructions each; sizeof(hkf_calibration_t) ");
+    semihosting_write_int((long)sizeof(hkf_calibration_t));
+    semihosting_write(" B\n");
+}
+
+/* The sequence with settings set k (0: the paper's, 1: the defaults, with the noise calibration beside);
+ * returns the failures. Not inlined: dev/benchmarks/cortex_m4_cycles.py looks for hkf_update's calls from here. */
 __attribute__((noinline)) static int run_sequence(int k, const char *name, const hkf_settings_t *settings)
 {
     static hkf_filter_t filter; /* static: the stack holds only the call frames */
+    static hkf_calibration_t calibration;
+    const int calibrated = k == 1;
     error_t worst[3] = {0, 0, 0};
-    uint32_t ticks = 0, updates = 0;
+    uint32_t ticks = 0, updates = 0, calibration_ticks = 0;
     int i, a, failures = 0;
-    if (hkf_init(&filter, settings) != HKF_OK) {
+    if (hkf_init(&filter, settings) != HKF_OK ||
+        (calibrated && hkf_calibration_init(&calibration, &hkf_default_calibration_settings, &filter) != HKF_OK)) {
         semihosting_write("target: hkf_init failed\n");
         return 1;
     }
@@ -118,8 +132,16 @@ __attribute__((noinline)) static int run_sequence(int k, const char *name, const
             result = hkf_update(&filter, z, SEQ_DT(i), &out);
             ticks += counter_ticks(start, counter_now());
             ++updates;
+            if (result == HKF_OK && calibrated) {
+                const uint32_t begin = counter_now();
+                result = hkf_calibration_update(&calibration, &filter, z, SEQ_DT(i));
+                calibration_ticks += counter_ticks(begin, counter_now());
+            }
         } else {
             result = hkf_predict(&filter, SEQ_DT(i), &out);
+            if (result == HKF_OK && calibrated) {
+                result = hkf_calibration_update(&calibration, &filter, NULL, SEQ_DT(i));
+            }
         }
         if (result != HKF_OK && !(result == HKF_ERROR_NOT_INITIALIZED && !seq_valid[i])) {
             semihosting_write("target: frame ");
@@ -139,6 +161,9 @@ __attribute__((noinline)) static int run_sequence(int k, const char *name, const
         }
     }
     report(k, name, worst, ticks, updates);
+    if (calibrated) {
+        report_calibration(calibration_ticks, updates);
+    }
     for (a = 0; a < 3; ++a) {
         failures += !(worst[a] <= TOLERANCE(k));
     }

@@ -10,6 +10,7 @@
 
 #include "arguments.h"
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 #include "head_motion_sim.h"
 
 /* The display: opentrack or a simulator reads the latest pose DISPLAY_HZ times a
@@ -169,17 +170,27 @@ static void score_readings(demo_score_t *s, const sim_frame_t *frames, long n, l
     }
 }
 
+/* A filter the demo runs: libhkf's settings, and whether the noise calibration runs beside them. */
+typedef struct {
+    hkf_settings_t settings;
+    int calibrated;
+} demo_filter_t;
+
 /* Runs one filter over the frames; filtered[i] gets its output (NAN where none),
  * display its readings' score. */
-static int run_filter(const hkf_settings_t *settings, const sim_frame_t *frames, long n,
+static int run_filter(const demo_filter_t *filter, const sim_frame_t *frames, long n,
                       demo_score_t *score, demo_score_t *display, double (*filtered)[3])
 {
     hkf_filter_t f;
+    hkf_calibration_t calibration;
     hkf_output_t out;
     double previous[3] = {0.0, 0.0, 0.0};
     int have_previous = 0, previous_still = 0;
     long i;
-    int a, result = hkf_init(&f, settings);
+    int a, result = hkf_init(&f, &filter->settings);
+    if (result == HKF_OK && filter->calibrated) {
+        result = hkf_calibration_init(&calibration, &hkf_default_calibration_settings, &f);
+    }
     if (result != HKF_OK) {
         fprintf(stderr, "hkf-demo: hkf_init: %s\n", hkf_result_string(result));
         return result;
@@ -191,8 +202,14 @@ static int run_filter(const hkf_settings_t *settings, const sim_frame_t *frames,
             const float z[3] = {(float)frames[i].measured[0], (float)frames[i].measured[1],
                                 (float)frames[i].measured[2]};
             result = hkf_update(&f, z, dt, &out);
+            if (result == HKF_OK && filter->calibrated) {
+                result = hkf_calibration_update(&calibration, &f, z, dt);
+            }
         } else {
             result = hkf_predict(&f, dt, &out);
+            if (result == HKF_OK && filter->calibrated) {
+                result = hkf_calibration_update(&calibration, &f, NULL, dt);
+            }
         }
         if (result != HKF_OK) { /* only before the first face: nothing to show yet */
             for (a = 0; a < 3; ++a) {
@@ -310,7 +327,7 @@ int main(int argc, char **argv)
     sim_t sim;
     sim_frame_t *frames;
     double (*filtered[FILTERS])[3];
-    hkf_settings_t settings[FILTERS];
+    demo_filter_t filters[FILTERS];
     demo_score_t raw, scores[FILTERS], raw_display, displays[FILTERS];
     long n, i, missing = 0;
     int k, status = 0;
@@ -345,14 +362,16 @@ int main(int argc, char **argv)
     }
 
     /* The paper's baseline, the paper's adaptive R, the paper's full filter, and libhkf's
-     * defaults (Eq. 8 with noise calibration and the motion detector). */
+     * defaults (Eq. 8 and the motion adaptation, the noise calibration beside them). */
     for (k = 0; k < FILTERS; ++k) {
-        settings[k] = hkf_paper_settings;
+        filters[k].settings = hkf_paper_settings;
+        filters[k].calibrated = 0;
     }
-    settings[0].noise_mode = HKF_NOISE_CONSTANT;
-    settings[0].loop_closure = HKF_LOOP_CLOSURE_OFF;
-    settings[1].loop_closure = HKF_LOOP_CLOSURE_OFF;
-    settings[3] = hkf_default_settings;
+    filters[0].settings.noise_mode = HKF_NOISE_CONSTANT;
+    filters[0].settings.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    filters[1].settings.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    filters[3].settings = hkf_default_settings;
+    filters[3].calibrated = 1;
     memset(&raw, 0, sizeof raw);
     memset(scores, 0, sizeof scores);
     memset(&raw_display, 0, sizeof raw_display);
@@ -369,7 +388,7 @@ int main(int argc, char **argv)
 
     score_raw(frames, n, &raw, &raw_display);
     for (k = 0; k < FILTERS; ++k) {
-        if (run_filter(&settings[k], frames, n, &scores[k], &displays[k], filtered[k]) != HKF_OK) {
+        if (run_filter(&filters[k], frames, n, &scores[k], &displays[k], filtered[k]) != HKF_OK) {
             return 1;
         }
     }

@@ -12,7 +12,8 @@ static int setup_filter(filter_node_t *node, const char *model)
         strncpy(node->model, model, sizeof node->model - 1);
         node->model[sizeof node->model - 1] = '\0';
     }
-    return hkf_init(&node->filter, &s);
+    const int result = hkf_init(&node->filter, &s);
+    return result != HKF_OK ? result : hkf_calibration_init(&node->calibration, &node->config->calibration, &node->filter);
 }
 
 /* The wire layout: hash, utime, seq (8 bytes each), the model string as a
@@ -228,6 +229,7 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
 static void restart_track(filter_node_t *node)
 {
     hkf_reset(&node->filter);
+    (void)hkf_calibration_reset(&node->calibration, &node->filter);
     hkf_position_restart(&node->position);
     ++node->counts.restarts;
     second_model_forget_frames(&node->second);
@@ -279,11 +281,12 @@ static int coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_
         strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model) == HKF_OK) {
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
-    second_model_keep_frame(&node->second, m, NULL, dt, &node->filter);
+    second_model_keep_frame(&node->second, m, NULL, dt, &node->filter, &node->calibration);
     take_position(node, m); /* noted: no position */
     if (hkf_predict(&node->filter, dt, &out) != HKF_OK) { /* no track yet (or again, after a gap) */
         return 0;
     }
+    (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
     fill_pose(node, &out, m->utime, pose);
     return 1;
 }
@@ -306,12 +309,13 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
     }
     (void)node_config_for_model(node->config, node->model, &known);
     node->counts.unknown_models += !known;
-    second_model_keep_frame(&node->second, m, z, dt, &node->filter);
+    second_model_keep_frame(&node->second, m, z, dt, &node->filter, &node->calibration);
     if (hkf_update(&node->filter, z, dt, &out) != HKF_OK) {
         ++node->counts.bad_values;
         second_model_unkeep_newest(&node->second);
         return 0;
     }
+    (void)hkf_calibration_update(&node->calibration, &node->filter, z, dt); /* for the next measurement's R */
     node->last_measurement_utime = m->utime;
     take_position(node, m);
     fill_pose(node, &out, m->utime, pose);
@@ -412,7 +416,7 @@ static int not_stale(filter_node_t *node, const hkf_head_pose_measurement_t *m, 
 static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
 {
     int known;
-    if (!second_model_fuse(&node->second, node->config, index, m, &node->filter, &known)) {
+    if (!second_model_fuse(&node->second, node->config, index, m, &node->filter, &node->calibration, &known)) {
         ++node->counts.unpaired;
         return;
     }

@@ -111,6 +111,7 @@ typedef struct {
 typedef struct {
     const node_config_t *config;
     hkf_filter_t filter;
+    hkf_calibration_t calibration;    /* beside the filter: its noise level (hkf/hkf_calibration.h) */
     char model[NODE_MODEL_NAME_MAX];  /* the model the filter is set up for */
     /* Read by the runners (hkf_filter_main.c, filter_node_offline.c): have_time and
      * last_utime (the --rate ticks), lost_published (the offline silence) and counts (the

@@ -14,9 +14,10 @@
 #include <string.h>
 
 /* Every key is a setting described as libhkf describes its own (hkf/hkf_settings_table.h): the angle
- * filter's, then the node's own, then the position filter's (named "position_" + its name). A key's index
- * is its slot in the origin arrays; a model may own the angle filter's (own_keys has a bit per index). */
-typedef enum { GROUP_ANGLES, GROUP_NODE, GROUP_POSITION } key_group_t;
+ * filter's, the noise calibration's, the node's own, then the position filter's (named "position_" + its
+ * name). A key's index is its slot in the origin arrays; a model may own the angle filter's (own_keys has
+ * a bit per index). */
+typedef enum { GROUP_ANGLES, GROUP_CALIBRATION, GROUP_NODE, GROUP_POSITION } key_group_t;
 
 static const hkf_setting_t node_settings[] = {
     {"pair_second_alone_from_yaw", offsetof(node_config_t, second_alone_from_yaw), HKF_SETTING_REAL, 1, "deg", 0, 180,
@@ -27,7 +28,8 @@ static const hkf_setting_t node_settings[] = {
 
 static int key_count(void)
 {
-    return hkf_settings_table_count + NODE_SETTING_COUNT + hkf_position_settings_table_count;
+    return hkf_settings_table_count + hkf_calibration_settings_table_count + NODE_SETTING_COUNT +
+           hkf_position_settings_table_count;
 }
 
 static const hkf_setting_t *key_setting(int k, key_group_t *group)
@@ -37,6 +39,11 @@ static const hkf_setting_t *key_setting(int k, key_group_t *group)
         return &hkf_settings_table[k];
     }
     k -= hkf_settings_table_count;
+    if (k < hkf_calibration_settings_table_count) {
+        *group = GROUP_CALIBRATION;
+        return &hkf_calibration_settings_table[k];
+    }
+    k -= hkf_calibration_settings_table_count;
     if (k < NODE_SETTING_COUNT) {
         *group = GROUP_NODE;
         return &node_settings[k];
@@ -67,10 +74,22 @@ static int find_key(const char *name)
     return -1;
 }
 
-/* The struct a key's offset is in: the angle settings given, the node's config, or its position settings. */
-static char *key_base(node_config_t *config, hkf_settings_t *angles, key_group_t group)
+/* The struct a key's offset is in: the angle settings given, or the config's calibration, own or position. */
+static const char *key_base(const node_config_t *config, const hkf_settings_t *angles, key_group_t group)
 {
-    return group == GROUP_ANGLES ? (char *)angles : group == GROUP_NODE ? (char *)config : (char *)&config->position;
+    switch (group) {
+    case GROUP_ANGLES: return (const char *)angles;
+    case GROUP_CALIBRATION: return (const char *)&config->calibration;
+    case GROUP_NODE: return (const char *)config;
+    case GROUP_POSITION: break;
+    }
+    return (const char *)&config->position;
+}
+
+/* The same in the config's own settings, to write. */
+static char *config_base(node_config_t *config, key_group_t group)
+{
+    return (char *)config + (key_base(config, &config->settings, group) - (const char *)config);
 }
 
 static size_t value_size(const hkf_setting_t *d)
@@ -110,6 +129,7 @@ void node_config_defaults(node_config_t *config)
     config->settings = hkf_default_settings;
     config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
     config->position = hkf_position_default_settings;
+    config->calibration = hkf_default_calibration_settings;
     add_builtin_model(config, "fsanet", hkf_noise_fsanet);
     add_builtin_model(config, "hopenet", hkf_noise_hopenet);
     add_builtin_model(config, "mesh_pnp", hkf_noise_mesh_pnp); /* fitted by dev/fit */
@@ -407,7 +427,7 @@ static int apply(node_config_t *config, const char *model, char *key, char *valu
         return -1;
     }
     (void)key_setting(k, &group);
-    if (set_value(key_base(config, &config->settings, group), k, value, error, error_size) != 0) {
+    if (set_value(config_base(config, group), k, value, error, error_size) != 0) {
         return -1;
     }
     set_origin(config->origin[k], origin);
@@ -527,7 +547,7 @@ static void describe_origins(const node_config_t *config, const node_model_t *mo
         key_group_t group;
         const hkf_setting_t *d = key_setting(k, &group);
         const char *origin = model != NULL && model_owns(model, k) ? model->origin[k] : config->origin[k];
-        const char *base = group == GROUP_ANGLES ? (const char *)&s : (const char *)&config->position;
+        const char *base = key_base(config, &s, group);
         char name[64], value[160];
         const size_t used = strlen(text);
         if (group != want || !hkf_setting_is_about(d, result) || origin[0] == '\0') {
@@ -650,9 +670,7 @@ static void print_all(const node_config_t *config, int origins, FILE *out)
     for (k = 0; k < key_count(); ++k) {
         key_group_t group;
         (void)key_setting(k, &group);
-        print_key(k, group == GROUP_ANGLES ? (const char *)&config->settings
-                     : group == GROUP_NODE ? (const char *)config : (const char *)&config->position,
-                  origins ? config->origin[k] : NULL, "default", out);
+        print_key(k, key_base(config, &config->settings, group), origins ? config->origin[k] : NULL, "default", out);
     }
     for (m = 0; m < config->model_count; ++m) {
         const node_model_t *model = &config->models[m];

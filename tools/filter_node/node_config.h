@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
 
@@ -46,6 +47,8 @@ typedef struct {
     /* The head's position filter (hkf/hkf_position.h): keys "position_process_noise" (q per axis
      * x y z, cm^2/s^3) and "position_measurement_noise" (R per axis, cm^2, of the face mesh's). */
     hkf_position_settings_t position;
+    /* The noise calibration beside the angle filter (hkf/hkf_calibration.h): keys "noise_time", "noise_rise". */
+    hkf_calibration_settings_t calibration;
     char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* where each base key was set ("": the default) */
 } node_config_t;
 

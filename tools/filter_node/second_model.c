@@ -16,7 +16,7 @@ void second_model_forget_frames(second_model_t *s)
 }
 
 void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3],
-                             hkf_real_t dt, const hkf_filter_t *before)
+                             hkf_real_t dt, const hkf_filter_t *before, const hkf_calibration_t *calibration_before)
 {
     second_model_frame_t *frame;
     s->frame_newest = (s->frame_newest + 1) % FILTER_NODE_PAIR_FRAMES;
@@ -34,6 +34,7 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
     }
     frame->dt = dt;
     frame->before = *before;
+    frame->calibration_before = *calibration_before;
 }
 
 void second_model_unkeep_newest(second_model_t *s)
@@ -84,23 +85,36 @@ static int first_set_aside(const node_config_t *config, const second_model_frame
     return frame->valid && fabs((double)frame->z[HKF_AXIS_YAW]) >= (double)config->second_alone_from_yaw;
 }
 
-/* One kept frame's step on f, as the node made it, with the frame's second
- * measurement if it has one. */
-static int redo_step(const node_config_t *config, hkf_filter_t *f, const second_model_frame_t *frame)
+/* One kept frame's filter step on f, as the node made it, with the frame's second measurement if it
+ * has one; *taken is the measurement the step took first (NULL: none), for the calibration. */
+static int redo_filter_step(const node_config_t *config, hkf_filter_t *f, const second_model_frame_t *frame,
+                            const hkf_real_t **taken)
 {
-    int result;
+    *taken = frame->valid ? frame->z : NULL;
     if (frame->paired) {
         int known;
         const hkf_settings_t settings = node_config_for_model(config, frame->second_model, &known);
         const hkf_model_noise_t second = hkf_model_noise_of(&settings);
         const int first = frame->valid && !first_set_aside(config, frame);
+        *taken = first ? frame->z : frame->z2;
         return hkf_update_pair(f, first ? frame->z : NULL, frame->z2, &second, frame->dt, NULL);
     }
     if (frame->valid) {
         return hkf_update(f, frame->z, frame->dt, NULL);
     }
-    result = hkf_predict(f, frame->dt, NULL);
-    return result == HKF_ERROR_NOT_INITIALIZED ? HKF_OK : result; /* no track yet, as the node found */
+    return hkf_predict(f, frame->dt, NULL);
+}
+
+/* One kept frame's step on f and its calibration c, as the node made it. */
+static int redo_step(const node_config_t *config, hkf_filter_t *f, hkf_calibration_t *c,
+                     const second_model_frame_t *frame)
+{
+    const hkf_real_t *taken;
+    const int result = redo_filter_step(config, f, frame, &taken);
+    if (result == HKF_ERROR_NOT_INITIALIZED) {
+        return HKF_OK; /* no track yet, as the node found */
+    }
+    return result != HKF_OK ? result : hkf_calibration_update(c, f, taken, frame->dt);
 }
 
 /* deg in [-180, 180) */
@@ -145,9 +159,10 @@ static void align_second(second_model_t *s, const node_config_t *config, second_
 }
 
 int second_model_fuse(second_model_t *s, const node_config_t *config, int index, const hkf_head_pose_measurement_t *m,
-                      hkf_filter_t *filter, int *known)
+                      hkf_filter_t *filter, hkf_calibration_t *calibration, int *known)
 {
     hkf_filter_t f, before[FILTER_NODE_PAIR_FRAMES];
+    hkf_calibration_t c, calibration_before[FILTER_NODE_PAIR_FRAMES];
     second_model_frame_t *frame = &s->frames[index];
     const int count = (s->frame_newest - index + FILTER_NODE_PAIR_FRAMES) % FILTER_NODE_PAIR_FRAMES + 1;
     int i;
@@ -162,17 +177,21 @@ int second_model_fuse(second_model_t *s, const node_config_t *config, int index,
     frame->z2[2] = m->roll;
     align_second(s, config, frame);
     f = frame->before;
+    c = frame->calibration_before;
     for (i = 0; i < count; ++i) {
         before[i] = f;
-        if (redo_step(config, &f, &s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES]) != HKF_OK) {
+        calibration_before[i] = c;
+        if (redo_step(config, &f, &c, &s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES]) != HKF_OK) {
             frame->paired = 0; /* cannot happen (the steps were made before, z2 is checked): nothing changes */
             return 0;
         }
     }
     for (i = 1; i < count; ++i) {
         s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES].before = before[i];
+        s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES].calibration_before = calibration_before[i];
     }
     *filter = f;
+    *calibration = c;
     (void)node_config_for_model(config, frame->second_model, known);
     return 1;
 }

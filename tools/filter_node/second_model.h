@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "node_config.h"
 
@@ -34,6 +35,7 @@ typedef struct {
     char second_model[NODE_MODEL_NAME_MAX];
     hkf_real_t z2[3];
     hkf_filter_t before;                     /* the filter before this frame's step */
+    hkf_calibration_t calibration_before;    /* and the noise calibration beside it */
 } second_model_frame_t;
 
 typedef struct {
@@ -54,9 +56,9 @@ void second_model_init(second_model_t *s);
 /* Forgets the kept frames (a restart, a command, a new clock); the offset stays. */
 void second_model_forget_frames(second_model_t *s);
 
-/* Keeps the step about to be made on `before` for frame m: z (NULL: no face), dt. */
+/* Keeps the step about to be made on `before` (and its calibration) for frame m: z (NULL: no face), dt. */
 void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3],
-                             hkf_real_t dt, const hkf_filter_t *before);
+                             hkf_real_t dt, const hkf_filter_t *before, const hkf_calibration_t *calibration_before);
 
 /* The newest kept frame's step failed: it never happened. */
 void second_model_unkeep_newest(second_model_t *s);
@@ -72,12 +74,12 @@ int second_model_frame_of(const second_model_t *s, const hkf_head_pose_measureme
  * passed, too old for the kept frames (first_model: the filter's). */
 int second_model_too_late(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model);
 
-/* Fuses m, the second measurement of kept frame `index`, into *filter: that
- * frame's step again with both, then the steps of the frames after it.
- * Returns 1 when fused, 0 when not (the frame already has one); *known is
- * whether the second model is in the table. */
+/* Fuses m, the second measurement of kept frame `index`, into *filter (and
+ * its *calibration): that frame's step again with both, then the steps of the
+ * frames after it. Returns 1 when fused, 0 when not (the frame already has
+ * one); *known is whether the second model is in the table. */
 int second_model_fuse(second_model_t *s, const node_config_t *config, int index, const hkf_head_pose_measurement_t *m,
-                      hkf_filter_t *filter, int *known);
+                      hkf_filter_t *filter, hkf_calibration_t *calibration, int *known);
 
 #ifdef __cplusplus
 }

@@ -40,6 +40,7 @@ typedef enum {
     HKF_ERROR_NOT_INITIALIZED = -5,    /* no measurement has started a track yet */
     HKF_ERROR_POSITION_RANGE = -6,     /* a position beyond +-HKF_MAX_ABS_POSITION cm (hkf_position.h) */
     HKF_ERROR_SCALE_RANGE = -7,        /* a position's R scale outside [1, HKF_MAX_POSITION_SCALE] (hkf_position.h) */
+    HKF_ERROR_NOISE_RANGE = -8,        /* hkf_set_noise: a noise level n <= 0 */
     /* hkf_init: settings that make no sense */
     HKF_ERROR_SETTING_NON_FINITE = -20,  /* a setting is NaN or infinite */
     HKF_ERROR_SETTING_NOISE_MODE = -21,  /* noise_mode is not a hkf_noise_mode_t */
@@ -59,7 +60,8 @@ typedef enum {
                                             neither 0 nor in [HKF_MIN_RATE, HKF_MAX_RATE] (the position's q_boost and q_boost_time:
                                             hkf_position.h) */
     HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time outside [0, HKF_MAX_TIME] or noise_rise outside
-                                            [0, HKF_MAX_NOISE_RISE] (the position's detector: hkf_position.h) */
+                                            [0, HKF_MAX_NOISE_RISE] (hkf_calibration.h; the position's detector:
+                                            hkf_position.h) */
 } hkf_result_t;
 
 /* A short English description of a hkf_result_t, for logs. Never NULL. */
@@ -165,25 +167,15 @@ typedef struct {
     hkf_real_t still_wander;       /* deg^2: how far a resting head's estimate wanders, beyond R */
     hkf_real_t start_rate;         /* 1/s: how often a still head starts to move; 0 = off */
     hkf_real_t stop_rate;          /* 1/s: how often a moving head stops */
-    /* Noise calibration (not in the paper; noise_time 0 = off, the paper's R).
-     * The filter measures each axis's frame-to-frame noise n from the
-     * measurements (the second difference d = z_k - 2 z_k-1 + z_k-2 cancels a
-     * constant-velocity motion, and E[d^2] = 6 n for white noise): d^2 / 6
-     * low-passed with time constant noise_time gives the noise power; the
-     * estimate n follows the power down at once and up by at most a factor
-     * (1 + noise_rise dt) per step, so a head's motion (which raises the power)
-     * does not pass for noise. R = n e(z) / e(mu): this camera's noise n, times
-     * Eq. 8's dependence on the pose (1 at the curve's center). */
-    hkf_real_t noise_time;         /* s */
-    hkf_real_t noise_rise;         /* 1/s */
 } hkf_settings_t;
 
-/* The defaults: the paper's adaptive R (Eq. 8, FSA-Net curves of Table I)
- * with noise calibration (noise_time 0.3 s, noise_rise 0.2 per s), the
- * motion adaptation (process_noise 16000 deg^2/s^3 while moving, still_wander
- * 0.3 deg^2, start_rate 0.05 per s, stop_rate 16 per s), loop closure off,
- * gate off; chosen on truth by construction and on real clips
- * (docs/evaluation.md). */
+/* The defaults: the paper's adaptive R (Eq. 8, FSA-Net curves of Table I),
+ * the motion adaptation (process_noise 16000 deg^2/s^3 while moving,
+ * still_wander 0.3 deg^2, start_rate 0.05 per s, stop_rate 16 per s), loop
+ * closure off, gate off; chosen on truth by construction and on real clips
+ * (docs/evaluation.md) together with the noise calibration
+ * (hkf_calibration.h, hkf_default_calibration_settings), which hkf-filter runs
+ * beside them. */
 extern const hkf_settings_t hkf_default_settings;
 /* The paper's filter alone: adaptive R, loop closure (xi 0.618, theta 2 deg),
  * q 500 / 1000 / 500 deg^2/s^3, no calibration or motion adaptation. */
@@ -250,13 +242,8 @@ typedef struct {
     hkf_real_t r[HKF_LANES];
     hkf_real_t center[HKF_LANES];
     hkf_real_t moving[HKF_LANES];       /* the motion adaptation's probability of MOVE */
-    /* noise calibration (hkf_settings_t.noise_time) */
-    hkf_real_t noise[HKF_LANES];        /* n: the frame-to-frame noise estimate, deg^2 */
-    hkf_real_t noise_power[HKF_LANES];  /* d^2 / 6 low-passed, deg^2 */
-    hkf_real_t last_z[HKF_LANES];       /* the last measurement */
-    hkf_real_t last_step[HKF_LANES];    /* the last measurement's step from the one before */
+    hkf_real_t noise[HKF_LANES];        /* n from hkf_set_noise, deg^2; 0: none (Eq. 8's own R) */
     hkf_real_t r_center[HKF_LANES];     /* e(mu), R at the curves' center, as hkf_math.h's divisor */
-    unsigned noise_history;             /* measurements in a row behind last_z and last_step (0..2) */
     hkf_real_t time_since_measurement;
     unsigned gate_rejections;
     int center_source;           /* none, from the first measurement, or explicit */
@@ -268,7 +255,8 @@ typedef struct {
  * nothing (to change the settings, call hkf_init again). */
 int hkf_init(hkf_filter_t *f, const hkf_settings_t *s);
 
-/* Forgets the track (and a center not set by hkf_set_center); keeps the settings. */
+/* Forgets the track (and a center not set by hkf_set_center); keeps the
+ * settings and the noise level hkf_set_noise gave. */
 void hkf_reset(hkf_filter_t *f);
 
 /* One measurement z (deg) taken dt s after the previous call: predict, loop
@@ -314,6 +302,13 @@ int hkf_predict(hkf_filter_t *f, hkf_real_t dt, hkf_output_t *out);
 /* The pose dt_ahead s after the last call, without changing the filter: for
  * publishing at a display rate between camera frames. 0 <= dt_ahead <= max_dt. */
 int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *out);
+
+/* The measured noise level n per axis (deg^2; hkf_calibration.h measures
+ * it): from the next update on, R = n e(z) / e(mu), Eq. 8's dependence on the
+ * pose at this camera's level (R at the curve's center is n), clamped to
+ * [r_min, r_max]. NULL: back to Eq. 8's own R (hkf_init's). hkf_reset keeps
+ * it. HKF_ERROR_NON_FINITE or HKF_ERROR_NOISE_RANGE (n <= 0) change nothing. */
+int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3]);
 
 /* The current state, as the last update or predict left it. */
 int hkf_get_output(const hkf_filter_t *f, hkf_output_t *out);

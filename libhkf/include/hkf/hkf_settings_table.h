@@ -1,7 +1,8 @@
 /*
- * hkf_settings_table.h - one descriptor per setting of hkf_settings_t and
- * hkf_position_settings_t: its name, where it lies in the struct, its type,
- * unit and the range hkf_init (hkf_position_init) accepts in this build.
+ * hkf_settings_table.h - one descriptor per setting of hkf_settings_t,
+ * hkf_calibration_settings_t and hkf_position_settings_t: its name, where it lies in the struct, its type,
+ * unit and the range hkf_init (hkf_calibration_init, hkf_position_init)
+ * accepts in this build.
  *
  * For programs that read settings as text (a config file, a command line, a
  * controller's serial console) and must say what a value should have been.
@@ -22,6 +23,7 @@
 #include <stddef.h>
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 #include "hkf/hkf_position.h"
 
 #ifdef __cplusplus
@@ -52,6 +54,10 @@ typedef struct {
 /* The angle filter's settings (hkf_settings_t), in the order of hkf.h. */
 extern const hkf_setting_t hkf_settings_table[];
 extern const int hkf_settings_table_count;
+
+/* The noise calibration's settings (hkf_calibration_settings_t). */
+extern const hkf_setting_t hkf_calibration_settings_table[];
+extern const int hkf_calibration_settings_table_count;
 
 /* The position filter's settings (hkf_position_settings_t), in the order of hkf_position.h. */
 extern const hkf_setting_t hkf_position_settings_table[];
