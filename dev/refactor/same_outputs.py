@@ -20,6 +20,7 @@ input.
 usage: .venv/bin/python dev/refactor/same_outputs.py BEFORE [AFTER] [--clips d0,d3,...] [--work DIR]
 """
 import argparse
+import csv
 import filecmp
 import os
 import subprocess
@@ -84,24 +85,41 @@ def measurements(log, types):
     return first, second
 
 
+def largest_angle_difference(csv_a, csv_b):
+    """The largest |pitch|, |yaw| or |roll| difference (deg) between two pose CSVs of the same frames, or None
+    when their rows are not the same frames."""
+    with open(csv_a) as a, open(csv_b) as b:
+        rows_a, rows_b = list(csv.DictReader(a)), list(csv.DictReader(b))
+    if [r["utime"] for r in rows_a] != [r["utime"] for r in rows_b]:
+        return None
+    worst = 0.0
+    for ra, rb in zip(rows_a, rows_b):
+        for axis in ("pitch", "yaw", "roll"):
+            d = abs(float(ra[axis]) - float(rb[axis]))
+            worst = max(worst, min(d, 360.0 - d) if axis == "yaw" else d)
+    return worst
+
+
 def clip_row(clip, builds, work, types):
-    """(clip, first-model measurements, same?, second-model counts, poses, same?) for one clip."""
+    """(clip, first-model measurements, same?, second-model counts, poses, same?, largest angle difference) for
+    one clip. Each revision's hkf-filter reads its own tree's hkf-filter.conf."""
     video = os.path.join(VIDEOS, clip + ".mp4")
     raw = []
-    for name, build_dir in builds:
+    for name, build_dir, _ in builds:
         log = os.path.join(work, f"{clip}.{name}.raw.lcmlog")
         run([os.path.join(build_dir, "estimator", "hkf-estimator"), "--source", video, "--lcm-url", f"file://{log}?mode=w"])
         raw.append((log, *measurements(log, types)))
     outputs = []
-    for name, build_dir in builds:  # both filters on BEFORE's raw log
-        out, csv = os.path.join(work, f"{clip}.{name}.poses.lcmlog"), os.path.join(work, f"{clip}.{name}.poses.csv")
-        run([os.path.join(build_dir, "tools", "hkf-filter"), "--config", os.path.join(ROOT, "tools", "filter_node", "hkf-filter.conf"),
-             "--offline", raw[0][0], out, "--csv", csv])
-        outputs.append((out, csv))
+    for name, build_dir, source in builds:  # both filters on BEFORE's raw log
+        out, poses = os.path.join(work, f"{clip}.{name}.poses.lcmlog"), os.path.join(work, f"{clip}.{name}.poses.csv")
+        run([os.path.join(build_dir, "tools", "hkf-filter"), "--config",
+             os.path.join(source, "tools", "filter_node", "hkf-filter.conf"), "--offline", raw[0][0], out, "--csv", poses])
+        outputs.append((out, poses))
     same_raw = raw[0][1] == raw[1][1]
     same_poses = all(filecmp.cmp(a, b, shallow=False) for a, b in zip(outputs[0], outputs[1]))
     lines = sum(1 for _ in open(outputs[0][1])) - 1
-    return clip, len(raw[0][1]), same_raw, (raw[0][2], raw[1][2]), lines, same_poses
+    return (clip, len(raw[0][1]), same_raw, (raw[0][2], raw[1][2]), lines, same_poses,
+            largest_angle_difference(outputs[0][1], outputs[1][1]))
 
 
 def main():
@@ -118,18 +136,20 @@ def main():
         source = source_of(revision, args.work)
         print(f"same_outputs: building {label} ({revision or 'the working tree'})", flush=True)
         folder = os.path.dirname(source) if revision is not None else os.path.join(args.work, "working-tree")
-        builds.append((label, build(source, os.path.join(folder, "build"))))
+        builds.append((label, build(source, os.path.join(folder, "build")), source))
     types = os.path.join(builds[0][1], "lcmtypes", "python")
-    print("| clip | first model's measurements | identical | second model's (before / after) | poses | identical (log, CSV) |")
-    print("| --- | ---: | --- | ---: | ---: | --- |")
+    print("| clip | first model's measurements | identical | second model's (before / after) | poses | identical (log, CSV) "
+          "| largest angle difference |")
+    print("| --- | ---: | --- | ---: | ---: | --- | ---: |")
     differs = 0
     for clip in args.clips.split(","):
         if not os.path.exists(os.path.join(VIDEOS, clip + ".mp4")):
             fail(f"no {clip}.mp4 in {VIDEOS}")
-        name, count, same_raw, seconds, poses, same_poses = clip_row(clip, builds, args.work, types)
+        name, count, same_raw, seconds, poses, same_poses, largest = clip_row(clip, builds, args.work, types)
         differs += (not same_raw) + (not same_poses)
         print(f"| {name} | {count} | {'yes' if same_raw else 'NO'} | {seconds[0]} / {seconds[1]} | {poses} | "
-              f"{'yes' if same_poses else 'NO'} |", flush=True)
+              f"{'yes' if same_poses else 'NO'} | {'other frames' if largest is None else f'{largest:.2g} deg'} |",
+              flush=True)
     print("same_outputs: " + ("every output identical" if not differs else f"{differs} outputs differ"))
     return 1 if differs else 0
 
