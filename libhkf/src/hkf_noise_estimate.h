@@ -1,8 +1,8 @@
 /*
  * hkf_noise_estimate.h - noise calibration, one lane at a time (private):
  * the measured frame-to-frame noise n that scales R, for the angles
- * (hkf_filter.c) and the position (hkf_position.c). hkf.h states it
- * (hkf_settings_t: noise_time, noise_rise). Not in the paper.
+ * (hkf_calibration.c, which states it in hkf_calibration.h) and the position
+ * (hkf_position.c). Not in the paper.
  */
 #ifndef HKF_NOISE_ESTIMATE_H
 #define HKF_NOISE_ESTIMATE_H

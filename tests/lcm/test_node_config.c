@@ -152,6 +152,8 @@ static void test_errors(void **state)
     assert_int_equal(node_config_set(&c, "noise_mode=fancy", error, sizeof error), -1);
     assert_non_null(strstr(error, "fancy"));
     assert_int_equal(node_config_set(&c, "max_gate_rejections=-1", error, sizeof error), -1);
+    /* strtoul reads "-N" as its negation modulo ULONG_MAX + 1: this one would pass as 1 */
+    assert_int_equal(node_config_set(&c, "max_gate_rejections=-18446744073709551615", error, sizeof error), -1);
     assert_int_equal(node_config_set(&c, "lc_theta", error, sizeof error), -1);
     assert_int_equal(node_config_set(&c, "model.x.bogus=1", error, sizeof error), -1);
     assert_non_null(strstr(error, "bogus"));
