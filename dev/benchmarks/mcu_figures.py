@@ -70,15 +70,23 @@ def linked_share(map_file):
 
 
 def runtime_routines(archive):
-    """Runtime routines the library calls (its undefined symbols): soft-float (__aeabi_f*, __aeabi_d*),
-    integer division, 64-bit multiply, and libm."""
+    """Runtime routines the library calls (its members' undefined symbols): soft-float (__aeabi_f*, __aeabi_d*),
+    integer division, 64-bit multiply, and libm; and those only its optional settings table calls (it converts
+    the ranges, doubles, for programs that read settings as text: firmware that does not call it does not link it)."""
     out = subprocess.run(["arm-none-eabi-nm", "-u", archive], capture_output=True, text=True, check=True).stdout
-    names = {line.split()[-1] for line in out.splitlines() if line.strip().startswith("U ")}
-    soft = sorted(n for n in names if re.match(r"__aeabi_(f|d|[ui]?[fd]2|l?div|uidiv|idiv|.*div|lmul)", n)
-                  or re.match(r"__(add|sub|mul|div)[sd]f3", n))
+    names, table, member = set(), set(), ""
+    for line in out.splitlines():
+        if line.endswith(".obj:") or line.endswith(".o:"):
+            member = line[:-1]
+        elif line.strip().startswith("U "):
+            (table if member.startswith("hkf_settings_table.c") else names).add(line.split()[-1])
+
+    def routines(symbols):
+        return sorted(n for n in symbols if re.match(r"__aeabi_(f|d|[ui]?[fd]2|l?div|uidiv|idiv|.*div|lmul)", n)
+                      or re.match(r"__(add|sub|mul|div)[sd]f3", n))
     libm = sorted(n for n in names if n in {"exp", "expf", "sqrt", "sqrtf", "fabs", "fabsf", "__ieee754_exp",
                                              "__ieee754_expf", "__kernel_standard"})
-    return soft, libm
+    return routines(names), libm, sorted(set(routines(table)) - set(routines(names)))
 
 
 def main():
@@ -110,7 +118,7 @@ def main():
         text, data, bss = size_of_archive(lib)
         own, calls = call_graph(os.path.join(tree, "build", "libhkf", "CMakeFiles", "hkf.dir", "src"))
         stacks = {f: worst_stack(f, own, calls) for f in PUBLIC}
-        soft, libm = runtime_routines(lib)
+        soft, libm, table_only = runtime_routines(lib)
         linked, calibration_linked = linked_share(os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.map"))
         elf = os.path.join(tree, "build", "tests", "mcu", "hkf_target_test.elf")
         frames = len(re.findall(r"^\d", open(os.path.join(build, "mcu", "sequence.csv")).read(), re.M))
@@ -118,12 +126,12 @@ def main():
             if cpu == "cortex-m4f" else None
         rows.append((cpu, real, text, linked, data, bss, int(state.group(1)), max(stacks.values()),
                      max(stacks, key=stacks.get), stacks["hkf_update"], runs, soft, libm, cycles,
-                     (calibration_linked, int(calibration.group(1)), int(calibration.group(2)))))
+                     (calibration_linked, int(calibration.group(1)), int(calibration.group(2))), table_only))
     print("| target | type | flash: library (linked) | data + bss | hkf_filter_t | worst stack (function) "
           "| stack of hkf_update | instructions per hkf_update: paper (defaults) | cycles (M4 estimate): paper "
           "(defaults) | largest error vs x86 double: paper (defaults) | runtime routines called |")
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
-    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, runs, soft, libm, cycles, _ in rows:
+    for cpu, real, text, linked, data, bss, state, worst, worst_fn, update_stack, runs, soft, libm, cycles, _, _ in rows:
         routines = ", ".join(libm + soft) if (soft or libm) else "none"
         if len(soft) > 6:
             routines = ", ".join(libm) + (", " if libm else "") + f"{len(soft)} soft-float routines ({', '.join(soft[:4])}, …)"
@@ -150,6 +158,9 @@ def main():
               f"| {calibration_state} B | {calibration_insns:,} |")
     print("\n(The noise calibration (hkf/hkf_calibration.h) is its own part beside the filter: the defaults' run "
           "above has it; a firmware that leaves it out links the first column.)")
+    table_routines = sorted({r for row in rows for r in row[15]})
+    print("\nThe optional settings table (hkf/hkf_settings_table.h, not linked by the firmware) also calls: "
+          + (", ".join(table_routines) if table_routines else "nothing more") + " (it converts its ranges, doubles).")
     cmsis_tree = os.path.join(build, "mcu", "cortex-m4f-cmsis_dsp")
     if not os.path.exists(os.path.join(cmsis_tree, "output.txt")):
         sys.exit(f"mcu_figures: no CMSIS-DSP comparison in {cmsis_tree}: run `ctest -R hkf.mcu.cortex-m4f.cmsis_dsp`")

@@ -10,6 +10,7 @@
  * program links no floating-point routine at all. Also counts hkf_update's
  * instructions (instruction_counter.h).
  */
+#include <stddef.h>
 #include <stdint.h>
 
 #include "hkf/hkf.h"
