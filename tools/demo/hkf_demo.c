@@ -319,105 +319,121 @@ static int write_csv(const char *path, const sim_frame_t *frames, long n, double
     return 1;
 }
 
-int main(int argc, char **argv)
-{
-    enum { FILTERS = 4 };
-    demo_options_t options;
-    sim_config_t config = sim_default_config();
-    sim_t sim;
+enum { FILTERS = 4 };
+
+/* The run: the simulated frames, and per filter its settings, scores and output. */
+typedef struct {
+    sim_config_t config;
     sim_frame_t *frames;
+    long n, missing;
     double (*filtered[FILTERS])[3];
     demo_filter_t filters[FILTERS];
     demo_score_t raw, scores[FILTERS], raw_display, displays[FILTERS];
-    long n, i, missing = 0;
-    int k, status = 0;
+} demo_run_t;
 
-    switch (parse_options(argc, argv, &options)) {
-    case 1: return 0;
-    case 2: return 2;
-    default: break;
+/* The drive simulated into run->frames, and room for each filter's output: 0, or -1 out of memory. */
+static int simulate(demo_run_t *run, const demo_options_t *options)
+{
+    sim_t sim;
+    int k, ok;
+    run->config = options->error_model == SIM_ERRORS_ASSUMED ? sim_assumed_config() : sim_default_config();
+    run->n = (long)(options->seconds * run->config.fps);
+    run->frames = malloc((size_t)run->n * sizeof *run->frames);
+    ok = run->frames != NULL;
+    for (k = 0; k < FILTERS; ++k) {
+        run->filtered[k] = malloc((size_t)run->n * sizeof *run->filtered[k]);
+        ok = ok && run->filtered[k] != NULL;
     }
+    if (!ok) {
+        return -1;
+    }
+    sim_init(&sim, &run->config, options->seed);
+    for (long i = 0; i < run->n; ++i) {
+        sim_next(&sim, &run->frames[i]);
+        run->missing += !run->frames[i].valid;
+    }
+    return 0;
+}
 
-    if (options.error_model == SIM_ERRORS_ASSUMED) {
-        config = sim_assumed_config();
+/* The paper's baseline, the paper's adaptive R, the paper's full filter, and libhkf's
+ * defaults (Eq. 8 and the motion adaptation, the noise calibration beside them). */
+static void set_up_filters(demo_run_t *run)
+{
+    static const char *const names[FILTERS] = {"standard KF (constant R)", "adaptive KF (Eq. 8)",
+                                               "adaptive KF + loop closure", "hkf defaults (calibrated)"};
+    for (int k = 0; k < FILTERS; ++k) {
+        run->filters[k].settings = hkf_paper_settings;
+        run->filters[k].calibrated = 0;
+        run->scores[k].name = names[k];
+        run->displays[k].name = names[k];
     }
-    n = (long)(options.seconds * config.fps);
-    frames = malloc((size_t)n * sizeof *frames);
-    for (k = 0; k < FILTERS; ++k) {
-        filtered[k] = malloc((size_t)n * sizeof *filtered[k]);
-    }
-    for (k = 0; k < FILTERS; ++k) {
-        if (filtered[k] == NULL) {
-            frames = NULL;
-        }
-    }
-    if (frames == NULL) {
-        fprintf(stderr, "hkf-demo: out of memory\n");
-        return 1;
-    }
-    sim_init(&sim, &config, options.seed);
-    for (i = 0; i < n; ++i) {
-        sim_next(&sim, &frames[i]);
-        missing += !frames[i].valid;
-    }
+    run->filters[0].settings.noise_mode = HKF_NOISE_CONSTANT;
+    run->filters[0].settings.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    run->filters[1].settings.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    run->filters[3].settings = hkf_default_settings;
+    run->filters[3].calibrated = 1;
+    run->raw.name = "raw measurements";
+    run->raw_display.name = "raw measurements, held";
+}
 
-    /* The paper's baseline, the paper's adaptive R, the paper's full filter, and libhkf's
-     * defaults (Eq. 8 and the motion adaptation, the noise calibration beside them). */
-    for (k = 0; k < FILTERS; ++k) {
-        filters[k].settings = hkf_paper_settings;
-        filters[k].calibrated = 0;
-    }
-    filters[0].settings.noise_mode = HKF_NOISE_CONSTANT;
-    filters[0].settings.loop_closure = HKF_LOOP_CLOSURE_OFF;
-    filters[1].settings.loop_closure = HKF_LOOP_CLOSURE_OFF;
-    filters[3].settings = hkf_default_settings;
-    filters[3].calibrated = 1;
-    memset(&raw, 0, sizeof raw);
-    memset(scores, 0, sizeof scores);
-    memset(&raw_display, 0, sizeof raw_display);
-    memset(displays, 0, sizeof displays);
-    raw.name = "raw measurements";
-    scores[0].name = "standard KF (constant R)";
-    scores[1].name = "adaptive KF (Eq. 8)";
-    scores[2].name = "adaptive KF + loop closure";
-    scores[3].name = "hkf defaults (calibrated)";
-    raw_display.name = "raw measurements, held";
-    for (k = 0; k < FILTERS; ++k) {
-        displays[k].name = scores[k].name;
-    }
-
-    score_raw(frames, n, &raw, &raw_display);
-    for (k = 0; k < FILTERS; ++k) {
-        if (run_filter(&filters[k], frames, n, &scores[k], &displays[k], filtered[k]) != HKF_OK) {
-            return 1;
-        }
-    }
-
+static void print_tables(const demo_run_t *run, const demo_options_t *options)
+{
     printf("hkf-demo: %.0f s simulated drive, %.0f fps, seed %lu, %s errors: %ld frames, %ld without a face\n\n",
-           options.seconds, config.fps, options.seed,
-           options.error_model == SIM_ERRORS_MEASURED ? "measured" : "assumed", n, missing);
+           options->seconds, run->config.fps, options->seed,
+           options->error_model == SIM_ERRORS_MEASURED ? "measured" : "assumed", run->n, run->missing);
     printf("%-30s %-22s %-20s %s\n", "", "RMSE vs truth, deg", "still jitter", "moving");
     printf("%-30s %6s %6s %6s   %-20s %s\n", "filter", "pitch", "yaw", "roll", "deg/frame (vs raw)",
            "RMSE deg");
-    print_score(&raw, &raw);
-    for (k = 0; k < FILTERS; ++k) {
-        print_score(&scores[k], &raw);
+    print_score(&run->raw, &run->raw);
+    for (int k = 0; k < FILTERS; ++k) {
+        print_score(&run->scores[k], &run->raw);
     }
     printf("\nat the display: read %.0f times a second, each frame's pose there %.0f ms after its capture\n",
            DISPLAY_HZ, 1000.0 * CAPTURE_TO_PUBLISH_S);
     printf("%-30s %-22s %-20s %s\n", "", "RMSE vs truth, deg", "", "moving");
     printf("%-30s %6s %6s %6s   %-20s %s\n", "filter", "pitch", "yaw", "roll", "", "RMSE deg");
-    print_display_score(&raw_display);
-    for (k = 0; k < FILTERS; ++k) {
-        print_display_score(&displays[k]);
+    print_display_score(&run->raw_display);
+    for (int k = 0; k < FILTERS; ++k) {
+        print_display_score(&run->displays[k]);
     }
+}
+
+static void free_run(demo_run_t *run)
+{
+    free(run->frames);
+    for (int k = 0; k < FILTERS; ++k) {
+        free(run->filtered[k]);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    static demo_run_t run; /* zeroed */
+    demo_options_t options;
+    int status = 0;
+    switch (parse_options(argc, argv, &options)) {
+    case 1: return 0;
+    case 2: return 2;
+    default: break;
+    }
+    if (simulate(&run, &options) != 0) {
+        fprintf(stderr, "hkf-demo: out of memory\n");
+        free_run(&run);
+        return 1;
+    }
+    set_up_filters(&run);
+    score_raw(run.frames, run.n, &run.raw, &run.raw_display);
+    for (int k = 0; k < FILTERS; ++k) {
+        if (run_filter(&run.filters[k], run.frames, run.n, &run.scores[k], &run.displays[k], run.filtered[k]) != HKF_OK) {
+            free_run(&run);
+            return 1;
+        }
+    }
+    print_tables(&run, &options);
     if (options.csv_path != NULL &&
-        !write_csv(options.csv_path, frames, n, (double (*const *)[3])filtered, scores, FILTERS)) {
+        !write_csv(options.csv_path, run.frames, run.n, (double (*const *)[3])run.filtered, run.scores, FILTERS)) {
         status = 1;
     }
-    free(frames);
-    for (k = 0; k < FILTERS; ++k) {
-        free(filtered[k]);
-    }
+    free_run(&run);
     return status;
 }

@@ -416,10 +416,11 @@ static int not_stale(filter_node_t *node, const hkf_head_pose_measurement_t *m, 
 static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
 {
     int known;
-    if (!second_model_fuse(&node->second, node->config, index, m, &node->filter, &node->calibration, &known)) {
+    if (!second_model_fuse(&node->second, node->config, index, m, &node->filter, &node->calibration)) {
         ++node->counts.unpaired;
         return;
     }
+    (void)node_config_for_model(node->config, node->second.frames[index].second_model, &known);
     if (m->utime > node->last_measurement_utime) {
         node->last_measurement_utime = m->utime;
     }

@@ -6,6 +6,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -130,61 +131,84 @@ static int check_channels(const options_t *o)
     return 0;
 }
 
+/* Where an option that names a string goes (the LCM URL's is the caller's), or NULL. */
+static const char **string_option(options_t *o, const char *arg, const char **lcm_url)
+{
+    static const struct {
+        const char *name;
+        size_t offset;
+    } strings[] = {
+        {"--input-url", offsetof(options_t, input_url)},           {"--output-url", offsetof(options_t, output_url)},
+        {"--input-channel", offsetof(options_t, input_channel)},   {"--output-channel", offsetof(options_t, output_channel)},
+        {"--command-channel", offsetof(options_t, command_channel)}, {"--csv", offsetof(options_t, csv_path)},
+    };
+    if (strcmp(arg, "--lcm-url") == 0) {
+        return lcm_url;
+    }
+    for (size_t k = 0; k < sizeof strings / sizeof strings[0]; ++k) {
+        if (strcmp(arg, strings[k].name) == 0) {
+            return (const char **)(void *)((char *)o + strings[k].offset);
+        }
+    }
+    return NULL;
+}
+
+/* --rate, --config or --set with its value: 0, -1 when arg is none of them, 2 for a bad value (said). */
+static int settings_option(options_t *o, const char *arg, const char *value)
+{
+    char error[600];
+    if (strcmp(arg, "--rate") == 0) {
+        if (!argument_number(value, 0.1, 10000.0, &o->rate_hz)) {
+            fprintf(stderr, "hkf-filter: --rate wants a frequency from 0.1 to 10000 Hz, not '%s'\n", value);
+            return 2;
+        }
+        return 0;
+    }
+    if (strcmp(arg, "--config") == 0) {
+        if (o->config_count < (int)(sizeof o->config_paths / sizeof o->config_paths[0])) {
+            o->config_paths[o->config_count++] = value;
+        }
+        if (node_config_read_file(&o->config, value, error, sizeof error) != 0) {
+            fprintf(stderr, "hkf-filter: %s\n", error);
+            return 2;
+        }
+        return 0;
+    }
+    if (strcmp(arg, "--set") == 0) {
+        if (node_config_set(&o->config, value, error, sizeof error) != 0) {
+            fprintf(stderr, "hkf-filter: --set: %s\n", error);
+            return 2;
+        }
+        return 0;
+    }
+    return -1;
+}
+
 /* 0 = run, 1 = done (help, print-config), 2 = bad arguments */
 static int parse_options(int argc, char **argv, options_t *o)
 {
-    char error[600];
     const char *lcm_url = DEFAULT_LCM_URL;
-    int i;
     memset(o, 0, sizeof *o);
     node_config_defaults(&o->config);
     o->input_channel = "HEAD_POSE_RAW";
     o->output_channel = "HEAD_POSE";
     o->command_channel = "HEAD_TRACKER_CMD";
     if (read_found_configs(argc, argv, o) != 0) return 2;
-    for (i = 1; i < argc; ++i) {
+    for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        const char **string = value != NULL ? string_option(o, arg, &lcm_url) : NULL;
+        int result;
         if (argument_help_or_version(arg, "hkf-filter", usage)) {
             return 1;
         } else if (strcmp(arg, "--print-config") == 0) {
             o->print_config = 1;
-        } else if (value == NULL) {
-            fprintf(stderr, "hkf-filter: unknown or incomplete argument '%s' (see --help)\n", arg);
-            return 2;
-        } else if (strcmp(arg, "--lcm-url") == 0) {
-            lcm_url = argv[++i];
-        } else if (strcmp(arg, "--input-url") == 0) {
-            o->input_url = argv[++i];
-        } else if (strcmp(arg, "--output-url") == 0) {
-            o->output_url = argv[++i];
-        } else if (strcmp(arg, "--input-channel") == 0) {
-            o->input_channel = argv[++i];
-        } else if (strcmp(arg, "--output-channel") == 0) {
-            o->output_channel = argv[++i];
-        } else if (strcmp(arg, "--command-channel") == 0) {
-            o->command_channel = argv[++i];
-        } else if (strcmp(arg, "--rate") == 0) {
-            if (!argument_number(argv[++i], 0.1, 10000.0, &o->rate_hz)) {
-                fprintf(stderr, "hkf-filter: --rate wants a frequency from 0.1 to 10000 Hz, not '%s'\n", argv[i]);
-                return 2;
-            }
-        } else if (strcmp(arg, "--config") == 0) {
-            if (o->config_count < (int)(sizeof o->config_paths / sizeof o->config_paths[0])) {
-                o->config_paths[o->config_count++] = argv[i + 1];
-            }
-            if (node_config_read_file(&o->config, argv[++i], error, sizeof error) != 0) {
-                fprintf(stderr, "hkf-filter: %s\n", error);
-                return 2;
-            }
-        } else if (strcmp(arg, "--set") == 0) {
-            if (node_config_set(&o->config, argv[++i], error, sizeof error) != 0) {
-                fprintf(stderr, "hkf-filter: --set: %s\n", error);
-                return 2;
-            }
-        } else if (strcmp(arg, "--csv") == 0) {
-            o->csv_path = argv[++i];
-        } else if (strcmp(arg, "--offline") == 0 && i + 2 < argc) {
+        } else if (string != NULL) {
+            *string = argv[++i];
+        } else if (value != NULL && (result = settings_option(o, arg, value)) >= 0) {
+            if (result != 0) return result;
+            ++i;
+        } else if (value != NULL && strcmp(arg, "--offline") == 0 && i + 2 < argc) {
             o->offline_in = argv[++i];
             o->offline_out = argv[++i];
         } else {
@@ -312,27 +336,21 @@ static int check_live_urls(const options_t *o, lcm_file_url_t *input, lcm_file_u
     return lcm_file_url_check(o->output_url, "output", keep, count, "hkf-filter", output);
 }
 
-static int run_live(node_run_t *run)
+/* The LCM providers of a live run, subscribed: the input (which is also the output when the URLs are the
+ * same; run->out_lcm is set), or NULL (said). */
+static lcm_t *open_live(node_run_t *run)
 {
     const options_t *o = run->options;
-    lcm_file_url_t input_file, output_file;
-    lcm_t *in;
-    int status = 0;
-    const int64_t tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
-    int64_t next_tick = arrival_utime() + tick_us;
-    if (check_live_urls(o, &input_file, &output_file) != 0) {
-        return 1;
-    }
-    in = lcm_create(o->input_url);
+    lcm_t *in = lcm_create(o->input_url);
     if (in == NULL) {
         fprintf(stderr, "hkf-filter: cannot open LCM provider '%s'\n", o->input_url);
-        return 1;
+        return NULL;
     }
     run->out_lcm = strcmp(o->input_url, o->output_url) == 0 ? in : lcm_create(o->output_url);
     if (run->out_lcm == NULL) {
         fprintf(stderr, "hkf-filter: cannot open LCM provider '%s'\n", o->output_url);
         lcm_destroy(in);
-        return 1;
+        return NULL;
     }
     if (lcm_wait_subscribe(in, o->input_channel, on_measurement, run, "hkf-filter") == NULL ||
         lcm_wait_subscribe(in, o->command_channel, on_command, run, "hkf-filter") == NULL) {
@@ -340,39 +358,60 @@ static int run_live(node_run_t *run)
             lcm_destroy(run->out_lcm);
         }
         lcm_destroy(in);
+        return NULL;
+    }
+    return in;
+}
+
+/* A --rate tick: the pose at the capture clock's "now", between measurements; the next tick's time. */
+static int64_t tick(node_run_t *run, int64_t next_tick, int64_t tick_us)
+{
+    hkf_head_pose_t pose;
+    const int64_t since = arrival_utime() - run->last_arrival_us;
+    if (run->node.have_time && since > 0 && run->node.last_utime <= INT64_MAX - since &&
+        filter_node_extrapolate(&run->node, run->node.last_utime + since, &pose)) {
+        publish(run, &pose);
+    }
+    next_tick += tick_us;
+    return next_tick < arrival_utime() ? arrival_utime() + tick_us : next_tick;
+}
+
+/* Handles what arrives until a stop is asked for: measurements and commands, the silence rule and the
+ * --rate ticks. 0, or 1 when LCM failed. */
+static int live_loop(node_run_t *run, lcm_t *in)
+{
+    const int64_t tick_us = run->options->rate_hz > 0.0 ? (int64_t)(1e6 / run->options->rate_hz) : 0;
+    int64_t next_tick = arrival_utime() + tick_us;
+    while (!lcm_wait_stop_requested()) {
+        const int64_t silence_due = filter_node_silence_due(&run->node);
+        const int64_t wake = tick_us > 0 && (silence_due == 0 || next_tick < silence_due) ? next_tick : silence_due;
+        hkf_head_pose_t pose;
+        if (lcm_wait_and_handle(in, lcm_wait_time(wake, arrival_utime()), "hkf-filter") < 0) {
+            return 1;
+        }
+        if (filter_node_silence(&run->node, arrival_utime(), &pose)) { /* the estimator has gone quiet */
+            publish(run, &pose);
+        }
+        if (tick_us > 0 && arrival_utime() >= next_tick) {
+            next_tick = tick(run, next_tick, tick_us);
+        }
+    }
+    return 0;
+}
+
+static int run_live(node_run_t *run)
+{
+    const options_t *o = run->options;
+    lcm_file_url_t input_file, output_file;
+    lcm_t *in;
+    int status;
+    if (check_live_urls(o, &input_file, &output_file) != 0 || (in = open_live(run)) == NULL) {
         return 1;
     }
     lcm_wait_stop_on_signals();
     fprintf(stderr, "hkf-filter: %s -> %s on %s%s%s\n", o->input_channel, o->output_channel, o->input_url,
             run->out_lcm != in ? " -> " : "", run->out_lcm != in ? o->output_url : "");
-
-    while (!lcm_wait_stop_requested()) {
-        const int64_t silence_due = filter_node_silence_due(&run->node);
-        const int64_t wake = tick_us > 0 && (silence_due == 0 || next_tick < silence_due) ? next_tick : silence_due;
-        if (lcm_wait_and_handle(in, lcm_wait_time(wake, arrival_utime()), "hkf-filter") < 0) {
-            status = 1;
-            break;
-        }
-        {
-            hkf_head_pose_t pose;
-            if (filter_node_silence(&run->node, arrival_utime(), &pose)) { /* the estimator has gone quiet */
-                publish(run, &pose);
-            }
-        }
-        if (tick_us > 0 && arrival_utime() >= next_tick) {
-            /* between measurements: the pose at the capture clock's "now" */
-            hkf_head_pose_t pose;
-            const int64_t since = arrival_utime() - run->last_arrival_us;
-            if (run->node.have_time && since > 0 && run->node.last_utime <= INT64_MAX - since &&
-                filter_node_extrapolate(&run->node, run->node.last_utime + since, &pose)) {
-                publish(run, &pose);
-            }
-            next_tick += tick_us;
-            if (next_tick < arrival_utime()) {
-                next_tick = arrival_utime() + tick_us;
-            }
-        }
-    }
+    status = live_loop(run, in);
     if (run->out_lcm != in) {
         lcm_destroy(run->out_lcm);
     }
@@ -451,31 +490,71 @@ static int outputs_distinct(const options_t *o)
     return 1;
 }
 
+/* What an offline run found in its input, said: a stop, damage, a cut, undecodable messages. */
+static void say_offline_report(const node_run_t *run, const filter_node_offline_report_t *report, int status)
+{
+    const options_t *o = run->options;
+    if (report->stopped) {
+        fprintf(stderr, "hkf-filter: stopped by a signal after %lu events of '%s'; '%s' is whole up to there\n",
+                report->events, o->offline_in, o->offline_out);
+    }
+    if (status != 0 && !report->write_failed && !report->csv_failed && !report->stopped) {
+        fprintf(stderr, "hkf-filter: '%s' is not a file that can be read from any position\n", o->offline_in);
+    }
+    if (report->skipped_bytes > 0) { /* damage inside the log: what was around it was filtered */
+        fprintf(stderr, "hkf-filter: '%s' is damaged: %ld bytes between its events are no event, skipped\n",
+                o->offline_in, report->skipped_bytes);
+    }
+    if (report->cut_bytes > 0) { /* the whole events were filtered; say where the log was cut */
+        fprintf(stderr, "hkf-filter: '%s' is cut off: its last %ld bytes are part of an event, ignored; "
+                        "its %lu whole events were filtered\n", o->offline_in, report->cut_bytes, report->events);
+    }
+    if (run->node.counts.decode_errors > 0) {
+        fprintf(stderr, "hkf-filter: %lu messages did not decode; counted and skipped\n",
+                run->node.counts.decode_errors);
+    }
+    if (report->long_model_ids > 0) {
+        fprintf(stderr, "hkf-filter: %lu of them%s\n", report->long_model_ids, LONG_MODEL_HINT);
+    }
+    if (report->unknown_commands > 0) {
+        fprintf(stderr, "hkf-filter: %lu unknown commands ignored\n", report->unknown_commands);
+    }
+}
+
+/* The offline run's files: the input first, as a regular file (a named pipe would block and cannot
+ * seek); then the outputs, which outputs_distinct has checked are neither the input nor each other.
+ * The input, or NULL (said; nothing left open). */
+static FILE *open_offline(node_run_t *run, lcm_log_writer_t *out)
+{
+    char error[600];
+    FILE *out_file, *in = safe_open_input(run->options->offline_in, error, sizeof error);
+    if (in == NULL) {
+        fprintf(stderr, "hkf-filter: %s\n", error);
+        return NULL;
+    }
+    out_file = safe_open_output(run->options->offline_out, "wb", NULL, 0, "hkf-filter");
+    if (out_file == NULL) {
+        fclose(in);
+        return NULL;
+    }
+    lcm_log_writer_start(out, out_file);
+    if (open_csv(run) != 0) {
+        fclose(in);
+        (void)lcm_log_writer_close(out);
+        return NULL;
+    }
+    return in;
+}
+
 static int run_offline(node_run_t *run)
 {
     const options_t *o = run->options;
     filter_node_offline_t offline;
     filter_node_offline_report_t report;
-    char error[600];
     lcm_log_writer_t out;
-    FILE *in, *out_file;
     int status;
-    /* the input first, as a regular file (a named pipe would block and cannot seek); then the
-     * outputs, which outputs_distinct has checked are neither the input nor each other */
-    in = safe_open_input(o->offline_in, error, sizeof error);
+    FILE *in = open_offline(run, &out);
     if (in == NULL) {
-        fprintf(stderr, "hkf-filter: %s\n", error);
-        return 1;
-    }
-    out_file = safe_open_output(o->offline_out, "wb", NULL, 0, "hkf-filter");
-    if (out_file == NULL) {
-        fclose(in);
-        return 1;
-    }
-    lcm_log_writer_start(&out, out_file);
-    if (open_csv(run) != 0) {
-        fclose(in);
-        (void)lcm_log_writer_close(&out);
         return 1;
     }
     offline.input_channel = o->input_channel;
@@ -486,32 +565,8 @@ static int run_offline(node_run_t *run)
     offline.stop_requested = lcm_wait_stop_requested;
     lcm_wait_stop_on_signals(); /* SIGINT / SIGTERM / SIGHUP: stop between events, close the output whole */
     status = filter_node_offline(&run->node, &offline, in, &out, &report);
-    if (report.stopped) {
-        fprintf(stderr, "hkf-filter: stopped by a signal after %lu events of '%s'; '%s' is whole up to there\n",
-                report.events, o->offline_in, o->offline_out);
-        status = -1;
-    }
-    if (status != 0 && !report.write_failed && !report.csv_failed && !report.stopped) {
-        fprintf(stderr, "hkf-filter: '%s' is not a file that can be read from any position\n", o->offline_in);
-    }
-    if (report.skipped_bytes > 0) { /* damage inside the log: what was around it was filtered */
-        fprintf(stderr, "hkf-filter: '%s' is damaged: %ld bytes between its events are no event, skipped\n",
-                o->offline_in, report.skipped_bytes);
-    }
-    if (report.cut_bytes > 0) { /* the whole events were filtered; say where the log was cut */
-        fprintf(stderr, "hkf-filter: '%s' is cut off: its last %ld bytes are part of an event, ignored; "
-                        "its %lu whole events were filtered\n", o->offline_in, report.cut_bytes, report.events);
-    }
-    if (run->node.counts.decode_errors > 0) {
-        fprintf(stderr, "hkf-filter: %lu messages did not decode; counted and skipped\n",
-                run->node.counts.decode_errors);
-    }
-    if (report.long_model_ids > 0) {
-        fprintf(stderr, "hkf-filter: %lu of them%s\n", report.long_model_ids, LONG_MODEL_HINT);
-    }
-    if (report.unknown_commands > 0) {
-        fprintf(stderr, "hkf-filter: %lu unknown commands ignored\n", report.unknown_commands);
-    }
+    say_offline_report(run, &report, status);
+    status = report.stopped ? -1 : status;
     run->csv_errors += report.csv_failed != 0;
     fclose(in);
     if (lcm_log_writer_close(&out) != 0) {

@@ -348,9 +348,18 @@ static hkf_settings_t settings_of_model(const node_config_t *config, const node_
     return s;
 }
 
-static int set_model_key(node_config_t *config, const char *model, const char *name, const char *value,
-                         const char *origin, char *error, size_t error_size)
+/* One "key = value" to apply (the key split out of its line, changed in place for model.NAME.KEY), and
+ * where it was given ("FILE:LINE" or "--set"). */
+typedef struct {
+    char *key;
+    const char *value;
+    const char *origin;
+} assignment_t;
+
+static int set_model_key(node_config_t *config, const char *model, const assignment_t *a, char *error,
+                         size_t error_size)
 {
+    const char *name = a->key;
     const int k = find_key(name);
     const hkf_setting_t *d;
     node_model_t *m;
@@ -365,7 +374,7 @@ static int set_model_key(node_config_t *config, const char *model, const char *n
         return -1;
     }
     scratch = settings_of_model(config, m);
-    if (set_value((char *)&scratch, k, value, error, error_size) != 0) {
+    if (set_value((char *)&scratch, k, a->value, error, error_size) != 0) {
         return -1;
     }
     memcpy(m->noise, scratch.noise, sizeof m->noise);
@@ -374,7 +383,7 @@ static int set_model_key(node_config_t *config, const char *model, const char *n
         memcpy((char *)&m->own + d->offset, (const char *)&scratch + d->offset, value_size(d));
         m->own_keys |= 1ul << k;
     }
-    set_origin(m->origin[k], origin);
+    set_origin(m->origin[k], a->origin);
     return 0;
 }
 
@@ -404,39 +413,41 @@ static int split_assignment(char *line, char **key, char **value)
     return (*key)[0] != '\0' && (*value)[0] != '\0' ? 0 : -1;
 }
 
-static int apply(node_config_t *config, const char *model, char *key, char *value, const char *origin, char *error,
-                 size_t error_size)
+/* a to the base settings, or to model's (a's key may name one: model.NAME.KEY): 0, or -1 with the error. */
+static int apply(node_config_t *config, const char *model, assignment_t *a, char *error, size_t error_size)
 {
     key_group_t group;
     int k;
-    if (strncmp(key, "model.", 6) == 0 && model == NULL) {
-        char *name = key + 6, *dot = strchr(name, '.');
+    if (strncmp(a->key, "model.", 6) == 0 && model == NULL) {
+        char *name = a->key + 6, *dot = strchr(name, '.');
         if (dot == NULL) {
-            snprintf(error, error_size, "'%s' is not model.NAME.KEY", key);
+            snprintf(error, error_size, "'%s' is not model.NAME.KEY", a->key);
             return -1;
         }
         *dot = '\0';
-        return set_model_key(config, name, dot + 1, value, origin, error, error_size);
+        a->key = dot + 1;
+        return set_model_key(config, name, a, error, error_size);
     }
     if (model != NULL) {
-        return set_model_key(config, model, key, value, origin, error, error_size);
+        return set_model_key(config, model, a, error, error_size);
     }
-    k = find_key(key);
+    k = find_key(a->key);
     if (k < 0) {
-        snprintf(error, error_size, "unknown key '%s' (--print-config lists them)", key);
+        snprintf(error, error_size, "unknown key '%s' (--print-config lists them)", a->key);
         return -1;
     }
     (void)key_setting(k, &group);
-    if (set_value(config_base(config, group), k, value, error, error_size) != 0) {
+    if (set_value(config_base(config, group), k, a->value, error, error_size) != 0) {
         return -1;
     }
-    set_origin(config->origin[k], origin);
+    set_origin(config->origin[k], a->origin);
     return 0;
 }
 
 int node_config_set(node_config_t *config, const char *assignment, char *error, size_t error_size)
 {
     char line[512], *key, *value;
+    assignment_t a;
     if (strlen(assignment) >= sizeof line) {
         snprintf(error, error_size, "setting too long");
         return -1;
@@ -446,7 +457,10 @@ int node_config_set(node_config_t *config, const char *assignment, char *error, 
         snprintf(error, error_size, "'%s' is not KEY=VALUE", assignment);
         return -1;
     }
-    return apply(config, NULL, key, value, "--set", error, error_size);
+    a.key = key;
+    a.value = value;
+    a.origin = "--set";
+    return apply(config, NULL, &a, error, error_size);
 }
 
 /* One line of in (without its newline) into line: 1, 0 at the end, -1 for a
@@ -475,6 +489,7 @@ static int read_config_line(node_config_t *config, char *text, const char *origi
                             size_t message_size)
 {
     char *key, *value;
+    assignment_t a;
     if (text[0] == '[') {
         char name[NODE_MODEL_NAME_MAX + 1];
         int n = 0;
@@ -492,7 +507,10 @@ static int read_config_line(node_config_t *config, char *text, const char *origi
         snprintf(message, message_size, "expected KEY = VALUE, got '%s'", text);
         return -1;
     }
-    return apply(config, model[0] != '\0' ? model : NULL, key, value, origin, message, message_size);
+    a.key = key;
+    a.value = value;
+    a.origin = origin;
+    return apply(config, model[0] != '\0' ? model : NULL, &a, message, message_size);
 }
 
 int node_config_read_file(node_config_t *config, const char *path, char *error, size_t error_size)

@@ -159,14 +159,13 @@ static void align_second(second_model_t *s, const node_config_t *config, second_
 }
 
 int second_model_fuse(second_model_t *s, const node_config_t *config, int index, const hkf_head_pose_measurement_t *m,
-                      hkf_filter_t *filter, hkf_calibration_t *calibration, int *known)
+                      hkf_filter_t *filter, hkf_calibration_t *calibration)
 {
     hkf_filter_t f, before[FILTER_NODE_PAIR_FRAMES];
     hkf_calibration_t c, calibration_before[FILTER_NODE_PAIR_FRAMES];
     second_model_frame_t *frame = &s->frames[index];
     const int count = (s->frame_newest - index + FILTER_NODE_PAIR_FRAMES) % FILTER_NODE_PAIR_FRAMES + 1;
     int i;
-    *known = 1;
     if (frame->paired) { /* one second measurement per frame */
         return 0;
     }
@@ -192,6 +191,5 @@ int second_model_fuse(second_model_t *s, const node_config_t *config, int index,
     }
     *filter = f;
     *calibration = c;
-    (void)node_config_for_model(config, frame->second_model, known);
     return 1;
 }

@@ -77,9 +77,9 @@ int second_model_too_late(const second_model_t *s, const hkf_head_pose_measureme
 /* Fuses m, the second measurement of kept frame `index`, into *filter (and
  * its *calibration): that frame's step again with both, then the steps of the
  * frames after it. Returns 1 when fused, 0 when not (the frame already has
- * one); *known is whether the second model is in the table. */
+ * one). */
 int second_model_fuse(second_model_t *s, const node_config_t *config, int index, const hkf_head_pose_measurement_t *m,
-                      hkf_filter_t *filter, hkf_calibration_t *calibration, int *known);
+                      hkf_filter_t *filter, hkf_calibration_t *calibration);
 
 #ifdef __cplusplus
 }

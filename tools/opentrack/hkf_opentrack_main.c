@@ -132,11 +132,86 @@ static int parse_port(const char *text, long low, long *port)
     return end != text && *end == '\0' && errno == 0 && *port >= low && *port <= 65535 ? 0 : -1;
 }
 
+/* --invert, --scale or --lost with its value: 0, -1 when arg is none of them, 2 for a bad value (said). */
+static int mapping_option(options_t *o, const char *arg, const char *value)
+{
+    static const char *const lost_names[] = {"hold", "center", "send"}; /* lost_policy_t's order */
+    if (strcmp(arg, "--invert") == 0) {
+        if (parse_invert(value, &o->mapping) == 0) return 0;
+        fprintf(stderr, "hkf-opentrack: --invert wants yaw, pitch, roll, x, y or z (or a list), not '%s'\n", value);
+        return 2;
+    }
+    if (strcmp(arg, "--scale") == 0) {
+        if (parse_scale(value, &o->mapping) == 0) return 0;
+        fprintf(stderr, "hkf-opentrack: --scale wants AXIS=K (yaw, pitch, roll, x, y or z; K from -100 to 100), "
+                        "not '%s'\n", value);
+        return 2;
+    }
+    if (strcmp(arg, "--lost") == 0) {
+        for (int k = 0; k < 3; ++k) {
+            if (strcmp(value, lost_names[k]) == 0) {
+                o->lost = (lost_policy_t)k;
+                return 0;
+            }
+        }
+        fprintf(stderr, "hkf-opentrack: --lost wants hold, center or send, not '%s'\n", value);
+        return 2;
+    }
+    return -1;
+}
+
+/* --port, --bind, --lead or --rate with its value: 0, -1 when arg is none of them, 2 for a bad value (said). */
+static int number_option(options_t *o, const char *arg, const char *value)
+{
+    long port;
+    if (strcmp(arg, "--port") == 0 || strcmp(arg, "--bind") == 0) {
+        const int bind = strcmp(arg, "--bind") == 0;
+        if (parse_port(value, 1, bind ? &o->bind_port : &port) != 0) {
+            fprintf(stderr, "hkf-opentrack: %s wants a UDP port from 1 to 65535, not '%s'\n", arg, value);
+            return 2;
+        }
+        o->port = bind ? o->port : value;
+        return 0;
+    }
+    if (strcmp(arg, "--lead") == 0) {
+        if (!argument_number(value, 0.0, 100.0, &o->lead_s)) {
+            fprintf(stderr, "hkf-opentrack: --lead wants milliseconds from 0 to 100, not '%s'\n", value);
+            return 2;
+        }
+        o->lead_s *= 1e-3;
+        o->predict = 1;
+        return 0;
+    }
+    if (strcmp(arg, "--rate") == 0) {
+        if (argument_number(value, 1.0, 1000.0, &o->rate_hz)) return 0;
+        fprintf(stderr, "hkf-opentrack: --rate wants a frequency from 1 to 1000 Hz, not '%s'\n", value);
+        return 2;
+    }
+    return -1;
+}
+
+/* An option with a value: 0, 2 for a bad or unknown one (said). */
+static int value_option(options_t *o, const char *arg, const char *value)
+{
+    int result;
+    if (strcmp(arg, "--lcm-url") == 0) {
+        o->lcm_url = value;
+    } else if (strcmp(arg, "--channel") == 0) {
+        o->channel = value;
+    } else if (strcmp(arg, "--host") == 0) {
+        o->host = value;
+    } else if ((result = number_option(o, arg, value)) >= 0 || (result = mapping_option(o, arg, value)) >= 0) {
+        return result;
+    } else {
+        fprintf(stderr, "hkf-opentrack: unknown or incomplete argument '%s' (see --help)\n", arg);
+        return 2;
+    }
+    return 0;
+}
+
 /* 0 = run, 1 = done (help), 2 = bad arguments */
 static int parse_options(int argc, char **argv, options_t *o)
 {
-    long port;
-    int i;
     memset(o, 0, sizeof *o);
     o->lcm_url = DEFAULT_LCM_URL;
     o->channel = "HEAD_POSE";
@@ -144,75 +219,19 @@ static int parse_options(int argc, char **argv, options_t *o)
     o->port = "4242";
     o->lost = LOST_HOLD;
     o->mapping = opentrack_default_mapping();
-    for (i = 1; i < argc; ++i) {
+    for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char *value = i + 1 < argc ? argv[i + 1] : NULL;
         if (argument_help_or_version(arg, "hkf-opentrack", usage)) {
             return 1;
         } else if (strcmp(arg, "--absolute") == 0) {
             o->mapping.relative_to_center = 0;
-            continue;
         } else if (strcmp(arg, "--predict") == 0) {
             o->predict = 1;
-            continue;
         } else if (value == NULL) {
             fprintf(stderr, "hkf-opentrack: unknown or incomplete argument '%s' (see --help)\n", arg);
             return 2;
-        }
-        ++i;
-        if (strcmp(arg, "--lcm-url") == 0) {
-            o->lcm_url = value;
-        } else if (strcmp(arg, "--channel") == 0) {
-            o->channel = value;
-        } else if (strcmp(arg, "--host") == 0) {
-            o->host = value;
-        } else if (strcmp(arg, "--port") == 0) {
-            if (parse_port(value, 1, &port) != 0) {
-                fprintf(stderr, "hkf-opentrack: --port wants a UDP port from 1 to 65535, not '%s'\n", value);
-                return 2;
-            }
-            o->port = value;
-        } else if (strcmp(arg, "--bind") == 0) {
-            if (parse_port(value, 1, &o->bind_port) != 0) {
-                fprintf(stderr, "hkf-opentrack: --bind wants a UDP port from 1 to 65535, not '%s'\n", value);
-                return 2;
-            }
-        } else if (strcmp(arg, "--invert") == 0) {
-            if (parse_invert(value, &o->mapping) != 0) {
-                fprintf(stderr, "hkf-opentrack: --invert wants yaw, pitch, roll, x, y or z (or a list), not '%s'\n", value);
-                return 2;
-            }
-        } else if (strcmp(arg, "--scale") == 0) {
-            if (parse_scale(value, &o->mapping) != 0) {
-                fprintf(stderr, "hkf-opentrack: --scale wants AXIS=K (yaw, pitch, roll, x, y or z; K from -100 to 100), "
-                                "not '%s'\n", value);
-                return 2;
-            }
-        } else if (strcmp(arg, "--lost") == 0) {
-            if (strcmp(value, "hold") == 0) {
-                o->lost = LOST_HOLD;
-            } else if (strcmp(value, "center") == 0) {
-                o->lost = LOST_CENTER;
-            } else if (strcmp(value, "send") == 0) {
-                o->lost = LOST_SEND;
-            } else {
-                fprintf(stderr, "hkf-opentrack: --lost wants hold, center or send, not '%s'\n", value);
-                return 2;
-            }
-        } else if (strcmp(arg, "--lead") == 0) {
-            if (!argument_number(value, 0.0, 100.0, &o->lead_s)) {
-                fprintf(stderr, "hkf-opentrack: --lead wants milliseconds from 0 to 100, not '%s'\n", value);
-                return 2;
-            }
-            o->lead_s *= 1e-3;
-            o->predict = 1;
-        } else if (strcmp(arg, "--rate") == 0) {
-            if (!argument_number(value, 1.0, 1000.0, &o->rate_hz)) {
-                fprintf(stderr, "hkf-opentrack: --rate wants a frequency from 1 to 1000 Hz, not '%s'\n", value);
-                return 2;
-            }
-        } else {
-            fprintf(stderr, "hkf-opentrack: unknown or incomplete argument '%s' (see --help)\n", arg);
+        } else if (value_option(o, arg, argv[++i]) != 0) {
             return 2;
         }
     }
