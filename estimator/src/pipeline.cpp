@@ -304,52 +304,149 @@ struct RunCounts {
     std::vector<double> latency_ms, inference_ms, second_latency_ms;
 };
 
+// What the frame loop works with: the run's parts, which run_pipeline sets up and owns.
+struct FrameLoop {
+    const PipelineOptions &options;
+    HeadPoseEstimator &model;
+    HeadPoseEstimator *second;  // nullptr without one
+    const FrameSource &source;
+    lcm::LCM &lcm;
+    std::mutex &lcm_mutex;  // LCM is published to from this thread and the second model's; one at a time
+    RunCounts &counts;      // publish_failures and second_latency_ms under lcm_mutex
+    FaceTracker &tracker;
+    AnnotatedVideo &video;
+    FilteredPose &filtered;
+    bool show, drop_old;
+    std::unique_ptr<SecondModelWorker> second_worker;
+    int64_t seq = 0;
+};
+
 // The second model on its own thread (nullptr without one): its measurements published on
 // the channel as they come, their capture->publish latency counted.
-std::unique_ptr<SecondModelWorker> start_second_model(HeadPoseEstimator *second, const HeadPoseEstimator &model,
-                                                      const PipelineOptions &options, const FrameSource &source,
-                                                      lcm::LCM &lcm, std::mutex &lcm_mutex, RunCounts &counts)
+std::unique_ptr<SecondModelWorker> start_second_model(FrameLoop &loop)
 {
+    HeadPoseEstimator *second = loop.second;
     if (second == nullptr) return nullptr;
     std::fprintf(stderr, "hkf-estimator: second model %s where %s finds no pose or |yaw| >= %.0f deg\n",
-                 second->spec().name.c_str(), model.spec().name.c_str(), static_cast<double>(options.second_from_yaw));
-    return std::make_unique<SecondModelWorker>(*second, [second, &options, &source, &lcm, &lcm_mutex, &counts](const SecondModelResult &r) {
+                 second->spec().name.c_str(), loop.model.spec().name.c_str(),
+                 static_cast<double>(loop.options.second_from_yaw));
+    return std::make_unique<SecondModelWorker>(*second, [second, &loop](const SecondModelResult &r) {
         std::optional<Face> face;
         if (r.pose) face = r.job.face;
         const hkf::head_pose_measurement_t m = measurement_message(r.job.utime, r.job.seq, second->spec().name, face,
                                                                    r.pose.value_or(HeadPose{}), r.inference_ms);
-        std::lock_guard<std::mutex> lock(lcm_mutex);
-        if (lcm.publish(options.channel, &m) != 0) ++counts.publish_failures;
-        else ++counts.published;
-        counts.second_latency_ms.push_back(
-            static_cast<double>(wall_utime() - (source.live() ? r.job.utime : r.job.taken_utime)) / 1000.0);
+        std::lock_guard<std::mutex> lock(loop.lcm_mutex);
+        if (loop.lcm.publish(loop.options.channel, &m) != 0) ++loop.counts.publish_failures;
+        else ++loop.counts.published;
+        loop.counts.second_latency_ms.push_back(
+            static_cast<double>(wall_utime() - (loop.source.live() ? r.job.utime : r.job.taken_utime)) / 1000.0);
     });
 }
 
 // The run's summary on stdout.
-void print_summary(const RunCounts &counts, double seconds, const LatestFrame &slot, const FaceTracker &tracker,
-                   const StallWatch &stall, SecondModelWorker *second_worker, const HeadPoseEstimator *second,
-                   const FrameSource &source, bool capture_hung, const AnnotatedVideo &video, const PipelineOptions &options)
+void print_summary(const FrameLoop &loop, double seconds, const LatestFrame &slot, const StallWatch &stall,
+                   bool capture_hung)
 {
+    const RunCounts &counts = loop.counts;
     std::printf("hkf-estimator: %ld frames, %ld with a face, %.1f fps; capture->publish ms p50 %.1f p99 %.1f; "
                 "inference ms p50 %.1f; %ld dropped; %ld full-frame face searches; %ld stalls of the source\n",
                 counts.frames, counts.with_face, seconds > 0 ? static_cast<double>(counts.frames) / seconds : 0.0,
                 percentile(counts.latency_ms, 0.5), percentile(counts.latency_ms, 0.99), percentile(counts.inference_ms, 0.5),
-                slot.dropped(), tracker.full_frame_searches(), stall.stalls());
-    if (second_worker)
+                slot.dropped(), loop.tracker.full_frame_searches(), stall.stalls());
+    if (loop.second_worker)
         std::printf("hkf-estimator: second model %s: %ld frames asked for, %ld measured, %ld skipped (it was busy); "
                     "capture->publish ms p50 %.1f p99 %.1f; inference ms p50 %.1f\n",
-                    second->spec().name.c_str(), second_worker->asked(), second_worker->done(), second_worker->skipped(),
-                    percentile(counts.second_latency_ms, 0.5), percentile(counts.second_latency_ms, 0.99),
-                    percentile(second_worker->inference_ms(), 0.5));
-    if (!capture_hung && source.skipped_images() > 0)
-        std::printf("hkf-estimator: %ld images of the folder could not be read; skipped\n", source.skipped_images());
-    if (video.resized() > 0)
-        std::printf("hkf-estimator: %ld frames of another size than the first were scaled to it in %s\n", video.resized(),
-                    options.annotate_path.c_str());
+                    loop.second->spec().name.c_str(), loop.second_worker->asked(), loop.second_worker->done(),
+                    loop.second_worker->skipped(), percentile(counts.second_latency_ms, 0.5),
+                    percentile(counts.second_latency_ms, 0.99), percentile(loop.second_worker->inference_ms(), 0.5));
+    if (!capture_hung && loop.source.skipped_images() > 0)
+        std::printf("hkf-estimator: %ld images of the folder could not be read; skipped\n", loop.source.skipped_images());
+    if (loop.video.resized() > 0)
+        std::printf("hkf-estimator: %ld frames of another size than the first were scaled to it in %s\n",
+                    loop.video.resized(), loop.options.annotate_path.c_str());
     if (counts.publish_failures > 0)
         std::printf("hkf-estimator: %ld measurements could not be published on %s\n", counts.publish_failures,
-                    options.channel.c_str());
+                    loop.options.channel.c_str());
+}
+
+// The frame's measurement on the channel (a failure counted, and said the first time).
+void publish_measurement(FrameLoop &loop, const hkf::head_pose_measurement_t &m)
+{
+    std::lock_guard<std::mutex> lock(loop.lcm_mutex);
+    if (loop.lcm.publish(loop.options.channel, &m) != 0) {
+        if (loop.counts.publish_failures++ == 0)
+            std::fprintf(stderr, "hkf-estimator: publishing on %s failed (counted)\n", loop.options.channel.c_str());
+    } else {
+        ++loop.counts.published;
+    }
+}
+
+// The frame drawn with its face, pose and the latest filtered pose, into the --annotate video and the window.
+void annotate(FrameLoop &loop, const Frame &frame, const std::optional<Face> &face, const HeadPose &pose)
+{
+    {
+        std::lock_guard<std::mutex> lock(loop.lcm_mutex);
+        loop.lcm.handleTimeout(0);  // filtered poses that have arrived
+    }
+    const cv::Mat image = annotated_frame(frame.image, face, pose, loop.filtered);
+    if (!loop.options.annotate_path.empty()) loop.video.write(image, loop.source.fps());
+    if (loop.show) {
+        cv::imshow("hkf-estimator", image);
+        if (cv::waitKey(1) == 27) stop_requested = true;
+    }
+}
+
+// One frame: the face tracked, the pose estimated and published, the second model asked where the first
+// is unsure, the frame counted and annotated.
+void process_frame(FrameLoop &loop, const Frame &frame)
+{
+    const int64_t taken = wall_utime();
+    const auto t0 = std::chrono::steady_clock::now();
+    std::optional<Face> face = loop.tracker.track(frame.image, frame.utime);
+    const std::optional<Face> tracked = face;
+    std::optional<HeadPose> estimate = face ? loop.model.estimate(frame.image, *face) : std::nullopt;
+    if (!estimate) face.reset();  // the pose model saw no face there either
+    const HeadPose pose = estimate.value_or(HeadPose{});
+    const double inference = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const hkf::head_pose_measurement_t m =
+        measurement_message(frame.utime, loop.seq++, loop.model.spec().name, face, pose, inference);
+    publish_measurement(loop, m);
+    if (loop.second_worker && tracked && (!estimate || std::fabs(estimate->yaw) >= loop.options.second_from_yaw)) {
+        // after the first model's message, so that the node has the frame when the second's comes
+        loop.second_worker->submit(SecondModelJob{frame.image, *tracked, m.utime, m.seq, taken}, loop.drop_old);
+    }
+    // from the frame being available (a camera's capture) to its publish
+    loop.counts.latency_ms.push_back(static_cast<double>(wall_utime() - (loop.source.live() ? frame.utime : taken)) / 1000.0);
+    loop.counts.inference_ms.push_back(inference);
+    ++loop.counts.frames;
+    loop.counts.with_face += face.has_value();
+    if (!loop.options.annotate_path.empty() || loop.show) annotate(loop, frame, face, pose);
+    if (loop.counts.frames % 100 == 0)
+        std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", loop.counts.frames, loop.counts.with_face);
+    if (loop.second_worker && !loop.second_worker->error().empty()) throw EstimatorError(loop.second_worker->error());
+}
+
+// The frames as they come, until the source ends or a stop is asked for: "", or what stopped the loop
+// (the capture thread is stopped and the video closed by the caller, as always).
+std::string frame_loop(FrameLoop &loop, LatestFrame &slot, StallWatch &stall)
+{
+    try {
+        for (;;) {
+            bool ended = false;
+            auto frame = slot.take(std::chrono::milliseconds(100), ended);
+            if (ended || stop_requested) break;
+            if (!frame) {
+                stall.no_frame(loop.source);
+                continue;
+            }
+            stall.frame();
+            process_frame(loop, *frame);
+        }
+    } catch (const std::exception &e) {
+        stop_requested = true;
+        return e.what();
+    }
+    return "";
 }
 
 // 1 (said on stderr) when a model gave NaN or infinite outputs: a healthy network never does.
@@ -393,31 +490,57 @@ int exit_status(const RunCounts &counts, bool failed, const FrameSource &source,
     return status;
 }
 
+
+// The LCM provider of the run's output (a file:// URL checked: never the source or the video, never a named
+// pipe; its log is checked at the end through log_file).
+std::unique_ptr<lcm::LCM> open_output(const PipelineOptions &options, lcm_file_url_t &log_file)
+{
+    const char *keep[] = {options.source.c_str(), options.annotate_path.c_str()};
+    if (lcm_file_url_check(options.lcm_url.c_str(), "output", keep, options.annotate_path.empty() ? 1 : 2,
+                           "hkf-estimator", &log_file) != 0)
+        throw EstimatorError("--lcm-url " + options.lcm_url + " refused");
+    auto lcm = std::make_unique<lcm::LCM>(options.lcm_url);
+    if (!lcm->good()) throw EstimatorError("cannot open LCM provider " + options.lcm_url);
+    return lcm;
+}
+
+// --show where there is a display (said when there is none).
+bool can_show(const PipelineOptions &options)
+{
+    if (options.show && std::getenv("DISPLAY") == nullptr) {
+        std::fprintf(stderr, "hkf-estimator: --show needs a display (DISPLAY is not set); no window\n");
+        return false;
+    }
+    return options.show;
+}
+
+// After the loop: the status from how it went, the damaged models, the log read back and the video checked.
+int finish_status(const FrameLoop &loop, bool failed, const lcm_file_url_t &log_file)
+{
+    int status = exit_status(loop.counts, failed, loop.source, loop.options);
+    if (damaged_models(loop.model, loop.second)) status = 1;
+    if (lcm_file_url_verify(&log_file, loop.counts.published, "hkf-estimator") != 0) status = 1;
+    if (const std::string problem = loop.video.problem(); !problem.empty()) {
+        std::fprintf(stderr, "hkf-estimator: %s\n", problem.c_str());
+        status = 1;
+    }
+    return status;
+}
+
 }  // namespace
 
 int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const PipelineOptions &options,
                  HeadPoseEstimator *second)
 {
     FrameSource source(options.source, options.fps_for_images);
-    // a file:// URL: never the source or the video, never a named pipe; its log checked at the end
-    const char *keep[] = {options.source.c_str(), options.annotate_path.c_str()};
     lcm_file_url_t log_file;
-    if (lcm_file_url_check(options.lcm_url.c_str(), "output", keep, options.annotate_path.empty() ? 1 : 2,
-                           "hkf-estimator", &log_file) != 0)
-        throw EstimatorError("--lcm-url " + options.lcm_url + " refused");
-    auto lcm_owner = std::make_unique<lcm::LCM>(options.lcm_url);
-    lcm::LCM &lcm = *lcm_owner;
-    if (!lcm.good()) throw EstimatorError("cannot open LCM provider " + options.lcm_url);
+    std::unique_ptr<lcm::LCM> lcm_owner = open_output(options, log_file);
     FilteredPose filtered;
     if (!options.annotate_path.empty() || options.show)
-        lcm_subscribe(lcm.getUnderlyingLCM(), options.filtered_channel.c_str(), on_filtered_pose, &filtered);
+        lcm_subscribe(lcm_owner->getUnderlyingLCM(), options.filtered_channel.c_str(), on_filtered_pose, &filtered);
     FaceTracker tracker(detectors, options.tracker);
     AnnotatedVideo video(options.annotate_path);
-    bool show = options.show;
-    if (show && std::getenv("DISPLAY") == nullptr) {
-        std::fprintf(stderr, "hkf-estimator: --show needs a display (DISPLAY is not set); no window\n");
-        show = false;
-    }
+    const bool show = can_show(options);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     std::signal(SIGHUP, on_signal);  // the terminal closed: stop with the summary and a whole --annotate video
@@ -428,74 +551,15 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
     Capture capture(source, slot, options, drop_old);
     std::fprintf(stderr, "hkf-estimator: %s -> %s on %s (model %s)\n", source.description().c_str(), options.channel.c_str(),
                  options.lcm_url.c_str(), model.spec().name.c_str());
-    std::mutex lcm_mutex;  // LCM is published to from this thread and the second model's; one at a time
-    RunCounts counts;      // publish_failures and second_latency_ms under lcm_mutex
-    std::unique_ptr<SecondModelWorker> second_worker = start_second_model(second, model, options, source, lcm, lcm_mutex, counts);
+    std::mutex lcm_mutex;
+    RunCounts counts;
+    FrameLoop loop{options, model, second, source, *lcm_owner, lcm_mutex, counts, tracker, video, filtered, show, drop_old,
+                   nullptr};
+    loop.second_worker = start_second_model(loop);
     const auto started = std::chrono::steady_clock::now();
     StallWatch stall;
-    int64_t seq = 0;
-    std::string loop_error;  // what stopped the frame loop, if anything did
-    try {
-        for (;;) {
-            bool ended = false;
-            auto frame = slot.take(std::chrono::milliseconds(100), ended);
-            if (ended || stop_requested) break;
-            if (!frame) {
-                stall.no_frame(source);
-                continue;
-            }
-            stall.frame();
-            const int64_t taken = wall_utime();
-            const auto t0 = std::chrono::steady_clock::now();
-            std::optional<Face> face = tracker.track(frame->image, frame->utime);
-            const std::optional<Face> tracked = face;
-            std::optional<HeadPose> estimate = face ? model.estimate(frame->image, *face) : std::nullopt;
-            if (!estimate) face.reset();  // the pose model saw no face there either
-            const HeadPose pose = estimate.value_or(HeadPose{});
-            const double inference = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-
-            const hkf::head_pose_measurement_t m =
-                measurement_message(frame->utime, seq++, model.spec().name, face, pose, inference);
-            {
-                std::lock_guard<std::mutex> lock(lcm_mutex);
-                if (lcm.publish(options.channel, &m) != 0) {
-                    if (counts.publish_failures++ == 0)
-                        std::fprintf(stderr, "hkf-estimator: publishing on %s failed (counted)\n", options.channel.c_str());
-                } else {
-                    ++counts.published;
-                }
-            }
-            if (second_worker && tracked && (!estimate || std::fabs(estimate->yaw) >= options.second_from_yaw)) {
-                // after the first model's message, so that the node has the frame when the second's comes
-                second_worker->submit(SecondModelJob{frame->image, *tracked, m.utime, m.seq, taken}, drop_old);
-            }
-            // from the frame being available (a camera's capture) to its publish
-            counts.latency_ms.push_back(static_cast<double>(wall_utime() - (source.live() ? frame->utime : taken)) / 1000.0);
-            counts.inference_ms.push_back(inference);
-            ++counts.frames;
-            counts.with_face += face.has_value();
-
-            if (!options.annotate_path.empty() || show) {
-                {
-                    std::lock_guard<std::mutex> lock(lcm_mutex);
-                    lcm.handleTimeout(0);  // filtered poses that have arrived
-                }
-                const cv::Mat image = annotated_frame(frame->image, face, pose, filtered);
-                if (!options.annotate_path.empty()) video.write(image, source.fps());
-                if (show) {
-                    cv::imshow("hkf-estimator", image);
-                    if (cv::waitKey(1) == 27) stop_requested = true;
-                }
-            }
-            if (counts.frames % 100 == 0)
-                std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", counts.frames, counts.with_face);
-            if (second_worker && !second_worker->error().empty()) throw EstimatorError(second_worker->error());
-        }
-    } catch (const std::exception &e) {  // the capture thread is stopped and the video closed below, as always
-        loop_error = e.what();
-        stop_requested = true;
-    }
-    if (second_worker) second_worker->stop();  // its frames in hand are measured and published
+    const std::string loop_error = frame_loop(loop, slot, stall);
+    if (loop.second_worker) loop.second_worker->stop();  // its frames in hand are measured and published
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     video.close();  // the annotated video is whole, however the run ends
     const bool capture_hung = !capture.stop();
@@ -503,18 +567,12 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
     if (!loop_error.empty()) std::fprintf(stderr, "hkf-estimator: stopped: %s\n", loop_error.c_str());
     {
         std::lock_guard<std::mutex> lock(lcm_mutex);
-        print_summary(counts, seconds, slot, tracker, stall, second_worker.get(), second, source, capture_hung, video,
-                      options);
+        print_summary(loop, seconds, slot, stall, capture_hung);
     }
-    int status = exit_status(counts, capture.failed() || !loop_error.empty(), source, options);
-    if (damaged_models(model, second)) status = 1;
-    second_worker.reset();  // it publishes on lcm: gone first
-    lcm_owner.reset();      // closes a file:// log, which is then read back
-    if (lcm_file_url_verify(&log_file, counts.published, "hkf-estimator") != 0) status = 1;
-    if (const std::string problem = video.problem(); !problem.empty()) {
-        std::fprintf(stderr, "hkf-estimator: %s\n", problem.c_str());
-        status = 1;
-    }
+    const bool failed = capture.failed() || !loop_error.empty();
+    loop.second_worker.reset();  // it publishes on lcm: gone first
+    lcm_owner.reset();           // closes a file:// log, which is then read back
+    const int status = finish_status(loop, failed, log_file);
     if (capture_hung) {
         std::fprintf(stderr, "hkf-estimator: %s is not responding; leaving it\n", source.description().c_str());
         std::fflush(stdout);
