@@ -35,25 +35,23 @@ HeadPosition position_from_fit(const cv::Vec3d &rvec, const cv::Vec3d &tvec, flo
     return HeadPosition{static_cast<float>(pivot[0]), static_cast<float>(-pivot[1]), static_cast<float>(pivot[2])};
 }
 
-bool fit_position(const std::vector<cv::Point3f> &rigid_canonical, const std::vector<cv::Point2f> &rigid_landmarks,
-                  const cv::Size &frame, const PositionSettings &settings, float front_z_cm, HeadPosition &position,
-                  double *px_per_cm)
+std::optional<PositionFit> fit_position(const std::vector<cv::Point3f> &rigid_canonical,
+                                        const std::vector<cv::Point2f> &rigid_landmarks, const cv::Size &frame,
+                                        const PositionSettings &settings, float front_z_cm)
 {
     const double f = focal_from_fov(frame, settings.fov_deg);
     const cv::Matx33d camera(f, 0, frame.width / 2.0, 0, f, frame.height / 2.0, 0, 0, 1);
     cv::Vec3d rvec, tvec;
     if (rigid_canonical.size() < 4 || rigid_canonical.size() != rigid_landmarks.size() ||
         !cv::solvePnP(rigid_canonical, rigid_landmarks, camera, cv::noArray(), rvec, tvec, false, cv::SOLVEPNP_SQPNP))
-        return false;
-    const HeadPosition p = position_from_fit(rvec, tvec, front_z_cm, settings.pivot_cm);
-    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f)) return false;
-    if (px_per_cm != nullptr) {
-        const double front = position_from_fit(rvec, tvec, front_z_cm, 0.0).z;
-        if (!(std::isfinite(front) && front > 0.0)) return false;
-        *px_per_cm = f / front;
-    }
-    position = p;
-    return true;
+        return std::nullopt;
+    PositionFit fit;
+    fit.position = position_from_fit(rvec, tvec, front_z_cm, settings.pivot_cm);
+    const HeadPosition &p = fit.position;
+    if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && p.z > 0.f)) return std::nullopt;
+    const double front = position_from_fit(rvec, tvec, front_z_cm, 0.0).z;
+    if (std::isfinite(front) && front > 0.0) fit.px_per_cm = f / front;
+    return fit;
 }
 
 HeadPosition position_from_box(const cv::Rect2f &box, const cv::Size &frame, double focal_px, double face_width_cm,

@@ -39,13 +39,19 @@ std::vector<int> rigid_points(const std::vector<cv::Point3f> &canonical);
 // is pivot_cm behind the model's front-most point along its forward (+z) axis.
 HeadPosition position_from_fit(const cv::Vec3d &rvec, const cv::Vec3d &tvec, float front_z_cm, double pivot_cm);
 
+// A fitted position, and the face's scale in the image at its front point (focal / that point's
+// distance, px per cm), which no turn changes; 0 when that point is not in front of the camera.
+struct PositionFit {
+    HeadPosition position;
+    double px_per_cm = 0.0;
+};
+
 // The mesh's position: the rigid canonical points (cm) fitted to their landmarks (px) by
-// solvePnP (SQPNP) with the camera of settings.fov_deg, moved to the pivot. False when the
-// fit fails or gives no finite position in front of the camera. With px_per_cm: the face's
-// scale in the image at its front point (focal / that point's distance), which no turn changes.
-bool fit_position(const std::vector<cv::Point3f> &rigid_canonical, const std::vector<cv::Point2f> &rigid_landmarks,
-                  const cv::Size &frame, const PositionSettings &settings, float front_z_cm, HeadPosition &position,
-                  double *px_per_cm = nullptr);
+// solvePnP (SQPNP) with the camera of settings.fov_deg, moved to the pivot. None when the
+// fit fails or gives no finite position in front of the camera.
+std::optional<PositionFit> fit_position(const std::vector<cv::Point3f> &rigid_canonical,
+                                        const std::vector<cv::Point2f> &rigid_landmarks, const cv::Size &frame,
+                                        const PositionSettings &settings, float front_z_cm);
 
 // The position of a face box on a face face_width_cm wide: the distance from
 // its width, x and y from its centre (the face's front), then moved pivot_cm

@@ -108,8 +108,13 @@ std::optional<HeadPose> MeshPnpModel::estimate(const cv::Mat &frame, const Face 
     // scale sizes the next frame's region
     std::vector<cv::Point2f> rigid_landmarks;
     for (int i : rigid_) rigid_landmarks.push_back(landmarks_[static_cast<size_t>(i)]);
-    pose.has_position = fit_position(rigid_canonical_, rigid_landmarks, frame.size(), position_settings_, front_z_, pose.position,
-                                     &last_px_per_cm_);  // written only when it succeeds: else still 0
+    const std::optional<PositionFit> fit =
+        fit_position(rigid_canonical_, rigid_landmarks, frame.size(), position_settings_, front_z_);
+    pose.has_position = fit.has_value() && fit->px_per_cm > 0.0;  // the scale too: it sizes the next region
+    if (pose.has_position) {
+        pose.position = fit->position;
+        last_px_per_cm_ = fit->px_per_cm;  // written only when it succeeds: else still 0
+    }
     return pose;
 }
 

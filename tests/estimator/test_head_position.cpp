@@ -197,9 +197,9 @@ struct TurnedFace {
         }
         PositionSettings settings;
         settings.pivot_cm = pivot_cm;
-        HeadPosition p;
-        if (!fit_position(rigid, image, camera_frame, settings, front, p)) return cv::Vec3d(1e9, 1e9, 1e9);
-        return cv::Vec3d(p.x, p.y, p.z);
+        const std::optional<PositionFit> fit = fit_position(rigid, image, camera_frame, settings, front);
+        if (!fit) return cv::Vec3d(1e9, 1e9, 1e9);
+        return cv::Vec3d(fit->position.x, fit->position.y, fit->position.z);
     }
 };
 
