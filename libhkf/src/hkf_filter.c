@@ -446,6 +446,32 @@ static HKF_ALWAYS_INLINE void restart_from(hkf_filter_t *f, const hkf_filter_t *
     write_output(f, flags | HKF_FLAG_REACQUIRED, out);
 }
 
+/* R for the loop-closed measurement y with `noise`'s Eq. 8 curves (f's own or a second model's), at
+ * the noise level hkf_set_noise gave f (R = n e(z) / e(mu)) when it gave one. */
+static HKF_ALWAYS_INLINE void measurement_noise(const hkf_filter_t *restrict f, const hkf_filter_t *noise,
+                                                const hkf_real_t y[restrict HKF_LANES], hkf_real_t r[restrict HKF_LANES])
+{
+    observation_noise_lanes(noise, y, r);                                 /* Eq. 8 */
+    if (calibrated(f)) {
+        calibrated_noise_lanes(f, r);                                     /* R = n e(z) / e(mu) */
+    }
+}
+
+/* Innovation gate: a measurement whose normalised innovation sqrt(y' S^-1 y) exceeds gate_sigma is
+ * missing; after max_gate_rejections in a row, the track restarts from it. */
+static HKF_ALWAYS_INLINE void gate_rejects(hkf_filter_t *f, const hkf_filter_t *noise, const hkf_real_t z[restrict 3],
+                                           hkf_real_t dt, unsigned flags, hkf_output_t *restrict out)
+{
+    hkf_real_t lanes[HKF_LANES];
+    if (f->gate_rejections >= HKF_SETTINGS(f)->max_gate_rejections) {
+        restart_from(f, noise, z, lanes, HKF_FLAG_GATED, out);
+    } else {
+        count_missing(f, dt);
+        f->gate_rejections += 1u;
+        write_output(f, HKF_FLAG_GATED | flags, out);
+    }
+}
+
 /* hkf_update's step for a measurement z whose Eq. 8 curves (and r_const,
  * r_min, r_max) are those of `noise`: f itself, or a second model's prepared
  * curves (hkf_update_pair when only the second model measured). z is checked. */
@@ -456,20 +482,14 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
     hkf_real_t held_p00[HKF_LANES];        /* the variances before the prediction: HOLD's prior */
     hkf_divisor_t inv_s[HKF_LANES];
     unsigned flags = 0;
-    int a, result;
-    if (f->status == HKF_STATUS_UNINITIALIZED || f->status == HKF_STATUS_LOST) {
-        /* the first measurement (dt ignored), or the first after LOST */
-        if (f->status == HKF_STATUS_LOST && (result = check_dt(f, dt)) != HKF_OK) {
-            return result;
-        }
-        restart_from(f, noise, z, y, 0, out);
-        return HKF_OK;
-    }
-    result = check_dt(f, dt);
+    int a, result = f->status == HKF_STATUS_UNINITIALIZED ? HKF_OK : check_dt(f, dt);
     if (result != HKF_OK) {
         return result;
     }
-
+    if (f->status == HKF_STATUS_UNINITIALIZED || f->status == HKF_STATUS_LOST) {
+        restart_from(f, noise, z, y, 0, out); /* the first measurement (dt ignored), or the first after LOST */
+        return HKF_OK;
+    }
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         held_p00[a] = f->p00[a];
     }
@@ -477,25 +497,12 @@ static HKF_ALWAYS_INLINE int update_with(hkf_filter_t *f, const hkf_filter_t *no
     if (loop_closure(f, z, y)) {
         flags |= HKF_FLAG_LOOP_CLOSURE;
     }
-    observation_noise_lanes(noise, y, r);                                 /* Eq. 8 */
-    if (calibrated(f)) {
-        calibrated_noise_lanes(f, r);                                     /* R = n e(z) / e(mu) */
-    }
+    measurement_noise(f, noise, y, r);
     innovation(f, y, r, inv_s);
-
-    /* Innovation gate: reject when the normalised innovation sqrt(y' S^-1 y)
-     * exceeds gate_sigma; after max_gate_rejections in a row, believe it. */
     if (gated(f, y, inv_s)) {
-        if (f->gate_rejections >= HKF_SETTINGS(f)->max_gate_rejections) {
-            restart_from(f, noise, z, y, HKF_FLAG_GATED, out);
-        } else {
-            count_missing(f, dt);
-            f->gate_rejections += 1u;
-            write_output(f, HKF_FLAG_GATED | flags, out);
-        }
+        gate_rejects(f, noise, z, dt, flags, out);
         return HKF_OK;
     }
-
     if (two_models(f)) {
         two_models_axes(f, held_p00, y, r, dt);                           /* Eq. 6-7 by HOLD and MOVE */
     } else {
@@ -535,14 +542,44 @@ static int prepare_second(hkf_filter_t *noise2, const hkf_filter_t *f, const hkf
     return prepare_settings(noise2, s);
 }
 
+/* The second model's measurement z2 after the first's step (whose flags are first_flags): a sequential
+ * update, Eq. 9 against the same center and Eq. 8 with its own curves (noise2); out->r the R of both. */
+static void update_second(hkf_filter_t *restrict f, const hkf_filter_t *noise2, const hkf_real_t z2[restrict 3],
+                          unsigned first_flags, hkf_output_t *restrict out)
+{
+    hkf_real_t y[HKF_LANES], r[HKF_LANES], r1[HKF_LANES];
+    hkf_divisor_t inv_s[HKF_LANES];
+    int a;
+    if (loop_closure(f, z2, y)) {
+        first_flags |= HKF_FLAG_LOOP_CLOSURE;
+    }
+    measurement_noise(f, noise2, y, r); /* its Eq. 8 at the first model's measured noise level */
+    innovation(f, y, r, inv_s);
+    if (gated(f, y, inv_s)) { /* the first's outcome stands */
+        write_output(f, first_flags | HKF_FLAG_GATED, out);
+        return;
+    }
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        r1[a] = f->r[a];
+    }
+    correct_axes(f, y, r, inv_s);
+    if (!(first_flags & HKF_FLAG_GATED)) {
+        /* R of both, 1 / (1/R1 + 1/R2), as low (high / (low + high)): the product stays within
+         * Q16.16 and the quotient, >= 1/2, keeps its digits */
+        for (a = 0; a < HKF_LOOP_LANES; ++a) {
+            const hkf_real_t low = r1[a] < r[a] ? r1[a] : r[a], high = r1[a] < r[a] ? r[a] : r1[a];
+            f->r[a] = hkf_mul(low, hkf_divide(high, hkf_divisor(hkf_add(low, high))));
+        }
+    }
+    write_output(f, first_flags, out);
+}
+
 int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], const hkf_real_t z2[restrict 3],
                     const hkf_model_noise_t *second, hkf_real_t dt, hkf_output_t *restrict out)
 {
     hkf_filter_t noise2; /* the second model's Eq. 8 curves, prepared as hkf_init prepares a filter's */
-    hkf_real_t y[HKF_LANES], r[HKF_LANES], r1[HKF_LANES];
-    hkf_divisor_t inv_s[HKF_LANES];
     hkf_output_t first;
-    int a, result;
+    int result;
     if (f == 0 || (z == 0 && z2 == 0) || second == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
@@ -560,38 +597,12 @@ int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], co
     if (z == 0) { /* only the second: its measurement with its own R, as hkf_update takes one */
         return update_with(f, &noise2, z2, dt, out);
     }
-    /* predict (Eq. 1-3) and the first measurement (Eq. 4-9), or the track's start from it */
+    /* predict (Eq. 1-3) and the first measurement (Eq. 4-9), or the track's start from it; then the second */
     result = hkf_update(f, z, dt, &first);
-    if (result != HKF_OK) {
-        return result;
+    if (result == HKF_OK) {
+        update_second(f, &noise2, z2, first.flags, out);
     }
-    /* the second as a sequential update: Eq. 9 against the same center, Eq. 8 with its own curves */
-    if (loop_closure(f, z2, y)) {
-        first.flags |= HKF_FLAG_LOOP_CLOSURE;
-    }
-    observation_noise_lanes(&noise2, y, r);
-    if (calibrated(f)) {
-        calibrated_noise_lanes(f, r); /* its Eq. 8 scaled by the first model's measured noise */
-    }
-    innovation(f, y, r, inv_s);
-    if (gated(f, y, inv_s)) { /* the first's outcome stands */
-        write_output(f, first.flags | HKF_FLAG_GATED, out);
-        return HKF_OK;
-    }
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        r1[a] = f->r[a];
-    }
-    correct_axes(f, y, r, inv_s);
-    if (!(first.flags & HKF_FLAG_GATED)) {
-        /* R of both, 1 / (1/R1 + 1/R2), as low (high / (low + high)): the product stays within
-         * Q16.16 and the quotient, >= 1/2, keeps its digits */
-        for (a = 0; a < HKF_LOOP_LANES; ++a) {
-            const hkf_real_t low = r1[a] < r[a] ? r1[a] : r[a], high = r1[a] < r[a] ? r[a] : r1[a];
-            f->r[a] = hkf_mul(low, hkf_divide(high, hkf_divisor(hkf_add(low, high))));
-        }
-    }
-    write_output(f, first.flags, out);
-    return HKF_OK;
+    return result;
 }
 
 int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3])

@@ -5,29 +5,37 @@
 #ifndef HKF_MOTION_H
 #define HKF_MOTION_H
 
+#include "hkf/hkf_position.h"
 #include "hkf_internal.h"
 #include "hkf_math.h"
 #include "hkf_noise_estimate.h"
 
-/* The detector's weights for one step of dt (hkf_motion_prepare: from the settings' fields, read in
- * place - the Cortex-M0 build's code is then what it was before the position shared it). */
+/* The detector's weights for one step of dt, and the settings its walk reads. */
 typedef struct {
     hkf_real_t alpha;          /* the innovation's low-pass weight, dt / (dt + q_boost_time) */
     hkf_real_t spread;         /* (2 - alpha) / alpha = 1 + 2 q_boost_time / dt */
     hkf_real_t damping;        /* the rate's decay weight while still; 0: never */
     hkf_divisor_t still;       /* 1 / still_threshold (1 when that is 0) */
+    hkf_real_t q_boost, threshold, dt; /* the settings' q_boost and motion_threshold; the step */
 } hkf_motion_step_t;
 
-static HKF_ALWAYS_INLINE hkf_motion_step_t hkf_motion_prepare(hkf_real_t dt, const hkf_real_t *q_boost_time,
-                                                              const hkf_real_t *rate_damping_time,
-                                                              const hkf_real_t *still_threshold)
+/* One lane's innovation this step: y, its R and 1 / S. */
+typedef struct {
+    hkf_real_t y, r;
+    hkf_divisor_t inv_s;
+} hkf_motion_innovation_t;
+
+static HKF_ALWAYS_INLINE hkf_motion_step_t hkf_motion_prepare(hkf_real_t dt, const hkf_position_settings_t *s)
 {
     const hkf_real_t one = HKF_REAL(1.0);
     hkf_motion_step_t c;
-    c.alpha = hkf_step_weight(dt, *q_boost_time);
-    c.spread = hkf_add(one, hkf_divide(hkf_add(*q_boost_time, *q_boost_time), hkf_divisor(dt)));
-    c.damping = *rate_damping_time > 0 && *still_threshold > 0 ? hkf_step_weight(dt, *rate_damping_time) : 0;
-    c.still = hkf_divisor(*still_threshold > 0 ? *still_threshold : one);
+    c.alpha = hkf_step_weight(dt, s->q_boost_time);
+    c.spread = hkf_add(one, hkf_divide(hkf_add(s->q_boost_time, s->q_boost_time), hkf_divisor(dt)));
+    c.damping = s->rate_damping_time > 0 && s->still_threshold > 0 ? hkf_step_weight(dt, s->rate_damping_time) : 0;
+    c.still = hkf_divisor(s->still_threshold > 0 ? s->still_threshold : one);
+    c.q_boost = s->q_boost;
+    c.threshold = s->motion_threshold;
+    c.dt = dt;
     return c;
 }
 
@@ -49,9 +57,9 @@ static inline hkf_real_t hkf_motion_walk(hkf_real_t q_boost, hkf_real_t threshol
  * m += alpha (y - m) low-passes the innovation y; while the lane is still y
  * is white with variance S and m has variance S alpha / (2 - alpha), so
  * m^2 (2 - alpha) / (alpha S) is the evidence of a motion beyond chance.
- * Beyond the threshold the lane takes a random walk (walk: the caller's
- * hkf_motion_walk for its lane's noise and settings; owner and lane passed
- * on), added to the predicted variance p00 alone (the caller recomputes S):
+ * Beyond the threshold the lane takes a random walk (hkf_motion_walk for the
+ * lane's measured noise n), added to the predicted variance p00 alone (the
+ * caller recomputes S):
  * the filter follows the measurement while the head moves, and the rate,
  * whose variance is not raised, is not thrown past a stop (boosting the
  * acceleration's noise instead overshot fast stops by 7-8 % of the move on
@@ -62,23 +70,21 @@ static inline hkf_real_t hkf_motion_walk(hkf_real_t q_boost, hkf_real_t threshol
  * with time constant rate_damping_time up to half of it and less and less
  * above, so the filter stops with the head. Both are continuous in the
  * evidence: no decision flips on rounding. */
-static HKF_ALWAYS_INLINE void hkf_motion_lane(const hkf_motion_step_t *c, const void *owner, int lane,
-                                              hkf_real_t (*walk)(const void *owner, int lane, hkf_real_t evidence),
-                                              hkf_real_t y, hkf_real_t r, hkf_divisor_t inv_s, hkf_real_t dt,
+static HKF_ALWAYS_INLINE void hkf_motion_lane(const hkf_motion_step_t *c, hkf_real_t n, hkf_motion_innovation_t in,
                                               hkf_real_t *restrict m, hkf_real_t *restrict p00, hkf_real_t *restrict rate)
 {
-    const hkf_real_t one = HKF_REAL(1.0);
+    const hkf_real_t one = HKF_REAL(1.0), r = in.r, dt = c->dt;
     const hkf_real_t before = *m;
-    const hkf_real_t now = hkf_add(before, hkf_mul(c->alpha, hkf_sub(y, before)));
-    const hkf_real_t evidence = hkf_divide(hkf_mul(hkf_mul(now, now), c->spread), inv_s);
-    const hkf_real_t confirmed = hkf_divide(hkf_mul(hkf_mul(before, before), c->spread), inv_s);
-    const hkf_real_t fresh = hkf_mul(walk(owner, lane, evidence), dt);
+    const hkf_real_t now = hkf_add(before, hkf_mul(c->alpha, hkf_sub(in.y, before)));
+    const hkf_real_t evidence = hkf_divide(hkf_mul(hkf_mul(now, now), c->spread), in.inv_s);
+    const hkf_real_t confirmed = hkf_divide(hkf_mul(hkf_mul(before, before), c->spread), in.inv_s);
+    const hkf_real_t fresh = hkf_mul(hkf_motion_walk(c->q_boost, c->threshold, n, evidence), dt);
     /* calm: 1 up to half still_threshold, then down to 0 at it */
     const hkf_real_t ramp = hkf_sub(HKF_REAL(2.0), hkf_divide(hkf_add(evidence, evidence), c->still));
     const hkf_real_t below_one = ramp < one ? ramp : one;
     const hkf_real_t calm = below_one > 0 ? below_one : 0;
     *m = now;
-    *p00 = hkf_add(hkf_add(*p00, hkf_mul(walk(owner, lane, confirmed), dt)), fresh < r ? fresh : r);
+    *p00 = hkf_add(hkf_add(*p00, hkf_mul(hkf_motion_walk(c->q_boost, c->threshold, n, confirmed), dt)), fresh < r ? fresh : r);
     *rate = hkf_sub(*rate, hkf_mul(hkf_mul(c->damping, calm), *rate));
 }
 

@@ -35,12 +35,10 @@ const hkf_position_settings_t hkf_position_default_settings = {
 
 static int in_range(hkf_real_t x, hkf_real_t low, hkf_real_t high) { return hkf_is_finite(x) && x >= low && x <= high; }
 
-int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s)
+/* R, q, the start and the longest step: HKF_OK or the first bad one's error. */
+static int check_noise(const hkf_position_settings_t *s)
 {
     int a;
-    if (f == NULL || s == NULL) {
-        return HKF_ERROR_NULL_ARGUMENT;
-    }
     for (a = 0; a < 3; ++a) {
         if (!in_range(s->process_noise[a], HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_PROCESS_NOISE))) {
             return HKF_ERROR_SETTING_PROCESS_NOISE;
@@ -58,6 +56,12 @@ int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s
     if (!in_range(s->noise_floor, HKF_REAL_FROM(HKF_MIN_VARIANCE), HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
         return HKF_ERROR_SETTING_R_RANGE;
     }
+    return HKF_OK;
+}
+
+/* The calibration, the detector and the gate: HKF_OK or the first bad one's error. */
+static int check_adaptation(const hkf_position_settings_t *s)
+{
     if (!in_range(s->q_boost, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_Q_BOOST)) ||
         !in_range(s->q_boost_time, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_TIME))) {
         return HKF_ERROR_SETTING_MOTION;
@@ -72,6 +76,22 @@ int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s
     if (!in_range(s->max_speed, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_SPEED)) ||
         (s->max_speed > 0 && s->max_gate_rejections == 0u)) {
         return HKF_ERROR_SETTING_GATE;
+    }
+    return HKF_OK;
+}
+
+int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s)
+{
+    int result;
+    if (f == NULL || s == NULL) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = check_noise(s);
+    if (result == HKF_OK) {
+        result = check_adaptation(s);
+    }
+    if (result != HKF_OK) {
+        return result;
     }
     f->settings = *s;
     hkf_position_reset(f);
@@ -150,12 +170,6 @@ static hkf_real_t process_noise(const hkf_position_filter_t *f, int a)
 }
 
 /* The axis's random walk per s for a detector evidence (hkf_motion.h); f: the filter. */
-static hkf_real_t motion_walk(const void *f, int a, hkf_real_t evidence)
-{
-    const hkf_position_filter_t *filter = (const hkf_position_filter_t *)f;
-    return hkf_motion_walk(filter->settings.q_boost, filter->settings.motion_threshold, filter->noise[a], evidence);
-}
-
 /* R of an axis for a measurement of scale 1: the setting, or calibrated, the measured n */
 static hkf_real_t measurement_noise(const hkf_position_filter_t *f, int a)
 {
@@ -313,10 +327,44 @@ static int check_measurement(const hkf_real_t z[3], hkf_real_t r_scale, hkf_real
     return HKF_OK;
 }
 
+/* A measurement the gate refused: the prediction stands, or after max_gate_rejections in a row (they
+ * agree: the head is there) the track restarts at it. */
+static void refused(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_position_output_t *out)
+{
+    if (f->gate_rejections >= f->settings.max_gate_rejections) {
+        start_track(f, z, r_scale, out);
+        return;
+    }
+    ++f->gate_rejections;
+    f->history = 0; /* a refused measurement breaks the second difference */
+    keep_in_range(f);
+    write_output(f, HKF_STATUS_COASTING, HKF_FLAG_GATED, out);
+}
+
+/* Eq. 4-7 per axis for z with R = r_scale x the axis's R; calibrated, the motion detector first. */
+static void correct_axes(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
+{
+    const hkf_position_settings_t *s = &f->settings;
+    const hkf_motion_step_t motion = hkf_motion_prepare(dt, s);
+    const int detect = calibrated(f) && (s->q_boost > 0 || s->rate_damping_time > 0);
+    int a;
+    for (a = 0; a < 3; ++a) {
+        hkf_motion_innovation_t in;
+        in.r = hkf_mul(measurement_noise(f, a), r_scale);
+        in.y = hkf_sub(z[a], f->x[a]);                          /* Eq. 4 */
+        in.inv_s = hkf_divisor(hkf_add(f->p00[a], in.r));       /* Eq. 5 */
+        if (detect) {
+            hkf_motion_lane(&motion, f->noise[a], in, &f->motion[a], &f->p00[a], &f->v[a]);
+            in.inv_s = hkf_divisor(hkf_add(f->p00[a], in.r));
+        }
+        set_axis(f, a, hkf_kalman_correct(axis_of(f, a), in.y, in.r, in.inv_s)); /* Eq. 6-7 */
+    }
+}
+
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out)
 {
-    int a, result;
+    int result;
     if (f == NULL || z == NULL) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
@@ -333,32 +381,11 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
     }
     predict_axes(f, dt);
     if (gated(f, z, r_scale, dt)) {
-        if (f->gate_rejections >= f->settings.max_gate_rejections) { /* they agree: the head is there */
-            start_track(f, z, r_scale, out);
-            return HKF_OK;
-        }
-        ++f->gate_rejections;
-        f->history = 0; /* a refused measurement breaks the second difference */
-        keep_in_range(f);
-        write_output(f, HKF_STATUS_COASTING, HKF_FLAG_GATED, out);
+        refused(f, z, r_scale, out);
         return HKF_OK;
     }
     f->gate_rejections = 0u;
-    {
-        const hkf_position_settings_t *s = &f->settings;
-        const hkf_motion_step_t motion = hkf_motion_prepare(dt, &s->q_boost_time, &s->rate_damping_time, &s->still_threshold);
-        const int detect = calibrated(f) && (s->q_boost > 0 || s->rate_damping_time > 0);
-        for (a = 0; a < 3; ++a) {
-            const hkf_real_t r = hkf_mul(measurement_noise(f, a), r_scale);
-            const hkf_real_t y = hkf_sub(z[a], f->x[a]);                      /* Eq. 4 */
-            hkf_divisor_t inv_s = hkf_divisor(hkf_add(f->p00[a], r));         /* Eq. 5 */
-            if (detect) {
-                hkf_motion_lane(&motion, f, a, motion_walk, y, r, inv_s, dt, &f->motion[a], &f->p00[a], &f->v[a]);
-                inv_s = hkf_divisor(hkf_add(f->p00[a], r));
-            }
-            set_axis(f, a, hkf_kalman_correct(axis_of(f, a), y, r, inv_s)); /* Eq. 6-7 */
-        }
-    }
+    correct_axes(f, z, r_scale, dt);
     if (calibrated(f)) {
         noise_estimate_update(f, z, dt);
     }
