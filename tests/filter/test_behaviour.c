@@ -463,6 +463,35 @@ static void test_pair_of_equals_is_half_r(void **state)
     }
 }
 
+/* The second model's R is clamped to its own [r_min, r_max]: with both at 1000 its R is 1000 whatever its
+ * curves, so the pair is (nearly) the first measurement alone, and the R of both R1 1000 / (R1 + 1000). */
+static void test_pair_second_clamp_is_its_own(void **state)
+{
+    hkf_settings_t s = plain_settings(), second = plain_settings();
+    hkf_filter_t fp, fu;
+    hkf_output_t op, ou;
+    int i, a;
+    (void)state;
+    second.r_min = R(1000);
+    second.r_max = R(1000);
+    assert_int_equal(hkf_init(&fp, &s), HKF_OK);
+    assert_int_equal(hkf_init(&fu, &s), HKF_OK);
+    for (i = 0; i < 30; ++i) {
+        hkf_real_t z[3], z2[3];
+        set3(z, 2.0 * sin(0.2 * i), 0.5 * i, -1.0);
+        set3(z2, 2.0 * sin(0.2 * i) + 5.0, 0.5 * i - 5.0, 4.0); /* 5 deg off: it would pull a pair of equals far */
+        assert_int_equal(update_pair(&fp, z, z2, &second, R(0.033), &op), HKF_OK);
+        assert_int_equal(hkf_update(&fu, z, R(0.033), &ou), HKF_OK);
+        if (i == 0) {
+            continue; /* the track's start: then the second updates it */
+        }
+        for (a = 0; a < HKF_AXES; ++a) {
+            assert_near(op.angle[a], D(ou.angle[a]), 0.05);
+            assert_near(op.r[a], D(ou.r[a]) * 1000.0 / (D(ou.r[a]) + 1000.0), 1e-2);
+        }
+    }
+}
+
 /* A bad second model or measurement is an error that leaves the filter as it was. */
 static void test_pair_bad_input_changes_nothing(void **state)
 {
@@ -617,6 +646,7 @@ int main(void)
         cmocka_unit_test(test_two_models_still_and_moving),
         cmocka_unit_test(test_pair_start_weighs_by_each_r),
         cmocka_unit_test(test_pair_of_equals_is_half_r),
+        cmocka_unit_test(test_pair_second_clamp_is_its_own),
         cmocka_unit_test(test_pair_bad_input_changes_nothing),
         cmocka_unit_test(test_pair_with_one_model_missing),
         cmocka_unit_test(test_pair_with_the_gate),

@@ -326,6 +326,33 @@ static void test_history_and_reset(void **state)
     assert_int_equal(hkf_calibration_get_noise(&t.c, NULL), HKF_ERROR_NULL_ARGUMENT);
 }
 
+/* Yaw's frame-to-frame step is taken the short way round: a still head at the +-180 seam (its measurements
+ * cross it) reads the same noise as one facing the camera. */
+static void test_noise_at_the_yaw_seam(void **state)
+{
+    const hkf_settings_t s = calibrated_settings();
+    calibrated_t seam, front;
+    hkf_output_t out;
+    hkf_real_t z[3], n_seam[3], n_front[3];
+    sim_rng_t rng;
+    int i;
+    (void)state;
+    calibrated_init(&seam, &s);
+    calibrated_init(&front, &s);
+    sim_rng_seed(&rng, 8u);
+    for (i = 0; i < 300; ++i) {
+        const double noise = 0.2 * sim_rng_gaussian(&rng);
+        set3(z, 0, 180.0 + noise, 0); /* 179.8 .. 180.2: the measurements wrap to -180 .. -179.8 and back */
+        calibrated_update(&seam, z, R(frame_s), &out);
+        set3(z, 0, noise, 0);
+        calibrated_update(&front, z, R(frame_s), &out);
+    }
+    assert_int_equal(hkf_calibration_get_noise(&seam.c, n_seam), HKF_OK);
+    assert_int_equal(hkf_calibration_get_noise(&front.c, n_front), HKF_OK);
+    print_message("yaw noise at the seam %.4f, facing the camera %.4f deg^2\n", D(n_seam[1]), D(n_front[1]));
+    assert_near_at(D(n_seam[1]), D(n_front[1]), 0.2 * D(n_front[1]) + 1e-3, "n at the seam", __FILE__, __LINE__);
+}
+
 /* Out-of-range calibration and motion settings are refused by name. */
 static void test_calibration_settings_checked(void **state)
 {
@@ -368,6 +395,7 @@ int main(void)
         cmocka_unit_test(test_off_is_the_paper),
         cmocka_unit_test(test_set_noise),
         cmocka_unit_test(test_history_and_reset),
+        cmocka_unit_test(test_noise_at_the_yaw_seam),
         cmocka_unit_test(test_calibration_settings_checked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -246,6 +246,34 @@ static void test_still_stiller_lean_sooner(void **state)
     assert_true(overshoot[0] < 0.5);
 }
 
+/* The detector's two walks: a one-frame blip (3 cm in z against 0.1 cm of noise) moves the output at
+ * most about half way (this frame's own walk is capped at R) and is gone two frames later; the same
+ * 3 cm held is followed within a few frames (the walk the previous frame confirmed counts in full). */
+static void test_blip_capped_step_followed(void **state)
+{
+    hkf_position_filter_t blip = started_filter(0.0, 0.0, 60.0), held = started_filter(0.0, 0.0, 60.0);
+    hkf_position_output_t ob, oh;
+    double at_blip = 0.0, blip_after = 0.0, held_after = 0.0;
+    unsigned seed = 11;
+    int i;
+    (void)state;
+    for (i = 1; i <= 90; ++i) {
+        const double noise = uniform_noise(&seed, 0.1);
+        const hkf_real_t zb[3] = {R(0.0), R(0.0), R(60.0 + noise + (i == 75 ? 3.0 : 0.0))};
+        const hkf_real_t zh[3] = {R(0.0), R(0.0), R(60.0 + noise + (i >= 75 ? 3.0 : 0.0))};
+        assert_int_equal(hkf_position_update(&blip, zb, R(1.0), R(frame_s), &ob), HKF_OK);
+        assert_int_equal(hkf_position_update(&held, zh, R(1.0), R(frame_s), &oh), HKF_OK);
+        at_blip = i == 75 ? D(ob.position[2]) - 60.0 : at_blip;
+        blip_after = i >= 77 ? fmax(blip_after, fabs(D(ob.position[2]) - 60.0)) : blip_after;
+        held_after = i == 79 ? D(oh.position[2]) - 60.0 : held_after;
+    }
+    print_message("position: a 3 cm blip moves it %.2f cm, %.2f cm two frames on; 3 cm held: %.2f cm after 4 frames\n",
+                  at_blip, blip_after, held_after);
+    assert_true(at_blip < 2.0);
+    assert_true(blip_after < 0.5);
+    assert_true(held_after > 2.5);
+}
+
 /* A measurement with a larger R scale moves the output less. */
 static void test_coarse_measurement_trusted_less(void **state)
 {
@@ -485,6 +513,7 @@ int main(void)
         cmocka_unit_test(test_noise_measured),
         cmocka_unit_test(test_calibrated_step_matches_equations),
         cmocka_unit_test(test_still_stiller_lean_sooner),
+        cmocka_unit_test(test_blip_capped_step_followed),
         cmocka_unit_test(test_coarse_measurement_trusted_less),
         cmocka_unit_test(test_center_recenter_reset),
         cmocka_unit_test(test_gap_restarts),
