@@ -73,7 +73,7 @@ static inline hkf_real_t hkf_motion_walk(hkf_real_t q_boost, hkf_real_t threshol
 static HKF_ALWAYS_INLINE void hkf_motion_lane(const hkf_motion_step_t *c, hkf_real_t n, hkf_motion_innovation_t in,
                                               hkf_real_t *restrict m, hkf_real_t *restrict p00, hkf_real_t *restrict rate)
 {
-    const hkf_real_t one = HKF_REAL(1.0), r = in.r, dt = c->dt;
+    const hkf_real_t one = HKF_REAL(1.0), dt = c->dt;
     const hkf_real_t before = *m;
     const hkf_real_t now = hkf_add(before, hkf_mul(c->alpha, hkf_sub(in.y, before)));
     const hkf_real_t evidence = hkf_divide(hkf_mul(hkf_mul(now, now), c->spread), in.inv_s);
@@ -84,7 +84,8 @@ static HKF_ALWAYS_INLINE void hkf_motion_lane(const hkf_motion_step_t *c, hkf_re
     const hkf_real_t below_one = ramp < one ? ramp : one;
     const hkf_real_t calm = below_one > 0 ? below_one : 0;
     *m = now;
-    *p00 = hkf_add(hkf_add(*p00, hkf_mul(hkf_motion_walk(c->q_boost, c->threshold, n, confirmed), dt)), fresh < r ? fresh : r);
+    *p00 = hkf_add(hkf_add(*p00, hkf_mul(hkf_motion_walk(c->q_boost, c->threshold, n, confirmed), dt)),
+                   fresh < in.r ? fresh : in.r);
     *rate = hkf_sub(*rate, hkf_mul(hkf_mul(c->damping, calm), *rate));
 }
 
