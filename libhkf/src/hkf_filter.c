@@ -672,6 +672,11 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
     return HKF_OK;
 }
 
+hkf_status_t hkf_get_status(const hkf_filter_t *f)
+{
+    return f == 0 ? HKF_STATUS_UNINITIALIZED : f->status;
+}
+
 int hkf_get_output(const hkf_filter_t *f, hkf_output_t *out)
 {
     if (f == 0 || out == 0) {

@@ -80,6 +80,11 @@ static int check_adaptation(const hkf_position_settings_t *s)
     return HKF_OK;
 }
 
+int hkf_position_started(const hkf_position_filter_t *f)
+{
+    return f != NULL && f->started;
+}
+
 int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s)
 {
     int result;

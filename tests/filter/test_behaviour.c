@@ -492,6 +492,25 @@ static void test_pair_second_clamp_is_its_own(void **state)
     }
 }
 
+/* hkf_get_status follows the track: none, a measurement, a frame without one; and NULL has none. */
+static void test_status_accessor(void **state)
+{
+    const hkf_settings_t s = plain_settings();
+    hkf_filter_t f;
+    hkf_real_t z[3];
+    (void)state;
+    assert_int_equal(hkf_get_status(NULL), HKF_STATUS_UNINITIALIZED);
+    assert_int_equal(hkf_init(&f, &s), HKF_OK);
+    assert_int_equal(hkf_get_status(&f), HKF_STATUS_UNINITIALIZED);
+    set3(z, 1, 2, 3);
+    assert_int_equal(hkf_update(&f, z, R(0.033), NULL), HKF_OK);
+    assert_int_equal(hkf_get_status(&f), HKF_STATUS_TRACKING);
+    assert_int_equal(hkf_predict(&f, R(0.033), NULL), HKF_OK);
+    assert_int_equal(hkf_get_status(&f), HKF_STATUS_COASTING);
+    hkf_reset(&f);
+    assert_int_equal(hkf_get_status(&f), HKF_STATUS_UNINITIALIZED);
+}
+
 /* A bad second model or measurement is an error that leaves the filter as it was. */
 static void test_pair_bad_input_changes_nothing(void **state)
 {
@@ -647,6 +666,7 @@ int main(void)
         cmocka_unit_test(test_pair_start_weighs_by_each_r),
         cmocka_unit_test(test_pair_of_equals_is_half_r),
         cmocka_unit_test(test_pair_second_clamp_is_its_own),
+        cmocka_unit_test(test_status_accessor),
         cmocka_unit_test(test_pair_bad_input_changes_nothing),
         cmocka_unit_test(test_pair_with_one_model_missing),
         cmocka_unit_test(test_pair_with_the_gate),

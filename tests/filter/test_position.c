@@ -275,6 +275,21 @@ static void test_blip_capped_step_followed(void **state)
     assert_true(held_after > 4.0);
 }
 
+/* hkf_position_started: after the first measurement, until a reset; never for NULL. */
+static void test_started_accessor(void **state)
+{
+    hkf_position_filter_t f;
+    const hkf_real_t z[3] = {R(1.0), R(2.0), R(60.0)};
+    (void)state;
+    assert_int_equal(hkf_position_started(NULL), 0);
+    assert_int_equal(hkf_position_init(&f, &hkf_position_default_settings), HKF_OK);
+    assert_int_equal(hkf_position_started(&f), 0);
+    assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), NULL), HKF_OK);
+    assert_int_equal(hkf_position_started(&f), 1);
+    hkf_position_reset(&f);
+    assert_int_equal(hkf_position_started(&f), 0);
+}
+
 /* A measurement with a larger R scale moves the output less. */
 static void test_coarse_measurement_trusted_less(void **state)
 {
@@ -515,6 +530,7 @@ int main(void)
         cmocka_unit_test(test_calibrated_step_matches_equations),
         cmocka_unit_test(test_still_stiller_lean_sooner),
         cmocka_unit_test(test_blip_capped_step_followed),
+        cmocka_unit_test(test_started_accessor),
         cmocka_unit_test(test_coarse_measurement_trusted_less),
         cmocka_unit_test(test_center_recenter_reset),
         cmocka_unit_test(test_gap_restarts),

@@ -158,7 +158,7 @@ static void update_position(filter_node_t *node, const float xyz[3], int64_t uti
     const hkf_real_t z[3] = {xyz[0], xyz[1], xyz[2]};
     hkf_position_output_t out;
     /* the first position's dt is unused; a gap beyond max_dt restarts the track in hkf_position_update */
-    const double dt = node->position.started ? ((double)utime - (double)node->position_utime) * 1e-6 : 0.02;
+    const double dt = hkf_position_started(&node->position) ? ((double)utime - (double)node->position_utime) * 1e-6 : 0.02;
     if (dt > 0.0 && hkf_position_update(&node->position, z, (hkf_real_t)r_scale, (hkf_real_t)dt, &out) == HKF_OK) {
         node->position_utime = utime;
         node->counts.positions_gated += (out.flags & HKF_FLAG_GATED) != 0;
@@ -266,7 +266,7 @@ static int take_time(filter_node_t *node, const hkf_head_pose_measurement_t *m, 
     }
     node->have_time = 1;
     node->last_utime = m->utime;
-    if (node->filter.status != HKF_STATUS_UNINITIALIZED && *dt > node->config->settings.max_dt) {
+    if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED && *dt > node->config->settings.max_dt) {
         restart_track(node); /* a gap longer than max_dt: the track starts again from this measurement */
     }
     return 1;
@@ -277,7 +277,7 @@ static int coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_
 {
     hkf_output_t out;
     ++node->counts.without_face;
-    if (node->filter.status == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
+    if (hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
         strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model) == HKF_OK) {
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
@@ -299,7 +299,7 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
     hkf_output_t out;
     int known;
     if (strncmp(m->model ? m->model : "", node->model, sizeof node->model) != 0) {
-        if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
+        if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
             ++node->counts.restarts;
         }
         if (setup_filter(node, m->model ? m->model : "") != HKF_OK) {
@@ -362,7 +362,7 @@ static void resync_clock(filter_node_t *node)
 {
     ++node->counts.clock_resyncs;
     node->have_time = 0;
-    if (node->filter.status != HKF_STATUS_UNINITIALIZED) {
+    if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
         restart_track(node);
     } else {
         second_model_forget_frames(&node->second);
@@ -500,7 +500,7 @@ static int64_t next_lost_after_us(const filter_node_t *node)
 int64_t filter_node_silence_due(const filter_node_t *node)
 {
     const int64_t after = next_lost_after_us(node);
-    if (!node->have_time || node->filter.status == HKF_STATUS_UNINITIALIZED ||
+    if (!node->have_time || hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED ||
         node->last_arrival_utime > INT64_MAX - after) {
         return 0;
     }

@@ -310,6 +310,9 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
  * it. HKF_ERROR_NON_FINITE or HKF_ERROR_NOISE_RANGE (n <= 0) change nothing. */
 int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3]);
 
+/* The track's status (HKF_STATUS_UNINITIALIZED for a NULL filter). */
+hkf_status_t hkf_get_status(const hkf_filter_t *f);
+
 /* The current state, as the last update or predict left it. */
 int hkf_get_output(const hkf_filter_t *f, hkf_output_t *out);
 

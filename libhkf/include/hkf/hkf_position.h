@@ -118,6 +118,9 @@ void hkf_position_restart(hkf_position_filter_t *f);
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out);
 
+/* 1 when a measurement has started the track (and no reset has forgotten it since); 0 for NULL. */
+int hkf_position_started(const hkf_position_filter_t *f);
+
 /* Predicts by dt (s) without a measurement (the noise's history restarts). */
 int hkf_position_predict(hkf_position_filter_t *f, hkf_real_t dt, hkf_position_output_t *out);
 
