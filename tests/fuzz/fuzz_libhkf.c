@@ -58,8 +58,9 @@ static void calibrate(hkf_filter_t *f, int result, const hkf_real_t *z, hkf_real
     }
 }
 
-/* One settings field by number, to an arbitrary value. */
-static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
+/* One settings field by number, to an arbitrary value; field 16 is the calibration's (cal: NULL for a
+ * second model's settings, which have none: the edit is then lost). */
+static void edit_setting(hkf_settings_t *s, hkf_calibration_settings_t *cal, uint8_t field, input_t *in)
 {
     const hkf_real_t v = take_real(in);
     const int axis = field % 3;
@@ -88,7 +89,9 @@ static void edit_setting(hkf_settings_t *s, uint8_t field, input_t *in)
         axis == 0 ? (void)(s->start_rate = v) : axis == 1 ? (void)(s->stop_rate = v) : (void)(s->still_wander = v);
         break;
     case 16: /* the noise calibration's */
-        axis == 0 ? (void)(calibration_settings.noise_time = v) : (void)(calibration_settings.noise_rise = v);
+        if (cal != NULL) {
+            axis == 0 ? (void)(cal->noise_time = v) : (void)(cal->noise_rise = v);
+        }
         break;
     case 17: s->start_rate = v >= 0 ? v : -(v + 1); break; /* the adaptation on more often (-(v + 1): INT32_MIN too) */
     default: s->loop_closure = (int)(field % 5) - 1; s->max_gate_rejections = field % 4u; break;
@@ -156,7 +159,7 @@ static void pair_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_
     int result;
     memset(&out, 0, sizeof out);
     if (take_byte(in, &field)) {
-        edit_setting(&second, field, in);
+        edit_setting(&second, NULL, field, in);
     }
     noise = hkf_model_noise_of(&second);
     second = *s; /* what the pair checks: the filter's settings with the second model's noise */
@@ -278,7 +281,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     calibration_settings = hkf_default_calibration_settings;
     if (take_byte(&in, &count)) {
         for (i = 0; i < count % 8 && take_byte(&in, &field); ++i) {
-            edit_setting(&s, field, &in);
+            edit_setting(&s, &calibration_settings, field, &in);
         }
     }
     before = f;
