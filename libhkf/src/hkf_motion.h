@@ -62,11 +62,10 @@ static inline hkf_real_t hkf_motion_walk(hkf_real_t q_boost, hkf_real_t threshol
  * caller recomputes S):
  * the filter follows the measurement while the head moves, and the rate,
  * whose variance is not raised, is not thrown past a stop (boosting the
- * acceleration's noise instead overshot fast stops by 7-8 % of the move on
- * the truth clips). The walk of the evidence confirmed by the previous frame
- * counts in full; this frame's own adds at most R, so a one-frame blip moves
- * the filter at most about half way (a 2 deg roll blip on d14 against 0.13
- * deg of noise was followed whole). Below still_threshold the rate decays,
+ * acceleration's noise instead overshoots fast stops). The walk of the
+ * evidence confirmed by the previous frame counts in full; this frame's own
+ * adds at most R, so a one-frame blip moves the filter at most about half way
+ * (test_position.c: test_blip_capped_step_followed). Below still_threshold the rate decays,
  * with time constant rate_damping_time up to half of it and less and less
  * above, so the filter stops with the head. Both are continuous in the
  * evidence: no decision flips on rounding. */

@@ -11,11 +11,10 @@
 #include "hkf_math.h"
 #include "hkf_motion.h"
 
-/* Chosen on truth by construction (dev/eval/position_truth.py, docs/estimator.md "Head position"): the
- * least moving z error whose still z jitter is <= 0.025 cm a frame at 60 cm (the goal, 0.05, with a margin
- * for noisier cameras), on d0 d3 d9 d11 d14. A head leans at well under 1 m/s; a mesh that misreads the
- * face's scale, or a forged message, jumps further in one step (max_speed); 6 refused frames that agree
- * with each other (0.2 s at 30 fps) restart the track. */
+/* Chosen on truth by construction (dev/eval/position_truth.py; the clips and figures: docs/estimator.md
+ * "Head position"): the least moving z error whose still z jitter is at most half the goal's. A head leans
+ * at well under 1 m/s; a mesh that misreads the face's scale, or a forged message, jumps further in one
+ * step (max_speed); 6 refused frames that agree with each other (0.2 s at 30 fps) restart the track. */
 const hkf_position_settings_t hkf_position_default_settings = {
     .process_noise = {HKF_REAL(3.0), HKF_REAL(3.0), HKF_REAL(3.0)},          /* x n, 1/s^3 */
     .measurement_noise = {HKF_REAL(0.002), HKF_REAL(0.002), HKF_REAL(0.05)}, /* cm^2: n's start */
