@@ -195,6 +195,23 @@ static void pair_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_
     ++steps;
 }
 
+/* op 0 and 1: a measurement, or a frame without one; the calibration's step after either. */
+static void step(hkf_filter_t *f, hkf_filter_t *before, input_t *in, int measured)
+{
+    hkf_output_t out;
+    hkf_real_t v[3], dt;
+    int result;
+    memset(&out, 0, sizeof out);
+    if (measured) {
+        v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
+    }
+    dt = take_real(in);
+    result = measured ? hkf_update(f, v, dt, &out) : hkf_predict(f, dt, &out);
+    ++steps;
+    after_call(before, f, result, &out);
+    calibrate(f, result, measured ? v : NULL, dt);
+}
+
 /* One API call on the filter, chosen by op, its arguments from the input. */
 static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t *s, input_t *in, uint8_t op)
 {
@@ -204,24 +221,10 @@ static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t
     *before = *f;
     memset(&out, 0, sizeof out);
     switch (op % 10) {
-    case 0: {
-        hkf_real_t dt;
-        v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
-        dt = take_real(in);
-        result = hkf_update(f, v, dt, &out);
-        ++steps;
-        after_call(before, f, result, &out);
-        calibrate(f, result, v, dt);
+    case 0:
+    case 1:
+        step(f, before, in, op % 10 == 0);
         break;
-    }
-    case 1: {
-        const hkf_real_t dt = take_real(in);
-        result = hkf_predict(f, dt, &out);
-        ++steps;
-        after_call(before, f, result, &out);
-        calibrate(f, result, NULL, dt);
-        break;
-    }
     case 2:
         result = hkf_extrapolate(f, take_real(in), &out);
         check(memcmp(before, f, sizeof *f) == 0, "hkf_extrapolate changed the filter");

@@ -44,6 +44,28 @@ static hkf_head_pose_measurement_t measurement(int64_t utime, int valid, double 
     return m;
 }
 
+/* The reference's step as the node makes it: an update (z) or a prediction (z NULL), then, when it was
+ * made, the calibration beside the filter. The filter's result. */
+static int reference_step(hkf_filter_t *f, hkf_calibration_t *c, const hkf_real_t *z, hkf_real_t dt, hkf_output_t *out)
+{
+    const int result = z != NULL ? hkf_update(f, z, dt, out) : hkf_predict(f, dt, out);
+    if (result == HKF_OK) {
+        assert_int_equal(hkf_calibration_update(c, f, z, dt), HKF_OK);
+    }
+    return result;
+}
+
+/* A published pose is the reference's posterior, at the measurement's time, in the reference's state. */
+static void assert_pose_is(const hkf_head_pose_t *pose, const hkf_output_t *out, int64_t utime)
+{
+    assert_true(pose->yaw == out->angle[1] && pose->pitch == out->angle[0] && pose->roll == out->angle[2]);
+    assert_true(pose->yaw_rate == out->rate[1] && pose->variance[1] == out->variance[1] && pose->r[2] == out->r[2]);
+    assert_true(pose->utime == utime);
+    assert_int_equal(pose->status, out->status == HKF_STATUS_TRACKING   ? HKF_HEAD_POSE_T_TRACKING
+                                   : out->status == HKF_STATUS_COASTING ? HKF_HEAD_POSE_T_COASTING
+                                                                        : HKF_HEAD_POSE_T_LOST);
+}
+
 /* Valid measurements give exactly libhkf's posterior with the model's curves. */
 static void test_poses_match_libhkf(void **state)
 {
@@ -68,28 +90,14 @@ static void test_poses_match_libhkf(void **state)
         int ref_result;
         sim_next(&sim, &frame);
         m = measurement(utime, frame.valid, frame.measured[0], frame.measured[1], frame.measured[2]);
-        if (frame.valid) {
+        {
             const hkf_real_t z[3] = {m.pitch, m.yaw, m.roll};
-            ref_result = hkf_update(&reference, z, dt, &out);
-            if (ref_result == HKF_OK) {
-                assert_int_equal(hkf_calibration_update(&calibration, &reference, z, dt), HKF_OK);
-            }
-        } else {
-            ref_result = hkf_predict(&reference, dt, &out);
-            if (ref_result == HKF_OK) {
-                assert_int_equal(hkf_calibration_update(&calibration, &reference, NULL, dt), HKF_OK);
-            }
+            ref_result = reference_step(&reference, &calibration, frame.valid ? z : NULL, dt, &out);
         }
         if (filter_node_measurement(&node, &m, &pose)) {
             ++published;
             assert_int_equal(ref_result, HKF_OK);
-            assert_true(pose.yaw == out.angle[1] && pose.pitch == out.angle[0] && pose.roll == out.angle[2]);
-            assert_true(pose.yaw_rate == out.rate[1] && pose.variance[1] == out.variance[1] && pose.r[2] == out.r[2]);
-            assert_true(pose.utime == utime);
-            /* the reference's state, faces or not: TRACKING, COASTING, then LOST */
-            assert_int_equal(pose.status, out.status == HKF_STATUS_TRACKING   ? HKF_HEAD_POSE_T_TRACKING
-                                          : out.status == HKF_STATUS_COASTING ? HKF_HEAD_POSE_T_COASTING
-                                                                              : HKF_HEAD_POSE_T_LOST);
+            assert_pose_is(&pose, &out, utime); /* the reference's state, faces or not: TRACKING, COASTING, then LOST */
             if (!frame.valid) {
                 assert_int_not_equal(pose.status, HKF_HEAD_POSE_T_TRACKING);
                 coasting += pose.status == HKF_HEAD_POSE_T_COASTING;
@@ -996,27 +1004,19 @@ static void test_silence_reported_lost(void **state)
  * face. Nothing is published for a second measurement, each is fused into its
  * own frame, and in the end the node's filter is where libhkf gets stepping
  * frame by frame with hkf_update_pair (z NULL where the first found no face). */
-static void test_second_model_fused_into_its_frame(void **state)
+/* frames frames of the simulated drive as the first model's measurements (every tenth frame's face missed)
+ * and a second model's of each (its own errors), and the reference's pair step on each, the calibration
+ * beside it; the frames only the second model measured. */
+static int make_pair_frames(hkf_head_pose_measurement_t *first, hkf_head_pose_measurement_t *second, int frames,
+                            hkf_filter_t *reference, const hkf_model_noise_t *s2)
 {
-    enum { FRAMES = 300, LATE = 3 };
-    static hkf_head_pose_measurement_t first[FRAMES], second[FRAMES];
     sim_config_t sc = sim_default_config();
     sim_t sim;
-    hkf_filter_t reference, before;
     hkf_calibration_t calibration;
-    hkf_output_t ours, theirs;
-    int known1, known2, i, a, published = 0, second_only = 0; /* frames only the second model measured */
-    const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known1);
-    const hkf_settings_t hopenet = node_config_for_model(&config, "hopenet", &known2);
-    const hkf_model_noise_t s2 = hkf_model_noise_of(&hopenet);
-    (void)state;
-    node.second.align_frames = 0; /* the models' offset is another test's */
-    config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
-    assert_true(known1 && known2);
-    assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
-    assert_int_equal(hkf_calibration_init(&calibration, &config.calibration, &reference), HKF_OK);
+    int i, second_only = 0;
+    assert_int_equal(hkf_calibration_init(&calibration, &config.calibration, reference), HKF_OK);
     sim_init(&sim, &sc, 5u);
-    for (i = 0; i < FRAMES; ++i) {
+    for (i = 0; i < frames; ++i) {
         sim_frame_t frame;
         const int64_t utime = T0 + i * FRAME_US;
         sim_next(&sim, &frame);
@@ -1032,10 +1032,29 @@ static void test_second_model_fused_into_its_frame(void **state)
             const hkf_real_t z[3] = {first[i].pitch, first[i].yaw, first[i].roll};
             const hkf_real_t z2[3] = {second[i].pitch, second[i].yaw, second[i].roll};
             const hkf_real_t dt = (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6);
-            assert_int_equal(hkf_update_pair(&reference, first[i].valid ? z : NULL, z2, &s2, dt, NULL), HKF_OK);
-            assert_int_equal(hkf_calibration_update(&calibration, &reference, first[i].valid ? z : z2, dt), HKF_OK);
+            assert_int_equal(hkf_update_pair(reference, first[i].valid ? z : NULL, z2, s2, dt, NULL), HKF_OK);
+            assert_int_equal(hkf_calibration_update(&calibration, reference, first[i].valid ? z : z2, dt), HKF_OK);
         }
     }
+    return second_only;
+}
+
+static void test_second_model_fused_into_its_frame(void **state)
+{
+    enum { FRAMES = 300, LATE = 3 };
+    static hkf_head_pose_measurement_t first[FRAMES], second[FRAMES];
+    hkf_filter_t reference, before;
+    hkf_output_t ours, theirs;
+    int known1, known2, i, a, published = 0, second_only; /* frames only the second model measured */
+    const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known1);
+    const hkf_settings_t hopenet = node_config_for_model(&config, "hopenet", &known2);
+    const hkf_model_noise_t s2 = hkf_model_noise_of(&hopenet);
+    (void)state;
+    node.second.align_frames = 0; /* the models' offset is another test's */
+    config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
+    assert_true(known1 && known2);
+    assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
+    second_only = make_pair_frames(first, second, FRAMES, &reference, &s2);
     for (i = 0; i < FRAMES + LATE; ++i) {
         hkf_head_pose_t pose;
         if (i < FRAMES) {
