@@ -52,10 +52,11 @@ int hkf_calibration_reset(hkf_calibration_t *c, hkf_filter_t *f)
  * the circle (hkf_noise_estimate.h's lane: power += beta (d^2 / 6 - power), n towards it, n >= floor). */
 static void estimate(hkf_calibration_t *c, const hkf_real_t z[3], hkf_real_t dt)
 {
+    const hkf_real_t now[3] = {z[HKF_AXIS_PITCH], hkf_wrap180(z[HKF_AXIS_YAW]), z[HKF_AXIS_ROLL]}; /* yaw on the circle */
     hkf_real_t step[3];
     int a;
     for (a = 0; a < HKF_AXES; ++a) {
-        step[a] = hkf_sub(a == HKF_AXIS_YAW ? hkf_wrap180(z[a]) : z[a], c->last_z[a]);
+        step[a] = hkf_sub(now[a], c->last_z[a]);
     }
     step[HKF_AXIS_YAW] = hkf_wrap180(step[HKF_AXIS_YAW]);
     if (c->history >= 2u) {
@@ -66,7 +67,7 @@ static void estimate(hkf_calibration_t *c, const hkf_real_t z[3], hkf_real_t dt)
         }
     }
     for (a = 0; a < HKF_AXES; ++a) {
-        c->last_z[a] = a == HKF_AXIS_YAW ? hkf_wrap180(z[a]) : z[a];
+        c->last_z[a] = now[a];
         c->last_step[a] = step[a];
     }
     c->history += c->history < 2u ? 1u : 0u;
