@@ -23,14 +23,11 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "hkf/head_pose_measurement_t.hpp"
-#include "hkf/head_pose_measurement_v1_t.hpp"
-#include "hkf/head_pose_t.hpp"
-#include "hkf/head_pose_v1_t.hpp"
 #include "pose_drawing.hpp"
 #include "written_video.hpp"
 
 #include "lcm_log_reader.h"
+#include "message_decode.h"
 #include "safe_files.h"
 
 namespace {
@@ -60,43 +57,17 @@ int fail(const std::string &message)
     return 1;
 }
 
-// A message of hkf 0.2, or of hkf 0.1 (the *_v1_t types: no position, which stays 0); false
-// when it is neither.
-bool decode_message(hkf::head_pose_measurement_t &m, const void *data, int size)
+// A message of hkf 0.2, or of hkf 0.1 (no position, which stays 0: message_decode.h); false when it
+// is neither. The measurement's model id is not kept.
+bool decode_message(hkf_head_pose_measurement_t &m, const void *data, int size)
 {
-    if (m.decode(data, 0, size) >= 0) return true;
-    hkf::head_pose_measurement_v1_t old;
-    if (old.decode(data, 0, size) < 0) return false;
-    m.utime = old.utime;
-    m.seq = old.seq;
-    m.model = old.model;
-    m.valid = old.valid;
-    m.pitch = old.pitch;
-    m.yaw = old.yaw;
-    m.roll = old.roll;
-    std::memcpy(m.face_box, old.face_box, sizeof m.face_box);
-    m.detection_score = old.detection_score;
-    m.inference_us = old.inference_us;
-    m.x = m.y = m.z = 0.f;
+    if (message_decode_measurement(data, size, &m) != 0) return false;
+    hkf_head_pose_measurement_t_decode_cleanup(&m);
+    m.model = nullptr;
     return true;
 }
 
-bool decode_message(hkf::head_pose_t &p, const void *data, int size)
-{
-    if (p.decode(data, 0, size) >= 0) return true;
-    hkf::head_pose_v1_t old;
-    if (old.decode(data, 0, size) < 0) return false;
-    p = hkf::head_pose_t();
-    p.utime = old.utime;
-    p.measurement_utime = old.measurement_utime;
-    p.seq = old.seq;
-    p.status = old.status;
-    p.pitch = old.pitch;
-    p.yaw = old.yaw;
-    p.roll = old.roll;
-    p.x = p.y = p.z = 0.f;
-    return true;
-}
+bool decode_message(hkf_head_pose_t &p, const void *data, int size) { return message_decode_pose(data, size, &p) == 0; }
 
 // Every event of `channel` in the log decoded as T; false (with `error`) if the file cannot be read.
 template <typename T>
@@ -119,7 +90,7 @@ bool read_channel(const std::string &path, const std::string &channel, std::vect
     long undecodable = 0;
     while (lcm_log_reader_next(&reader, &event, data, sizeof data) == 1) {
         if (!event.data_read || channel != event.channel) continue;
-        T message;
+        T message{};
         if (!decode_message(message, data, event.datalen)) {
             ++undecodable;
             continue;
@@ -257,8 +228,8 @@ hkf_estimator::HeadPose pose_of(const Message &m)
 // The logs' poses, found by frame: raw by seq (the first model's, where a second one measured too),
 // filtered by the raw pose's capture time (posteriors only).
 struct PoseIndex {
-    std::map<int64_t, const hkf::head_pose_measurement_t *> raw_by_seq;
-    std::map<int64_t, const hkf::head_pose_t *> filtered_by_utime;
+    std::map<int64_t, const hkf_head_pose_measurement_t *> raw_by_seq;
+    std::map<int64_t, const hkf_head_pose_t *> filtered_by_utime;
     long with_raw = 0, with_filtered = 0;  // frames drawn with each
 };
 
@@ -268,7 +239,7 @@ TracePoint frame_point(PoseIndex &poses, int64_t seq, double t, std::optional<cv
     TracePoint point{t, std::nullopt, std::nullopt};
     const auto r = poses.raw_by_seq.find(seq);
     if (r == poses.raw_by_seq.end()) return point;
-    const hkf::head_pose_measurement_t &m = *r->second;
+    const hkf_head_pose_measurement_t &m = *r->second;
     const hkf_estimator::HeadPose raw = pose_of(m);
     if (m.valid && finite(raw)) {
         point.raw = raw;
@@ -300,8 +271,8 @@ int finish(const Options &o, long frames, const PoseIndex &poses)
 
 int annotate(const Options &o)
 {
-    std::vector<hkf::head_pose_measurement_t> raws;
-    std::vector<hkf::head_pose_t> filtered_poses;
+    std::vector<hkf_head_pose_measurement_t> raws;
+    std::vector<hkf_head_pose_t> filtered_poses;
     std::string error;
     if (!read_channel(o.raw_log, o.raw_channel, raws, error) ||
         !read_channel(o.filtered_log, o.filtered_channel, filtered_poses, error))

@@ -17,6 +17,7 @@
 
 #include "filter_node.h"
 #include "fuzz_checks.h"
+#include "message_decode.h"
 
 #define CHECK(condition, what) fuzz_check((condition), "fuzz_node_messages", (what))
 
@@ -60,7 +61,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             }
         } else {
             hkf_head_pose_measurement_t m;
-            if (filter_node_decode(data, (int)length, &m) == 0) {
+            if (message_decode_measurement(data, (int)length, &m) == 0) {
                 CHECK(m.model != NULL && memchr(m.model, '\0', NODE_MODEL_NAME_MAX + 1) != NULL, "unterminated model");
                 const unsigned long jumps = node.counts.clock_jumps;
                 const int64_t reference = node.last_utime;

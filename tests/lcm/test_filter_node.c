@@ -480,63 +480,6 @@ static void test_clock_not_a_jump(void **state)
     assert_int_equal(node.counts.clock_jumps, 0);
 }
 
-/* filter_node_decode checks the layout before LCM's decoder allocates: a
- * claimed 2 GB string, a string without its NUL, a short message and another
- * type are refused with nothing allocated (LeakSanitizer watches in the
- * sanitizer build); a good message decodes whole. */
-static void test_decode_checks_layout(void **state)
-{
-    hkf_head_pose_measurement_t m = measurement(T0, 1, 1, 2, 3), back;
-    unsigned char buffer[256], spoiled[256];
-    const int size = hkf_head_pose_measurement_t_encoded_size(&m);
-    const int length_at = 24; /* hash, utime, seq */
-    (void)state;
-    assert_true(size > 0 && size <= (int)sizeof buffer);
-    assert_int_equal(hkf_head_pose_measurement_t_encode(buffer, 0, size, &m), size);
-    assert_int_equal(filter_node_decode(buffer, size, &back), 0);
-    assert_string_equal(back.model, "fsanet");
-    assert_true(back.utime == T0 && back.yaw == 2.0f);
-    hkf_head_pose_measurement_t_decode_cleanup(&back);
-
-    memcpy(spoiled, buffer, (size_t)size);
-    spoiled[length_at] = 0x7f, spoiled[length_at + 1] = spoiled[length_at + 2] = spoiled[length_at + 3] = 0xff;
-    assert_int_equal(filter_node_decode(spoiled, size, &back), -1);
-    memcpy(spoiled, buffer, (size_t)size);
-    spoiled[length_at + 4 + 6] = 'x'; /* "fsanet" loses its NUL */
-    assert_int_equal(filter_node_decode(spoiled, size, &back), -1);
-    assert_int_equal(filter_node_decode(buffer, size - 1, &back), -1);
-    memcpy(spoiled, buffer, (size_t)size);
-    spoiled[0] ^= 0x5a; /* another type's hash */
-    assert_int_equal(filter_node_decode(spoiled, size, &back), -1);
-    assert_int_equal(filter_node_decode(buffer, 3, &back), -1);
-}
-
-/* hkf 0.1's message (head_pose_measurement_v1_t, no position) decodes as a 0.2 one with z = 0. */
-static void test_decode_reads_v1(void **state)
-{
-    hkf_head_pose_measurement_v1_t old;
-    hkf_head_pose_measurement_t back;
-    unsigned char buffer[256];
-    int size;
-    (void)state;
-    memset(&old, 0, sizeof old);
-    old.utime = T0;
-    old.seq = 7;
-    old.model = "mesh_pnp";
-    old.valid = 1;
-    old.pitch = 1.0f, old.yaw = -2.0f, old.roll = 3.0f;
-    old.face_box[2] = 100.0f;
-    size = hkf_head_pose_measurement_v1_t_encoded_size(&old);
-    assert_true(size > 0 && size <= (int)sizeof buffer);
-    assert_int_equal(hkf_head_pose_measurement_v1_t_encode(buffer, 0, size, &old), size);
-    assert_int_equal(filter_node_decode(buffer, size, &back), 0);
-    assert_string_equal(back.model, "mesh_pnp");
-    assert_true(back.utime == T0 && back.seq == 7 && back.valid && back.yaw == -2.0f && back.face_box[2] == 100.0f);
-    assert_true(back.x == 0.0f && back.y == 0.0f && back.z == 0.0f);
-    hkf_head_pose_measurement_t_decode_cleanup(&back);
-    assert_int_equal(filter_node_decode(buffer, size + 12, &back), -1); /* neither layout */
-}
-
 /* The position: filtered from the measurements that carry one (z > 0), published with its
  * centre; a message without one leaves it alone; RECENTER sets the centre, RESET forgets it;
  * a box-based model's position moves the filter less than the mesh's (a deviation the size
@@ -1368,8 +1311,6 @@ int main(void)
         cmocka_unit_test_setup(test_clock_not_a_jump, setup),
         cmocka_unit_test_setup(test_clock_steps_back_with_arrival, setup),
         cmocka_unit_test_setup(test_forged_stamp_ahead, setup),
-        cmocka_unit_test_setup(test_decode_checks_layout, setup),
-        cmocka_unit_test_setup(test_decode_reads_v1, setup),
         cmocka_unit_test_setup(test_position_filtered, setup),
         cmocka_unit_test_setup(test_second_model_position, setup),
         cmocka_unit_test_setup(test_position_follows_after_clock_step_back, setup),

@@ -175,32 +175,6 @@ static void test_predict(void **state)
     assert_true(fabs(opentrack_horizon(&pose, 1250000, 0.0) - OPENTRACK_MAX_AGE) < 1e-9);
 }
 
-/* hkf 0.1's pose (head_pose_v1_t) still decodes, its position 0; hkf 0.2's as it is. */
-static void test_decode_both_versions(void **state)
-{
-    hkf_head_pose_v1_t old;
-    hkf_head_pose_t pose = pose_at(1.0f, 2.0f, 3.0f), back;
-    unsigned char buffer[512];
-    int size;
-    (void)state;
-    memset(&old, 0, sizeof old);
-    old.status = HKF_HEAD_POSE_T_TRACKING;
-    old.yaw = 12.0f;
-    old.center[1] = 2.0f;
-    size = hkf_head_pose_v1_t_encoded_size(&old);
-    assert_true(size > 0 && size <= (int)sizeof buffer);
-    assert_int_equal(hkf_head_pose_v1_t_encode(buffer, 0, size, &old), size);
-    assert_int_equal(opentrack_decode_pose(buffer, size, &back), 0);
-    assert_true(back.yaw == 12.0f && back.center[1] == 2.0f && back.z == 0.0f && back.status == HKF_HEAD_POSE_T_TRACKING);
-    pose.z = 55.0f;
-    size = hkf_head_pose_t_encoded_size(&pose);
-    assert_int_equal(hkf_head_pose_t_encode(buffer, 0, size, &pose), size);
-    assert_int_equal(opentrack_decode_pose(buffer, size, &back), 0);
-    assert_true(back.z == 55.0f && back.yaw == 2.0f);
-    buffer[0] ^= 0x5a; /* neither type's hash */
-    assert_int_equal(opentrack_decode_pose(buffer, size, &back), -1);
-}
-
 /* Nothing non-finite is ever produced: a NaN or infinite angle or centre is refused. */
 static void test_non_finite_refused(void **state)
 {
@@ -248,7 +222,6 @@ int main(void)
         cmocka_unit_test(test_position),
         cmocka_unit_test(test_relative_angles_wrapped),
         cmocka_unit_test(test_predict),
-        cmocka_unit_test(test_decode_both_versions),
         cmocka_unit_test(test_non_finite_refused),
         cmocka_unit_test(test_beyond_a_head_refused),
     };

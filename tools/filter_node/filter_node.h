@@ -75,7 +75,6 @@
 #include "hkf/hkf.h"
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
-#include "hkf_head_pose_measurement_v1_t.h"
 #include "second_position.h"
 #include "hkf_head_pose_t.h"
 #include "hkf_tracker_command_t.h"
@@ -134,19 +133,6 @@ typedef struct {
     second_position_t second_position; /* the first model's last positions, the second's offset (second_position.h) */
     filter_node_counts_t counts;
 } filter_node_t;
-
-/* Decodes a HEAD_POSE_RAW payload - hkf 0.2's, or hkf 0.1's without the position
- * (head_pose_measurement_v1_t: x, y, z then 0) - checking its layout first: LCM 1.3.1's
- * generated decoder mallocs a string of whatever length the message claims
- * (up to 2 GB), leaks it when a later field is short, and does not require the
- * terminating NUL. Returns 0 with *m decoded (free with
- * hkf_head_pose_measurement_t_decode_cleanup), or -1 with nothing allocated. */
-int filter_node_decode(const void *data, int size, hkf_head_pose_measurement_t *m);
-
-/* 1 when a HEAD_POSE_RAW payload that did not decode carries a model id
- * longer than head_pose_measurement_t.lcm allows (MODEL_NAME_MAX): the one
- * mistake a user makes, so hkf-filter says it. */
-int filter_node_model_id_too_long(const void *data, int size);
 
 /* 0, or a hkf_result_t when the base settings are invalid. */
 int filter_node_init(filter_node_t *node, const node_config_t *config);

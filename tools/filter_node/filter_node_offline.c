@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "lcm_log_reader.h"
+#include "message_decode.h"
 #include "pose_csv.h"
 
 #define MESSAGE_MAX 65536 /* bytes; hkf's messages take under 200 */
@@ -60,9 +61,9 @@ static void handle_measurement(filter_node_t *node, output_t *output, const void
     const int64_t tick_us = output->options->tick_us;
     hkf_head_pose_measurement_t m;
     hkf_head_pose_t pose;
-    if (filter_node_decode(data, size, &m) != 0) {
+    if (message_decode_measurement(data, size, &m) != 0) {
         ++node->counts.decode_errors;
-        output->report->long_model_ids += (unsigned long)filter_node_model_id_too_long(data, size);
+        output->report->long_model_ids += (unsigned long)message_model_id_too_long(data, size);
         return;
     }
     /* extrapolated poses at the --rate ticks before this measurement, in capture time */

@@ -19,6 +19,7 @@
 #include "filter_node_offline.h"
 #include "lcm_log_writer.h"
 #include "lcm_wait.h"
+#include "message_decode.h"
 #include "config_files.h"
 #include "node_config.h"
 #include "pose_csv.h"
@@ -285,9 +286,9 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void
     node_run_t *run = user;
     hkf_head_pose_measurement_t m;
     hkf_head_pose_t pose;
-    if (filter_node_decode(rbuf->data, (int)rbuf->data_size, &m) != 0) {
+    if (message_decode_measurement(rbuf->data, (int)rbuf->data_size, &m) != 0) {
         report_decode_error(run, channel,
-                            filter_node_model_id_too_long(rbuf->data, (int)rbuf->data_size) ? LONG_MODEL_HINT : "");
+                            message_model_id_too_long(rbuf->data, (int)rbuf->data_size) ? LONG_MODEL_HINT : "");
         return;
     }
     run->last_arrival_us = arrival_utime();

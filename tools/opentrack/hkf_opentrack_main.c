@@ -21,6 +21,7 @@
 
 #include "lcm_file_url.h"
 #include "lcm_wait.h"
+#include "message_decode.h"
 #include "opentrack_packet.h"
 
 #define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
@@ -380,7 +381,7 @@ static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     bridge_t *bridge = user;
     hkf_head_pose_t pose;
-    if (opentrack_decode_pose(rbuf->data, (int)rbuf->data_size, &pose) != 0) {
+    if (message_decode_pose(rbuf->data, (int)rbuf->data_size, &pose) != 0) {
         if (bridge->counts.decode_errors++ < 5) {
             fprintf(stderr, "hkf-opentrack: a message on %s did not decode; counted and skipped\n", channel);
         }

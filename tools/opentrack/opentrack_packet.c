@@ -111,35 +111,6 @@ double opentrack_horizon(const hkf_head_pose_t *pose, int64_t now_us, double lea
     return age >= 0.0 && age <= OPENTRACK_MAX_AGE ? age + lead_s : 0.0;
 }
 
-int opentrack_decode_pose(const void *data, int size, hkf_head_pose_t *pose)
-{
-    hkf_head_pose_v1_t old;
-    if (hkf_head_pose_t_decode(data, 0, size, pose) >= 0) {
-        return 0;
-    }
-    if (hkf_head_pose_v1_t_decode(data, 0, size, &old) < 0) {
-        return -1;
-    }
-    memset(pose, 0, sizeof *pose);
-    pose->utime = old.utime;
-    pose->measurement_utime = old.measurement_utime;
-    pose->seq = old.seq;
-    pose->status = old.status;
-    pose->pitch = old.pitch;
-    pose->yaw = old.yaw;
-    pose->roll = old.roll;
-    pose->pitch_rate = old.pitch_rate;
-    pose->yaw_rate = old.yaw_rate;
-    pose->roll_rate = old.roll_rate;
-    memcpy(pose->variance, old.variance, sizeof pose->variance);
-    memcpy(pose->r, old.r, sizeof pose->r);
-    memcpy(pose->center, old.center, sizeof pose->center);
-    pose->loop_closure_active = old.loop_closure_active;
-    pose->extrapolated = old.extrapolated;
-    pose->latency_us = old.latency_us;
-    return 0;
-}
-
 void opentrack_encode(const double values[OPENTRACK_FIELDS], unsigned char packet[OPENTRACK_PACKET_SIZE])
 {
     int i, b;

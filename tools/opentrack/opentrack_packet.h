@@ -79,10 +79,6 @@ hkf_head_pose_t opentrack_predict(const hkf_head_pose_t *pose, double horizon);
 #define OPENTRACK_MAX_AGE 0.25 /* s: hkf-filter's coast time; an older pose's rate says nothing of now */
 double opentrack_horizon(const hkf_head_pose_t *pose, int64_t now_us, double lead_s);
 
-/* Decodes a HEAD_POSE payload: hkf 0.2's, or hkf 0.1's (head_pose_v1_t, its position
- * then 0). Returns 0, or -1 when it is neither. */
-int opentrack_decode_pose(const void *data, int size, hkf_head_pose_t *pose);
-
 /* The six values as the 48 bytes on the wire (little-endian, whatever the host). */
 void opentrack_encode(const double values[OPENTRACK_FIELDS], unsigned char packet[OPENTRACK_PACKET_SIZE]);
 

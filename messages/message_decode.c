@@ -1,0 +1,112 @@
+/* message_decode.c - see message_decode.h. */
+#include "message_decode.h"
+
+#include <string.h>
+
+#include "hkf_head_pose_measurement_v1_t.h"
+#include "hkf_head_pose_v1_t.h"
+
+/* The wire layout of a measurement: hash, utime, seq (8 bytes each), the model string as a
+ * big-endian int32 length with its NUL and the bytes, then valid (1), pitch, yaw, roll (4 each),
+ * face_box (16), detection_score (4), inference_us (8), and since hkf 0.2 x, y, z (4 each). */
+enum { MODEL_AT = 24, TAIL_V1 = 1 + 12 + 16 + 4 + 8, TAIL = TAIL_V1 + 12 };
+enum { MODEL_BYTES_MAX = HKF_HEAD_POSE_MEASUREMENT_T_MODEL_NAME_MAX + 1 }; /* with the NUL */
+
+/* The model string's claimed length (with its NUL); the payload has at least MODEL_AT + 4 bytes. */
+static long model_length(const unsigned char *bytes)
+{
+    return ((long)bytes[MODEL_AT] << 24) | ((long)bytes[MODEL_AT + 1] << 16) | ((long)bytes[MODEL_AT + 2] << 8) |
+           bytes[MODEL_AT + 3];
+}
+
+/* hkf 0.1's measurement as a 0.2 one, z = 0. */
+static int decode_measurement_v1(const void *data, int size, hkf_head_pose_measurement_t *m)
+{
+    hkf_head_pose_measurement_v1_t old;
+    memset(&old, 0, sizeof old);
+    if (hkf_head_pose_measurement_v1_t_decode(data, 0, size, &old) != size) {
+        hkf_head_pose_measurement_v1_t_decode_cleanup(&old);
+        return -1;
+    }
+    m->utime = old.utime;
+    m->seq = old.seq;
+    m->model = old.model; /* taken over: freed by hkf_head_pose_measurement_t_decode_cleanup */
+    m->valid = old.valid;
+    m->pitch = old.pitch;
+    m->yaw = old.yaw;
+    m->roll = old.roll;
+    memcpy(m->face_box, old.face_box, sizeof m->face_box);
+    m->detection_score = old.detection_score;
+    m->inference_us = old.inference_us;
+    m->x = m->y = m->z = 0.f;
+    return 0;
+}
+
+int message_decode_measurement(const void *data, int size, hkf_head_pose_measurement_t *m)
+{
+    const unsigned char *bytes = data;
+    long length;
+    int v1;
+    if (data == NULL || size < MODEL_AT + 4 + 1 + TAIL_V1) {
+        return -1;
+    }
+    length = model_length(bytes);
+    if (length < 1 || length > MODEL_BYTES_MAX || bytes[MODEL_AT + 4 + length - 1] != '\0') {
+        return -1;
+    }
+    if (MODEL_AT + 4 + length + TAIL == size) {
+        v1 = 0;
+    } else if (MODEL_AT + 4 + length + TAIL_V1 == size) {
+        v1 = 1;
+    } else {
+        return -1;
+    }
+    memset(m, 0, sizeof *m); /* so that a cleanup after a failed decode frees nothing it did not allocate */
+    if (v1) {
+        return decode_measurement_v1(data, size, m);
+    }
+    if (hkf_head_pose_measurement_t_decode(data, 0, size, m) != size) { /* e.g. another type's hash */
+        hkf_head_pose_measurement_t_decode_cleanup(m);
+        return -1;
+    }
+    return 0;
+}
+
+int message_model_id_too_long(const void *data, int size)
+{
+    long length;
+    if (data == NULL || size < MODEL_AT + 4) {
+        return 0;
+    }
+    length = model_length(data);
+    return length > MODEL_BYTES_MAX && length <= size - (MODEL_AT + 4);
+}
+
+int message_decode_pose(const void *data, int size, hkf_head_pose_t *pose)
+{
+    hkf_head_pose_v1_t old;
+    if (hkf_head_pose_t_decode(data, 0, size, pose) >= 0) {
+        return 0;
+    }
+    if (hkf_head_pose_v1_t_decode(data, 0, size, &old) < 0) {
+        return -1;
+    }
+    memset(pose, 0, sizeof *pose);
+    pose->utime = old.utime;
+    pose->measurement_utime = old.measurement_utime;
+    pose->seq = old.seq;
+    pose->status = old.status;
+    pose->pitch = old.pitch;
+    pose->yaw = old.yaw;
+    pose->roll = old.roll;
+    pose->pitch_rate = old.pitch_rate;
+    pose->yaw_rate = old.yaw_rate;
+    pose->roll_rate = old.roll_rate;
+    memcpy(pose->variance, old.variance, sizeof pose->variance);
+    memcpy(pose->r, old.r, sizeof pose->r);
+    memcpy(pose->center, old.center, sizeof pose->center);
+    pose->loop_closure_active = old.loop_closure_active;
+    pose->extrapolated = old.extrapolated;
+    pose->latency_us = old.latency_us;
+    return 0;
+}

@@ -1,0 +1,37 @@
+/*
+ * message_decode.h - hkf's messages decoded from LCM payloads, checked, and with hkf 0.1's
+ * versions read as hkf 0.2's (written once here for hkf-filter, hkf-opentrack and hkf-annotate).
+ *
+ * hkf 0.1's messages are head_pose_measurement_v1_t and head_pose_v1_t: the same fields but no
+ * position. Read as 0.2's, their position is 0 (z = 0: not measured).
+ */
+#ifndef MESSAGE_DECODE_H
+#define MESSAGE_DECODE_H
+
+#include "hkf_head_pose_measurement_t.h"
+#include "hkf_head_pose_t.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A HEAD_POSE_RAW payload, hkf 0.2's or 0.1's, its layout checked before LCM's generated decoder
+ * runs: LCM 1.3.1's decoder mallocs a string of whatever length the message claims (up to 2 GB),
+ * leaks it when a later field is short, and does not require the terminating NUL. The payload
+ * must be exactly one message. Returns 0 with *m decoded (free with
+ * hkf_head_pose_measurement_t_decode_cleanup), or -1 with nothing allocated. */
+int message_decode_measurement(const void *data, int size, hkf_head_pose_measurement_t *m);
+
+/* 1 when a HEAD_POSE_RAW payload that did not decode carries a model id longer than
+ * MODEL_NAME_MAX: the one mistake a user makes, so the programs say it. */
+int message_model_id_too_long(const void *data, int size);
+
+/* A HEAD_POSE payload, hkf 0.2's or 0.1's (which carries no position: x, y, z and their rates,
+ * variances and centre are 0). Returns 0 with *pose decoded, or -1. */
+int message_decode_pose(const void *data, int size, hkf_head_pose_t *pose);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MESSAGE_DECODE_H */

@@ -1,0 +1,158 @@
+/*
+ * test_message_decode.c - hkf's messages decoded (messages/message_decode.c): the measurement's
+ * layout checked before LCM's decoder allocates, and hkf 0.1's messages read as 0.2's.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "hkf_head_pose_measurement_v1_t.h"
+#include "hkf_head_pose_v1_t.h"
+#include "message_decode.h"
+
+#define T0 1700000000000000LL
+
+static hkf_head_pose_measurement_t measurement(int64_t utime, int valid, double pitch, double yaw, double roll)
+{
+    hkf_head_pose_measurement_t m;
+    memset(&m, 0, sizeof m);
+    m.seq = 1;
+    m.utime = utime;
+    m.model = "fsanet";
+    m.valid = valid;
+    m.pitch = (float)pitch;
+    m.yaw = (float)yaw;
+    m.roll = (float)roll;
+    return m;
+}
+
+static hkf_head_pose_t pose_at(float pitch, float yaw, float roll)
+{
+    hkf_head_pose_t pose;
+    memset(&pose, 0, sizeof pose);
+    pose.status = HKF_HEAD_POSE_T_TRACKING;
+    pose.pitch = pitch;
+    pose.yaw = yaw;
+    pose.roll = roll;
+    return pose;
+}
+
+/* message_decode_measurement checks the layout before LCM's decoder allocates: a
+ * claimed 2 GB string, a string without its NUL, a short message and another
+ * type are refused with nothing allocated (LeakSanitizer watches in the
+ * sanitizer build); a good message decodes whole. */
+static void test_decode_checks_layout(void **state)
+{
+    hkf_head_pose_measurement_t m = measurement(T0, 1, 1, 2, 3), back;
+    unsigned char buffer[256], spoiled[256];
+    const int size = hkf_head_pose_measurement_t_encoded_size(&m);
+    const int length_at = 24; /* hash, utime, seq */
+    (void)state;
+    assert_true(size > 0 && size <= (int)sizeof buffer);
+    assert_int_equal(hkf_head_pose_measurement_t_encode(buffer, 0, size, &m), size);
+    assert_int_equal(message_decode_measurement(buffer, size, &back), 0);
+    assert_string_equal(back.model, "fsanet");
+    assert_true(back.utime == T0 && back.yaw == 2.0f);
+    hkf_head_pose_measurement_t_decode_cleanup(&back);
+
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[length_at] = 0x7f, spoiled[length_at + 1] = spoiled[length_at + 2] = spoiled[length_at + 3] = 0xff;
+    assert_int_equal(message_decode_measurement(spoiled, size, &back), -1);
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[length_at + 4 + 6] = 'x'; /* "fsanet" loses its NUL */
+    assert_int_equal(message_decode_measurement(spoiled, size, &back), -1);
+    assert_int_equal(message_decode_measurement(buffer, size - 1, &back), -1);
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[0] ^= 0x5a; /* another type's hash */
+    assert_int_equal(message_decode_measurement(spoiled, size, &back), -1);
+    assert_int_equal(message_decode_measurement(buffer, 3, &back), -1);
+}
+
+/* hkf 0.1's message (head_pose_measurement_v1_t, no position) decodes as a 0.2 one with z = 0. */
+static void test_decode_reads_v1(void **state)
+{
+    hkf_head_pose_measurement_v1_t old;
+    hkf_head_pose_measurement_t back;
+    unsigned char buffer[256];
+    int size;
+    (void)state;
+    memset(&old, 0, sizeof old);
+    old.utime = T0;
+    old.seq = 7;
+    old.model = "mesh_pnp";
+    old.valid = 1;
+    old.pitch = 1.0f, old.yaw = -2.0f, old.roll = 3.0f;
+    old.face_box[2] = 100.0f;
+    size = hkf_head_pose_measurement_v1_t_encoded_size(&old);
+    assert_true(size > 0 && size <= (int)sizeof buffer);
+    assert_int_equal(hkf_head_pose_measurement_v1_t_encode(buffer, 0, size, &old), size);
+    assert_int_equal(message_decode_measurement(buffer, size, &back), 0);
+    assert_string_equal(back.model, "mesh_pnp");
+    assert_true(back.utime == T0 && back.seq == 7 && back.valid && back.yaw == -2.0f && back.face_box[2] == 100.0f);
+    assert_true(back.x == 0.0f && back.y == 0.0f && back.z == 0.0f);
+    hkf_head_pose_measurement_t_decode_cleanup(&back);
+    assert_int_equal(message_decode_measurement(buffer, size + 12, &back), -1); /* neither layout */
+}
+
+/* hkf 0.1's pose (head_pose_v1_t) still decodes, its position 0; hkf 0.2's as it is. */
+static void test_decode_both_versions(void **state)
+{
+    hkf_head_pose_v1_t old;
+    hkf_head_pose_t pose = pose_at(1.0f, 2.0f, 3.0f), back;
+    unsigned char buffer[512];
+    int size;
+    (void)state;
+    memset(&old, 0, sizeof old);
+    old.status = HKF_HEAD_POSE_T_TRACKING;
+    old.yaw = 12.0f;
+    old.center[1] = 2.0f;
+    size = hkf_head_pose_v1_t_encoded_size(&old);
+    assert_true(size > 0 && size <= (int)sizeof buffer);
+    assert_int_equal(hkf_head_pose_v1_t_encode(buffer, 0, size, &old), size);
+    assert_int_equal(message_decode_pose(buffer, size, &back), 0);
+    assert_true(back.yaw == 12.0f && back.center[1] == 2.0f && back.z == 0.0f && back.status == HKF_HEAD_POSE_T_TRACKING);
+    pose.z = 55.0f;
+    size = hkf_head_pose_t_encoded_size(&pose);
+    assert_int_equal(hkf_head_pose_t_encode(buffer, 0, size, &pose), size);
+    assert_int_equal(message_decode_pose(buffer, size, &back), 0);
+    assert_true(back.z == 55.0f && back.yaw == 2.0f);
+    buffer[0] ^= 0x5a; /* neither type's hash */
+    assert_int_equal(message_decode_pose(buffer, size, &back), -1);
+}
+
+/* A model id over MODEL_NAME_MAX is told apart from other damage, so the programs can say it. */
+static void test_long_model_id_named(void **state)
+{
+    hkf_head_pose_measurement_t m = measurement(T0, 1, 1, 2, 3), back;
+    unsigned char buffer[256];
+    int size;
+    (void)state;
+    m.model = "a_model_id_of_thirty_two_letter";
+    assert_int_equal((int)strlen(m.model), 31);
+    size = hkf_head_pose_measurement_t_encoded_size(&m);
+    assert_int_equal(hkf_head_pose_measurement_t_encode(buffer, 0, size, &m), size);
+    assert_int_equal(message_decode_measurement(buffer, size, &back), 0); /* 31: the longest allowed */
+    hkf_head_pose_measurement_t_decode_cleanup(&back);
+    assert_int_equal(message_model_id_too_long(buffer, size), 0);
+    m.model = "a_model_id_of_thirty_three_lette";
+    size = hkf_head_pose_measurement_t_encoded_size(&m);
+    assert_int_equal(hkf_head_pose_measurement_t_encode(buffer, 0, size, &m), size);
+    assert_int_equal(message_decode_measurement(buffer, size, &back), -1);
+    assert_int_equal(message_model_id_too_long(buffer, size), 1);
+    assert_int_equal(message_model_id_too_long(buffer, 20), 0); /* too short to say */
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_decode_checks_layout),
+        cmocka_unit_test(test_decode_reads_v1),
+        cmocka_unit_test(test_decode_both_versions),
+        cmocka_unit_test(test_long_model_id_named),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
