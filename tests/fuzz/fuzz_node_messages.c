@@ -64,12 +64,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (message_decode_measurement(data, (int)length, &m) == 0) {
                 CHECK(m.model != NULL && memchr(m.model, '\0', NODE_MODEL_NAME_MAX + 1) != NULL, "unterminated model");
                 const unsigned long jumps = node.counts.clock_jumps;
-                const int64_t reference = node.last_utime;
+                const int64_t reference = node.admission.last_utime;
                 if (filter_node_receive(&node, &m, arrival, &pose)) {
                     fuzz_check_pose(&pose, "fuzz_node_messages");
                     CHECK(pose.utime == m.utime, "a pose published for another capture time");
                 }
-                CHECK(node.counts.clock_jumps == jumps || node.last_utime == reference,
+                CHECK(node.counts.clock_jumps == jumps || node.admission.last_utime == reference,
                       "a stamp rejected as a clock jump became the time reference");
                 if (kind % 4 == 2 && m.utime < INT64_MAX - 300000 &&
                     filter_node_extrapolate(&node, m.utime + (int64_t)(kind * 997), &pose)) {

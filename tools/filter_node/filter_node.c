@@ -21,6 +21,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     int result;
     memset(node, 0, sizeof *node);
     node->config = config;
+    stream_admission_init(&node->admission);
     second_model_init(&node->second);
     second_position_init(&node->second_position);
     result = hkf_position_init(&node->position, &config->position);
@@ -167,29 +168,27 @@ static int finite_angles(const hkf_head_pose_measurement_t *m)
            fabsf(m->roll) <= HKF_MAX_ABS_ANGLE;
 }
 
-/* The order, duplicate and value rules on m's capture time and angles; when m
- * is taken, *dt is its step from the last one (0 for the first) and a gap
- * longer than max_dt has restarted the track. Returns 0 when m is rejected. */
+/* The order and value rules on m's capture time and angles (stream_admission.h); when m is taken,
+ * *dt is its step from the last one (0 for the first) and a gap longer than max_dt has restarted
+ * the track. Returns 0 when m is rejected. */
 static int take_time(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t *dt)
 {
     *dt = 0;
-    if (node->have_time && m->utime < node->last_utime) {
+    switch (stream_admission_order(&node->admission, m->utime)) {
+    case STREAM_OUT_OF_ORDER:
         ++node->counts.out_of_order;
         return 0;
-    }
-    if (node->have_time && m->utime == node->last_utime) {
+    case STREAM_DUPLICATE:
         ++node->counts.duplicates;
         return 0;
+    case STREAM_IN_ORDER:
+        break;
     }
     if (m->valid && !finite_angles(m)) {
         ++node->counts.bad_values;
         return 0;
     }
-    if (node->have_time) {
-        *dt = (hkf_real_t)(((double)m->utime - (double)node->last_utime) * 1e-6);
-    }
-    node->have_time = 1;
-    node->last_utime = m->utime;
+    *dt = (hkf_real_t)stream_admission_take(&node->admission, m->utime);
     if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED && *dt > node->config->settings.max_dt) {
         restart_track(node); /* a gap longer than max_dt: the track starts again from this measurement */
     }
@@ -246,46 +245,30 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
     return 1;
 }
 
-int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
+/* A measurement of the followed stream: the order and value rules, then the angles (a frame with a
+ * face updates them, one without coasts), the position and the pose. *taken is 1 when its capture
+ * time became the time reference. Returns 1 when *pose is to be published. */
+static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose, int *taken)
 {
     hkf_real_t dt;
     ++node->counts.received;
-    if (!take_time(node, m, &dt)) {
+    *taken = take_time(node, m, &dt);
+    if (!*taken) {
         return 0;
     }
     return m->valid ? update(node, m, dt, pose) : coast(node, m, dt, pose);
 }
 
-/* Capture-clock step minus arrival-clock step, in double: stamps may be anything. */
-static double clock_skew_us(int64_t utime, int64_t arrival, int64_t ref_utime, int64_t ref_arrival)
+int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
 {
-    return ((double)utime - (double)ref_utime) - ((double)arrival - (double)ref_arrival);
+    int taken;
+    return measure(node, m, pose, &taken);
 }
 
-/* One publisher: 1 when m continues the followed estimator's frame counter, or
- * when that one has gone silent (then m's publisher is followed); else 0. */
-static int from_followed_publisher(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
-{
-    if (node->have_stream) {
-        const double step = (double)m->seq - (double)node->stream_seq;
-        const int continues = step >= 1 && step <= (double)FILTER_NODE_MAX_SEQ_STEP;
-        const int silent =
-            (double)arrival_utime - (double)node->stream_arrival_utime > (double)FILTER_NODE_STREAM_TIMEOUT_US;
-        if (!continues && !silent) {
-            return 0;
-        }
-    }
-    node->have_stream = 1;
-    node->stream_seq = m->seq;
-    node->stream_arrival_utime = arrival_utime;
-    return 1;
-}
-
-/* The node follows a new capture clock: the track restarts as after a gap. */
+/* The node follows a new capture clock (stream_admission.h): the track restarts as after a gap. */
 static void resync_clock(filter_node_t *node)
 {
     ++node->counts.clock_resyncs;
-    node->have_time = 0;
     if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
         restart_track(node);
     } else {
@@ -294,46 +277,28 @@ static void resync_clock(filter_node_t *node)
     }
 }
 
-/* A measurement the node's time reference rejects (clock rule, or older than
- * the last one taken). FILTER_NODE_RESYNC_MESSAGES such in a row that agree
- * with each other - each later than the one before, with a capture step that
- * matches the arrival step - mean the reference is what was wrong: on the last
- * of them the node follows the new clock and returns 1; before, 0. */
-static int follows_rejected_stamps(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
+/* The publisher, clock and stale rules (stream_admission.h): 1 to go on with m, 0 when it is
+ * refused (counted). */
+static int admitted(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
 {
-    const int consistent =
-        node->jump_count > 0 && m->utime > node->jump_utime &&
-        fabs(clock_skew_us(m->utime, arrival_utime, node->jump_utime, node->jump_arrival_utime)) <=
-            (double)FILTER_NODE_CLOCK_JUMP_US;
-    node->jump_count = consistent ? node->jump_count + 1 : 1;
-    node->jump_utime = m->utime;
-    node->jump_arrival_utime = arrival_utime;
-    if (node->jump_count < FILTER_NODE_RESYNC_MESSAGES) {
-        return 0;
+    switch (stream_admission_check(&node->admission, m->seq, m->utime, arrival_utime)) {
+    case STREAM_GO_ON:
+        return 1;
+    case STREAM_NEW_CLOCK:
+        resync_clock(node);
+        return 1;
+    case STREAM_OTHER_PUBLISHER:
+        ++node->counts.other_publisher;
+        break;
+    case STREAM_CLOCK_JUMP:
+        ++node->counts.clock_jumps;
+        break;
+    case STREAM_STALE:
+        ++node->counts.out_of_order;
+        break;
     }
-    resync_clock(node);
-    return 1;
-}
-
-/* The clock rule: 0 when m's stamp disagrees with its arrival (a corrupt stamp,
- * or the first messages after a clock jump); 1 to go on. */
-static int clock_agrees(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
-{
-    return !node->have_time ||
-           fabs(clock_skew_us(m->utime, arrival_utime, node->last_utime, node->last_arrival_utime)) <=
-               (double)FILTER_NODE_CLOCK_JUMP_US ||
-           follows_rejected_stamps(node, m, arrival_utime);
-}
-
-/* The stale rule: 0 when m is older than the last measurement taken (out of
- * order); 1 to go on. Older ones that agree with each other mean the last one
- * taken was the odd one out: a forged stamp ahead of time, or a clock that
- * stepped back together with the receive clock (which the clock rule cannot
- * see). The node then follows them, so that no single message holds tracking
- * up for longer than a few frames. */
-static int not_stale(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
-{
-    return !node->have_time || m->utime >= node->last_utime || follows_rejected_stamps(node, m, arrival_utime);
+    ++node->counts.received;
+    return 0;
 }
 
 /* Fuses m, the second measurement of kept frame `index` (second_model_fuse), and counts it. */
@@ -352,47 +317,38 @@ static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_meas
     ++node->counts.paired;
 }
 
+/* A second model's measurement m of a frame taken (the kept frame `index`, or -1: too late): its
+ * angles fused into that frame, its position standing in where the first model measured none. */
+static void take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, int index)
+{
+    ++node->counts.received;
+    if (m->valid && !finite_angles(m)) {
+        ++node->counts.bad_values;
+    } else if (!m->valid || index < 0) {
+        ++node->counts.unpaired;
+    } else {
+        fuse_second(node, index, m);
+    }
+    take_second_position(node, m);
+}
+
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose)
 {
-    const int64_t previous_utime = node->last_utime;
-    const int had_time = node->have_time;
     const int second_of = second_model_frame_of(&node->second, m);
-    int publish;
-    if (second_of >= 0 || (node->have_stream && second_model_too_late(&node->second, m, node->model))) {
-        /* a second model's measurement of a frame taken */
-        ++node->counts.received;
-        if (m->valid && !finite_angles(m)) {
-            ++node->counts.bad_values;
-        } else if (!m->valid || second_of < 0) {
-            ++node->counts.unpaired;
-        } else {
-            fuse_second(node, second_of, m);
-        }
-        take_second_position(node, m);
+    int publish, taken;
+    if (second_of >= 0 ||
+        (stream_admission_following(&node->admission) && second_model_too_late(&node->second, m, node->model))) {
+        take_second(node, m, second_of);
         return 0;
     }
-    if (!from_followed_publisher(node, m, arrival_utime)) {
-        ++node->counts.received;
-        ++node->counts.other_publisher;
-        return 0;
-    }
-    if (!clock_agrees(node, m, arrival_utime)) {
-        ++node->counts.received;
-        ++node->counts.clock_jumps;
-        return 0;
-    }
-    if (!not_stale(node, m, arrival_utime)) {
-        ++node->counts.received;
-        ++node->counts.out_of_order;
+    if (!admitted(node, m, arrival_utime)) {
         return 0;
     }
     second_model_note_frame(&node->second, m->seq, m->utime);
-    publish = filter_node_measurement(node, m, pose);
-    if (node->have_time && (!had_time || node->last_utime != previous_utime)) {
-        /* taken: the new time reference */
-        node->last_arrival_utime = arrival_utime;
-        node->jump_count = 0;
+    publish = measure(node, m, pose, &taken);
+    if (taken) {
+        stream_admission_took_arrival(&node->admission, arrival_utime);
         node->lost_published = 0; /* the estimator speaks: no silence */
     }
     return publish;
@@ -401,8 +357,9 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
 int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
 {
     hkf_output_t out;
-    const double ahead = ((double)utime - (double)node->last_utime) * 1e-6; /* stamps may be anything */
-    if (!node->have_time || ahead < 0.0 || ahead > (double)node->config->settings.coast_time) {
+    const stream_admission_t *a = &node->admission;
+    const double ahead = ((double)utime - (double)a->last_utime) * 1e-6; /* stamps may be anything */
+    if (!a->have_time || ahead < 0.0 || ahead > (double)node->config->settings.coast_time) {
         return 0; /* nothing to extrapolate, or the estimator has gone quiet */
     }
     if (hkf_extrapolate(&node->filter, (hkf_real_t)ahead, &out) != HKF_OK) {
@@ -424,18 +381,19 @@ static int64_t next_lost_after_us(const filter_node_t *node)
 int64_t filter_node_silence_due(const filter_node_t *node)
 {
     const int64_t after = next_lost_after_us(node);
-    if (!node->have_time || hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED ||
-        node->last_arrival_utime > INT64_MAX - after) {
+    const stream_admission_t *a = &node->admission;
+    if (!a->have_time || hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED ||
+        a->last_arrival_utime > INT64_MAX - after) {
         return 0;
     }
-    return node->last_arrival_utime + after;
+    return a->last_arrival_utime + after;
 }
 
 int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pose_t *pose)
 {
     hkf_output_t out;
     const int64_t due = filter_node_silence_due(node), after = next_lost_after_us(node);
-    if (due == 0 || arrival_utime < due || node->last_utime > INT64_MAX - after ||
+    if (due == 0 || arrival_utime < due || node->admission.last_utime > INT64_MAX - after ||
         hkf_get_output(&node->filter, &out) != HKF_OK) {
         return 0; /* no track, not silent long enough, or a clock at its end */
     }
@@ -447,7 +405,7 @@ int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pos
     out.rate[0] = out.rate[1] = out.rate[2] = 0;
     out.flags |= HKF_FLAG_EXTRAPOLATED; /* not a posterior */
     /* stamped when it became due on the capture clock, so live and offline agree */
-    fill_pose(node, &out, node->last_utime + after, pose);
+    fill_pose(node, &out, node->admission.last_utime + after, pose);
     return 1;
 }
 
@@ -459,7 +417,7 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
         /* on the position last published (the angles' frame time): held or coasting, it reads 0 */
-        (void)hkf_position_recenter_at(&node->position, (hkf_real_t)position_ahead(node, node->last_utime));
+        (void)hkf_position_recenter_at(&node->position, (hkf_real_t)position_ahead(node, node->admission.last_utime));
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;

@@ -9,25 +9,9 @@
  * - utime older than the last one -> rejected (out of order); equal -> rejected (duplicate);
  * - non-finite or absurd angles -> rejected and counted, never published;
  * - a gap longer than max_dt -> the track restarts from this measurement;
- * - one publisher (filter_node_receive): the node follows one estimator's frame
- *   counter. A measurement whose seq does not continue it (1 to
- *   FILTER_NODE_MAX_SEQ_STEP frames on) is from another publisher on the same
- *   channel and is rejected and counted, unless the followed one has been
- *   silent for FILTER_NODE_STREAM_TIMEOUT_US (it stopped or restarted): then
- *   the node follows the new one. Two estimators are never mixed;
- * - clock rule (filter_node_receive): a measurement whose capture-time step
- *   disagrees with its arrival-time step by more than FILTER_NODE_CLOCK_JUMP_US
- *   is a corrupt stamp or a clock jump: rejected and counted, so one bad stamp
- *   (e.g. INT64_MAX) cannot freeze the node. FILTER_NODE_RESYNC_MESSAGES such
- *   measurements in a row that agree with each other mean the capture clock
- *   really moved (either way): the last of them is taken and the track restarts
- *   on the new clock, as after a gap;
- * - stale rule (filter_node_receive): FILTER_NODE_RESYNC_MESSAGES measurements
- *   in a row older than the last one taken, that agree with each other, mean
- *   the last one taken was the odd one out (a forged stamp ahead of time, or
- *   the capture and receive clocks stepped back together, e.g. NTP): the node
- *   follows them as after a clock jump. One message can hold tracking up for
- *   two frames at most, never for the coast time;
+ * - admission (filter_node_receive): the publisher, clock and stale rules of stream_admission.h
+ *   come first; what they refuse is counted (other_publisher, clock_jumps, out_of_order). When the
+ *   capture clock really moved, the track restarts on the new clock, as after a gap;
  * - silence (filter_node_silence, live only): an estimator that stops sending
  *   is reported as LOST after coast_time, so a simulator never shows a frozen
  *   pose as if it were tracked;
@@ -80,6 +64,7 @@
 #include "hkf_tracker_command_t.h"
 #include "node_config.h"
 #include "second_model.h"
+#include "stream_admission.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -112,19 +97,11 @@ typedef struct {
     hkf_filter_t filter;
     hkf_calibration_t calibration;    /* beside the filter: its noise level (hkf/hkf_calibration.h) */
     char model[NODE_MODEL_NAME_MAX];  /* the model the filter is set up for */
-    /* Read by the runners (hkf_filter_main.c, filter_node_offline.c): have_time and
-     * last_utime (the --rate ticks), lost_published (the offline silence) and counts (the
-     * summary). The runners write one field only: counts.decode_errors, for what does not
-     * decode before it reaches the node. */
-    int have_time;                    /* a measurement has been seen */
-    int64_t last_utime;               /* its capture time */
+    /* Read by the scheduling (node_schedule.h): admission (the time reference) and lost_published;
+     * by the runners: counts (the summary). The runners write one field only: counts.decode_errors,
+     * for what does not decode before it reaches the node. */
+    stream_admission_t admission;     /* the publisher followed and the time reference (stream_admission.h) */
     int64_t last_measurement_utime;   /* capture time of the last valid measurement used */
-    int64_t last_arrival_utime;       /* arrival time of the measurement at last_utime */
-    int have_stream;                  /* a publisher is followed: */
-    int64_t stream_seq;               /* its last seq */
-    int64_t stream_arrival_utime;     /* when that arrived */
-    int jump_count;                   /* clock and stale rules: consistent rejected stamps in a row */
-    int64_t jump_utime, jump_arrival_utime; /* the last of them */
     int64_t lost_published;           /* LOST poses published in the current silence */
     int64_t seq;
     second_model_t second;            /* the kept frames and the second model's offset (second_model.h) */
@@ -143,14 +120,9 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
 #define FILTER_NODE_MESH_MODEL "mesh_pnp" /* the model whose position is the mesh fit's */
 #define FILTER_NODE_MIN_Z 1.0f /* cm: the nearest position taken and published (z = 0: not measured) */
 
-#define FILTER_NODE_CLOCK_JUMP_US 5000000LL /* 5 s: more than any gap a replay's pacing hides */
-#define FILTER_NODE_RESYNC_MESSAGES 3
-#define FILTER_NODE_MAX_SEQ_STEP 300              /* frames: 10 s at 30 fps of dropped frames */
-#define FILTER_NODE_STREAM_TIMEOUT_US 1000000LL   /* 1 s without the followed publisher */
-
 /* Handles one measurement that arrived at arrival_utime (the receive clock:
- * a monotonic clock live, the log's event timestamp offline): the clock and stale rules, then
- * filter_node_measurement. Returns 1 when *pose is to be published. */
+ * a monotonic clock live, the log's event timestamp offline): a second model's measurement of a
+ * frame taken, or admission (stream_admission.h), then filter_node_measurement. Returns 1 when *pose is to be published. */
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose);
 

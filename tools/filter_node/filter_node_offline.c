@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "lcm_log_reader.h"
+#include "node_schedule.h"
 #include "message_decode.h"
 #include "pose_csv.h"
 
@@ -44,21 +45,19 @@ static void handle_command(filter_node_t *node, output_t *output, const void *da
     }
 }
 
-/* The live node's watchdog, in log time: an estimator silent for coast_time
- * before `timestamp` (or at the end of the log) gives one LOST pose. The live
- * node repeats it every second for late subscribers; a log has none. */
-static void silence_before(filter_node_t *node, output_t *output, int64_t timestamp)
+/* What the node publishes between measurements (node_schedule.h) up to log time `now`, each pose
+ * written at the time it was due. */
+static void publish_due(filter_node_t *node, node_schedule_t *schedule, output_t *output, int64_t now)
 {
     hkf_head_pose_t pose;
-    const int64_t due = filter_node_silence_due(node);
-    if (node->lost_published == 0 && due != 0 && due <= timestamp && filter_node_silence(node, due, &pose)) {
+    int64_t due;
+    while (node_schedule_next(schedule, node, now, &pose, &due)) {
         write_pose(output, due, &pose);
     }
 }
 
 static void handle_measurement(filter_node_t *node, output_t *output, const void *data, int size, int64_t timestamp)
 {
-    const int64_t tick_us = output->options->tick_us;
     hkf_head_pose_measurement_t m;
     hkf_head_pose_t pose;
     if (message_decode_measurement(data, size, &m) != 0) {
@@ -66,17 +65,6 @@ static void handle_measurement(filter_node_t *node, output_t *output, const void
         output->report->long_model_ids += (unsigned long)message_model_id_too_long(data, size);
         return;
     }
-    /* extrapolated poses at the --rate ticks before this measurement, in capture time */
-    if (tick_us > 0 && node->have_time && m.utime > node->last_utime) {
-        int64_t t = (node->last_utime / tick_us + 1) * tick_us;
-        for (; t < m.utime && t <= INT64_MAX - tick_us; t += tick_us) {
-            if (!filter_node_extrapolate(node, t, &pose)) {
-                break;
-            }
-            write_pose(output, timestamp, &pose);
-        }
-    }
-    silence_before(node, output, timestamp);
     if (filter_node_receive(node, &m, timestamp, &pose)) {
         write_pose(output, timestamp, &pose);
     }
@@ -90,7 +78,9 @@ int filter_node_offline(filter_node_t *node, const filter_node_offline_t *option
     lcm_log_reader_t reader;
     lcm_log_event_t event;
     output_t output;
+    node_schedule_t schedule;
     memset(report, 0, sizeof *report);
+    node_schedule_init(&schedule, options->tick_us, 0); /* a log has no late subscribers: one LOST per silence */
     output.options = options;
     output.out = out;
     output.report = report;
@@ -107,6 +97,9 @@ int filter_node_offline(filter_node_t *node, const filter_node_offline_t *option
         }
         const int ours = strcmp(event.channel, options->input_channel) == 0 ||
                          strcmp(event.channel, options->command_channel) == 0;
+        if (ours) {
+            publish_due(node, &schedule, &output, event.timestamp);
+        }
         if (ours && !event.data_read) {
             ++node->counts.decode_errors; /* far too large to be one of hkf's messages */
         } else if (strcmp(event.channel, options->command_channel) == 0) {
@@ -116,7 +109,7 @@ int filter_node_offline(filter_node_t *node, const filter_node_offline_t *option
         }
     }
     if (!report->stopped && !report->write_failed) {
-        silence_before(node, &output, INT64_MAX); /* the log ends: the estimator is silent from here on */
+        publish_due(node, &schedule, &output, INT64_MAX); /* the log ends: the estimator is silent from here on */
     }
     report->events = reader.events;
     report->skipped_bytes = reader.skipped;

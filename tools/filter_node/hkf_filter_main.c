@@ -22,6 +22,7 @@
 #include "message_decode.h"
 #include "config_files.h"
 #include "node_config.h"
+#include "node_schedule.h"
 #include "pose_csv.h"
 #include "safe_files.h"
 #include "lcm_file_url.h"
@@ -46,7 +47,6 @@ typedef struct {
     filter_node_t node;
     lcm_t *out_lcm;
     FILE *csv;
-    int64_t last_arrival_us;   /* monotonic clock when the last measurement was handled */
     int reported_decode_errors, reported_unknown_commands;
     unsigned long unknown_commands, publish_errors, csv_errors;
     unsigned long published_ok;  /* poses LCM took: a file:// output must hold them all (lcm_file_url.h) */
@@ -291,8 +291,7 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void
                             message_model_id_too_long(rbuf->data, (int)rbuf->data_size) ? LONG_MODEL_HINT : "");
         return;
     }
-    run->last_arrival_us = arrival_utime();
-    if (filter_node_receive(&run->node, &m, run->last_arrival_us, &pose)) {
+    if (filter_node_receive(&run->node, &m, arrival_utime(), &pose)) {
         publish(run, &pose);
     }
     hkf_head_pose_measurement_t_decode_cleanup(&m);
@@ -364,37 +363,23 @@ static lcm_t *open_live(node_run_t *run)
     return in;
 }
 
-/* A --rate tick: the pose at the capture clock's "now", between measurements; the next tick's time. */
-static int64_t tick(node_run_t *run, int64_t next_tick, int64_t tick_us)
-{
-    hkf_head_pose_t pose;
-    const int64_t since = arrival_utime() - run->last_arrival_us;
-    if (run->node.have_time && since > 0 && run->node.last_utime <= INT64_MAX - since &&
-        filter_node_extrapolate(&run->node, run->node.last_utime + since, &pose)) {
-        publish(run, &pose);
-    }
-    next_tick += tick_us;
-    return next_tick < arrival_utime() ? arrival_utime() + tick_us : next_tick;
-}
-
-/* Handles what arrives until a stop is asked for: measurements and commands, the silence rule and the
- * --rate ticks. 0, or 1 when LCM failed. */
+/* Handles what arrives until a stop is asked for: measurements and commands, then what is due
+ * between them (node_schedule.h: the silence's LOST poses and the --rate ticks). 0, or 1 when LCM
+ * failed. */
 static int live_loop(node_run_t *run, lcm_t *in)
 {
     const int64_t tick_us = run->options->rate_hz > 0.0 ? (int64_t)(1e6 / run->options->rate_hz) : 0;
-    int64_t next_tick = arrival_utime() + tick_us;
+    node_schedule_t schedule;
+    node_schedule_init(&schedule, tick_us, 1); /* LOST repeated for late subscribers */
     while (!lcm_wait_stop_requested()) {
-        const int64_t silence_due = filter_node_silence_due(&run->node);
-        const int64_t wake = tick_us > 0 && (silence_due == 0 || next_tick < silence_due) ? next_tick : silence_due;
         hkf_head_pose_t pose;
+        int64_t due;
+        const int64_t wake = node_schedule_wake(&schedule, &run->node);
         if (lcm_wait_and_handle(in, lcm_wait_time(wake, arrival_utime()), "hkf-filter") < 0) {
             return 1;
         }
-        if (filter_node_silence(&run->node, arrival_utime(), &pose)) { /* the estimator has gone quiet */
+        while (node_schedule_next(&schedule, &run->node, arrival_utime(), &pose, &due)) {
             publish(run, &pose);
-        }
-        if (tick_us > 0 && arrival_utime() >= next_tick) {
-            next_tick = tick(run, next_tick, tick_us);
         }
     }
     return 0;

@@ -1,0 +1,306 @@
+/*
+ * test_node_position.c - hkf-filter's node (tools/filter_node/filter_node.c), the position: filtered, gated, bounded and coasting, a second model's standing in, through clock steps and commands.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "node_test_support.h"
+
+/* The position: filtered from the measurements that carry one (z > 0), published with its
+ * centre; a message without one leaves it alone; RECENTER sets the centre, RESET forgets it;
+ * a box-based model's position moves the filter less than the mesh's (a deviation the size
+ * of the measured noise: the filter is calibrated on the +-0.2 cm the positions carry). */
+static void test_position_filtered(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    hkf_tracker_command_t command = {0, HKF_TRACKER_COMMAND_T_RECENTER};
+    float mesh_step, box_step;
+    int i;
+    (void)state;
+    m = measurement(T0, 1, 0, 0, 0);
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.z == 0.0f && pose.position_center[2] == 0.0f); /* no position measured yet */
+    for (i = 1; i <= 30; ++i) {
+        const float noise = i % 2 ? 0.2f : -0.2f;
+        m = measurement(T0 + i * FRAME_US, 1, 0, 0, 0);
+        m.model = "mesh_pnp";
+        m.x = 2.0f + 0.1f * noise, m.y = -1.0f, m.z = 60.0f + noise;
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    }
+    assert_true(fabsf(pose.z - 60.0f) < 0.1f && fabsf(pose.x - 2.0f) < 0.05f);
+    assert_true(fabsf(pose.position_center[2] - 60.2f) < 1e-4f); /* the first measurement */
+    assert_true(pose.position_variance[2] > 0.0f && pose.position_variance[2] < 0.05f);
+    {
+        const float held = pose.z;
+        m = measurement(T0 + 31 * FRAME_US, 1, 0, 0, 0); /* no position: held */
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        assert_true(fabsf(pose.z - held) < 0.05f);
+    }
+    {
+        filter_node_t mesh = node, box = node;
+        const float before = pose.z;
+        m = measurement(T0 + 32 * FRAME_US, 1, 0, 0, 0);
+        m.model = "mesh_pnp";
+        m.z = before + 0.4f, m.x = 2.0f, m.y = -1.0f;
+        assert_int_equal(filter_node_measurement(&mesh, &m, &pose), 1);
+        mesh_step = pose.z - before;
+        m.model = "whenet"; /* a model change restarts the angles' track, not the position's */
+        assert_int_equal(filter_node_measurement(&box, &m, &pose), 1);
+        box_step = pose.z - before;
+        print_message("a 0.4 cm deviation moves the position %.3f cm (mesh), %.3f cm (face box)\n", mesh_step, box_step);
+        assert_true(mesh_step > 0.0f && box_step > 0.0f && box_step < 0.5f * mesh_step);
+    }
+    m = measurement(T0 + 32 * FRAME_US, 1, 0, 0, 0);
+    m.model = "mesh_pnp";
+    m.z = 50.0f, m.x = 2.0f, m.y = -1.0f;
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.z < 59.0f); /* a lean of 10 cm: the motion detector follows at once */
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    m = measurement(T0 + 33 * FRAME_US, 1, 0, 0, 0);
+    m.model = "mesh_pnp";
+    m.z = 50.0f, m.x = 2.0f, m.y = -1.0f;
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.position_center[2] < 59.0f); /* the centre moved to where the head was */
+    command.command = HKF_TRACKER_COMMAND_T_RESET;
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    m = measurement(T0 + 34 * FRAME_US, 1, 0, 0, 0);
+    m.model = "mesh_pnp";
+    m.z = 40.0f, m.x = 0.0f, m.y = 0.0f;
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    assert_true(pose.z == 40.0f && pose.position_center[2] == 40.0f); /* a new track, and centre */
+}
+
+/* The second model's positions: where the mesh measured none (a profile) WHENet's box position
+ * of the frame stands in, moved onto the mesh's by their running difference (the box reads the
+ * head 3 cm farther here): the position holds where the head is, then follows a lean; a second
+ * measurement of a frame the mesh measured only teaches the offset. */
+static void test_second_model_position(void **state)
+{
+    hkf_head_pose_measurement_t first, second;
+    hkf_head_pose_t pose;
+    int64_t utime = T0;
+    int i;
+    (void)state;
+    for (i = 0; i < 90; ++i) { /* 0-29 both measure; 30-59 the mesh folds, the head still; 60-89 a lean to 50 cm */
+        const float truth = i < 60 ? 60.0f : 50.0f;
+        const float noise = i % 2 ? 0.2f : -0.2f;
+        utime += FRAME_US;
+        first = measurement(utime, i < 30, 0, i < 30 ? 5 : 70, 0);
+        first.model = "mesh_pnp";
+        if (i < 30) {
+            first.x = 1.0f, first.y = -2.0f, first.z = truth + noise;
+        }
+        (void)filter_node_receive(&node, &first, utime, &pose);
+        second = first;
+        second.model = "whenet";
+        second.valid = 1;
+        second.yaw = i < 30 ? 5.0f : 70.0f;
+        second.x = 1.5f, second.y = -2.0f, second.z = truth + 3.0f - noise;
+        (void)filter_node_receive(&node, &second, utime + 1000, &pose);
+        if (i == 29 || i == 59) {
+            const int64_t at = node.position_utime;
+            assert_true(filter_node_extrapolate(&node, utime + 2000, &pose) >= 0);
+            print_message("frame %d: z %.2f cm (the head at %.0f cm; the last position taken at frame %lld)\n", i,
+                          pose.z, truth, (long long)((at - T0) / FRAME_US - 1));
+            assert_true(fabsf(pose.z - truth) < 0.5f && fabsf(pose.x - 1.0f) < 0.2f);
+            assert_true(at == utime);
+        }
+    }
+    assert_true(filter_node_extrapolate(&node, utime + 2000, &pose) >= 0);
+    print_message("after the lean: z %.2f cm (the head at 50 cm)\n", pose.z);
+    assert_true(fabsf(pose.z - 50.0f) < 1.0f);
+}
+
+/* Hardening round 3, item 1: the mesh misses a frame, the clock steps back 1 h, and the second
+ * model's measurement of the missed frame arrives after the node has followed the new clock.
+ * Before, the position track took that old (1 h later) stamp and then froze for the hour; now
+ * the resync forgets the kept frames and the position follows the head on the new clock. */
+static void test_position_follows_after_clock_step_back(void **state)
+{
+    hkf_head_pose_measurement_t m, late;
+    hkf_head_pose_t pose;
+    const int64_t back = 3600000000LL;
+    int i;
+    (void)state;
+    for (i = 0; i < 20; ++i) {
+        feed_two_models(T0 + i * FRAME_US, T0 + i * FRAME_US, 0.0f, 60.0f, 1, 2.0f, &pose);
+    }
+    m = measurement(T0 + 20 * FRAME_US, 1, 0, 5, 0); /* frame 20: the mesh finds no position */
+    m.model = "mesh_pnp";
+    (void)filter_node_receive(&node, &m, m.utime, &pose);
+    late = m;
+    late.model = "whenet";
+    late.x = 0.0f, late.y = 0.0f, late.z = 62.0f;
+    for (i = 21; i < 21 + STREAM_RESYNC_MESSAGES; ++i) { /* the clock steps back 1 h: followed */
+        m = measurement(T0 + i * FRAME_US - back, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        m.x = 0.0f, m.y = 0.0f, m.z = 60.0f;
+        (void)filter_node_receive(&node, &m, m.utime, &pose);
+    }
+    assert_int_equal(node.counts.clock_resyncs, 1);
+    (void)filter_node_receive(&node, &late, T0 + i * FRAME_US - back + 2000, &pose); /* frame 20's second, late */
+    for (; i < 60; ++i) { /* a steady move in x: 0.5 cm a frame */
+        const float x = 0.5f * (float)(i - 20);
+        m = measurement(T0 + i * FRAME_US - back, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        m.x = x, m.y = 0.0f, m.z = 60.0f;
+        assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    }
+    print_message("after the clock step: x %.2f cm (the head at %.1f cm)\n", pose.x, 0.5 * (59 - 20));
+    assert_true(fabsf(pose.x - 0.5f * (59 - 20)) < 1.0f);
+    assert_true(pose.x_rate > 10.0f); /* 15 cm/s */
+}
+
+/* Item 5: positions far off, once or for long, never publish a position beyond the range the
+ * node accepts, nor z below FILTER_NODE_MIN_Z; one forged message is refused by the gate; bad
+ * positions (NaN, inf, z < 0, beyond 1000 cm) are counted and change nothing. */
+static void test_position_gated_and_bounded(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    const float bad[][3] = {{NAN, 0, 60}, {0, INFINITY, 60}, {0, 0, -4.65f}, {1001, 0, 60}, {0, 0, 0.5f}};
+    int i, frame = 0;
+    (void)state;
+    for (i = 0; i < 30; ++i, ++frame) { /* a still head at 60 cm */
+        m = measurement(T0 + frame * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        m.x = 1.0f + (i % 2 ? 0.05f : -0.05f), m.y = 0.0f, m.z = 60.0f;
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    }
+    m = measurement(T0 + frame++ * FRAME_US, 1, 0, 5, 0); /* one forged message */
+    m.model = "mesh_pnp";
+    m.x = 1000.0f, m.y = -1000.0f, m.z = 1000.0f;
+    assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+    print_message("a forged (1000, -1000, 1000): published (%.2f, %.2f, %.2f)\n", pose.x, pose.y, pose.z);
+    assert_true(fabsf(pose.x - 1.0f) < 0.5f && fabsf(pose.z - 60.0f) < 0.5f);
+    assert_int_equal(node.counts.positions_gated, 1);
+    for (i = 0; i < (int)(sizeof bad / sizeof bad[0]); ++i, ++frame) {
+        m = measurement(T0 + frame * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        m.x = bad[i][0], m.y = bad[i][1], m.z = bad[i][2];
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        assert_true(fabsf(pose.x - 1.0f) < 0.5f && fabsf(pose.z - 60.0f) < 0.5f);
+    }
+    assert_int_equal(node.counts.bad_positions, sizeof bad / sizeof bad[0]);
+    /* x -1000 cm for 10 frames, +1000 once, then frames without a position for 3 s */
+    for (i = 0; i < 100; ++i, ++frame) {
+        m = measurement(T0 + frame * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        if (i <= 10) {
+            m.x = i < 10 ? -1000.0f : 1000.0f, m.y = 0.0f, m.z = i < 10 ? 2.0f : 1000.0f;
+        }
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        assert_true(isfinite(pose.x) && fabsf(pose.x) <= HKF_MAX_ABS_POSITION && fabsf(pose.y) <= HKF_MAX_ABS_POSITION);
+        assert_true(pose.z >= FILTER_NODE_MIN_Z && pose.z <= HKF_MAX_ABS_POSITION);
+    }
+    print_message("after -1000 x 10, +1000 once, 3 s without: x %.1f cm, z %.1f cm\n", pose.x, pose.z);
+    for (i = 0; i < 60; ++i, ++frame) { /* toward the camera at 60 cm/s to 2 cm, then no position: the coast stops at 1 cm */
+        m = measurement(T0 + frame * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        if (i < 30) {
+            m.x = 0.0f, m.y = 0.0f, m.z = 2.0f + 2.0f * (float)(29 - i);
+        }
+        assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
+        assert_true(pose.z >= FILTER_NODE_MIN_Z && pose.z <= HKF_MAX_ABS_POSITION);
+    }
+    assert_true(pose.z == FILTER_NODE_MIN_Z);
+}
+
+/* Item 6: a head leaning at 15 cm/s whose positions stop while the angles go on. The position
+ * coasts for the position's max_dt, then is held there with rate 0 (no jump back when the angles
+ * are LOST), its variance growing; a RECENTER during the hold centres on what was published;
+ * positions that resume where the head is do not jump. */
+static void test_position_coast_bounded(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose, held;
+    hkf_tracker_command_t command = {0, HKF_TRACKER_COMMAND_T_RECENTER};
+    const double max_dt = (double)config.position.max_dt;
+    const int64_t coast_us = (int64_t)(1e6 * (double)config.settings.coast_time);
+    float last_variance = 0.0f, last_measured = 0.0f, rate;
+    int i;
+    (void)state;
+    for (i = 0; i < 60; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        m.x = last_measured = 15.0f * (float)(i * FRAME_US * 1e-6), m.y = 0.0f, m.z = 60.0f;
+        assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    }
+    print_message("leaning at 15 cm/s: x %.2f cm (measured %.2f), rate %.2f cm/s\n", pose.x, last_measured, pose.x_rate);
+    assert_true(pose.x_rate > 5.0f);
+    rate = pose.x_rate;
+    for (; i < 150; ++i) { /* 3 s of angles without a position */
+        const double since = (double)(i - 59) * FRAME_US * 1e-6;
+        m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+        assert_true(pose.x <= last_measured + rate * (float)max_dt + 0.1f); /* at most max_dt of coast */
+        assert_true(pose.position_variance[0] > last_variance); /* growing */
+        last_variance = pose.position_variance[0];
+        if (since > max_dt) {
+            assert_true(pose.x_rate == 0.0f);
+        }
+    }
+    held = pose;
+    print_message("held at x %.2f cm (last measured %.2f), variance %.3f cm^2, rate %.1f\n", held.x, last_measured,
+                  held.position_variance[0], held.x_rate);
+    assert_int_equal(filter_node_silence(&node, m.utime + coast_us, &pose), 1); /* the angles fall silent */
+    assert_int_equal(pose.status, HKF_HEAD_POSE_T_LOST);
+    assert_true(pose.x == held.x); /* no jump at LOST */
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+    m.model = "mesh_pnp";
+    assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    assert_true(fabsf(pose.x - pose.position_center[0]) < 1e-4f); /* TX 0 after RECENTER */
+    ++i;
+    m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0); /* positions resume where the head is held */
+    m.model = "mesh_pnp";
+    m.x = held.x, m.y = 0.0f, m.z = 60.0f;
+    assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    assert_true(fabsf(pose.x - held.x) < 0.01f && fabsf(pose.x - pose.position_center[0]) < 0.01f);
+}
+
+/* Item 7: RESET forgets the second model's position offset with the rest: after it, the box
+ * positions (10 cm farther than the mesh's before) are not moved by the old offset. */
+static void test_reset_forgets_second_offset(void **state)
+{
+    hkf_head_pose_t pose;
+    hkf_tracker_command_t command = {0, HKF_TRACKER_COMMAND_T_RESET};
+    int i;
+    (void)state;
+    for (i = 0; i < 30; ++i) { /* both measure: the box reads 10 cm farther */
+        feed_two_models(T0 + i * FRAME_US, T0 + i * FRAME_US, 0.0f, 60.0f, 1, 10.0f, &pose);
+    }
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    for (; i < 60; ++i) { /* after RESET the mesh folds; the box alone, not yet aligned, with a new person at 70 cm */
+        feed_two_models(T0 + i * FRAME_US, T0 + i * FRAME_US, 0.0f, 70.0f, 0, 0.0f, &pose);
+        assert_true(pose.z == 0.0f || fabsf(pose.z - 70.0f) < 1.0f); /* never moved 10 cm by the old offset */
+    }
+    for (; i < 70; ++i) { /* the mesh back: the offset learnt anew (0 cm) */
+        feed_two_models(T0 + i * FRAME_US, T0 + i * FRAME_US, 0.0f, 70.0f, 1, 0.0f, &pose);
+    }
+    for (; i < 80; ++i) {
+        feed_two_models(T0 + i * FRAME_US, T0 + i * FRAME_US, 0.0f, 70.0f, 0, 0.0f, &pose);
+        assert_true(fabsf(pose.z - 70.0f) < 1.0f);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_position_filtered, setup),
+        cmocka_unit_test_setup(test_second_model_position, setup),
+        cmocka_unit_test_setup(test_position_follows_after_clock_step_back, setup),
+        cmocka_unit_test_setup(test_position_gated_and_bounded, setup),
+        cmocka_unit_test_setup(test_position_coast_bounded, setup),
+        cmocka_unit_test_setup(test_reset_forgets_second_offset, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,364 @@
+/*
+ * test_node_second_model.c - hkf-filter's node (tools/filter_node/filter_node.c), a second model on the channel: its measurement fused into its frame, late or repeated ones, alone, its offset, and another publisher's model.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "node_test_support.h"
+
+/* RECENTER forgets the kept frames: a second model's measurement of a frame
+ * from before the command is not fused (it would redo frames on the old
+ * centre) but counted. */
+static void test_second_model_after_recenter(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    hkf_tracker_command_t command;
+    int i;
+    (void)state;
+    for (i = 0; i < 5; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    }
+    second = m;
+    second.model = "hopenet";
+    command.utime = 0;
+    command.command = HKF_TRACKER_COMMAND_T_RECENTER;
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    assert_int_equal(filter_node_receive(&node, &second, m.utime + 10000, &pose), 0);
+    assert_int_equal(node.counts.paired, 0);
+    assert_int_equal(node.counts.unpaired, 1);
+}
+
+static void test_second_model_fused_into_its_frame(void **state)
+{
+    enum { FRAMES = 300, LATE = 3 };
+    static hkf_head_pose_measurement_t first[FRAMES], second[FRAMES];
+    hkf_filter_t reference, before;
+    hkf_output_t ours, theirs;
+    int known1, known2, i, a, published = 0, second_only; /* frames only the second model measured */
+    const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known1);
+    const hkf_settings_t hopenet = node_config_for_model(&config, "hopenet", &known2);
+    const hkf_model_noise_t s2 = hkf_model_noise_of(&hopenet);
+    (void)state;
+    node.second.align_frames = 0; /* the models' offset is another test's */
+    config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
+    assert_true(known1 && known2);
+    assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
+    second_only = make_pair_frames(first, second, FRAMES, &reference, &s2);
+    for (i = 0; i < FRAMES + LATE; ++i) {
+        hkf_head_pose_t pose;
+        if (i < FRAMES) {
+            published += filter_node_receive(&node, &first[i], first[i].utime + 2000, &pose);
+        }
+        if (i >= LATE) {
+            memcpy(&before, &node.filter, sizeof before);
+            assert_int_equal(filter_node_receive(&node, &second[i - LATE], first[i - LATE].utime + 40000, &pose), 0);
+            assert_true(memcmp(&before, &node.filter, sizeof before) != 0); /* taken */
+        }
+    }
+    assert_true(second_only > 20);
+    /* every frame once a track exists: from the first model's first face, or the
+     * second model's of frame 0, fused when frame LATE has come */
+    for (i = 0; i < FRAMES && !first[i].valid; ++i) {
+    }
+    assert_int_equal(published, FRAMES - (i < LATE + 1 ? i : LATE + 1));
+    assert_int_equal(node.counts.paired, FRAMES);
+    assert_int_equal(node.counts.unpaired, 0);
+    assert_int_equal(node.counts.other_publisher, 0);
+    assert_int_equal(node.counts.unknown_models, 0);
+    assert_int_equal(hkf_get_output(&node.filter, &ours), HKF_OK);
+    assert_int_equal(hkf_get_output(&reference, &theirs), HKF_OK);
+    for (a = 0; a < 3; ++a) {
+        assert_float_equal(ours.angle[a], theirs.angle[a], 1e-4);
+        assert_float_equal(ours.variance[a], theirs.variance[a], 1e-6);
+    }
+}
+
+/* A second measurement is used once per frame, only with a face, and only
+ * while its frame is kept: otherwise it is counted and changes nothing. */
+static void test_second_model_late_or_repeated_not_used(void **state)
+{
+    hkf_head_pose_measurement_t m[40], other;
+    hkf_head_pose_t pose;
+    hkf_filter_t before;
+    int i;
+    (void)state;
+    for (i = 0; i < 40; ++i) {
+        m[i] = measurement(T0 + i * FRAME_US, 1, 1.0, 10.0, -2.0);
+        assert_int_equal(filter_node_receive(&node, &m[i], m[i].utime + 2000, &pose), 1);
+    }
+    memcpy(&before, &node.filter, sizeof before);
+    other = m[39 - FILTER_NODE_PAIR_FRAMES]; /* just older than the kept frames */
+    other.model = "hopenet";
+    other.yaw = 30.0f;
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    other = m[35];
+    other.model = "hopenet";
+    other.valid = 0; /* no face: nothing to add */
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    other.valid = 1;
+    other.yaw = NAN;
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    assert_memory_equal(&before, &node.filter, sizeof before);
+    other.yaw = 12.0f;
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    assert_true(memcmp(&before, &node.filter, sizeof before) != 0);
+    memcpy(&before, &node.filter, sizeof before);
+    other.yaw = 14.0f; /* the same frame's second again */
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    assert_memory_equal(&before, &node.filter, sizeof before);
+    assert_int_equal(node.counts.paired, 1);
+    assert_int_equal(node.counts.unpaired, 3);
+    assert_int_equal(node.counts.bad_values, 1);
+    assert_int_equal(node.counts.other_publisher, 0);
+    assert_int_equal(node.counts.restarts, 0);
+    /* the next frame's pose carries the fused frame; the model table is not switched */
+    m[0] = measurement(T0 + 40 * FRAME_US, 1, 1.0, 10.0, -2.0);
+    m[0].seq = m[39].seq + 1;
+    assert_int_equal(filter_node_receive(&node, &m[0], m[0].utime + 2000, &pose), 1);
+    assert_string_equal(node.model, "fsanet");
+}
+
+/* A face only the second model sees (a profile the mesh gives up on): the
+ * track starts from it, and the first model's empty frames coast on it. */
+static void test_second_model_alone_starts_and_keeps_track(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    (void)state;
+    for (i = 0; i < 30; ++i) {
+        m = measurement(T0 + i * FRAME_US, 0, 0, 0, 0);
+        published += filter_node_receive(&node, &m, m.utime + 2000, &pose);
+        if (i > 0) {
+            assert_int_equal(pose.status == HKF_HEAD_POSE_T_LOST, 0);
+            assert_true(fabsf(pose.yaw - 70.0f) < 1.0f);
+        }
+        second = m;
+        second.model = "hopenet";
+        second.valid = 1;
+        second.pitch = -5.0f;
+        second.yaw = 70.0f;
+        second.roll = 3.0f;
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
+    }
+    assert_int_equal(published, 29);
+    assert_int_equal(node.counts.paired, 30);
+    assert_string_equal(node.model, "fsanet");
+}
+
+/* Two models that disagree by a steady offset (the second reads pitch 4 deg
+ * higher, yaw 3 deg lower): the second is moved onto the first's frame, so the
+ * fused track keeps to where the first model alone puts it (on average over
+ * the second half; the lag differs, as fusing halves R) - without the
+ * alignment it sits between the two. */
+static void test_second_model_offset_aligned(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    filter_node_t alone, unaligned;
+    double bias_aligned[2] = {0, 0}, bias_unaligned[2] = {0, 0};
+    int i;
+    (void)state;
+    assert_int_equal(filter_node_init(&alone, &config), 0);
+    assert_int_equal(filter_node_init(&unaligned, &config), 0);
+    unaligned.second.align_frames = 0;
+    for (i = 0; i < 400; ++i) {
+        hkf_head_pose_t p_alone, p_unaligned;
+        const double pitch = 5.0 * sin(0.05 * i), yaw = 20.0 * sin(0.03 * i), noise = 0.5 * sin(1.7 * i);
+        m = measurement(T0 + i * FRAME_US, 1, pitch + noise, yaw - noise, 1.0);
+        second = m;
+        second.model = "hopenet";
+        second.pitch = (float)(pitch + 4.0 - noise);
+        second.yaw = (float)(yaw - 3.0 + noise);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
+        assert_int_equal(filter_node_receive(&alone, &m, m.utime + 2000, &p_alone), 1);
+        assert_int_equal(filter_node_receive(&unaligned, &m, m.utime + 2000, &p_unaligned), 1);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
+        assert_int_equal(filter_node_receive(&unaligned, &second, m.utime + 30000, &p_unaligned), 0);
+        if (i >= 200) {
+            bias_aligned[0] += (pose.pitch - p_alone.pitch) / 200.0;
+            bias_aligned[1] += (pose.yaw - p_alone.yaw) / 200.0;
+            bias_unaligned[0] += (p_unaligned.pitch - p_alone.pitch) / 200.0;
+            bias_unaligned[1] += (p_unaligned.yaw - p_alone.yaw) / 200.0;
+        }
+    }
+    print_message("mean offset from the first model's track, pitch / yaw: aligned %.3f / %.3f deg, unaligned "
+                  "%.3f / %.3f deg\n", bias_aligned[0], bias_aligned[1], bias_unaligned[0], bias_unaligned[1]);
+    assert_true(fabs(bias_aligned[0]) < 0.1 && fabs(bias_aligned[1]) < 0.1);
+    /* unaligned, the second model pulls the track by its weight, R1 / (R1 + R2) of its offset: in pitch it is
+     * visible (0.23 deg of 4 with the defaults); in yaw hopenet's curve leaves it next to none */
+    assert_true(bias_unaligned[0] > 0.15 && bias_unaligned[0] > 5.0 * fabs(bias_aligned[0]));
+    assert_float_equal(node.second.offset[0], -4.0, 0.05);
+    assert_float_equal(node.second.offset[1], 3.0, 0.05);
+}
+
+/* The offset is a running mean from the first frame on: after 10 frames
+ * that both models measured 4 deg apart in pitch (and 3 in yaw), the node has
+ * learnt 4 (and -3), not a fraction of it on its way to the window. */
+static void test_second_model_offset_from_the_first_frames(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    int i;
+    (void)state;
+    for (i = 0; i < 10; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 2.0 + 0.3 * i, 5.0, 0.0);
+        second = m;
+        second.model = "hopenet";
+        second.pitch = m.pitch - 4.0f;
+        second.yaw = m.yaw + 3.0f;
+        (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+    }
+    assert_int_equal(node.second.offset_frames, 10);
+    assert_float_equal(node.second.offset[0], 4.0, 1e-4);
+    assert_float_equal(node.second.offset[1], -3.0, 1e-4);
+    /* at a large turn (the first model's |yaw| >= 25 deg) the first is not trusted: nothing is learnt there */
+    for (i = 10; i < 20; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 2.0, 40.0, 0.0);
+        second = m;
+        second.model = "hopenet";
+        second.pitch = m.pitch - 12.0f;
+        (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+    }
+    assert_int_equal(node.second.offset_frames, 10);
+    assert_float_equal(node.second.offset[0], 4.0, 1e-4);
+}
+
+/* Both models near the yaw seam (WHENet reports up to +-180): the head sways
+ * across it and the second model reads 2 deg further right, so their
+ * difference is -2 deg, whichever side of the seam each reading falls on. The
+ * offset learnt is -2 (not a mean of -2 and 358), and the fused yaw stays
+ * with the first model's, across the seam. */
+static void test_second_model_offset_across_the_seam(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose, first_alone;
+    filter_node_t alone;
+    double worst = 0.0;
+    int i;
+    (void)state;
+    config.second_alone_from_yaw = 180; /* fused at every yaw: the offset is learnt at the seam too */
+    assert_int_equal(filter_node_init(&node, &config), 0);
+    assert_int_equal(filter_node_init(&alone, &config), 0);
+    for (i = 0; i < 120; ++i) {
+        const double yaw = 179.0 + 2.0 * sin(0.2 * i); /* 177 .. 181 deg, i.e. across +-180 */
+        m = measurement(T0 + i * FRAME_US, 1, 0.0, yaw >= 180.0 ? yaw - 360.0 : yaw, 0.0);
+        second = m;
+        second.model = "hopenet";
+        second.yaw = (float)(yaw + 2.0 >= 180.0 ? yaw + 2.0 - 360.0 : yaw + 2.0);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
+        assert_int_equal(filter_node_receive(&alone, &m, m.utime + 2000, &first_alone), 1);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+        if (i >= 20) {
+            const double d = fabs(fmod(pose.yaw - first_alone.yaw + 540.0, 360.0) - 180.0);
+            worst = d > worst ? d : worst;
+        }
+    }
+    assert_float_equal(node.second.offset[1], -2.0, 1e-3);
+    print_message("largest distance from the first model's track: %.3f deg\n", worst);
+    /* the fused track stays with the first model's: a seam error would put it 2 deg (the offset) or a turn
+     * away; what remains is the dynamics of a halved R (0.59 deg on this noise-free turn) */
+    assert_true(worst < 1.0);
+}
+
+/* Where the first model measures a large turn (|yaw| >= pair_second_alone_from_yaw,
+ * 25 deg), a frame the second model also measured takes the second's
+ * measurement alone, with its own R; below, both are fused. The node's track
+ * is libhkf's stepped that way. */
+static void test_second_model_alone_at_large_yaw(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    hkf_filter_t reference;
+    hkf_calibration_t calibration;
+    hkf_output_t ours, theirs;
+    int known, i, a;
+    const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known);
+    const hkf_settings_t hopenet = node_config_for_model(&config, "hopenet", &known);
+    const hkf_model_noise_t s2 = hkf_model_noise_of(&hopenet);
+    (void)state;
+    node.second.align_frames = 0;
+    assert_float_equal(config.second_alone_from_yaw, 25.0, 0.0);
+    assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
+    assert_int_equal(hkf_calibration_init(&calibration, &config.calibration, &reference), HKF_OK);
+    for (i = 0; i < 60; ++i) {
+        const double yaw = 1.5 * i; /* 0 .. 88.5 deg: fused below 25, the second alone from there */
+        const hkf_real_t z[3] = {(hkf_real_t)(2.0 + 0.3 * sin(i)), (hkf_real_t)yaw, -1.0f};
+        const hkf_real_t z2[3] = {(hkf_real_t)(-1.0 + 0.4 * cos(i)), (hkf_real_t)(yaw + 4.0), 2.0f};
+        m = measurement(T0 + i * FRAME_US, 1, z[0], z[1], z[2]);
+        second = m;
+        second.model = "hopenet";
+        second.pitch = z2[0];
+        second.yaw = z2[1];
+        second.roll = z2[2];
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
+        assert_int_equal(hkf_update_pair(&reference, yaw >= 25.0 ? NULL : z, z2, &s2,
+                                         (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6), NULL), HKF_OK);
+        assert_int_equal(hkf_calibration_update(&calibration, &reference, yaw >= 25.0 ? z2 : z,
+                                                (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6)), HKF_OK);
+    }
+    assert_int_equal(hkf_get_output(&node.filter, &ours), HKF_OK);
+    assert_int_equal(hkf_get_output(&reference, &theirs), HKF_OK);
+    for (a = 0; a < 3; ++a) {
+        assert_float_equal(ours.angle[a], theirs.angle[a], 1e-4);
+    }
+    /* the second model's pitch, not a blend: the first's (2 deg) is set aside */
+    assert_true(fabs(ours.angle[0] - (-1.0)) < 1.0);
+    assert_int_equal(node.counts.paired, 60);
+}
+
+/* Another estimator with another model on the channel, its counter behind and
+ * its frames a little older than the followed one's (the fault catalogue's two
+ * estimators on one channel: WHENet started a second after the mesh): another
+ * publisher, never taken for a late second measurement - its seq and utime
+ * are no frame of the followed one. */
+static void test_other_model_publisher_not_a_second(void **state)
+{
+    hkf_head_pose_measurement_t a, b;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    (void)state;
+    for (i = 0; i < 60; ++i) {
+        a = measurement(T0 + i * FRAME_US, 1, 0, 10, 0);
+        a.seq = 100 + i;
+        published += filter_node_receive(&node, &a, a.utime + 2000, &pose);
+        if (i >= 30) {
+            b = measurement(T0 + i * FRAME_US - 20000, 1, 0, 40, 0); /* captured 20 ms before a */
+            b.seq = i - 30;
+            b.model = "hopenet";
+            assert_int_equal(filter_node_receive(&node, &b, a.utime + 30000, &pose), 0);
+        }
+    }
+    assert_int_equal(published, 60);
+    assert_int_equal(node.counts.other_publisher, 30);
+    assert_int_equal(node.counts.unpaired, 0);
+    assert_int_equal(node.counts.paired, 0);
+    assert_true(fabsf(pose.yaw - 10.0f) < 0.5f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_second_model_after_recenter, setup),
+        cmocka_unit_test_setup(test_second_model_fused_into_its_frame, setup),
+        cmocka_unit_test_setup(test_second_model_late_or_repeated_not_used, setup),
+        cmocka_unit_test_setup(test_second_model_alone_starts_and_keeps_track, setup),
+        cmocka_unit_test_setup(test_second_model_offset_aligned, setup),
+        cmocka_unit_test_setup(test_second_model_offset_from_the_first_frames, setup),
+        cmocka_unit_test_setup(test_second_model_offset_across_the_seam, setup),
+        cmocka_unit_test_setup(test_second_model_alone_at_large_yaw, setup),
+        cmocka_unit_test_setup(test_other_model_publisher_not_a_second, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
