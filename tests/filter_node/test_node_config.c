@@ -91,6 +91,35 @@ static void test_shipped_file_equals_defaults(void **state)
     assert_string_equal(from_file.models[3].name, "whenet");
     assert_memory_equal(from_file.models[3].noise, hkf_noise_whenet, sizeof from_file.models[3].noise);
     assert_true(same_models(from_file.models, defaults.models, 4));
+    /* the position's quality per model: the file's and the built-in table's */
+    assert_true(node_config_model_settings(&from_file, "mesh_pnp").position_r_scale == 1.0f);
+    assert_true(node_config_model_settings(&from_file, "whenet").position_r_scale ==
+                node_config_model_settings(&defaults, "whenet").position_r_scale);
+    assert_true(from_file.model_settings.position_r_scale == defaults.model_settings.position_r_scale);
+}
+
+/* The position's quality is the model's (position_r_scale): the mesh fit's 1 built in, the face box's
+ * 25 for the rest; a model may set its own, the base's reaches the others; out of range is refused,
+ * and the node's keys that are not per model are refused in a model's section. */
+static void test_position_quality_per_model(void **state)
+{
+    node_config_t c;
+    (void)state;
+    node_config_defaults(&c);
+    assert_true(node_config_model_settings(&c, "mesh_pnp").position_r_scale == 1.0f);
+    assert_true(node_config_model_settings(&c, "whenet").position_r_scale == (hkf_real_t)NODE_BOX_POSITION_R_SCALE);
+    assert_true(node_config_model_settings(&c, "nobody").position_r_scale == (hkf_real_t)NODE_BOX_POSITION_R_SCALE);
+    assert_true(node_config_model_settings(&c, NULL).position_r_scale == (hkf_real_t)NODE_BOX_POSITION_R_SCALE);
+    assert_int_equal(node_config_set(&c, "model.whenet.position_r_scale = 4", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_r_scale = 9", error, sizeof error), 0);
+    assert_true(node_config_model_settings(&c, "whenet").position_r_scale == 4.0f);
+    assert_true(node_config_model_settings(&c, "fsanet").position_r_scale == 9.0f);
+    assert_true(node_config_model_settings(&c, "mesh_pnp").position_r_scale == 1.0f);
+    assert_int_equal(node_config_set(&c, "model.mesh_pnp.position_r_scale = 0.5", error, sizeof error), -1);
+    assert_non_null(strstr(error, "position_r_scale wants a number 1 to"));
+    assert_int_equal(node_config_set(&c, "model.whenet.pair_second_alone_from_yaw = 30", error, sizeof error), -1);
+    assert_non_null(strstr(error, "unknown key 'pair_second_alone_from_yaw' for a model"));
+    assert_true(node_config_model_settings(&c, "mesh_pnp").position_r_scale == 1.0f); /* a refused value changes nothing */
 }
 
 static void test_overrides(void **state)
@@ -191,6 +220,8 @@ static void test_print_reads_back(void **state)
     assert_non_null(strstr(error, "0 to 10000 cm/s"));
     assert_true(c.position.noise_time == (hkf_real_t)0.5 && c.position.q_boost == (hkf_real_t)30);
     assert_true(c.position.max_speed == (hkf_real_t)50);
+    assert_int_equal(node_config_set(&c, "model.whenet.position_r_scale = 7", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_r_scale = 30", error, sizeof error), 0);
     strcpy(path, "/tmp/hkf_config_print_XXXXXX");
     f = fdopen(mkstemp(path), "w");
     node_config_print(&c, f);
@@ -204,6 +235,9 @@ static void test_print_reads_back(void **state)
                 back.position.noise_time == c.position.noise_time && back.position.q_boost == c.position.q_boost);
     assert_int_equal(back.model_count, 4);
     assert_true(same_models(back.models, c.models, 4));
+    assert_true(node_config_model_settings(&back, "whenet").position_r_scale == 7.0f &&
+                node_config_model_settings(&back, "mesh_pnp").position_r_scale == 1.0f &&
+                node_config_model_settings(&back, "fsanet").position_r_scale == 30.0f);
     {
         int known;
         const hkf_settings_t a = node_config_for_model(&c, "whenet", &known), b = node_config_for_model(&back, "whenet", &known);
@@ -384,6 +418,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shipped_file_equals_defaults),
         cmocka_unit_test(test_overrides),
+        cmocka_unit_test(test_position_quality_per_model),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_print_reads_back),
         cmocka_unit_test(test_model_names_one_rule),

@@ -14,7 +14,7 @@
 
 /* The position: filtered from the measurements that carry one (z > 0), published with its
  * centre; a message without one leaves it alone; RECENTER sets the centre, RESET forgets it;
- * a box-based model's position moves the filter less than the mesh's (a deviation the size
+ * a box-based model's position (its position_r_scale) moves the filter less than the mesh's (a deviation the size
  * of the measured noise: the filter is calibrated on the +-0.2 cm the positions carry). */
 static void test_position_filtered(void **state)
 {
@@ -56,6 +56,16 @@ static void test_position_filtered(void **state)
         box_step = pose.z - before;
         print_message("a 0.4 cm deviation moves the position %.3f cm (mesh), %.3f cm (face box)\n", mesh_step, box_step);
         assert_true(mesh_step > 0.0f && box_step > 0.0f && box_step < 0.5f * mesh_step);
+        /* the quality is the config's, not the model's name: whenet given the mesh's scale moves it as the mesh */
+        {
+            node_config_t as_mesh = config;
+            char error[200];
+            box = node;
+            box.config = &as_mesh;
+            assert_int_equal(node_config_set(&as_mesh, "model.whenet.position_r_scale = 1", error, sizeof error), 0);
+            assert_int_equal(filter_node_measurement(&box, &m, &pose), 1);
+            assert_true(pose.z - before == mesh_step);
+        }
     }
     m = measurement(T0 + 32 * FRAME_US, 1, 0, 0, 0);
     m.model = "mesh_pnp";

@@ -90,17 +90,22 @@ static void update_position(filter_node_t *node, const float xyz[3], int64_t uti
     }
 }
 
+/* How much noisier m's model measures the position than the position filter's R says (its config). */
+static float position_r_scale(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
+{
+    return (float)node_config_model_settings(node->config, m->model).position_r_scale;
+}
+
 /* The first model's frame m: its position (measured, or a bad one counted) into the position
  * filter, and noted for a second model's measurement of the frame. */
 static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
     const float xyz[3] = {m->x, m->y, m->z};
-    const int mesh = m->model != NULL && strcmp(m->model, FILTER_NODE_MESH_MODEL) == 0;
     const int measured = position_of(m);
     node->counts.bad_positions += measured < 0;
     second_position_note_first(&node->second_position, m->seq, m->utime, measured > 0, xyz);
     if (measured > 0) {
-        update_position(node, xyz, m->utime, mesh ? 1.0f : FILTER_NODE_BOX_POSITION_R_SCALE);
+        update_position(node, xyz, m->utime, position_r_scale(node, m));
     }
 }
 
@@ -112,7 +117,7 @@ static void take_second_position(filter_node_t *node, const hkf_head_pose_measur
     float moved[3];
     node->counts.bad_positions += measured < 0;
     if (measured > 0 && second_position_take(&node->second_position, m->seq, m->utime, xyz, moved)) {
-        update_position(node, moved, m->utime, FILTER_NODE_BOX_POSITION_R_SCALE);
+        update_position(node, moved, m->utime, position_r_scale(node, m));
     }
 }
 

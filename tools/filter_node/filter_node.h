@@ -29,18 +29,17 @@
  *   second measurement older than the kept frames (its seq and utime are
  *   one of the followed publisher's last frames) is counted, not used. A
  *   restart, a command or a clock resync forgets the kept frames. Two models
- *   disagree by a steady few degrees (on d10.mp4 WHENet's pitch is 4.3 deg
- *   above the mesh's): the second's measurements are moved onto the first's
+ *   disagree by a steady few degrees (docs/evaluation.md): the second's measurements are moved onto the first's
  *   frame by the running mean of their difference over the last
  *   FILTER_NODE_ALIGN_FRAMES frames both measured, so that the pose does not
  *   step when the second model comes and goes, and the first's innovations
  *   do not read the gap as motion (the motion adaptation).
- * - position (hkf 0.2): a measurement's x, y, z (z > 0: measured) go through
- *   libhkf's position filter (hkf/hkf_position.h), with R scaled by
- *   FILTER_NODE_BOX_POSITION_R_SCALE for a model that measures position from
- *   the face box (any but the face mesh). Where the first model measured no
+ * - position: a measurement's x, y, z (z > 0: measured) go through
+ *   libhkf's position filter (hkf/hkf_position.h), with R scaled by its
+ *   model's position_r_scale (node_config.h: 1 for the face mesh's fit, 25 for
+ *   a position from the face box). Where the first model measured no
  *   position in a frame (the mesh folds at a profile), a second model's
- *   position of that frame stands in, box-scaled too, moved onto the first's
+ *   position of that frame stands in, with its own model's scale, moved onto the first's
  *   by the running mean of their difference (second_position.h), if it comes
  *   before the first model's next. A position is taken within FILTER_NODE_MIN_Z <= z <=
  *   HKF_MAX_ABS_POSITION and |x|, |y| <= HKF_MAX_ABS_POSITION (z = 0: none measured; others are
@@ -114,10 +113,6 @@ typedef struct {
 /* 0, or a hkf_result_t when the base settings are invalid. */
 int filter_node_init(filter_node_t *node, const node_config_t *config);
 
-/* R of a position measured from the face box (head_position.hpp: z within ~4 % of the mesh's,
- * median, against the mesh's ~0.5 %): 25 x the mesh's (5 x the standard deviation). */
-#define FILTER_NODE_BOX_POSITION_R_SCALE 25.0f
-#define FILTER_NODE_MESH_MODEL "mesh_pnp" /* the model whose position is the mesh fit's */
 #define FILTER_NODE_MIN_Z 1.0f /* cm: the nearest position taken and published (z = 0: not measured) */
 
 /* Handles one measurement that arrived at arrival_utime (the receive clock:

@@ -17,19 +17,26 @@
  * filter's, the noise calibration's, the node's own, then the position filter's (named "position_" + its
  * name). A key's index is its slot in the origin arrays; a model may own the angle filter's (own_keys has
  * a bit per index). */
-typedef enum { GROUP_ANGLES, GROUP_CALIBRATION, GROUP_NODE, GROUP_POSITION } key_group_t;
+typedef enum { GROUP_ANGLES, GROUP_CALIBRATION, GROUP_NODE, GROUP_PER_MODEL, GROUP_POSITION } key_group_t;
 
 static const hkf_setting_t node_settings[] = {
     {"pair_second_alone_from_yaw", offsetof(node_config_t, second_alone_from_yaw), HKF_SETTING_REAL, 1, "deg", 0, 180,
      0, 0, NULL, "two models on one channel: the second alone where the first's |yaw| >= this"},
 };
 #define NODE_SETTING_COUNT ((int)(sizeof node_settings / sizeof node_settings[0]))
+
+/* The node's keys that a [model NAME] section may set too (node_model_settings_t). */
+static const hkf_setting_t per_model_settings[] = {
+    {"position_r_scale", offsetof(node_model_settings_t, position_r_scale), HKF_SETTING_REAL, 1, "", 1, 1e6, 0, 0,
+     NULL, "the model's position R as a multiple of position_measurement_noise (the face mesh fit's)"},
+};
+#define PER_MODEL_SETTING_COUNT ((int)(sizeof per_model_settings / sizeof per_model_settings[0]))
 #define POSITION_PREFIX "position_"
 
 static int key_count(void)
 {
     return hkf_settings_table_count + hkf_calibration_settings_table_count + NODE_SETTING_COUNT +
-           hkf_position_settings_table_count;
+           PER_MODEL_SETTING_COUNT + hkf_position_settings_table_count;
 }
 
 static const hkf_setting_t *key_setting(int k, key_group_t *group)
@@ -48,8 +55,13 @@ static const hkf_setting_t *key_setting(int k, key_group_t *group)
         *group = GROUP_NODE;
         return &node_settings[k];
     }
+    k -= NODE_SETTING_COUNT;
+    if (k < PER_MODEL_SETTING_COUNT) {
+        *group = GROUP_PER_MODEL;
+        return &per_model_settings[k];
+    }
     *group = GROUP_POSITION;
-    return &hkf_position_settings_table[k - NODE_SETTING_COUNT];
+    return &hkf_position_settings_table[k - PER_MODEL_SETTING_COUNT];
 }
 
 /* The key's name as the config file writes it. */
@@ -74,13 +86,16 @@ static int find_key(const char *name)
     return -1;
 }
 
-/* The struct a key's offset is in: the angle settings given, or the config's calibration, own or position. */
-static const char *key_base(const node_config_t *config, const hkf_settings_t *angles, key_group_t group)
+/* The struct a key's offset is in: the angle settings or per-model settings given, or the config's calibration,
+ * own or position. */
+static const char *key_base(const node_config_t *config, const hkf_settings_t *angles,
+                            const node_model_settings_t *per_model, key_group_t group)
 {
     switch (group) {
     case GROUP_ANGLES: return (const char *)angles;
     case GROUP_CALIBRATION: return (const char *)&config->calibration;
     case GROUP_NODE: return (const char *)config;
+    case GROUP_PER_MODEL: return (const char *)per_model;
     case GROUP_POSITION: break;
     }
     return (const char *)&config->position;
@@ -89,7 +104,8 @@ static const char *key_base(const node_config_t *config, const hkf_settings_t *a
 /* The same in the config's own settings, to write. */
 static char *config_base(node_config_t *config, key_group_t group)
 {
-    return (char *)config + (key_base(config, &config->settings, group) - (const char *)config);
+    const char *base = key_base(config, &config->settings, &config->model_settings, group);
+    return (char *)config + (base - (const char *)config);
 }
 
 static size_t value_size(const hkf_setting_t *d)
@@ -115,11 +131,15 @@ static void add_builtin_model(node_config_t *config, const char *name, const hkf
     m->r_const[2] = noise[2].tau - noise[2].lambda;
 }
 
-/* A built-in model's own value of a real setting of the angles (as a `[model NAME]` section sets it). */
+/* A built-in model's own value of a real setting of the angles or the node's per-model ones (as a
+ * `[model NAME]` section sets it). */
 static void own_builtin_real(node_model_t *m, const char *name, hkf_real_t value)
 {
     const int k = find_key(name);
-    *(hkf_real_t *)(void *)((char *)&m->own + hkf_settings_table[k].offset) = value;
+    key_group_t group;
+    const hkf_setting_t *d = key_setting(k, &group);
+    char *base = group == GROUP_PER_MODEL ? (char *)&m->own_node : (char *)&m->own;
+    *(hkf_real_t *)(void *)(base + d->offset) = value;
     m->own_keys |= 1ul << k;
 }
 
@@ -130,9 +150,11 @@ void node_config_defaults(node_config_t *config)
     config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
     config->position = hkf_position_default_settings;
     config->calibration = hkf_default_calibration_settings;
+    config->model_settings.position_r_scale = (hkf_real_t)NODE_BOX_POSITION_R_SCALE;
     add_builtin_model(config, "fsanet", hkf_noise_fsanet);
     add_builtin_model(config, "hopenet", hkf_noise_hopenet);
     add_builtin_model(config, "mesh_pnp", hkf_noise_mesh_pnp); /* fitted by dev/fit */
+    own_builtin_real(&config->models[config->model_count - 1], "position_r_scale", (hkf_real_t)1.0); /* the mesh fit's */
     add_builtin_model(config, "whenet", hkf_noise_whenet);
     /* WHENet's estimate of a resting face wanders further than the mesh's: at the mesh's 0.3 deg^2 its still
      * jitter was 2.9x the mesh's on the shared clips, at 1 deg^2 level with it (docs/evaluation.md) */
@@ -326,10 +348,33 @@ static int model_always_owns(const hkf_setting_t *d)
     return d->type == HKF_SETTING_CURVE || strcmp(d->name, "r_const") == 0;
 }
 
+/* 1 when a [model NAME] section may set key k: the angles' and the node's per-model keys. */
+static int model_may_own(int k)
+{
+    key_group_t group;
+    (void)key_setting(k, &group);
+    return group == GROUP_ANGLES || group == GROUP_PER_MODEL;
+}
+
 static int model_owns(const node_model_t *m, int k)
 {
-    return k < hkf_settings_table_count &&
-           (model_always_owns(&hkf_settings_table[k]) || (m->own_keys >> k & 1ul) != 0);
+    return model_may_own(k) &&
+           ((k < hkf_settings_table_count && model_always_owns(&hkf_settings_table[k])) || (m->own_keys >> k & 1ul) != 0);
+}
+
+/* The base's per-model settings with a model's own. */
+static node_model_settings_t per_model_of(const node_config_t *config, const node_model_t *m)
+{
+    node_model_settings_t s = config->model_settings;
+    int k;
+    for (k = 0; k < key_count(); ++k) {
+        key_group_t group;
+        const hkf_setting_t *d = key_setting(k, &group);
+        if (group == GROUP_PER_MODEL && (m->own_keys >> k & 1ul) != 0) {
+            memcpy((char *)&s + d->offset, (const char *)&m->own_node + d->offset, value_size(d));
+        }
+    }
+    return s;
 }
 
 /* The base settings with a model's curves, r_const and own keys. */
@@ -361,17 +406,28 @@ static int set_model_key(node_config_t *config, const char *model, const assignm
 {
     const char *name = a->key;
     const int k = find_key(name);
+    key_group_t group;
     const hkf_setting_t *d;
     node_model_t *m;
     hkf_settings_t scratch;
-    if (k < 0 || k >= hkf_settings_table_count) {
+    if (k < 0 || !model_may_own(k)) {
         snprintf(error, error_size, "unknown key '%s' for a model (--print-config lists them)", name);
         return -1;
     }
-    d = &hkf_settings_table[k];
+    d = key_setting(k, &group);
     m = find_or_add_model(config, model, error, error_size);
     if (m == NULL) {
         return -1;
+    }
+    if (group == GROUP_PER_MODEL) {
+        node_model_settings_t own = per_model_of(config, m);
+        if (set_value((char *)&own, k, a->value, error, error_size) != 0) {
+            return -1;
+        }
+        m->own_node = own;
+        m->own_keys |= 1ul << k;
+        set_origin(m->origin[k], a->origin);
+        return 0;
     }
     scratch = settings_of_model(config, m);
     if (set_value((char *)&scratch, k, a->value, error, error_size) != 0) {
@@ -560,12 +616,13 @@ static void describe_origins(const node_config_t *config, const node_model_t *mo
                              char *text, size_t size)
 {
     hkf_settings_t s = model != NULL ? settings_of_model(config, model) : config->settings;
+    const node_model_settings_t per_model = model != NULL ? per_model_of(config, model) : config->model_settings;
     int k;
     for (k = 0; k < key_count(); ++k) {
         key_group_t group;
         const hkf_setting_t *d = key_setting(k, &group);
         const char *origin = model != NULL && model_owns(model, k) ? model->origin[k] : config->origin[k];
-        const char *base = key_base(config, &s, group);
+        const char *base = key_base(config, &s, &per_model, group);
         char name[64], value[160];
         const size_t used = strlen(text);
         if (group != want || !hkf_setting_is_about(d, result) || origin[0] == '\0') {
@@ -605,6 +662,17 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
         }
     }
     return 0;
+}
+
+node_model_settings_t node_config_model_settings(const node_config_t *config, const char *model)
+{
+    int i;
+    for (i = 0; model != NULL && i < config->model_count; ++i) {
+        if (strcmp(config->models[i].name, model) == 0) {
+            return per_model_of(config, &config->models[i]);
+        }
+    }
+    return config->model_settings;
 }
 
 hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known)
@@ -688,15 +756,20 @@ static void print_all(const node_config_t *config, int origins, FILE *out)
     for (k = 0; k < key_count(); ++k) {
         key_group_t group;
         (void)key_setting(k, &group);
-        print_key(k, key_base(config, &config->settings, group), origins ? config->origin[k] : NULL, "default", out);
+        print_key(k, key_base(config, &config->settings, &config->model_settings, group),
+                  origins ? config->origin[k] : NULL, "default", out);
     }
     for (m = 0; m < config->model_count; ++m) {
         const node_model_t *model = &config->models[m];
         const hkf_settings_t s = settings_of_model(config, model);
+        const node_model_settings_t per_model = per_model_of(config, model);
         fprintf(out, "\n[model %s]\n", model->name);
-        for (k = 0; k < hkf_settings_table_count; ++k) {
+        for (k = 0; k < key_count(); ++k) {
+            key_group_t group;
+            (void)key_setting(k, &group);
             if (model_owns(model, k)) {
-                print_key(k, (const char *)&s, origins ? model->origin[k] : NULL, "built in", out);
+                print_key(k, key_base(config, &s, &per_model, group), origins ? model->origin[k] : NULL, "built in",
+                          out);
             }
         }
     }

@@ -24,6 +24,17 @@ extern "C" {
 #define NODE_ORIGIN_MAX 96 /* "FILE:LINE" or "--set", where a setting was last given */
 #define NODE_KEY_SLOTS 48  /* keys: libhkf's settings tables and the node's own, with room to grow */
 
+/* What the node knows of a model beyond its angles' settings; a model's own, or the base's for a model that
+ * does not set it. */
+typedef struct {
+    /* key "position_r_scale": the model's position R as a multiple of position_measurement_noise (the face
+     * mesh fit's): a position from the face box is 25 x (head_position.hpp: its z is within ~4 % of the
+     * mesh's, median, against the mesh's ~0.5 %, so 5 x the standard deviation) */
+    hkf_real_t position_r_scale;
+} node_model_settings_t;
+
+#define NODE_BOX_POSITION_R_SCALE 25.0 /* the base's position_r_scale: a position measured from the face box */
+
 typedef struct {
     char name[NODE_MODEL_NAME_MAX];  /* the measurement's `model` field */
     hkf_noise_curve_t noise[3];      /* its Eq. 8 curves: pitch, yaw, roll */
@@ -31,12 +42,14 @@ typedef struct {
     /* Any other setting may be the model's own (e.g. its process_noise): own_keys has bit k where
      * the k-th key of node_config.c's table is, and own holds its value; the rest come from the base. */
     hkf_settings_t own;
+    node_model_settings_t own_node;  /* the node's per-model keys it owns (position_r_scale) */
     unsigned long own_keys;
     char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* per key, where this model's value was set ("": built in) */
 } node_model_t;
 
 typedef struct {
     hkf_settings_t settings;         /* for a model not in the table */
+    node_model_settings_t model_settings; /* the same: for a model not in the table or that does not own them */
     node_model_t models[NODE_MAX_MODELS];
     int model_count;
     /* Two models on one channel (filter_node.h): where the first model
@@ -54,8 +67,9 @@ typedef struct {
 
 #define NODE_SECOND_ALONE_FROM_YAW 25.0 /* deg: chosen on AFLW2000's even images (docs/programs.md) */
 
-/* libhkf's defaults, and the models "fsanet" and "hopenet" with the paper's
- * Table I curves (r_const = each curve's minimum). */
+/* libhkf's defaults, and the models "fsanet" and "hopenet" with the paper's Table I curves (r_const =
+ * each curve's minimum), "mesh_pnp" and "whenet" with theirs; mesh_pnp's position_r_scale is 1 (the
+ * position filter's measurement_noise is its), the others' the base's NODE_BOX_POSITION_R_SCALE. */
 void node_config_defaults(node_config_t *config);
 
 /* Reads a config file (a regular file: a named pipe is refused, not waited
@@ -74,6 +88,9 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
 
 /* The settings for a model id: its table entry's curves and own keys over the base settings. */
 hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known);
+
+/* The node's per-model settings for a model id (NULL: none): its own keys over the base's. */
+node_model_settings_t node_config_model_settings(const node_config_t *config, const char *model);
 
 /* Writes the configuration in the config-file format (reads back the same). */
 void node_config_print(const node_config_t *config, FILE *out);
