@@ -100,3 +100,16 @@ int hkf_calibration_get_noise(const hkf_calibration_t *c, hkf_real_t noise[3])
     }
     return HKF_OK;
 }
+
+int hkf_calibration_get_state(const hkf_calibration_t *c, hkf_calibration_state_t *state)
+{
+    int a;
+    if (c == 0 || state == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        state->noise[a] = c->noise[a];
+        state->power[a] = c->power[a];
+    }
+    return HKF_OK;
+}

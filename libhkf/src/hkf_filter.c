@@ -686,6 +686,23 @@ int hkf_get_output(const hkf_filter_t *f, hkf_output_t *out)
     return HKF_OK;
 }
 
+int hkf_get_state(const hkf_filter_t *f, hkf_state_t *state)
+{
+    int a;
+    if (f == 0 || state == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        state->angle[a] = f->angle[a];
+        state->rate[a] = f->rate[a];
+        state->p00[a] = f->p00[a];
+        state->p01[a] = f->p01[a];
+        state->p11[a] = f->p11[a];
+        state->moving[a] = f->moving[a];
+    }
+    return HKF_OK;
+}
+
 int hkf_set_center(hkf_filter_t *f, const hkf_real_t center[3])
 {
     int a, result;

@@ -84,6 +84,24 @@ int hkf_position_started(const hkf_position_filter_t *f)
     return f != NULL && f->started;
 }
 
+int hkf_position_get_state(const hkf_position_filter_t *f, hkf_position_state_t *state)
+{
+    int a;
+    if (f == NULL || state == NULL) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    for (a = 0; a < 3; ++a) {
+        state->position[a] = f->x[a];
+        state->rate[a] = f->v[a];
+        state->p00[a] = f->p00[a];
+        state->p01[a] = f->p01[a];
+        state->p11[a] = f->p11[a];
+        state->center[a] = f->center[a];
+        state->noise[a] = f->settings.noise_time > 0 ? f->noise[a] : f->settings.measurement_noise[a];
+    }
+    return HKF_OK;
+}
+
 int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s)
 {
     int result;

@@ -282,6 +282,7 @@ static void test_set_noise(void **state)
 #endif
     assert_memory_equal(&f, &before, sizeof f);
     assert_int_equal(hkf_set_noise(NULL, n), HKF_ERROR_NULL_ARGUMENT);
+
     assert_int_equal(hkf_set_noise(&f, NULL), HKF_OK);
     assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
     assert_near_at(D(out.r[1]), D(hkf_observation_noise(&f, 1, R(60))), 1e-3, "Eq. 8's own R", __FILE__, __LINE__);
@@ -324,6 +325,13 @@ static void test_history_and_reset(void **state)
     assert_memory_equal(now, start, sizeof now);
     assert_int_equal(hkf_calibration_update(NULL, &t.f, z, R(frame_s)), HKF_ERROR_NULL_ARGUMENT);
     assert_int_equal(hkf_calibration_get_noise(&t.c, NULL), HKF_ERROR_NULL_ARGUMENT);
+    {
+        hkf_calibration_state_t st;
+        assert_int_equal(hkf_calibration_get_state(NULL, &st), HKF_ERROR_NULL_ARGUMENT);
+        assert_int_equal(hkf_calibration_get_state(&t.c, NULL), HKF_ERROR_NULL_ARGUMENT);
+        assert_int_equal(hkf_calibration_get_state(&t.c, &st), HKF_OK);
+        assert_true(st.noise[0] == now[0] && st.noise[2] == now[2] && D(st.power[1]) >= 0.0);
+    }
 }
 
 /* Yaw's frame-to-frame step is taken the short way round: a still head at the +-180 seam (its measurements

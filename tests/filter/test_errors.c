@@ -255,6 +255,16 @@ static void test_null_arguments(void **state)
     /* out may be NULL for update and predict */
     assert_int_equal(hkf_update(&f, z, 0, NULL), HKF_OK);
     assert_int_equal(hkf_predict(&f, frame_dt, NULL), HKF_OK);
+    {
+        hkf_state_t st;
+        assert_int_equal(hkf_get_state(NULL, &st), HKF_ERROR_NULL_ARGUMENT);
+        assert_int_equal(hkf_get_state(&f, NULL), HKF_ERROR_NULL_ARGUMENT);
+        z[1] = R(3.0);
+        assert_int_equal(hkf_update(&f, z, frame_dt, &out), HKF_OK);
+        assert_int_equal(hkf_get_state(&f, &st), HKF_OK); /* the whole state: what the output shows of it */
+        assert_true(st.angle[1] == out.angle[1] && st.rate[1] == out.rate[1] && st.p00[1] == out.variance[1]);
+        assert_true(D(st.p01[1]) > 0.0 && D(st.p11[1]) > 0.0);
+    }
 }
 
 static void test_before_first_measurement(void **state)

@@ -28,8 +28,8 @@ static hkf_position_filter_t started_filter(double x, double y, double z)
     return started_filter_with(&s, x, y, z);
 }
 
-/* The filter without calibration: constant q (cm^2/s^3) and R, no detector. */
-static hkf_position_filter_t started_constant_filter(double x, double y, double z)
+/* The settings without calibration: constant q (cm^2/s^3) and R, no detector. */
+static hkf_position_settings_t constant_settings(void)
 {
     hkf_position_settings_t s;
     int a;
@@ -38,7 +38,21 @@ static hkf_position_filter_t started_constant_filter(double x, double y, double 
     for (a = 0; a < 3; ++a) {
         s.process_noise[a] = R(10.0);
     }
+    return s;
+}
+
+static hkf_position_filter_t started_constant_filter(double x, double y, double z)
+{
+    const hkf_position_settings_t s = constant_settings();
     return started_filter_with(&s, x, y, z);
+}
+
+/* The filter's state, as its public accessor gives it. */
+static hkf_position_state_t state_of(const hkf_position_filter_t *f)
+{
+    hkf_position_state_t st;
+    assert_int_equal(hkf_position_get_state(f, &st), HKF_OK);
+    return st;
 }
 
 /* Pseudo-random noise, uniform, of standard deviation sd (a fixed sequence per seed). */
@@ -64,11 +78,13 @@ static void test_step_matches_equations(void **state)
         assert_int_equal(hkf_position_update(&f, same, R(1.0), R(frame_s), NULL), HKF_OK);
     }
     for (a = 0; a < 3; ++a) {
-        x[a] = D(f.x[a]), v[a] = D(f.v[a]), p00[a] = D(f.p00[a]), p01[a] = D(f.p01[a]), p11[a] = D(f.p11[a]);
+        const hkf_position_state_t st = state_of(&f);
+        x[a] = D(st.position[a]), v[a] = D(st.rate[a]), p00[a] = D(st.p00[a]), p01[a] = D(st.p01[a]), p11[a] = D(st.p11[a]);
     }
     assert_int_equal(hkf_position_update(&f, zr, R(4.0), R(frame_s), &out), HKF_OK);
     for (a = 0; a < 3; ++a) {
-        const double q = D(f.settings.process_noise[a]), r = 4.0 * D(f.settings.measurement_noise[a]), dt = frame_s;
+        const hkf_position_settings_t set = constant_settings();
+        const double q = D(set.process_noise[a]), r = 4.0 * D(set.measurement_noise[a]), dt = frame_s;
         const double xp = x[a] + v[a] * dt;
         const double a00 = p00[a] + 2 * dt * p01[a] + dt * dt * p11[a] + q * dt * dt * dt / 3;
         const double a01 = p01[a] + dt * p11[a] + q * dt * dt / 2, a11 = p11[a] + q * dt;
@@ -76,7 +92,7 @@ static void test_step_matches_equations(void **state)
         assert_true(fabs(D(out.position[a]) - (xp + k0 * y)) < 2 * TEST_TOL);
         assert_true(fabs(D(out.rate[a]) - (v[a] + k1 * y)) < 50 * TEST_TOL);
         assert_true(fabs(D(out.variance[a]) - a00 * r / s) < 2 * TEST_TOL + 1e-3 * a00);
-        assert_true(fabs(D(f.p11[a]) - (a11 - k1 * a01)) < 50 * TEST_TOL + 1e-3 * a11);
+        assert_true(fabs(D(state_of(&f).p11[a]) - (a11 - k1 * a01)) < 50 * TEST_TOL + 1e-3 * a11);
     }
 }
 
@@ -134,7 +150,7 @@ static void test_noise_measured(void **state)
         }
         assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), NULL), HKF_OK);
         for (a = 0; a < 3 && i > 300; ++a) {
-            mean[a] += D(f.noise[a]) / 300.0;
+            mean[a] += D(state_of(&f).noise[a]) / 300.0;
         }
     }
     for (a = 0; a < 3; ++a) {
@@ -146,7 +162,7 @@ static void test_noise_measured(void **state)
     assert_true(mean[2] / mean[0] > 0.5 * 36.0 && mean[2] / mean[0] < 2.0 * 36.0); /* 6x the noise: 36x n */
     { /* a move without noise, every fourth frame missed: n goes to nothing */
         hkf_position_filter_t g = started_filter(0.0, 0.0, 60.0), h;
-        const double start = D(g.noise[2]);
+        const double start = D(state_of(&g).noise[2]);
         t = 0;
         for (i = 1; i <= 300; ++i) {
             const hkf_real_t z[3] = {R(0.0), R(0.0), R(60.0 - 20.0 * t)};
@@ -156,8 +172,8 @@ static void test_noise_measured(void **state)
             }
             assert_int_equal(hkf_position_update(&g, z, R(1.0), R(i % 4 == 1 && i > 1 ? 2 * frame_s : frame_s), NULL), HKF_OK);
         }
-        print_message("a move with missed frames: measured z noise %.6f cm^2 (started at %.3f)\n", D(g.noise[2]), start);
-        assert_true(D(g.noise[2]) < 0.05 * start); /* the unequal steps counted: ~0.2 x start */
+        print_message("a move with missed frames: measured z noise %.6f cm^2 (started at %.3f)\n", D(state_of(&g).noise[2]), start);
+        assert_true(D(state_of(&g).noise[2]) < 0.05 * start); /* the unequal steps counted: ~0.2 x start */
         h = started_filter(0.0, 0.0, 60.0); /* the same move, the missed frames predicted */
         t = 0;
         for (i = 1; i <= 300; ++i) {
@@ -169,7 +185,7 @@ static void test_noise_measured(void **state)
                 assert_int_equal(hkf_position_update(&h, z, R(1.0), R(frame_s), NULL), HKF_OK);
             }
         }
-        assert_true(D(h.noise[2]) < 0.05 * start);
+        assert_true(D(state_of(&h).noise[2]) < 0.05 * start);
     }
 }
 
@@ -188,15 +204,16 @@ static void test_calibrated_step_matches_equations(void **state)
         assert_int_equal(hkf_position_update(&f, z, R(1.0), R(frame_s), NULL), HKF_OK);
     }
     {
-        const hkf_real_t z[3] = {f.x[0], f.x[1], f.x[2]}; /* no innovation: the detector adds no walk */
+        const hkf_position_state_t st = state_of(&f);
+        const hkf_real_t z[3] = {st.position[0], st.position[1], st.position[2]}; /* no innovation: the detector adds no walk */
         double n[3], p00[3], p01[3], p11[3];
         for (a = 0; a < 3; ++a) {
-            n[a] = D(f.noise[a]), p00[a] = D(f.p00[a]), p01[a] = D(f.p01[a]), p11[a] = D(f.p11[a]);
-            assert_true(n[a] < 0.5 * D(f.settings.measurement_noise[a])); /* measured, not the start */
+            n[a] = D(st.noise[a]), p00[a] = D(st.p00[a]), p01[a] = D(st.p01[a]), p11[a] = D(st.p11[a]);
+            assert_true(n[a] < 0.5 * D(hkf_position_default_settings.measurement_noise[a])); /* measured, not the start */
         }
         assert_int_equal(hkf_position_update(&f, z, R(2.0), R(frame_s), &out), HKF_OK);
         for (a = 0; a < 3; ++a) {
-            const double q = D(f.settings.process_noise[a]) * n[a], r = 2.0 * n[a], dt = frame_s;
+            const double q = D(hkf_position_default_settings.process_noise[a]) * n[a], r = 2.0 * n[a], dt = frame_s;
             const double a00 = p00[a] + 2 * dt * p01[a] + dt * dt * p11[a] + q * dt * dt * dt / 3;
             const double s = a00 + r;
             assert_true(fabs(D(out.variance[a]) - a00 * r / s) < 4 * TEST_TOL + 1e-3 * a00);
@@ -310,19 +327,19 @@ static void test_center_recenter_reset(void **state)
     hkf_position_filter_t f = started_filter(3.0, 4.0, 55.0);
     const hkf_real_t moved[3] = {R(8.0), R(4.0), R(50.0)};
     int i;
-    assert_true(fabs(D(f.center[0]) - 3.0) < TEST_TOL && fabs(D(f.center[2]) - 55.0) < TEST_TOL);
+    assert_true(fabs(D(state_of(&f).center[0]) - 3.0) < TEST_TOL && fabs(D(state_of(&f).center[2]) - 55.0) < TEST_TOL);
     for (i = 0; i < 120; ++i) {
         assert_int_equal(hkf_position_update(&f, moved, R(1.0), R(frame_s), NULL), HKF_OK);
     }
     assert_int_equal(hkf_position_recenter(&f), HKF_OK);
-    assert_true(fabs(D(f.center[0]) - 8.0) < 0.05 && fabs(D(f.center[2]) - 50.0) < 0.05);
+    assert_true(fabs(D(state_of(&f).center[0]) - 8.0) < 0.05 && fabs(D(state_of(&f).center[2]) - 50.0) < 0.05);
     hkf_position_restart(&f); /* a new track, elsewhere, keeps the centre */
     {
         const hkf_real_t elsewhere[3] = {R(12.0), R(4.0), R(45.0)};
         assert_int_equal(hkf_position_update(&f, elsewhere, R(1.0), R(frame_s), NULL), HKF_OK);
-        assert_true(fabs(D(f.x[0]) - 12.0) < TEST_TOL);
+        assert_true(fabs(D(state_of(&f).position[0]) - 12.0) < TEST_TOL);
     }
-    assert_true(fabs(D(f.center[0]) - 8.0) < 0.05 && fabs(D(f.center[2]) - 50.0) < 0.05);
+    assert_true(fabs(D(state_of(&f).center[0]) - 8.0) < 0.05 && fabs(D(state_of(&f).center[2]) - 50.0) < 0.05);
     hkf_position_reset(&f);
     assert_int_equal(hkf_position_recenter(&f), HKF_ERROR_NOT_INITIALIZED);
     assert_int_equal(hkf_position_predict(&f, R(frame_s), NULL), HKF_ERROR_NOT_INITIALIZED);
@@ -362,7 +379,7 @@ static void test_gate(void **state)
     assert_true(fabs(D(out.position[0])) < 0.01 && fabs(D(out.position[2]) - 60.0) < 0.01);
     assert_int_equal(hkf_position_update(&f, still, R(1.0), R(frame_s), &out), HKF_OK); /* the count starts again */
     assert_int_equal(out.flags, 0u);
-    for (i = 0; i < f.settings.max_gate_rejections; ++i) {
+    for (i = 0; i < hkf_position_default_settings.max_gate_rejections; ++i) {
         assert_int_equal(hkf_position_update(&f, moved, R(1.0), R(frame_s), &out), HKF_OK);
         assert_int_equal(out.flags, HKF_FLAG_GATED);
     }
@@ -430,7 +447,8 @@ static void test_extrapolate_coast_then_stale(void **state)
     (void)state;
     hkf_position_filter_t f = started_constant_filter(0.0, 0.0, 60.0), before;
     hkf_position_output_t out, previous;
-    const double max_dt = D(f.settings.max_dt);
+    hkf_position_state_t st;
+    const double max_dt = D(constant_settings().max_dt);
     int i;
     for (i = 1; i <= 60; ++i) { /* a lean at 10 cm/s in x */
         const hkf_real_t z[3] = {R(10.0 * frame_s * i), R(0.0), R(60.0)};
@@ -445,19 +463,25 @@ static void test_extrapolate_coast_then_stale(void **state)
         assert_true(D(out.variance[0]) > D(previous.variance[0]));
         if (ahead <= max_dt - 0.01) {
             assert_int_equal(out.status, HKF_STATUS_COASTING);
-            assert_true(fabs(D(out.position[0]) - (D(f.x[0]) + D(f.v[0]) * ahead)) < 10 * TEST_TOL);
+            assert_true(fabs(D(out.position[0]) - (D(state_of(&f).position[0]) + D(state_of(&f).rate[0]) * ahead)) < 10 * TEST_TOL);
         } else if (ahead > max_dt + 0.01) {
             assert_int_equal(out.status, HKF_STATUS_LOST);
             assert_true(D(out.rate[0]) == 0.0);
-            assert_true(fabs(D(out.position[0]) - (D(f.x[0]) + D(f.v[0]) * max_dt)) < 10 * TEST_TOL);
+            assert_true(fabs(D(out.position[0]) - (D(state_of(&f).position[0]) + D(state_of(&f).rate[0]) * max_dt)) < 10 * TEST_TOL);
         }
         previous = out;
     }
     assert_int_equal(hkf_position_extrapolate(&f, R(-0.1), &out), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_position_extrapolate(&f, R(0.1), NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_position_get_state(&f, NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_position_get_state(NULL, &st), HKF_ERROR_NULL_ARGUMENT);
     assert_memory_equal(&f, &before, sizeof f);
+    st = state_of(&f); /* the state the output shows */
+    assert_int_equal(hkf_position_extrapolate(&f, R(0.0), &out), HKF_OK);
+    assert_true(st.position[0] == out.position[0] && st.rate[0] == out.rate[0] && st.p00[0] == out.variance[0]);
+    assert_true(D(st.rate[0]) > 9.0 && D(st.p11[0]) > 0.0);
     assert_int_equal(hkf_position_recenter_at(&f, R(2.0)), HKF_OK);
-    assert_true(fabs(D(f.center[0]) - D(previous.position[0])) < TEST_TOL);
+    assert_true(fabs(D(state_of(&f).center[0]) - D(previous.position[0])) < TEST_TOL);
     hkf_position_reset(&f);
     assert_int_equal(hkf_position_extrapolate(&f, R(0.1), &out), HKF_ERROR_NOT_INITIALIZED);
     assert_int_equal(hkf_position_recenter_at(&f, R(0.1)), HKF_ERROR_NOT_INITIALIZED);

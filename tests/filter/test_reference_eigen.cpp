@@ -98,15 +98,20 @@ public:
         if (!started_ || status_ == HKF_STATUS_LOST) {
             return;
         }
+        hkf_state_t state;
+        hkf_calibration_state_t calibration;
+        if (hkf_get_state(&f, &state) != HKF_OK || hkf_calibration_get_state(&cal, &calibration) != HKF_OK) {
+            std::abort(); // cannot happen: neither is NULL
+        }
         for (int a = 0; a < 3; ++a) {
-            x_(a) = D(f.angle[a]);
-            x_(a + 3) = D(f.rate[a]);
-            P_(a, a) = D(f.p00[a]);
-            P_(a, a + 3) = P_(a + 3, a) = D(f.p01[a]);
-            P_(a + 3, a + 3) = D(f.p11[a]);
-            moving_(a) = D(f.moving[a]);
-            noise_(a) = D(cal.noise[a]);
-            power_(a) = D(cal.power[a]);
+            x_(a) = D(state.angle[a]);
+            x_(a + 3) = D(state.rate[a]);
+            P_(a, a) = D(state.p00[a]);
+            P_(a, a + 3) = P_(a + 3, a) = D(state.p01[a]);
+            P_(a + 3, a + 3) = D(state.p11[a]);
+            moving_(a) = D(state.moving[a]);
+            noise_(a) = D(calibration.noise[a]);
+            power_(a) = D(calibration.power[a]);
         }
     }
 

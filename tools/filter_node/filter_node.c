@@ -47,15 +47,17 @@ static void fill_position(const filter_node_t *node, int64_t utime, hkf_head_pos
     const hkf_position_filter_t *p = &node->position;
     float *position[3] = {&pose->x, &pose->y, &pose->z}, *rate[3] = {&pose->x_rate, &pose->y_rate, &pose->z_rate};
     hkf_position_output_t out;
+    hkf_position_state_t state;
     int a;
-    if (hkf_position_extrapolate(p, (hkf_real_t)position_ahead(node, utime), &out) != HKF_OK) {
+    if (hkf_position_extrapolate(p, (hkf_real_t)position_ahead(node, utime), &out) != HKF_OK ||
+        hkf_position_get_state(p, &state) != HKF_OK) {
         return; /* all 0: no position measured yet */
     }
     for (a = 0; a < 3; ++a) {
         *position[a] = (float)out.position[a];
         *rate[a] = (float)out.rate[a];
         pose->position_variance[a] = (float)out.variance[a];
-        pose->position_center[a] = (float)p->center[a];
+        pose->position_center[a] = (float)state.center[a];
     }
     if (pose->z < FILTER_NODE_MIN_Z) {
         pose->z = FILTER_NODE_MIN_Z; /* a coast toward the camera stops at it */

@@ -316,6 +316,16 @@ hkf_status_t hkf_get_status(const hkf_filter_t *f);
 /* The current state, as the last update or predict left it. */
 int hkf_get_output(const hkf_filter_t *f, hkf_output_t *out);
 
+/* The whole state per axis (pitch, yaw, roll), for references, logs and diagnostics: the estimate
+ * and its rate, their covariance P = [p00 p01; p01 p11], and the motion adaptation's probability
+ * of MOVE (1 with start_rate 0). As the last call left it; 0 before the first track. */
+typedef struct {
+    hkf_real_t angle[3], rate[3];         /* deg, deg/s */
+    hkf_real_t p00[3], p01[3], p11[3];    /* deg^2, deg^2/s, (deg/s)^2 */
+    hkf_real_t moving[3];
+} hkf_state_t;
+int hkf_get_state(const hkf_filter_t *f, hkf_state_t *state);
+
 /* The loop-closure center kappa: set it explicitly (it then survives
  * hkf_reset), or to the current estimate. By default the first measurement
  * sets it. */

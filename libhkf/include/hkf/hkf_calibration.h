@@ -70,6 +70,14 @@ int hkf_calibration_update(hkf_calibration_t *c, hkf_filter_t *f, const hkf_real
 /* The noise level n per axis, deg^2. */
 int hkf_calibration_get_noise(const hkf_calibration_t *c, hkf_real_t noise[3]);
 
+/* The same with what it follows, for references and diagnostics: n and the low-passed power of
+ * the second difference, d^2 / 6 (deg^2), per axis. */
+typedef struct {
+    hkf_real_t noise[3];
+    hkf_real_t power[3];
+} hkf_calibration_state_t;
+int hkf_calibration_get_state(const hkf_calibration_t *c, hkf_calibration_state_t *state);
+
 #ifdef __cplusplus
 }
 #endif

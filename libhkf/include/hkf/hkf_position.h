@@ -72,6 +72,7 @@ typedef struct {
     unsigned max_gate_rejections;     /* refused in a row; the next refused one restarts the track at it */
 } hkf_position_settings_t;
 
+/* Private: members may change between versions (hkf_position_get_state reads them). */
 typedef struct {
     hkf_position_settings_t settings;
     hkf_real_t x[3], v[3];            /* cm, cm/s */
@@ -102,6 +103,17 @@ extern const hkf_position_settings_t hkf_position_default_settings;
 
 /* Checks the settings (HKF_ERROR_SETTING_*) and clears the track. */
 int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s);
+
+/* The whole state per axis (x, y, z), for references, logs and diagnostics: the position and its
+ * rate, their covariance P = [p00 p01; p01 p11], the center and the measured noise n (calibrated;
+ * else the measurement_noise setting's). As the last call left it; 0 before the first track. */
+typedef struct {
+    hkf_real_t position[3], rate[3];      /* cm, cm/s */
+    hkf_real_t p00[3], p01[3], p11[3];    /* cm^2, cm^2/s, (cm/s)^2 */
+    hkf_real_t center[3];                 /* cm */
+    hkf_real_t noise[3];                  /* cm^2 */
+} hkf_position_state_t;
+int hkf_position_get_state(const hkf_position_filter_t *f, hkf_position_state_t *state);
 
 /* Forgets the track, the center and the measured noise; the next measurement starts anew. */
 void hkf_position_reset(hkf_position_filter_t *f);
