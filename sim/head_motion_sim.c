@@ -136,8 +136,7 @@ sim_config_t sim_default_config(void)
     c.fps = 30.0;
     c.error_model = SIM_ERRORS_MEASURED;
     c.noise_scale = 1.0;
-    /* none: through mesh_pnp, 0 of the 14 real clips' 3,894 frames are off the
-     * 2 Hz low-pass of the raw poses by more than 10 deg (3 by more than 5) */
+    /* none: through mesh_pnp, the real clips' raw poses have no outliers (docs/evaluation.md) */
     c.outlier_rate = 0.0;
     c.dropout_rate = 0.004;
     c.dropout_max_s = 0.4;
@@ -196,10 +195,9 @@ static double bias_field(const sim_t *sim, int axis, const double pose[3])
     return sum * sqrt(2.0 / SIM_BIAS_WAVES);
 }
 
-/* The measured model's white frame noise at the curve's centre, deg: the
- * still frames of the real clips give a frame-to-frame change of 0.23-0.53 deg
- * through mesh_pnp (docs/evaluation.md, the leave-one-out table), i.e. 0.16-0.37 deg of
- * noise per frame; against ~3 deg of AFLW2000 error, under 1 % of the error
+/* The measured model's white frame noise at the curve's centre, deg: what the
+ * still frames of the real clips show through mesh_pnp (docs/evaluation.md, the
+ * leave-one-out table); against ~3 deg of AFLW2000 error, under 1 % of the error
  * variance. It grows with the pose as the error curve does. */
 #define SIM_FRAME_NOISE_DEG 0.25
 
@@ -213,7 +211,7 @@ static double measured_error(sim_t *sim, int axis, const double truth[3], double
 
 void sim_next(sim_t *sim, sim_frame_t *out)
 {
-    /* The assumed model (hkf 0.1): 30 % of the error variance white, 70 % a
+    /* The assumed model: 30 % of the error variance white, 70 % a
      * bias drifting with a 1 s time constant. The measured model: see
      * measured_error. A Gaussian's std is its MAE times sqrt(pi / 2). */
     const double mae_to_std = sqrt(SIM_PI / 2.0);

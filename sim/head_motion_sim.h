@@ -6,7 +6,7 @@
  * tilts) sampled by a camera, with the errors a deep head-pose estimator makes,
  * sized by the FSA-Net error curves of the paper's Table I: as measured on our
  * real clips (a little white frame noise, the rest a bias that follows the
- * pose), or as hkf 0.1 assumed (much white noise, a drifting bias, outliers);
+ * pose), or as first assumed (much white noise, a drifting bias, outliers);
  * and bursts of frames without a face. Seeded and deterministic. Angles in degrees (pitch, yaw,
  * roll), times in seconds.
  */
@@ -36,7 +36,7 @@ int sim_head_still(double t);
 typedef enum {
     SIM_ERRORS_MEASURED = 0, /* as our estimators measure on real clips: white frame noise of 0.25 deg,
                                 the rest of the FSA-Net-sized error a bias that follows the pose */
-    SIM_ERRORS_ASSUMED = 1   /* hkf 0.1's assumption: 30 % of the error variance white, the rest a bias
+    SIM_ERRORS_ASSUMED = 1   /* the first assumption: 30 % of the error variance white, the rest a bias
                                 drifting over 1 s whatever the pose */
 } sim_error_model_t;
 
@@ -53,7 +53,7 @@ typedef struct {
 /* 30 fps, the measured error model with FSA-Net-sized errors, no outliers,
  * rare dropouts up to 0.4 s. */
 sim_config_t sim_default_config(void);
-/* The same with hkf 0.1's assumed errors: 30 % white, 0.5 % outliers. */
+/* The same with the first assumed errors: 30 % white, 0.5 % outliers. */
 sim_config_t sim_assumed_config(void);
 
 typedef struct {

@@ -23,7 +23,7 @@ struct PositionSettings {
     double fov_deg = 56.0;      // the camera's diagonal field of view
     double pivot_cm = 10.0;     // the point the head turns about: this far behind the nose tip
     // the face box's width on a real face, for the box fallback: BlazeFace's box at the mesh's
-    // distance, median of the clips d0 and d3 (test_head_position; 13.7 on the 8 others)
+    // distance (docs/estimator.md "Head position"; test_head_position)
     double box_face_width_cm = 13.3;
 };
 

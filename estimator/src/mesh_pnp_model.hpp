@@ -6,7 +6,7 @@
 // followed from the last frame gets a region of roi_face_cm of face at the
 // scale the last fit measured instead, which no turn changes (a rolled or
 // turned face's box shrinks, and the mesh reads a face in a tighter region as
-// farther: 15 % less region, 2-9 % more distance on the shared clips); its landmarks, mapped
+// farther: docs/estimator.md, "The mesh's region"); its landmarks, mapped
 // back to the frame, are matched to a canonical 3D face with cv::solvePnP
 // (SQPNP: plain ITERATIVE can return the mirrored solution). The rotation
 // relative to a face looking into the camera is the head pose. Independent of

@@ -156,8 +156,8 @@ void node_config_defaults(node_config_t *config)
     add_builtin_model(config, "mesh_pnp", hkf_noise_mesh_pnp); /* fitted by dev/fit */
     own_builtin_real(&config->models[config->model_count - 1], "position_r_scale", (hkf_real_t)1.0); /* the mesh fit's */
     add_builtin_model(config, "whenet", hkf_noise_whenet);
-    /* WHENet's estimate of a resting face wanders further than the mesh's: at the mesh's 0.3 deg^2 its still
-     * jitter was 2.9x the mesh's on the shared clips, at 1 deg^2 level with it (docs/evaluation.md) */
+    /* WHENet's estimate of a resting face wanders further than the mesh's: 1 deg^2 brings its still jitter
+     * level with the mesh's (docs/evaluation.md) */
     own_builtin_real(&config->models[config->model_count - 1], "still_wander", (hkf_real_t)1.0);
 }
 

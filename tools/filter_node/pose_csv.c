@@ -19,7 +19,7 @@ int pose_csv_write(FILE *csv, const hkf_head_pose_t *p)
                 (double)p->r[2], p->loop_closure_active, p->extrapolated, (long long)p->latency_us) < 0) {
         return -1;
     }
-    /* the position (hkf 0.2): cm, cm/s, cm^2 */
+    /* the position: cm, cm/s, cm^2 */
     return fprintf(csv, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", (double)p->x, (double)p->y,
                    (double)p->z, (double)p->x_rate, (double)p->y_rate, (double)p->z_rate, (double)p->position_variance[0],
                    (double)p->position_variance[1], (double)p->position_variance[2], (double)p->position_center[0],
