@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include <filesystem>
@@ -28,6 +29,7 @@
 #include "head_pose_estimator.hpp"
 #include "hkf/head_pose_measurement_t.hpp"
 
+#include "arguments.h"
 #include "model_name.h"
 
 #include "safe_files.h"
@@ -92,13 +94,6 @@ std::string annotate_path_problem(const std::string &path, const std::string &so
     return "";
 }
 
-bool parse_number(const std::string &text, double low, double high, double &value)
-{
-    char *end = nullptr;
-    value = std::strtod(text.c_str(), &end);
-    return end != text.c_str() && *end == '\0' && value >= low && value <= high;
-}
-
 void usage(std::ostream &out)
 {
     out << "usage: hkf-estimator --source SRC [options]        camera / video / images -> LCM\n"
@@ -146,94 +141,119 @@ void usage(std::ostream &out)
            "  --help, --version  this text; the version\n";
 }
 
-// An option whose value is taken as it is; false when arg is not one.
-bool read_text_option(const std::string &arg, const std::string &value, Options &o)
+// --region X,Y,W,H: a region within the largest frame; false when the text is not one.
+bool read_region(const std::string &value, cv::Rect2f &region)
 {
-    std::string *const field = arg == "--source"        ? &o.pipeline.source
-                               : arg == "--annotate"    ? &o.pipeline.annotate_path
-                               : arg == "--lcm-url"     ? &o.pipeline.lcm_url
-                               : arg == "--channel"     ? &o.pipeline.channel
-                               : arg == "--dataset"     ? &o.dataset
-                               : arg == "--model"       ? &o.model
-                               : arg == "--predictions" ? &o.predictions
-                               : arg == "--models-dir"  ? &o.models_dir
-                               : arg == "--spec-dir"    ? &o.spec_dir
-                                                        : nullptr;
-    if (field != nullptr) *field = value;
-    if (arg == "--second-model") {
-        o.second_model = value == "none" ? "" : value;
-        o.second_model_given = true;
-        return true;
-    }
-    return field != nullptr;
+    float x, y, w, h;
+    char extra;
+    const auto px = [](float v) { return std::isfinite(v) && std::fabs(v) <= static_cast<float>(hkf_estimator::kMaxFrameSide); };
+    if (std::sscanf(value.c_str(), "%f,%f,%f,%f%c", &x, &y, &w, &h, &extra) != 4 || !px(x) || !px(y) || !px(w) ||
+        !px(h) || w <= 0 || h <= 0)
+        return false;
+    region = cv::Rect2f(x, y, w, h);
+    return true;
 }
 
-// A number option: 0 read, 2 a bad value (said), -1 not a number option.
-int read_number_option(const std::string &arg, const std::string &value, Options &o)
+// What an option takes: nothing (a switch), text as it is, a number or a whole number within [low, high],
+// one of the choices ("a|b"), or a region.
+enum class Takes { Nothing, Text, Number, Whole, Choice, Region };
+
+struct OptionSpec {
+    const char *name;
+    Takes takes;
+    double low, high;     // Number, Whole
+    const char *choices;  // Choice: "a|b|c"
+    const char *wants;    // what a bad value is told it should be
+    void (*store)(Options &o, const std::string &text, double number);
+};
+
+const std::string kRegionWants = "X,Y,W,H in px (finite, W and H > 0, each within " +
+                                 std::to_string(hkf_estimator::kMaxFrameSide) + ")";
+
+// Every option but --help and --version (arguments.h), and where it goes.
+const OptionSpec kOptions[] = {
+    {"--source", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.pipeline.source = v; }},
+    {"--annotate", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.pipeline.annotate_path = v; }},
+    {"--lcm-url", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.pipeline.lcm_url = v; }},
+    {"--channel", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.pipeline.channel = v; }},
+    {"--dataset", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.dataset = v; }},
+    {"--model", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.model = v; }},
+    {"--predictions", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.predictions = v; }},
+    {"--models-dir", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.models_dir = v; }},
+    {"--spec-dir", Takes::Text, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) { o.spec_dir = v; }},
+    {"--second-model", Takes::Text, 0, 0, nullptr, nullptr,
+     [](Options &o, const std::string &v, double) {
+         o.second_model = v == "none" ? "" : v;
+         o.second_model_given = true;
+     }},
+    {"--realtime", Takes::Nothing, 0, 0, nullptr, nullptr, [](Options &o, const std::string &, double) { o.pipeline.realtime = true; }},
+    {"--show", Takes::Nothing, 0, 0, nullptr, nullptr, [](Options &o, const std::string &, double) { o.pipeline.show = true; }},
+    {"--fps", Takes::Number, 0.1, 1000.0, nullptr, "a number from 0.1 to 1000",
+     [](Options &o, const std::string &, double n) { o.pipeline.fps_for_images = n; }},
+    {"--max-frames", Takes::Whole, 1.0, 1e9, nullptr, "a positive whole number",
+     [](Options &o, const std::string &, double n) { o.pipeline.max_frames = static_cast<long>(n); }},
+    {"--second-from-yaw", Takes::Number, 0.0, 180.0, nullptr, "degrees from 0 to 180",
+     [](Options &o, const std::string &, double n) { o.pipeline.second_from_yaw = static_cast<float>(n); }},
+    {"--fov", Takes::Number, 10.0, 170.0, nullptr, "the camera's diagonal field of view, 10 to 170 deg",
+     [](Options &o, const std::string &, double n) { o.position.fov_deg = n; }},
+    {"--pivot", Takes::Number, 0.0, 30.0, nullptr, "cm behind the nose tip, 0 to 30",
+     [](Options &o, const std::string &, double n) { o.position.pivot_cm = n; }},
+    {"--limit", Takes::Whole, 1.0, 1e12, nullptr, "a positive whole number",
+     [](Options &o, const std::string &, double n) { o.limit = static_cast<long>(n); }},
+    {"--detector", Takes::Choice, 0, 0, "short|full|retina", "short, full or retina",
+     [](Options &o, const std::string &v, double) { o.detector = v; }},
+    {"--crop", Takes::Choice, 0, 0, "live|labels", "live or labels",
+     [](Options &o, const std::string &v, double) {
+         o.crop = v == "live" ? hkf_estimator::DatasetCrop::Live : hkf_estimator::DatasetCrop::Labels;
+     }},
+    {"--region", Takes::Region, 0, 0, nullptr, nullptr, [](Options &o, const std::string &v, double) {
+         (void)read_region(v, o.pipeline.tracker.region);
+     }},
+};
+
+const OptionSpec *find_option(const std::string &name)
+{
+    for (const OptionSpec &spec : kOptions)
+        if (name == spec.name) return &spec;
+    return nullptr;
+}
+
+// 1 when text is one of the choices "a|b|c".
+bool is_choice(const std::string &text, const std::string &choices)
+{
+    return !text.empty() && text.find('|') == std::string::npos &&
+           ("|" + choices + "|").find("|" + text + "|") != std::string::npos;
+}
+
+// The value of option `spec` into o: true, or false with the reason said.
+bool read_value(const OptionSpec &spec, const std::string &value, Options &o)
 {
     double number = 0.0;
-    if (arg == "--fps") {
-        if (parse_number(value, 0.1, 1000.0, o.pipeline.fps_for_images)) return 0;
-        std::cerr << "hkf-estimator: --fps wants a number from 0.1 to 1000, not '" << value << "'\n";
-    } else if (arg == "--max-frames") {
-        if (parse_number(value, 1.0, 1e9, number) && number == static_cast<long>(number)) {
-            o.pipeline.max_frames = static_cast<long>(number);
-            return 0;
-        }
-        std::cerr << "hkf-estimator: --max-frames wants a positive whole number, not '" << value << "'\n";
-    } else if (arg == "--second-from-yaw") {
-        if (parse_number(value, 0.0, 180.0, number)) {
-            o.pipeline.second_from_yaw = static_cast<float>(number);
-            return 0;
-        }
-        std::cerr << "hkf-estimator: --second-from-yaw wants degrees from 0 to 180, not '" << value << "'\n";
-    } else if (arg == "--fov") {
-        if (parse_number(value, 10.0, 170.0, o.position.fov_deg)) return 0;
-        std::cerr << "hkf-estimator: --fov wants the camera's diagonal field of view, 10 to 170 deg, not '" << value << "'\n";
-    } else if (arg == "--pivot") {
-        if (parse_number(value, 0.0, 30.0, o.position.pivot_cm)) return 0;
-        std::cerr << "hkf-estimator: --pivot wants cm behind the nose tip, 0 to 30, not '" << value << "'\n";
-    } else if (arg == "--limit") {
-        char *end = nullptr;
-        o.limit = std::strtol(value.c_str(), &end, 10);
-        if (*end == '\0' && o.limit >= 1) return 0;
-        std::cerr << "hkf-estimator: --limit wants a positive whole number, not '" << value << "'\n";
-    } else {
-        return -1;
+    bool good = true;
+    switch (spec.takes) {
+    case Takes::Number: good = argument_number(value.c_str(), spec.low, spec.high, &number) != 0; break;
+    case Takes::Whole:
+        good = argument_number(value.c_str(), spec.low, spec.high, &number) != 0 && number == std::floor(number);
+        break;
+    case Takes::Choice: good = is_choice(value, spec.choices); break;
+    case Takes::Region: {
+        cv::Rect2f region;
+        good = read_region(value, region);
+        break;
     }
-    return 2;
-}
-
-// A choice or region option: 0 read, 2 a bad value (said), -1 not one of them.
-int read_choice_option(const std::string &arg, const std::string &value, Options &o)
-{
-    if (arg == "--detector") {
-        if (value == "short" || value == "full" || value == "retina") {
-            o.detector = value;
-            return 0;
-        }
-        std::cerr << "hkf-estimator: --detector is short, full or retina, not '" << value << "'\n";
-    } else if (arg == "--crop") {
-        if (value == "live" || value == "labels") {
-            o.crop = value == "live" ? hkf_estimator::DatasetCrop::Live : hkf_estimator::DatasetCrop::Labels;
-            return 0;
-        }
-        std::cerr << "hkf-estimator: --crop is live or labels, not '" << value << "'\n";
-    } else if (arg == "--region") {
-        float x, y, w, h;
-        char extra;
-        const auto px = [](float v) { return std::isfinite(v) && std::fabs(v) <= static_cast<float>(hkf_estimator::kMaxFrameSide); };
-        if (std::sscanf(value.c_str(), "%f,%f,%f,%f%c", &x, &y, &w, &h, &extra) == 4 && px(x) && px(y) && px(w) && px(h) &&
-            w > 0 && h > 0) {
-            o.pipeline.tracker.region = cv::Rect2f(x, y, w, h);
-            return 0;
-        }
-        std::cerr << "hkf-estimator: --region wants X,Y,W,H in px (finite, W and H > 0, each within "
-                  << hkf_estimator::kMaxFrameSide << "), not '" << value << "'\n";
-    } else {
-        return -1;
+    case Takes::Nothing:
+    case Takes::Text: break;
     }
-    return 2;
+    if (!good) {
+        std::cerr << "hkf-estimator: " << spec.name
+                  << (spec.takes == Takes::Choice ? std::string(" is ") + spec.wants
+                      : spec.takes == Takes::Region ? " wants " + kRegionWants
+                                                    : std::string(" wants ") + spec.wants)
+                  << ", not '" << value << "'\n";
+        return false;
+    }
+    spec.store(o, value, number);
+    return true;
 }
 
 // The rules between options, once all are read: 0, or 2 (said).
@@ -275,37 +295,31 @@ int check_options(Options &o)
     return 0;
 }
 
+void usage_to(FILE *to)
+{
+    std::ostringstream text;
+    usage(text);
+    std::fputs(text.str().c_str(), to);
+}
+
 // 0 = run, 1 = help shown, 2 = bad arguments
 int parse(int argc, char **argv, Options &o)
 {
     if (const char *env = std::getenv("HKF_MODELS_DIR"); env != nullptr && *env != '\0') o.models_dir = env;  // '': unset
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
-            usage(std::cout);
-            return 1;
-        }
-        if (arg == "--version") {
-            std::cout << "hkf-estimator " << HKF_VERSION << "\n";
-            return 1;
-        }
-        if (arg == "--realtime" || arg == "--show") {
-            (arg == "--realtime" ? o.pipeline.realtime : o.pipeline.show) = true;
+        if (argument_help_or_version(argv[i], "hkf-estimator", usage_to)) return 1;
+        const OptionSpec *spec = find_option(arg);
+        if (spec != nullptr && spec->takes == Takes::Nothing) {
+            spec->store(o, "", 0.0);
             continue;
         }
-        if (i + 1 >= argc) {
-            std::cerr << "hkf-estimator: unknown or incomplete argument '" << arg << "' (see --help)\n";
+        if (spec == nullptr || i + 1 >= argc) {
+            std::cerr << "hkf-estimator: " << (spec == nullptr ? "unknown" : "incomplete") << " argument '" << arg
+                      << "' (see --help)\n";
             return 2;
         }
-        const std::string value = argv[++i];
-        if (read_text_option(arg, value, o)) continue;
-        int read = read_number_option(arg, value, o);
-        if (read < 0) read = read_choice_option(arg, value, o);
-        if (read == 2) return 2;
-        if (read < 0) {
-            std::cerr << "hkf-estimator: unknown argument '" << arg << "' (see --help)\n";
-            return 2;
-        }
+        if (!read_value(*spec, argv[++i], o)) return 2;
     }
     return check_options(o);
 }
