@@ -20,7 +20,7 @@ STEPS = [
     ("step_libhkf_defaults", "libhkf hkf_update: the defaults (motion adaptation; R at the calibrated noise level)"),
     ("step_libhkf_calibration", "libhkf hkf_calibration_update: the noise calibration beside the defaults"),
     ("step_libhkf_pair", "libhkf hkf_update_pair: two estimators' measurements, each with its own Eq. 8 curves"),
-    ("step_libhkf_position", "libhkf hkf_position_update: the head's position x, y, z (hkf 0.2)"),
+    ("step_libhkf_position", "libhkf hkf_position_update: the head's position x, y, z"),
     ("step_eigen", "Eigen fixed-size 6-state filter, same work"),
     ("step_opencv", "cv::KalmanFilter(6, 3) predict + correct, same work"),
 ]

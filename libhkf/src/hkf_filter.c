@@ -94,22 +94,12 @@ static inline int two_models(const hkf_filter_t *f)
 /* One axis lane of the filter's state, and back. */
 static HKF_ALWAYS_INLINE hkf_axis_t lane_axis(const hkf_filter_t *restrict f, int a)
 {
-    hkf_axis_t x;
-    x.x = f->angle[a];
-    x.v = f->rate[a];
-    x.p00 = f->p00[a];
-    x.p01 = f->p01[a];
-    x.p11 = f->p11[a];
-    return x;
+    return hkf_axis_gather(f->angle[a], f->rate[a], f->p00[a], f->p01[a], f->p11[a]);
 }
 
 static HKF_ALWAYS_INLINE void set_lane(hkf_filter_t *restrict f, int a, hkf_axis_t x)
 {
-    f->angle[a] = x.x;
-    f->rate[a] = x.v;
-    f->p00[a] = x.p00;
-    f->p01[a] = x.p01;
-    f->p11[a] = x.p11;
+    hkf_axis_scatter(x, &f->angle[a], &f->rate[a], &f->p00[a], &f->p01[a], &f->p11[a]);
 }
 
 /* Paper Eq. 1-3 on every axis (hkf_kalman.h), yaw wrapped after. */

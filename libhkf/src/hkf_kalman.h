@@ -20,6 +20,28 @@ typedef struct {
     hkf_real_t p00, p01, p11;
 } hkf_axis_t;
 
+/* A lane from a filter's per-axis arrays (the angles' and the position's keep their state so), and back. */
+static HKF_ALWAYS_INLINE hkf_axis_t hkf_axis_gather(hkf_real_t x, hkf_real_t v, hkf_real_t p00, hkf_real_t p01, hkf_real_t p11)
+{
+    hkf_axis_t lane;
+    lane.x = x;
+    lane.v = v;
+    lane.p00 = p00;
+    lane.p01 = p01;
+    lane.p11 = p11;
+    return lane;
+}
+
+static HKF_ALWAYS_INLINE void hkf_axis_scatter(hkf_axis_t lane, hkf_real_t *x, hkf_real_t *v, hkf_real_t *p00,
+                                              hkf_real_t *p01, hkf_real_t *p11)
+{
+    *x = lane.x;
+    *v = lane.v;
+    *p00 = lane.p00;
+    *p01 = lane.p01;
+    *p11 = lane.p11;
+}
+
 /* The value's variance growth over dt: (F P F' + Q)_00 - p00, with qdt = q dt. */
 static inline hkf_real_t hkf_kalman_growth(hkf_real_t p01, hkf_real_t p11, hkf_real_t qdt, hkf_real_t dt)
 {

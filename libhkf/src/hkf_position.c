@@ -211,25 +211,15 @@ static void keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11)
     }
 }
 
-/* Eq. 1-3 per axis: x += v dt; P = F P F' + Q, Q = q [[dt^3/3, dt^2/2], [dt^2/2, dt]] */
+/* One axis of the state as a lane of the Kalman core (hkf_kalman.h), and back with P kept valid. */
 static hkf_axis_t axis_of(const hkf_position_filter_t *f, int a)
 {
-    hkf_axis_t x;
-    x.x = f->x[a];
-    x.v = f->v[a];
-    x.p00 = f->p00[a];
-    x.p01 = f->p01[a];
-    x.p11 = f->p11[a];
-    return x;
+    return hkf_axis_gather(f->x[a], f->v[a], f->p00[a], f->p01[a], f->p11[a]);
 }
 
 static void set_axis(hkf_position_filter_t *f, int a, hkf_axis_t x)
 {
-    f->x[a] = x.x;
-    f->v[a] = x.v;
-    f->p00[a] = x.p00;
-    f->p01[a] = x.p01;
-    f->p11[a] = x.p11;
+    hkf_axis_scatter(x, &f->x[a], &f->v[a], &f->p00[a], &f->p01[a], &f->p11[a]);
     keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
 }
 
