@@ -50,7 +50,7 @@ grep -q "300 measurements" "$work/live.txt" || fail "the live filter did not rec
 
 "$source/.venv/bin/python" "$source/dev/logs/compare_pose_logs.py" --types "$build/lcmtypes/python" \
   "$work/expected.lcmlog" "$work/recorded.lcmlog" || fail "recorded HEAD_POSE differs from the offline output"
-"$source/tests/lcm/java_decode_test.sh" "$build" "$source" "$work/recorded.lcmlog" || fail "Java decode"
+"$source/tests/lcmtypes/java_decode_test.sh" "$build" "$source" "$work/recorded.lcmlog" || fail "Java decode"
 
 # live --rate: extrapolated poses between the replayed measurements
 live_run rate 4 TERM --rate 120

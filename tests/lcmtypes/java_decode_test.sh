@@ -6,9 +6,9 @@ build=$1 source=$2 log=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp="/usr/share/java/lcm.jar:$build/lcmtypes/hkf_lcmtypes.jar"
-javac -nowarn -cp "$cp" -d "$work" "$source/tests/lcm/DecodeHeadPoseLog.java"
+javac -nowarn -cp "$cp" -d "$work" "$source/tests/lcmtypes/DecodeHeadPoseLog.java"
 java_says=$(java -cp "$cp:$work" DecodeHeadPoseLog "$log")
-python_says=$("$source/.venv/bin/python" "$source/tests/lcm/decode_head_pose_log.py" "$log" "$build/lcmtypes/python")
+python_says=$("$source/.venv/bin/python" "$source/tests/lcmtypes/decode_head_pose_log.py" "$log" "$build/lcmtypes/python")
 echo "java:   $java_says"
 echo "python: $python_says"
 [ "${java_says%% *}" -gt 0 ] || { echo "FAIL: no HEAD_POSE message decoded" >&2; exit 1; }
