@@ -97,6 +97,29 @@ static void test_ticks_stop_then_lost(void **state)
     assert_true(pose.status == HKF_HEAD_POSE_T_LOST && due == A0 + coast_us + FILTER_NODE_LOST_REPEAT_US);
 }
 
+/* A stamp at the clock's end: nothing can be stamped after it, and nothing stays due, so the live
+ * loop does not wake at once for ever (it spun so before). */
+static void test_nothing_due_at_the_clock_end(void **state)
+{
+    filter_node_t node;
+    node_schedule_t s;
+    hkf_head_pose_t pose;
+    hkf_head_pose_measurement_t m = measurement(1, INT64_MAX - 1000, 0.0);
+    int64_t due, wake;
+    const int64_t now = A0 + 10 * FILTER_NODE_LOST_REPEAT_US;
+    int published = 0;
+    (void)state;
+    assert_int_equal(filter_node_init(&node, &config), 0);
+    node_schedule_init(&s, TICK_US, 1);
+    assert_int_equal(filter_node_receive(&node, &m, A0, &pose), 1);
+    while (published < 100 && node_schedule_next(&s, &node, now, &pose, &due)) {
+        ++published;
+    }
+    assert_int_equal(published, 0);
+    wake = node_schedule_wake(&s, &node);
+    assert_true(wake == 0 || wake > now);
+}
+
 typedef struct {
     int64_t utime, due;
     int status;
@@ -172,6 +195,7 @@ int main(void)
         cmocka_unit_test(test_ticks_on_the_capture_grid),
         cmocka_unit_test(test_ticks_stop_then_lost),
         cmocka_unit_test(test_live_and_log_agree),
+        cmocka_unit_test(test_nothing_due_at_the_clock_end),
     };
     node_config_defaults(&config);
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -390,8 +390,8 @@ int64_t filter_node_silence_due(const filter_node_t *node)
     const int64_t after = next_lost_after_us(node);
     const stream_admission_t *a = &node->admission;
     if (!a->have_time || hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED ||
-        a->last_arrival_utime > INT64_MAX - after) {
-        return 0;
+        a->last_arrival_utime > INT64_MAX - after || a->last_utime > INT64_MAX - after) {
+        return 0; /* no track, or a clock at its end: no LOST pose could be stamped (and none is due) */
     }
     return a->last_arrival_utime + after;
 }

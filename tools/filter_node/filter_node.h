@@ -139,7 +139,8 @@ int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t 
  * next measurement restarts the track. Returns 1 when *pose is to be published. */
 int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pose_t *pose);
 
-/* When (arrival clock) the next LOST pose of a silence is due, or 0 (no track):
+/* When (arrival clock) the next LOST pose of a silence is due, or 0 (no track, or a capture stamp so
+ * near the clock's end that no LOST pose could be stamped):
  * the live loop wakes then. The pose is stamped that long after the last
  * measurement's capture time, so the live node and --offline agree. */
 int64_t filter_node_silence_due(const filter_node_t *node);
