@@ -392,6 +392,34 @@ static void test_calibration_settings_checked(void **state)
     assert_int_equal(hkf_init(&f, &s), HKF_ERROR_SETTING_MOTION);
 }
 
+/* The power n follows is the low-pass of Eq. "power += beta (d^2 / 6 - power)" with beta = dt /
+ * (dt + noise_time), step by step (hkf_calibration.h), read through hkf_calibration_get_state: a head
+ * turning at a steady acceleration gives every frame the same second difference d. */
+static void test_power_low_pass(void **state)
+{
+    calibrated_t t;
+    hkf_output_t out;
+    hkf_calibration_state_t before, after;
+    const hkf_settings_t s = calibrated_settings();
+    const double d = 0.3, dt = frame_s;
+    const double beta = dt / (dt + D(hkf_default_calibration_settings.noise_time));
+    int k;
+    (void)state;
+    calibrated_init(&t, &s);
+    for (k = 0; k < 12; ++k) {
+        const hkf_real_t z[3] = {R(0.5 * d * k * k), R(0.0), R(0.0)}; /* second difference d on pitch */
+        assert_int_equal(hkf_calibration_get_state(&t.c, &before), HKF_OK);
+        calibrated_update(&t, z, R(dt), &out);
+        assert_int_equal(hkf_calibration_get_state(&t.c, &after), HKF_OK);
+        if (k >= 2) { /* three measurements in a row: a second difference */
+            const double expected = D(before.power[0]) + beta * (d * d / 6.0 - D(before.power[0]));
+            assert_near_at(D(after.power[0]), expected, 4 * TEST_TOL + 1e-4 * fabs(expected), "power's low-pass",
+                           __FILE__, __LINE__);
+        }
+    }
+    assert_true(D(after.power[0]) < 0.5 * D(hkf_observation_noise(&t.f, 0, R(0.0)))); /* it came down toward d^2 / 6 */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -405,6 +433,7 @@ int main(void)
         cmocka_unit_test(test_history_and_reset),
         cmocka_unit_test(test_noise_at_the_yaw_seam),
         cmocka_unit_test(test_calibration_settings_checked),
+        cmocka_unit_test(test_power_low_pass),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -545,6 +545,39 @@ static void test_errors(void **state)
     assert_memory_equal(&f, &before, sizeof f);
 }
 
+/* The motion detector's damping (rate_damping_time): once the head is still again, the rate left
+ * from a lean decays with its time constant, faster than the Kalman update alone takes it down
+ * (the same filter with rate_damping_time 0), and the position settles where the head stopped. */
+static void test_rate_decays_at_rest(void **state)
+{
+    hkf_position_settings_t damped = hkf_position_default_settings, undamped = hkf_position_default_settings;
+    hkf_position_filter_t f[2];
+    hkf_position_output_t out[2];
+    double rate_after[2] = {0, 0};
+    unsigned seed = 11;
+    int i, k;
+    (void)state;
+    undamped.rate_damping_time = R(0.0);
+    f[0] = started_filter_with(&damped, 0.0, 0.0, 60.0);
+    f[1] = started_filter_with(&undamped, 0.0, 0.0, 60.0);
+    for (i = 1; i <= 150; ++i) { /* still 1 s, a lean of 10 cm in 0.5 s, still again */
+        const double t = i * frame_s;
+        const double z_true = t < 1.0 ? 60.0 : t < 1.5 ? 60.0 - 20.0 * (t - 1.0) : 50.0;
+        const hkf_real_t z[3] = {R(uniform_noise(&seed, 0.02)), R(uniform_noise(&seed, 0.02)),
+                                 R(z_true + uniform_noise(&seed, 0.05))};
+        for (k = 0; k < 2; ++k) {
+            assert_int_equal(hkf_position_update(&f[k], z, R(1.0), R(frame_s), &out[k]), HKF_OK);
+            if (i >= 110 && i <= 130) { /* 1/3 to 2/3 s after the stop */
+                rate_after[k] += fabs(D(out[k].rate[2])) / 21.0;
+            }
+        }
+    }
+    print_message("mean |rate| 1/3 to 2/3 s after the stop: %.3f cm/s damped, %.3f cm/s without damping\n",
+                  rate_after[0], rate_after[1]);
+    assert_true(rate_after[0] < 0.5 * rate_after[1]);
+    assert_true(fabs(D(out[0].position[2]) - 50.0) < 0.1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -562,6 +595,7 @@ int main(void)
         cmocka_unit_test(test_range),
         cmocka_unit_test(test_extrapolate_coast_then_stale),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_rate_decays_at_rest),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
