@@ -16,14 +16,12 @@
  * centre; a message without one leaves it alone; RECENTER sets the centre, RESET forgets it;
  * a box-based model's position (its position_r_scale) moves the filter less than the mesh's (a deviation the size
  * of the measured noise: the filter is calibrated on the +-0.2 cm the positions carry). */
-static void test_position_filtered(void **state)
+/* 30 mesh frames around (2, -1, 60) cm with +-0.2 cm of noise, then one without a position (held). */
+static hkf_head_pose_t position_filtered_and_held(void)
 {
     hkf_head_pose_measurement_t m;
     hkf_head_pose_t pose;
-    hkf_tracker_command_t command = {0, HKF_TRACKER_COMMAND_T_RECENTER};
-    float mesh_step, box_step;
     int i;
-    (void)state;
     m = measurement(T0, 1, 0, 0, 0);
     assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
     assert_true(pose.z == 0.0f && pose.position_center[2] == 0.0f); /* no position measured yet */
@@ -43,30 +41,43 @@ static void test_position_filtered(void **state)
         assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
         assert_true(fabsf(pose.z - held) < 0.05f);
     }
-    {
-        filter_node_t mesh = node, box = node;
-        const float before = pose.z;
-        m = measurement(T0 + 32 * FRAME_US, 1, 0, 0, 0);
-        m.model = "mesh_pnp";
-        m.z = before + 0.4f, m.x = 2.0f, m.y = -1.0f;
-        assert_int_equal(filter_node_measurement(&mesh, &m, &pose), 1);
-        mesh_step = pose.z - before;
-        m.model = "whenet"; /* a model change restarts the angles' track, not the position's */
+    return pose;
+}
+
+/* A 0.4 cm deviation from the node's copies: the mesh's moves the position more than a face box's, and
+ * the quality is the config's (position_r_scale), not the model's name. */
+static void position_quality_per_model(float before)
+{
+    filter_node_t mesh = node, box = node;
+    hkf_head_pose_measurement_t m = measurement(T0 + 32 * FRAME_US, 1, 0, 0, 0);
+    hkf_head_pose_t pose;
+    float mesh_step, box_step;
+    m.model = "mesh_pnp";
+    m.z = before + 0.4f, m.x = 2.0f, m.y = -1.0f;
+    assert_int_equal(filter_node_measurement(&mesh, &m, &pose), 1);
+    mesh_step = pose.z - before;
+    m.model = "whenet"; /* a model change restarts the angles' track, not the position's */
+    assert_int_equal(filter_node_measurement(&box, &m, &pose), 1);
+    box_step = pose.z - before;
+    print_message("a 0.4 cm deviation moves the position %.3f cm (mesh), %.3f cm (face box)\n", mesh_step, box_step);
+    assert_true(mesh_step > 0.0f && box_step > 0.0f && box_step < 0.5f * mesh_step);
+    {   /* whenet given the mesh's scale moves it as the mesh */
+        node_config_t as_mesh = config;
+        char error[200];
+        box = node;
+        box.config = &as_mesh;
+        assert_int_equal(node_config_set(&as_mesh, "model.whenet.position_r_scale = 1", error, sizeof error), 0);
         assert_int_equal(filter_node_measurement(&box, &m, &pose), 1);
-        box_step = pose.z - before;
-        print_message("a 0.4 cm deviation moves the position %.3f cm (mesh), %.3f cm (face box)\n", mesh_step, box_step);
-        assert_true(mesh_step > 0.0f && box_step > 0.0f && box_step < 0.5f * mesh_step);
-        /* the quality is the config's, not the model's name: whenet given the mesh's scale moves it as the mesh */
-        {
-            node_config_t as_mesh = config;
-            char error[200];
-            box = node;
-            box.config = &as_mesh;
-            assert_int_equal(node_config_set(&as_mesh, "model.whenet.position_r_scale = 1", error, sizeof error), 0);
-            assert_int_equal(filter_node_measurement(&box, &m, &pose), 1);
-            assert_true(pose.z - before == mesh_step);
-        }
+        assert_true(pose.z - before == mesh_step);
     }
+}
+
+/* A lean of 10 cm followed at once; RECENTER moves the centre there, RESET starts a new track and centre. */
+static void position_lean_recenter_reset(void)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    hkf_tracker_command_t command = {0, HKF_TRACKER_COMMAND_T_RECENTER};
     m = measurement(T0 + 32 * FRAME_US, 1, 0, 0, 0);
     m.model = "mesh_pnp";
     m.z = 50.0f, m.x = 2.0f, m.y = -1.0f;
@@ -85,6 +96,14 @@ static void test_position_filtered(void **state)
     m.z = 40.0f, m.x = 0.0f, m.y = 0.0f;
     assert_int_equal(filter_node_measurement(&node, &m, &pose), 1);
     assert_true(pose.z == 40.0f && pose.position_center[2] == 40.0f); /* a new track, and centre */
+}
+
+static void test_position_filtered(void **state)
+{
+    const hkf_head_pose_t held = position_filtered_and_held();
+    (void)state;
+    position_quality_per_model(held.z);
+    position_lean_recenter_reset();
 }
 
 /* The second model's positions: where the mesh measured none (a profile) WHENet's box position
