@@ -12,7 +12,6 @@
 #include <csignal>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <deque>
 #include <map>
 #include <optional>

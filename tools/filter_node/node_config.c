@@ -365,12 +365,13 @@ static int model_owns(const node_model_t *m, int k)
 /* The base's per-model settings with a model's own. */
 static node_model_settings_t per_model_of(const node_config_t *config, const node_model_t *m)
 {
+    /* the per-model keys' indices follow the angles', the calibration's and the node's (key_setting) */
+    const int first = hkf_settings_table_count + hkf_calibration_settings_table_count + NODE_SETTING_COUNT;
     node_model_settings_t s = config->model_settings;
-    int k;
-    for (k = 0; k < key_count(); ++k) {
-        key_group_t group;
-        const hkf_setting_t *d = key_setting(k, &group);
-        if (group == GROUP_PER_MODEL && (m->own_keys >> k & 1ul) != 0) {
+    int i;
+    for (i = 0; i < PER_MODEL_SETTING_COUNT; ++i) { /* read for every position measurement: the few keys alone */
+        const hkf_setting_t *d = &per_model_settings[i];
+        if ((m->own_keys >> (first + i) & 1ul) != 0) {
             memcpy((char *)&s + d->offset, (const char *)&m->own_node + d->offset, value_size(d));
         }
     }
