@@ -4,7 +4,8 @@
  * the generated LCM code and handed to filter_node (the code the live node and
  * --offline share), with arbitrary arrival times. Checks that every pose the
  * node would publish is finite (angles, rates, variances, R, centre) and that
- * it never publishes at a capture time its clock rule rejected.
+ * it never publishes at a capture time its clock rule rejected. The same payloads go to hkf-track's
+ * status line (track_monitor.h), as HEAD_POSE_RAW and as HEAD_POSE, and its line is made.
  *
  * Input: a sequence of [kind byte][length byte][arrival: 4 bytes][payload].
  */
@@ -18,6 +19,7 @@
 #include "filter_node.h"
 #include "fuzz_checks.h"
 #include "message_decode.h"
+#include "track_monitor.h"
 
 #define CHECK(condition, what) fuzz_check((condition), "fuzz_node_messages", (what))
 
@@ -34,6 +36,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static node_config_t config;
     static filter_node_t node;
+    static track_monitor_t monitor;
+    char line[512];
     int64_t arrival = 1700000000000000LL;
     static int registered;
     if (!registered) {
@@ -43,6 +47,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (filter_node_init(&node, &config) != 0) {
         abort();
     }
+    memset(&monitor, 0, sizeof monitor);
     while (size >= 6) {
         const uint8_t kind = data[0];
         size_t length = data[1];
@@ -54,6 +59,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         size -= 6;
         length = length < size ? length : size;
         ++messages;
+        track_monitor_take_raw(&monitor, data, (int)length);
+        track_monitor_take_pose(&monitor, data, (int)length);
+        if (kind % 16 == 15) {
+            track_monitor_line(&monitor, 1.0, 1.0, line, sizeof line);
+            CHECK(memchr(line, '\0', sizeof line) != NULL, "an unterminated status line");
+        }
         if (kind % 4 == 3) {
             hkf_tracker_command_t command;
             if (hkf_tracker_command_t_decode(data, 0, (int)length, &command) >= 0) {

@@ -14,6 +14,7 @@
 #include "arguments.h"
 #include "lcm_wait.h"
 #include "safe_files.h"
+#include "track_exclusive.h"
 #include "track_monitor.h"
 #include "track_options.h"
 #include "track_programs.h"
@@ -75,17 +76,31 @@ static int report_failures(const track_programs_t *programs, int ended)
     return failed;
 }
 
+/* 1 when a program exited with 2: it refused the command line hkf-track passed on. */
+static int refused_arguments(const track_programs_t *programs)
+{
+    for (int i = 0; i < programs->count; ++i) {
+        if (programs->program[i].status == 2) return 1;
+    }
+    return 0;
+}
+
 static int run(const track_options_t *o, track_programs_t *programs)
 {
     static track_monitor_t monitor;
-    lcm_t *lcm = lcm_create(o->lcm_url);
+    track_exclusive_t exclusive;
+    if (track_programs_make_log_folder(o->logs) != 0) return 1;
+    if (track_exclusive_claim(&exclusive, o->lcm_url, o->logs) != 0) return 2; /* another tracker: nothing started */
+    lcm_t *lcm = lcm_create(o->lcm_url); /* resolved by track_options_parse */
     if (lcm == NULL) {
         fprintf(stderr, "hkf-track: LCM could not start on %s\n", o->lcm_url);
+        track_exclusive_release(&exclusive);
         return 1;
     }
     if (track_monitor_start(&monitor, lcm, o->camera != NULL || o->realtime) != 0 ||
         track_programs_start(programs, o->logs) != 0) {
         lcm_destroy(lcm);
+        track_exclusive_release(&exclusive);
         return 1;
     }
     printf("hkf-track: logs in %s; Ctrl-C stops\n", o->logs);
@@ -99,7 +114,9 @@ static int run(const track_options_t *o, track_programs_t *programs)
     printf("hkf-track: %ld filtered poses in %.1f s\n", monitor.total_poses,
            (double)(clock_monotonic_us() - started) / 1e6);
     lcm_destroy(lcm);
+    track_exclusive_release(&exclusive);
     if (fflush(stdout) != 0 || ferror(stdout)) status = 1;
+    if (refused_arguments(programs)) return 2; /* a program refused what hkf-track passed on: a bad command line */
     return status != 0 || lost > 0 ? 1 : 0;
 }
 

@@ -6,18 +6,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hkf_head_pose_measurement_t.h"
 #include "lcm_wait.h"
+#include "message_decode.h"
 
 /* A second model's measurement of a frame already counted carries that frame's seq (it may come late). */
 #define TRACK_SECOND_MODEL_WINDOW 300
 
-static void on_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+void track_monitor_take_raw(track_monitor_t *m, const void *data, int size)
 {
-    track_monitor_t *m = user;
     hkf_head_pose_measurement_t raw;
-    (void)channel;
-    if (hkf_head_pose_measurement_t_decode(rbuf->data, 0, (int)rbuf->data_size, &raw) < 0) {
+    if (message_decode_measurement(data, size, &raw) != 0) { /* checked before anything is allocated */
         ++m->decode_errors;
         return;
     }
@@ -31,12 +29,10 @@ static void on_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
     hkf_head_pose_measurement_t_decode_cleanup(&raw);
 }
 
-static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+void track_monitor_take_pose(track_monitor_t *m, const void *data, int size)
 {
-    track_monitor_t *m = user;
     hkf_head_pose_t pose;
-    (void)channel;
-    if (hkf_head_pose_t_decode(rbuf->data, 0, (int)rbuf->data_size, &pose) < 0) {
+    if (message_decode_pose(data, size, &pose) != 0) {
         ++m->decode_errors;
         return;
     }
@@ -45,7 +41,18 @@ static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
         m->latency_ms[m->latencies++] = (double)pose.latency_us / 1000.0;
     }
     m->last = pose, m->have_last = 1;
-    hkf_head_pose_t_decode_cleanup(&pose);
+}
+
+static void on_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    track_monitor_take_raw(user, rbuf->data, (int)rbuf->data_size);
+}
+
+static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    track_monitor_take_pose(user, rbuf->data, (int)rbuf->data_size);
 }
 
 int track_monitor_start(track_monitor_t *m, lcm_t *lcm, int clock_is_real)

@@ -35,6 +35,12 @@ typedef struct {
 /* Subscribes m to both channels on lcm. 0, or -1 (said on stderr). */
 int track_monitor_start(track_monitor_t *m, lcm_t *lcm, int clock_is_real);
 
+/* One HEAD_POSE_RAW / HEAD_POSE payload, as the subscriptions hand it over: decoded by messages/
+ * (message_decode.h: the layout checked before anything is allocated, so no payload can crash the
+ * launcher or grow it) and counted; one that does not decode is counted in decode_errors. */
+void track_monitor_take_raw(track_monitor_t *m, const void *data, int size);
+void track_monitor_take_pose(track_monitor_t *m, const void *data, int size);
+
 /* The status line for the `interval` seconds since the last one, `elapsed` s
  * after the start, into out; the counts start again. */
 void track_monitor_line(track_monitor_t *m, double elapsed, double interval, char *out, size_t size);

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "arguments.h"
+#include "lcm_file_url.h"
 
 enum option_kind { OPTION_FLAG, OPTION_TEXT };
 
@@ -58,7 +59,7 @@ static void usage(FILE *to)
             "                         (default whenet; none: the first alone); hkf-filter fuses both\n"
             "  --config FILE          hkf-filter settings file (default: hkf-filter's own search:\n"
             "                         hkf-filter --print-config says where each value came from)\n"
-            "  --rate HZ              hkf-filter also publishes extrapolated poses at HZ (0-10000]\n"
+            "  --rate HZ              hkf-filter also publishes extrapolated poses at HZ (0.1-10000)\n"
             "  --opentrack            also run hkf-opentrack\n"
             "  --opentrack-host HOST  where opentrack listens (default 127.0.0.1)\n"
             "  --opentrack-port PORT  (default 4242)\n"
@@ -71,7 +72,7 @@ static void usage(FILE *to)
             "\n"
             "Exit status: 0 when the source ended or Ctrl-C stopped a clean run; 1 when a program\n"
             "failed or its log was lost; 2 for a bad command line or a missing program.\n",
-            TRACK_DEFAULT_LCM_URL);
+            LCM_URL_DEFAULT);
 }
 
 static int bad(const char *what, const char *value)
@@ -122,7 +123,7 @@ static int read_option(int argc, char **argv, int *i, track_options_t *o)
 static int check(const track_options_t *o)
 {
     struct stat info;
-    double rate;
+    double rate, port;
     if ((o->camera == NULL) == (o->source == NULL)) return bad("give one of --camera N and --source FILE", NULL);
     if (o->source != NULL && stat(o->source, &info) != 0) {
         return bad("--source: no such file or folder: ", o->source);
@@ -131,12 +132,19 @@ static int check(const track_options_t *o)
         strcmp(o->detector, "full") != 0) {
         return bad("--detector wants retina, short or full, not ", o->detector);
     }
-    if (o->rate != NULL && (!argument_number(o->rate, 0.0, 10000.0, &rate) || rate <= 0.0)) {
-        return bad("--rate wants a frequency above 0 and up to 10000 Hz, not ", o->rate);
+    if (o->rate != NULL && !argument_number(o->rate, 0.1, 10000.0, &rate)) { /* hkf-filter's range */
+        return bad("--rate wants a frequency from 0.1 to 10000 Hz, not ", o->rate);
+    }
+    if (!argument_number(o->opentrack_port, 1.0, 65535.0, &port) || port != (double)(long)port) {
+        return bad("--opentrack-port wants a UDP port from 1 to 65535, not ", o->opentrack_port);
     }
     if (strncmp(o->lcm_url, "file://", 7) == 0) {
         return bad("--lcm-url: hkf-track runs live programs; a file:// log is for hkf-estimator and "
                    "hkf-filter --offline, not ", o->lcm_url);
+    }
+    if (strncmp(o->lcm_url, "memq://", 7) == 0) { /* each program would have a queue of its own */
+        return bad("--lcm-url: memq:// stays inside one process; hkf-track's programs are separate processes "
+                   "and need a network provider (udpm://), not ", o->lcm_url);
     }
     return 0;
 }
@@ -147,12 +155,13 @@ int track_options_parse(int argc, char **argv, track_options_t *o)
     o->opentrack_host = "127.0.0.1";
     o->opentrack_port = "4242";
     o->opentrack_args = "";
-    o->lcm_url = TRACK_DEFAULT_LCM_URL;
+    o->lcm_url = LCM_URL_DEFAULT;
     o->logs = "hkf-track-logs";
     for (int i = 1; i < argc; ++i) {
         if (argument_help_or_version(argv[i], "hkf-track", usage)) return 1;
         int status = read_option(argc, argv, &i, o);
         if (status != 0) return status;
     }
+    o->lcm_url = lcm_url_resolve(o->lcm_url); /* '': $LCM_DEFAULT_URL, as LCM reads it; passed on resolved */
     return check(o);
 }

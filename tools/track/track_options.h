@@ -9,8 +9,6 @@
 extern "C" {
 #endif
 
-#define TRACK_DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
-
 typedef struct {
     const char *camera;         /* a camera index or device, or NULL */
     const char *source;         /* a video file or a folder of images, or NULL */

@@ -226,12 +226,17 @@ static int make_folders(const char *path)
     }
 }
 
-int track_programs_start(track_programs_t *p, const char *logs)
+int track_programs_make_log_folder(const char *logs)
 {
     if (make_folders(logs) != 0) {
         fprintf(stderr, "hkf-track: cannot make the log folder %s: %s\n", logs, strerror(errno));
         return 1;
     }
+    return 0;
+}
+
+int track_programs_start(track_programs_t *p, const char *logs)
+{
     for (int i = 0; i < p->count; ++i) {
         if (start_one(&p->program[i], logs) != 0) {
             track_programs_stop(p);
@@ -264,7 +269,7 @@ int track_programs_reap(track_programs_t *p)
 static void stop_one(track_program_t *program)
 {
     int wait_status;
-    kill(program->pid, SIGINT);
+    kill(-program->pid, SIGINT); /* its process group (run_child made it): what it started goes too */
     for (int waited = 0; waited < 5000; waited += 20) {
         if (waitpid(program->pid, &wait_status, WNOHANG) == program->pid) {
             program->running = 0;
@@ -274,7 +279,7 @@ static void stop_one(track_program_t *program)
         sleep_ms(20);
     }
     fprintf(stderr, "hkf-track: %s did not stop within 5 s; killed\n", program->name);
-    kill(program->pid, SIGKILL);
+    kill(-program->pid, SIGKILL);
     waitpid(program->pid, &wait_status, 0);
     program->running = 0;
     program->status = status_of(wait_status);

@@ -48,6 +48,9 @@ int track_programs_plan(track_programs_t *p, const track_options_t *o);
  * be made; the programs started are then stopped. */
 int track_programs_start(track_programs_t *p, const char *logs);
 
+/* mkdir -p logs: 0, or 1 (said). Before track_programs_start, which writes the logs there. */
+int track_programs_make_log_folder(const char *logs);
+
 /* The index of a program that has ended since the last call, or -1. */
 int track_programs_reap(track_programs_t *p);
 
