@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -29,6 +30,15 @@ static char mode_of(const char *options)
     return mode;
 }
 
+const char *lcm_url_resolve(const char *url)
+{
+    const char *environment = getenv("LCM_DEFAULT_URL");
+    if (url != NULL && url[0] != '\0') {
+        return url;
+    }
+    return environment != NULL && environment[0] != '\0' ? environment : LCM_URL_DEFAULT;
+}
+
 int lcm_file_url_parse(const char *url, lcm_file_url_t *u)
 {
     const char *network, *options;
@@ -51,6 +61,22 @@ int lcm_file_url_parse(const char *url, lcm_file_url_t *u)
     u->writes = mode != 'r';
     u->appends = mode == 'a';
     return 0;
+}
+
+/* 1 when the file at path is empty or starts with an LCM log's sync word: what a log may be written over. */
+static int empty_or_log(const char *path)
+{
+    char error[PATH_MAX + 64];
+    unsigned char word[4];
+    size_t got;
+    FILE *f = safe_open_input(path, error, sizeof error);
+    if (f == NULL) {
+        return 0;
+    }
+    got = fread(word, 1, sizeof word, f);
+    fclose(f);
+    return got == 0 || (got == sizeof word && (((unsigned long)word[0] << 24) | ((unsigned long)word[1] << 16) |
+                                               ((unsigned long)word[2] << 8) | word[3]) == LCM_LOG_SYNC_WORD);
 }
 
 /* The whole events in the log at path and the bytes cut off at its end; -1 when it cannot be read. */
@@ -81,6 +107,7 @@ int lcm_file_url_check(const char *url, const char *role, const char *const *kee
     const int output = strcmp(role, "output") == 0;
     struct stat st;
     int i;
+    url = lcm_url_resolve(url);
     if (lcm_file_url_parse(url, u) != 0) {
         fprintf(stderr, "%s: the %s URL '%s' names a path longer than %d bytes\n", program, role, url, PATH_MAX - 1);
         return -1;
@@ -112,11 +139,16 @@ int lcm_file_url_check(const char *url, const char *role, const char *const *kee
         return 0;
     }
     for (i = 0; i < count; ++i) {
-        if (keep[i] != NULL && safe_same_file(u->path, keep[i])) {
-            fprintf(stderr, "%s: the %s URL '%s' names '%s', which this run reads or writes; refusing to write over it\n",
-                    program, role, url, keep[i]);
+        if (keep[i] != NULL && safe_writes_over(u->path, keep[i])) {
+            fprintf(stderr, "%s: the %s URL '%s' names %s'%s', which this run reads or writes; refusing to write over it\n",
+                    program, role, url, safe_same_file(u->path, keep[i]) ? "" : "a file inside ", keep[i]);
             return -1;
         }
+    }
+    if (stat(u->path, &st) == 0 && !empty_or_log(u->path)) { /* a video, an image, a config: never a log's place */
+        fprintf(stderr, "%s: the %s URL '%s' names '%s', which is not an LCM log; refusing to write over it\n",
+                program, role, url, u->path);
+        return -1;
     }
     if (u->appends && stat(u->path, &st) == 0) {
         long cut = 0;

@@ -18,6 +18,15 @@
 extern "C" {
 #endif
 
+/* LCM's own default URL (lcm_create's, when neither the program nor $LCM_DEFAULT_URL names one). */
+#define LCM_URL_DEFAULT "udpm://239.255.76.67:7667?ttl=0"
+
+/* The URL LCM opens for `url`, by lcm_create's rule: url itself; when it is NULL or empty,
+ * $LCM_DEFAULT_URL; when that is unset or empty too, LCM_URL_DEFAULT. A program checks and opens
+ * this one (lcm_file_url_check resolves it too), so an empty --lcm-url cannot slip a file:// URL
+ * past the checks through the environment. */
+const char *lcm_url_resolve(const char *url);
+
 typedef struct {
     int is_file;                  /* a file:// URL: */
     int writes;                   /* mode w or a */
@@ -29,11 +38,12 @@ typedef struct {
 /* Parses url into *u; 0, or -1 for a file:// URL whose path is too long. */
 int lcm_file_url_parse(const char *url, lcm_file_url_t *u);
 
-/* Checks url before lcm_create. Any provider but file:// passes. A file:// URL
+/* Checks url (resolved: lcm_url_resolve) before lcm_create. Any provider but file:// passes. A file:// URL
  * the program reads (role "input") must read (mode r) a regular file; one it
  * writes (role "output") must write (mode w or a), name none of the `count`
- * paths in `keep` (the run's inputs, config and other outputs) and be a
- * regular file or none yet. 0, or -1 with the reason on stderr (prefixed by
+ * paths in `keep` (the run's inputs, config and other outputs) nor a file inside
+ * one that is a folder, and be none yet, an empty file or an LCM log (a
+ * video or an image is never a log's place, whatever the program's inputs). 0, or -1 with the reason on stderr (prefixed by
  * `program`). */
 int lcm_file_url_check(const char *url, const char *role, const char *const *keep, int count, const char *program,
                        lcm_file_url_t *u);

@@ -12,15 +12,25 @@
 #error "HKF_VERSION is set by the build (add_compile_definitions in CMakeLists.txt)"
 #endif
 
+/* The answer reached stdout, or the program ends with exit 1 (a full disk is not an answer). */
+static int answered(const char *program)
+{
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "%s: writing to standard output failed\n", program);
+        exit(1);
+    }
+    return 1;
+}
+
 int argument_help_or_version(const char *arg, const char *program, void (*usage)(FILE *to))
 {
     if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
         usage(stdout);
-        return 1;
+        return answered(program);
     }
     if (strcmp(arg, "--version") == 0) {
         printf("%s %s\n", program, HKF_VERSION);
-        return 1;
+        return answered(program);
     }
     return 0;
 }

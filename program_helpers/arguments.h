@@ -18,7 +18,8 @@ extern "C" {
 int argument_number(const char *text, double low, double high, double *value);
 
 /* 1 when arg is --help or -h (usage(stdout) called) or --version ("PROGRAM
- * VERSION" printed): the program has answered and exits 0; else 0. */
+ * VERSION" printed): the program has answered and exits 0; else 0. When the
+ * answer cannot be written (stdout on a full disk), it says so and exits 1. */
 int argument_help_or_version(const char *arg, const char *program, void (*usage)(FILE *to));
 
 /* Microseconds: the wall clock (capture stamps, as the estimator writes them)

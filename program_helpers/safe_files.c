@@ -73,15 +73,51 @@ int safe_same_file(const char *a, const char *b)
     return resolved_name(a, ra, sizeof ra) == 0 && resolved_name(b, rb, sizeof rb) == 0 && strcmp(ra, rb) == 0;
 }
 
+/* The absolute name of path with every link of its folders resolved (and of itself, when it
+ * exists); 0 on success. */
+static int absolute_name(const char *path, char *out, size_t size)
+{
+    char full[PATH_MAX];
+    if (realpath(path, full) != NULL) {
+        return snprintf(out, size, "%s", full) < (int)size ? 0 : -1;
+    }
+    return resolved_name(path, out, size);
+}
+
+int safe_writes_over(const char *path, const char *input)
+{
+    struct stat st;
+    char folder[PATH_MAX], name[PATH_MAX + NAME_MAX + 2];
+    size_t length;
+    if (safe_same_file(path, input)) {
+        return 1;
+    }
+    if (stat(input, &st) != 0 || !S_ISDIR(st.st_mode) || realpath(input, folder) == NULL ||
+        absolute_name(path, name, sizeof name) != 0) {
+        return 0;
+    }
+    length = strlen(folder);
+    if (length > 0 && folder[length - 1] == '/') {
+        --length; /* the root folder: every file is inside it */
+    }
+    return strncmp(name, folder, length) == 0 && name[length] == '/';
+}
+
+int safe_is_regular_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
 FILE *safe_open_output(const char *path, const char *mode, const char *const *keep, int count, const char *program)
 {
     struct stat st;
     FILE *f;
     int i, fd;
     for (i = 0; i < count; ++i) {
-        if (keep[i] != NULL && safe_same_file(path, keep[i])) {
-            fprintf(stderr, "%s: '%s' is also '%s', which this run reads or writes; refusing to write over it\n",
-                    program, path, keep[i]);
+        if (keep[i] != NULL && safe_writes_over(path, keep[i])) {
+            fprintf(stderr, "%s: '%s' is %s '%s', which this run reads or writes; refusing to write over it\n",
+                    program, path, safe_same_file(path, keep[i]) ? "also" : "inside", keep[i]);
             return NULL;
         }
     }

@@ -22,9 +22,19 @@ FILE *safe_open_input(const char *path, char *error, size_t error_size);
  * exist yet. */
 int safe_same_file(const char *a, const char *b);
 
+/* 1 when writing path would write over input: the same file (safe_same_file),
+ * or, when input is a folder, a file at any depth inside it (a folder of
+ * images read as a video, a dataset's labels and images). */
+int safe_writes_over(const char *path, const char *input);
+
+/* 1 when path names a regular file (through symbolic links): what a program may
+ * read without a wait on a named pipe or a device. */
+int safe_is_regular_file(const char *path);
+
 /* Opens path for writing ("w" or "wb"), refusing one that names any of the
- * `count` paths in `keep` (the program's inputs and its other outputs): it
- * would be truncated before it is read. A named pipe is opened without
+ * `count` paths in `keep` (the program's inputs and its other outputs), or a
+ * file inside one that is a folder (safe_writes_over): it would be truncated
+ * before it is read. A named pipe is opened without
  * blocking: with no reader, a clear error instead of a hang. NULL with a
  * message on stderr. */
 FILE *safe_open_output(const char *path, const char *mode, const char *const *keep, int count, const char *program);

@@ -13,6 +13,7 @@
 
 #include "angle_bins_model.hpp"
 #include "face_tracker.hpp"
+#include "safe_files.h"
 
 namespace hkf_estimator {
 namespace {
@@ -29,6 +30,8 @@ HeadPose label_in_hkf_convention(const LabelRow &r) { return HeadPose{r.pitch, r
 
 std::vector<LabelRow> read_labels(const std::string &path)
 {
+    if (!safe_is_regular_file(path.c_str()))  // a named pipe would block the read for ever
+        throw EstimatorError("cannot read " + path + ": not a regular file");
     std::ifstream in(path);
     if (!in) throw EstimatorError("cannot read " + path);
     std::string line;
@@ -177,7 +180,9 @@ EvalResult evaluate_dataset(const DatasetRun &run, std::ostream &predictions, co
     for (long i = 0; i < total; ++i) {
         const LabelRow &row = rows[static_cast<size_t>(i)];
         ++result.images;
-        const cv::Mat image = cv::imread(run.dir + "/images/" + row.image, cv::IMREAD_COLOR);
+        const std::string path = run.dir + "/images/" + row.image;
+        const cv::Mat image = safe_is_regular_file(path.c_str()) ? cv::imread(path, cv::IMREAD_COLOR) : cv::Mat();  // a pipe would block
+
         if (image.empty() || face_crop_rect(row.box, 0.f, image.size()).empty()) {
             ++result.unreadable;
             std::cerr << "hkf-estimator: cannot read " << run.dir << "/images/" << row.image << " or its face box; skipped\n";

@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "model_spec.hpp"
+#include "safe_files.h"
 
 namespace hkf_estimator {
 
@@ -109,11 +110,11 @@ bool FrameSource::read(Frame &frame)
         for (;;) {  // an image that cannot be read (damaged, not an image, too large) is skipped and counted
             if (next_image_ >= images_.size()) return false;
             const std::string &path = images_[next_image_++];
-            frame.image = cv::imread(path, cv::IMREAD_COLOR);
+            frame.image = safe_is_regular_file(path.c_str()) ? cv::imread(path, cv::IMREAD_COLOR) : cv::Mat();  // a pipe would block
             if (!frame.image.empty() && within_frame_cap(frame.image.cols, frame.image.rows)) break;
             if (skipped_images_++ < 5)
-                std::fprintf(stderr, "hkf-estimator: cannot read the image %s (damaged, not an image, or larger than "
-                             "%lld px); skipped\n", path.c_str(), static_cast<long long>(kMaxFramePixels));
+                std::fprintf(stderr, "hkf-estimator: cannot read the image %s (damaged, not an image, not a regular "
+                             "file, or larger than %lld px); skipped\n", path.c_str(), static_cast<long long>(kMaxFramePixels));
         }
     } else {
         if (!capture_.read(frame.image) || frame.image.empty()) return false;

@@ -354,11 +354,15 @@ void print_dataset_result(const hkf_estimator::EvalResult &r, const Options &o)
     }
 }
 
-// --dataset: the run over the labelled images, its predictions written, its figures printed.
+// --dataset: the run over the labelled images, its predictions written, its figures printed. The predictions
+// are opened first (safe_open_output): never the dataset's labels or images, the models or their descriptions,
+// never a named pipe that nothing reads.
 int run_dataset(const hkf_estimator::DatasetRun &run, const Options &o)
 {
-    std::ofstream predictions(o.predictions);
-    if (!predictions) throw hkf_estimator::EstimatorError("cannot write " + o.predictions);
+    const char *const inputs[] = {o.dataset.c_str(), o.models_dir.c_str(), o.spec_dir.c_str()};
+    FILE *file = safe_open_output(o.predictions.c_str(), "w", inputs, 3, "hkf-estimator");
+    if (file == nullptr) throw hkf_estimator::EstimatorError("--predictions " + o.predictions + " refused");
+    std::ostringstream predictions;
     auto last = std::chrono::steady_clock::now();
     const hkf_estimator::EvalResult r = evaluate_dataset(run, predictions, [&](long done, long total) {
         const auto now = std::chrono::steady_clock::now();
@@ -367,8 +371,9 @@ int run_dataset(const hkf_estimator::DatasetRun &run, const Options &o)
             last = now;
         }
     });
-    predictions.close();
-    if (!predictions) throw hkf_estimator::EstimatorError("error writing " + o.predictions);
+    const std::string text = predictions.str();
+    const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+    if (safe_close(file) != 0 || !written) throw hkf_estimator::EstimatorError("error writing " + o.predictions + " (a full disk?)");
     print_dataset_result(r, o);
     return r.evaluated > 0 ? 0 : 1;
 }

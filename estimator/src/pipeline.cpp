@@ -491,15 +491,16 @@ int exit_status(const RunCounts &counts, bool failed, const FrameSource &source,
 }
 
 
-// The LCM provider of the run's output (a file:// URL checked: never the source or the video, never a named
-// pipe; its log is checked at the end through log_file).
+// The LCM provider of the run's output (a file:// URL checked, after '' has become $LCM_DEFAULT_URL as LCM
+// reads it: never the source, a file in a source folder or the video, never a named pipe; its log is checked
+// at the end through log_file).
 std::unique_ptr<lcm::LCM> open_output(const PipelineOptions &options, lcm_file_url_t &log_file)
 {
     const char *keep[] = {options.source.c_str(), options.annotate_path.c_str()};
     if (lcm_file_url_check(options.lcm_url.c_str(), "output", keep, options.annotate_path.empty() ? 1 : 2,
                            "hkf-estimator", &log_file) != 0)
-        throw EstimatorError("--lcm-url " + options.lcm_url + " refused");
-    auto lcm = std::make_unique<lcm::LCM>(options.lcm_url);
+        throw EstimatorError("--lcm-url " + std::string(lcm_url_resolve(options.lcm_url.c_str())) + " refused");
+    auto lcm = std::make_unique<lcm::LCM>(lcm_url_resolve(options.lcm_url.c_str()));  // '': $LCM_DEFAULT_URL, as checked
     if (!lcm->good()) throw EstimatorError("cannot open LCM provider " + options.lcm_url);
     return lcm;
 }

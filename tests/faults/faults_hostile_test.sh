@@ -374,4 +374,69 @@ HKF_MODELS_DIR='' expect_exit 0 "HKF_MODELS_DIR='' (as unset)" "$estimator" --so
 expect_exit 1 "--models-dir without the models" "$estimator" --source "$work/clip.mp4" --max-frames 5 \
   --second-model none --lcm-url memq:// --models-dir "$work/specs"
 said "an installed hkf has them in share/hkf/models"
+echo "== 21. outputs named by any option, and the URL LCM resolves, never overwrite an input (round 4)"
+cd "$work"
+cp raw.lcmlog in.lcmlog
+in_sum=$(sum in.lcmlog)
+expect_exit 1 "hkf-filter --input-url file://IN --csv IN" "$filter" --input-url "file://$work/in.lcmlog" --csv in.lcmlog
+said "refusing to write over it"
+[ "$(sum in.lcmlog)" = "$in_sum" ] || fail "--csv truncated the input log the URL names"
+expect_exit 1 "hkf-filter --output-url file://OUT?mode=w --csv OUT" "$filter" --input-url "file://$work/in.lcmlog" \
+  --output-url "file://$work/o.lcmlog?mode=w" --csv o.lcmlog
+mkdir src_images
+for image in $(ls "$data/aflw2000/images" | head -n 3); do cp "$data/aflw2000/images/$image" src_images/; done
+first_image=$(ls src_images | head -n 1)
+images_sum=$(cat src_images/* | sha256sum)
+expect_exit 1 "hkf-estimator --source FOLDER --lcm-url file://FOLDER/IMAGE?mode=w" "$estimator" --source src_images \
+  --lcm-url "file://$work/src_images/$first_image?mode=w"
+said "names a file inside"
+[ "$(cat src_images/* | sha256sum)" = "$images_sum" ] || fail "the estimator wrote over an image of its source folder"
+mkdir -p ds/images
+head -n 4 "$data/aflw2000/labels.csv" >ds/labels.csv
+for image in $(tail -n +2 ds/labels.csv | cut -d, -f1); do cp "$data/aflw2000/images/$image" ds/images/; done
+dataset_sum=$(cat ds/labels.csv ds/images/* | sha256sum)
+expect_exit 1 "--dataset DS --predictions DS/labels.csv" "$estimator" --dataset ds --predictions ds/labels.csv
+said "refusing to write over it"
+expect_exit 1 "--dataset DS --predictions DS/images/IMAGE" "$estimator" --dataset ds \
+  --predictions "ds/images/$(ls ds/images | head -n 1)"
+[ "$(cat ds/labels.csv ds/images/* | sha256sum)" = "$dataset_sum" ] || fail "--dataset wrote over its labels or an image"
+expect_exit 1 "--dataset DS --predictions FIFO (no reader)" "$estimator" --dataset ds --predictions "$work/fifo"
+said "nothing reads"
+cp -r ds ds_fifo_labels && rm ds_fifo_labels/labels.csv && mkfifo ds_fifo_labels/labels.csv
+expect_exit 1 "--dataset with a FIFO as labels.csv" "$estimator" --dataset ds_fifo_labels --predictions p.csv
+said "not a regular file"
+cp -r ds ds_fifo_image && rm "ds_fifo_image/images/$(ls ds/images | head -n 1)" && mkfifo "ds_fifo_image/images/$(ls ds/images | head -n 1)"
+expect_exit 0 "--dataset with a FIFO as an image" "$estimator" --dataset ds_fifo_image --predictions p.csv
+said "cannot read .*$(ls ds/images | head -n 1).*skipped"
+mkdir src_fifo && cp src_images/* src_fifo/ && mkfifo src_fifo/b_fifo.jpg
+expect_exit 0 "--source a folder with a FIFO in it" "$estimator" --source src_fifo --lcm-url memq://
+said "^hkf-estimator: 3 frames,"
+said "not a regular file"
+expect_exit 1 "LCM_DEFAULT_URL=file://SOURCE?mode=w hkf-estimator --lcm-url ''" \
+  env LCM_DEFAULT_URL="file://$work/clip.mp4?mode=w" "$estimator" --source clip.mp4 --max-frames 5 --lcm-url ""
+[ "$(sum clip.mp4)" = "$clip_sum" ] || fail "an empty --lcm-url let \$LCM_DEFAULT_URL write over the source"
+expect_exit 1 "LCM_DEFAULT_URL=file://VIDEO?mode=w hkf-cmd --lcm-url ''" \
+  env LCM_DEFAULT_URL="file://$work/clip.mp4?mode=w" "$cmd" recenter --lcm-url ""
+said "not an LCM log"
+[ "$(sum clip.mp4)" = "$clip_sum" ] || fail "hkf-cmd wrote a log over a video"
+expect_exit 1 "LCM_DEFAULT_URL=file://FIFO?mode=w hkf-cmd --lcm-url ''" \
+  env LCM_DEFAULT_URL="file://$work/fifo?mode=w" "$cmd" reset --lcm-url ""
+said "named pipe"
+expect_exit 1 "LCM_DEFAULT_URL=file://IN?mode=w hkf-filter --output-url '' --csv" \
+  env LCM_DEFAULT_URL="file://$work/in.lcmlog?mode=w" "$filter" --input-url "file://$work/in.lcmlog" --output-url ""
+[ "$(sum in.lcmlog)" = "$in_sum" ] || fail "an empty --output-url let \$LCM_DEFAULT_URL write over the input log"
+expect_exit 1 "LCM_DEFAULT_URL=file://FIFO hkf-opentrack --lcm-url ''" \
+  env LCM_DEFAULT_URL="file://$work/fifo" "$opentrack" --lcm-url ""
+said "named pipe"
+status=0
+"$filter" --print-config >/dev/full 2>"$work/out.txt" || status=$?
+[ "$status" = 1 ] || fail "hkf-filter --print-config > /dev/full: exit $status (expected 1)"
+said "writing the settings failed"
+for program in "$filter" "$estimator" "$cmd" "$opentrack" "$build/tools/hkf-track"; do
+  status=0
+  "$program" --help >/dev/full 2>/dev/null || status=$?
+  [ "$status" = 1 ] || fail "$(basename "$program") --help > /dev/full: exit $status (expected 1)"
+done
+echo "--print-config and --help onto a full disk: exit 1"
+cd - >/dev/null
 echo "faults_hostile_test: all checks passed"

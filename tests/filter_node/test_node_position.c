@@ -187,6 +187,46 @@ static void test_position_follows_after_clock_step_back(void **state)
     assert_true(pose.x_rate > 10.0f); /* 15 cm/s */
 }
 
+/* Hardening round 4, item 6: the position started while the angles had not (a restart after a gap,
+ * a frame without a face, then a second model's measurement of it with NaN angles but a valid
+ * position), and then the clock stepped back 1 h. The resync restarted only a started angle track,
+ * so the position kept its stamp on the old clock and refused every later one: x stayed at 30 cm
+ * while the mesh measured 0 -> 32 cm (here 0 -> -29 cm). Now the position restarts with the clock and follows. */
+static void test_position_alone_follows_a_clock_step(void **state)
+{
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    const int64_t back = 3600000000LL, gap = (int64_t)(2e6 * (double)config.settings.max_dt);
+    int i;
+    (void)state;
+    for (i = 0; i < 20; ++i) { /* both models, the box 0 cm off the mesh, at x 30 cm */
+        feed_two_models(T0 + i * FRAME_US, T0 + i * FRAME_US, 30.0f, 60.0f, 1, 0.0f, &pose);
+    }
+    m = measurement(T0 + i * FRAME_US + gap, 0, 0, 0, 0); /* after a gap: no face; the track restarts */
+    m.model = "mesh_pnp";
+    assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 0);
+    assert_int_equal(hkf_get_status(&node.filter), HKF_STATUS_UNINITIALIZED);
+    second = m; /* the second model's measurement of that frame: NaN angles, a valid position */
+    second.model = "whenet";
+    second.valid = 1;
+    second.pitch = second.yaw = second.roll = NAN;
+    second.x = 30.0f, second.y = 0.0f, second.z = 60.0f;
+    assert_int_equal(filter_node_receive(&node, &second, m.utime + 1000, &pose), 0);
+    assert_true(hkf_position_started(&node.position)); /* the position alone has started */
+    for (++i; i < 80; ++i) { /* the clock steps back 1 h; the mesh measures x 0 -> -29 cm */
+        const float x = -0.5f * (float)(i - 21);
+        m = measurement(T0 + i * FRAME_US + gap - back, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        m.x = x, m.y = 0.0f, m.z = 60.0f;
+        (void)filter_node_receive(&node, &m, T0 + i * FRAME_US + gap, &pose);
+    }
+    assert_int_equal(node.counts.clock_resyncs, 1);
+    print_message("the clock stepped back with the position alone started: x %.2f cm (the head at %.1f cm)\n",
+                  pose.x, -0.5 * (79 - 21));
+    assert_true(pose.utime == m.utime);
+    assert_true(fabsf(pose.x + 0.5f * (79 - 21)) < 1.0f);
+}
+
 /* Item 5: positions far off, once or for long, never publish a position beyond the range the
  * node accepts, nor z below FILTER_NODE_MIN_Z; one forged message is refused by the gate; bad
  * positions (NaN, inf, z < 0, beyond 1000 cm) are counted and change nothing. */
@@ -327,6 +367,7 @@ int main(void)
         cmocka_unit_test_setup(test_position_filtered, setup),
         cmocka_unit_test_setup(test_second_model_position, setup),
         cmocka_unit_test_setup(test_position_follows_after_clock_step_back, setup),
+        cmocka_unit_test_setup(test_position_alone_follows_a_clock_step, setup),
         cmocka_unit_test_setup(test_position_gated_and_bounded, setup),
         cmocka_unit_test_setup(test_position_coast_bounded, setup),
         cmocka_unit_test_setup(test_reset_forgets_second_offset, setup),

@@ -16,7 +16,6 @@
 #include "lcm_file_url.h"
 #include "safe_files.h"
 
-#define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
 
 static void usage(FILE *to)
 {
@@ -26,14 +25,14 @@ static void usage(FILE *to)
             "  recenter        the centre pose := the current head pose (opentrack's camera zero\n"
             "                  follows, through hkf-opentrack)\n"
             "  reset           forget the track and the centre; the next face starts anew\n"
-            "  --lcm-url URL   LCM provider (default " DEFAULT_LCM_URL ")\n"
+            "  --lcm-url URL   LCM provider (default " LCM_URL_DEFAULT ")\n"
             "  --channel C     command channel (default HEAD_TRACKER_CMD)\n"
             "  --help          this text (--version: the version)\n");
 }
 
 int main(int argc, char **argv)
 {
-    const char *lcm_url = DEFAULT_LCM_URL, *channel = "HEAD_TRACKER_CMD", *verb = NULL;
+    const char *lcm_url = LCM_URL_DEFAULT, *channel = "HEAD_TRACKER_CMD", *verb = NULL;
     hkf_tracker_command_t command;
     lcm_file_url_t log_file;
     lcm_t *lcm;
@@ -71,6 +70,7 @@ int main(int argc, char **argv)
     }
     command.utime = clock_wall_us();
     safe_files_fail_writes_past_size_limit();
+    lcm_url = lcm_url_resolve(lcm_url); /* '': $LCM_DEFAULT_URL, as LCM reads it */
     if (lcm_file_url_check(lcm_url, "output", NULL, 0, "hkf-cmd", &log_file) != 0) {
         return 1; /* a file:// URL to a named pipe, a device or in read mode: it would hang or lose the command */
     }

@@ -272,13 +272,16 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
     return measure(node, m, pose, &taken);
 }
 
-/* The node follows a new capture clock (stream_admission.h): the track restarts as after a gap. */
+/* The node follows a new capture clock (stream_admission.h): the track restarts as after a gap. The
+ * position restarts too when only it had started (a second model's position in a frame whose angles
+ * were not taken): its last stamp is on the old clock, and it would refuse every later one. */
 static void resync_clock(filter_node_t *node)
 {
     ++node->counts.clock_resyncs;
     if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
         restart_track(node);
     } else {
+        hkf_position_restart(&node->position);
         second_model_forget_frames(&node->second);
         second_position_forget_frames(&node->second_position);
     }

@@ -27,8 +27,6 @@
 #include "safe_files.h"
 #include "lcm_file_url.h"
 
-#define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
-
 typedef struct {
     const char *input_url, *output_url;
     const char *input_channel, *output_channel, *command_channel;
@@ -73,7 +71,7 @@ static void usage(FILE *to)
             "       hkf-filter --offline IN.lcmlog OUT.lcmlog [options]   log in, log out\n"
             "Filters raw head poses (hkf.head_pose_measurement_t) with libhkf's adaptive Kalman\n"
             "filter into hkf.head_pose_t; RECENTER / RESET arrive as hkf.tracker_command_t.\n"
-            "  --lcm-url URL        LCM provider for input and output (default " DEFAULT_LCM_URL ")\n"
+            "  --lcm-url URL        LCM provider for input and output (default " LCM_URL_DEFAULT ")\n"
             "  --input-url URL      LCM provider to subscribe on (default: --lcm-url)\n"
             "  --output-url URL     LCM provider to publish on (default: --lcm-url)\n"
             "  --input-channel C    raw poses (default HEAD_POSE_RAW)\n"
@@ -188,7 +186,7 @@ static int settings_option(options_t *o, const char *arg, const char *value)
 /* 0 = run, 1 = done (help, print-config), 2 = bad arguments */
 static int parse_options(int argc, char **argv, options_t *o)
 {
-    const char *lcm_url = DEFAULT_LCM_URL;
+    const char *lcm_url = LCM_URL_DEFAULT;
     memset(o, 0, sizeof *o);
     node_config_defaults(&o->config);
     o->input_channel = "HEAD_POSE_RAW";
@@ -217,8 +215,8 @@ static int parse_options(int argc, char **argv, options_t *o)
             return 2;
         }
     }
-    o->input_url = o->input_url ? o->input_url : lcm_url;
-    o->output_url = o->output_url ? o->output_url : lcm_url;
+    o->input_url = lcm_url_resolve(o->input_url ? o->input_url : lcm_url); /* '': $LCM_DEFAULT_URL, as LCM reads it */
+    o->output_url = lcm_url_resolve(o->output_url ? o->output_url : lcm_url);
     return check_channels(o);
 }
 
@@ -315,6 +313,7 @@ static void on_command(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 }
 
 static int paths_to_keep(const options_t *o, const char *except, const char **keep);
+static int open_csv(node_run_t *run, const char *const *keep, int count);
 
 /* The live URLs' file:// rules (lcm_file_url.h), before LCM opens either: the input reads a regular
  * file; the output writes none of the run's other files. 0, or -1 with the reason. */
@@ -389,9 +388,21 @@ static int run_live(node_run_t *run)
 {
     const options_t *o = run->options;
     lcm_file_url_t input_file, output_file;
+    const char *url_files[2];
+    int files = 0;
     lcm_t *in;
     int status;
-    if (check_live_urls(o, &input_file, &output_file) != 0 || (in = open_live(run)) == NULL) {
+    if (check_live_urls(o, &input_file, &output_file) != 0) {
+        return 1;
+    }
+    if (input_file.is_file) {
+        url_files[files++] = input_file.path;
+    }
+    if (output_file.is_file) {
+        url_files[files++] = output_file.path;
+    }
+    /* the CSV only now: it must not be a log the URLs name (truncated before LCM reads it) */
+    if (open_csv(run, url_files, files) != 0 || (in = open_live(run)) == NULL) {
         return 1;
     }
     lcm_wait_stop_on_signals();
@@ -437,14 +448,15 @@ static int paths_to_keep(const options_t *o, const char *except, const char **ke
     return n;
 }
 
-/* --csv, with its header (outputs_distinct has checked it is no other file of the run). */
-static int open_csv(node_run_t *run)
+/* --csv, with its header (outputs_distinct has checked it is no other file of the run; live, `keep`
+ * holds the logs the LCM URLs name). */
+static int open_csv(node_run_t *run, const char *const *keep, int count)
 {
     const options_t *o = run->options;
     if (o->csv_path == NULL) {
         return 0;
     }
-    run->csv = safe_open_output(o->csv_path, "w", NULL, 0, "hkf-filter");
+    run->csv = safe_open_output(o->csv_path, "w", keep, count, "hkf-filter");
     if (run->csv == NULL) {
         return -1;
     }
@@ -524,7 +536,7 @@ static FILE *open_offline(node_run_t *run, lcm_log_writer_t *out)
         return NULL;
     }
     lcm_log_writer_start(out, out_file);
-    if (open_csv(run) != 0) {
+    if (open_csv(run, NULL, 0) != 0) {
         fclose(in);
         (void)lcm_log_writer_close(out);
         return NULL;
@@ -578,6 +590,10 @@ int main(int argc, char **argv)
     }
     if (options.print_config) {
         node_config_print_origins(&options.config, stdout);
+        if (safe_close(stdout) != 0) { /* a full disk, a closed pipe: not a printed config */
+            fprintf(stderr, "hkf-filter: --print-config: writing the settings failed\n");
+            return 1;
+        }
         return 0;
     }
     run.options = &options;
@@ -588,7 +604,7 @@ int main(int argc, char **argv)
     } else if (options.offline_in != NULL) {
         status = run_offline(&run);
     } else {
-        status = open_csv(&run) != 0 ? 1 : run_live(&run);
+        status = run_live(&run);
     }
     if (run.csv != NULL && (safe_close(run.csv) != 0 || run.csv_errors > 0)) {
         fprintf(stderr, "hkf-filter: error writing '%s' (a full disk?): it is cut\n", options.csv_path);

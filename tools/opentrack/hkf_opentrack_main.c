@@ -24,7 +24,6 @@
 #include "message_decode.h"
 #include "opentrack_packet.h"
 
-#define DEFAULT_LCM_URL "udpm://239.255.76.67:7667?ttl=0"
 
 typedef enum { LOST_HOLD, LOST_CENTER, LOST_SEND } lost_policy_t;
 
@@ -61,7 +60,7 @@ static void usage(FILE *to)
             "input: one datagram of six little-endian doubles x, y, z (cm: hkf's head position, x right,\n"
             "y up, z away from the camera), yaw, pitch, roll (deg), roll's sign flipped to opentrack's\n"
             "convention.\n"
-            "  --lcm-url URL      LCM provider (default " DEFAULT_LCM_URL ")\n"
+            "  --lcm-url URL      LCM provider (default " LCM_URL_DEFAULT ")\n"
             "  --channel C        filtered poses (default HEAD_POSE)\n"
             "  --host H           opentrack's address (default 127.0.0.1)\n"
             "  --port P           opentrack's UDP port (default 4242)\n"
@@ -214,7 +213,7 @@ static int value_option(options_t *o, const char *arg, const char *value)
 static int parse_options(int argc, char **argv, options_t *o)
 {
     memset(o, 0, sizeof *o);
-    o->lcm_url = DEFAULT_LCM_URL;
+    o->lcm_url = LCM_URL_DEFAULT;
     o->channel = "HEAD_POSE";
     o->host = "127.0.0.1";
     o->port = "4242";
@@ -404,7 +403,7 @@ static int run(bridge_t *bridge)
     if (lcm_file_url_check(o->lcm_url, "input", NULL, 0, "hkf-opentrack", &log_file) != 0) {
         return 1; /* a file:// URL: a regular log, read; a named pipe would hang LCM */
     }
-    lcm = lcm_create(o->lcm_url);
+    lcm = lcm_create(lcm_url_resolve(o->lcm_url)); /* '': $LCM_DEFAULT_URL, as checked */
     if (lcm == NULL) {
         fprintf(stderr, "hkf-opentrack: cannot open LCM provider '%s'\n", o->lcm_url);
         return 1;
