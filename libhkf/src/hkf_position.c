@@ -297,6 +297,23 @@ static void start_track(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
     write_output(f, HKF_STATUS_TRACKING, HKF_FLAG_REACQUIRED, out);
 }
 
+/* A gap beyond max_dt: the track as hkf_position_extrapolate holds it (moved on by its rate for max_dt,
+ * then still, Eq. 1-3's variance grown over the gap) becomes the state a new track must agree with
+ * (the gate), so a first position after a gap is gated as any other. */
+static void hold_track(hkf_position_filter_t *f, hkf_real_t dt)
+{
+    hkf_position_output_t held;
+    int a;
+    (void)hkf_position_extrapolate(f, dt, &held); /* started, dt finite and > max_dt > 0 */
+    for (a = 0; a < 3; ++a) {
+        f->x[a] = held.position[a];
+        f->v[a] = 0;
+        f->p00[a] = held.variance[a];
+        f->p01[a] = 0;
+        f->p11[a] = f->settings.p0_rate;
+    }
+}
+
 /* The outlier gate on the predicted state: an axis's innovation |y| beyond
  * max_speed dt + HKF_POSITION_GATE_SIGMAS sqrt(S), tested without a root as
  * (|y| - max_speed dt)^2 > sigmas^2 S where |y| exceeds the reach. */
@@ -316,6 +333,13 @@ static int gated(const hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real
         }
     }
     return 0;
+}
+
+/* After a gap beyond max_dt: the track as it was held (hold_track), and 1 when the gate refuses z there. */
+static int gap_gated(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
+{
+    hold_track(f, dt);
+    return gated(f, z, r_scale, dt);
 }
 
 /* HKF_OK, or why a measurement z with R scale r_scale, dt s after the last, is refused. */
@@ -339,15 +363,42 @@ static int check_measurement(const hkf_real_t z[3], hkf_real_t r_scale, hkf_real
     return HKF_OK;
 }
 
-/* A measurement the gate refused: the prediction stands, or after max_gate_rejections in a row (they
- * agree: the head is there) the track restarts at it. */
-static void refused(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_position_output_t *out)
+/* A refused measurement z agrees with the one refused dt s before it: on every axis no farther than a
+ * head moves in dt (max_speed x dt) plus HKF_POSITION_GATE_SIGMAS sigmas of two measurements' noise. */
+static int agrees_with_refused(const hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale,
+                               hkf_real_t dt)
 {
+    const hkf_real_t reach = hkf_mul(f->settings.max_speed, dt);
+    const hkf_real_t sigmas2 = HKF_REAL_FROM(HKF_POSITION_GATE_SIGMAS * HKF_POSITION_GATE_SIGMAS);
+    int a;
+    for (a = 0; a < 3; ++a) {
+        const hkf_real_t beyond = hkf_sub(hkf_abs(hkf_sub(z[a], f->refused_z[a])), reach);
+        const hkf_real_t r = hkf_mul(measurement_noise(f, a), r_scale);
+        if (beyond > 0 && hkf_mul(beyond, beyond) > hkf_mul(sigmas2, hkf_add(r, r))) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* A measurement the gate refused: the prediction stands, or after max_gate_rejections in a row that
+ * agree with each other (the head is there) the track restarts at it. One that disagrees with the
+ * one refused before starts the count again. */
+static void refused(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
+                    hkf_position_output_t *out)
+{
+    int a;
+    if (f->gate_rejections > 0u && !agrees_with_refused(f, z, r_scale, dt)) {
+        f->gate_rejections = 0u;
+    }
     if (f->gate_rejections >= f->settings.max_gate_rejections) {
         start_track(f, z, r_scale, out);
         return;
     }
     ++f->gate_rejections;
+    for (a = 0; a < 3; ++a) {
+        f->refused_z[a] = z[a];
+    }
     f->history = 0; /* a refused measurement breaks the second difference */
     keep_in_range(f);
     write_output(f, HKF_STATUS_COASTING, HKF_FLAG_GATED, out);
@@ -387,13 +438,15 @@ int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_rea
     if (result != HKF_OK) {
         return result;
     }
-    if (!f->started || check_step(f, dt) == HKF_ERROR_DT_RANGE) {  /* a new track: at the measurement */
-        start_track(f, z, r_scale, out);
+    if (!f->started || (check_step(f, dt) == HKF_ERROR_DT_RANGE && !gap_gated(f, z, r_scale, dt))) {
+        start_track(f, z, r_scale, out); /* a new track at the measurement (after a gap: within reach of the held one) */
         return HKF_OK;
     }
-    predict_axes(f, dt);
+    if (f->settings.max_dt >= dt) { /* no gap: Eq. 1-3 (after a gap the state is the held track) */
+        predict_axes(f, dt);
+    }
     if (gated(f, z, r_scale, dt)) {
-        refused(f, z, r_scale, out);
+        refused(f, z, r_scale, dt, out);
         return HKF_OK;
     }
     f->gate_rejections = 0u;
@@ -445,9 +498,13 @@ int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, h
     t = ahead < HKF_REAL_FROM(HKF_MAX_TIME) ? ahead : HKF_REAL_FROM(HKF_MAX_TIME);
     coast = t < f->settings.max_dt ? t : f->settings.max_dt;  /* the rate moves it for up to max_dt */
     for (a = 0; a < 3; ++a) {
-        /* Eq. 1-3 over t: [1 t] P [1 t]' + q t^3 / 3 */
-        const hkf_real_t variance = hkf_add(f->p00[a], hkf_kalman_growth(f->p01[a], f->p11[a],
-                                                                          hkf_mul(process_noise(f, a), t), t));
+        /* Eq. 1-3 over t: [1 t] P [1 t]' + q t^3 / 3; beyond HKF_MAX_TIME (where t^3 would overflow
+         * Q16.16) in proportion to the time, so it grows while the position is held */
+        hkf_real_t variance = hkf_add(f->p00[a], hkf_kalman_growth(f->p01[a], f->p11[a],
+                                                                    hkf_mul(process_noise(f, a), t), t));
+        if (ahead > t) {
+            variance = hkf_mul(variance, hkf_mul(ahead, HKF_REAL_FROM(1.0 / HKF_MAX_TIME)));
+        }
         out->position[a] = bounded(hkf_add(f->x[a], hkf_mul(f->v[a], coast)), HKF_REAL_FROM(HKF_MAX_ABS_POSITION));
         out->rate[a] = ahead > f->settings.max_dt ? 0 : f->v[a];
         out->variance[a] = variance < 0 ? 0 : variance < HKF_REAL_FROM(HKF_MAX_VARIANCE) ? variance
@@ -472,6 +529,27 @@ int hkf_position_recenter(hkf_position_filter_t *f)
     for (a = 0; a < 3; ++a) {
         f->center[a] = f->x[a];
     }
+    return HKF_OK;
+}
+
+int hkf_position_set_center(hkf_position_filter_t *f, const hkf_real_t center[3])
+{
+    int a;
+    if (f == NULL || center == NULL) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    for (a = 0; a < 3; ++a) {
+        if (!hkf_is_finite(center[a])) {
+            return HKF_ERROR_NON_FINITE;
+        }
+        if (hkf_abs(center[a]) > HKF_REAL_FROM(HKF_MAX_ABS_POSITION)) {
+            return HKF_ERROR_POSITION_RANGE;
+        }
+    }
+    for (a = 0; a < 3; ++a) {
+        f->center[a] = center[a];
+    }
+    f->centered = 1;
     return HKF_OK;
 }
 

@@ -413,6 +413,92 @@ static void test_gate(void **state)
     assert_true(out.flags == 0u && D(out.position[0]) > 1.0); /* no gate: taken */
 }
 
+/* After a gap beyond max_dt the first position is gated as any other, against the track as it
+ * was held (moved on by its rate for max_dt, its variance grown): a forged one 0.7 s later (past
+ * max_dt 0.5 s) is refused and the held position stands; the real ones that follow are taken; a
+ * position within reach of the held one after a gap starts the new track there. */
+static void test_gate_after_gap(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0);
+    const hkf_real_t still[3] = {R(0.0), R(0.0), R(60.0)};
+    const hkf_real_t forged[3] = {R(1000.0), R(-1000.0), R(1000.0)};
+    const hkf_real_t near[3] = {R(30.0), R(0.0), R(60.0)};
+    hkf_position_output_t out;
+    unsigned i;
+    for (i = 0; i < 60; ++i) {
+        assert_int_equal(hkf_position_update(&f, still, R(1.0), R(frame_s), &out), HKF_OK);
+    }
+    assert_true(hkf_position_default_settings.max_dt < R(0.7));
+    assert_int_equal(hkf_position_update(&f, forged, R(1.0), R(0.7), &out), HKF_OK);
+    assert_true(out.flags == HKF_FLAG_GATED && out.status == HKF_STATUS_COASTING);
+    assert_true(fabs(D(out.position[0])) < 0.01 && fabs(D(out.position[2]) - 60.0) < 0.01);
+    for (i = 0; i < 10; ++i) { /* the real head, still where it was */
+        assert_int_equal(hkf_position_update(&f, still, R(1.0), R(frame_s), &out), HKF_OK);
+        assert_int_equal(out.flags, 0u);
+    }
+    assert_true(fabs(D(out.position[0])) < 0.01 && fabs(D(out.position[2]) - 60.0) < 0.01);
+    assert_int_equal(hkf_position_update(&f, near, R(1.0), R(0.7), &out), HKF_OK); /* 30 cm in 0.7 s: within reach */
+    assert_int_equal(out.flags, HKF_FLAG_REACQUIRED);
+    assert_true(fabs(D(out.position[0]) - 30.0) < TEST_TOL && out.status == HKF_STATUS_TRACKING);
+}
+
+/* The gate restarts the track only at refused positions that agree with each other (the head is
+ * there): max_gate_rejections + 1 far positions that each disagree with the one before do not
+ * restart it, and the real ones after them are taken; as many that agree do. */
+static void test_gate_restart_needs_agreement(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0);
+    const hkf_real_t still[3] = {R(0.0), R(0.0), R(60.0)};
+    const unsigned most = hkf_position_default_settings.max_gate_rejections;
+    hkf_position_output_t out;
+    unsigned i;
+    for (i = 0; i < 60; ++i) {
+        assert_int_equal(hkf_position_update(&f, still, R(1.0), R(frame_s), &out), HKF_OK);
+    }
+    for (i = 0; i <= most + 1; ++i) { /* x 900, -900, 900, ...: each far off, none agreeing with the last */
+        const hkf_real_t forged[3] = {R(i % 2 ? -900.0 : 900.0), R(0.0), R(900.0)};
+        assert_int_equal(hkf_position_update(&f, forged, R(1.0), R(frame_s), &out), HKF_OK);
+        assert_int_equal(out.flags, HKF_FLAG_GATED);
+    }
+    assert_true(fabs(D(out.position[0])) < 0.01 && fabs(D(out.position[2]) - 60.0) < 0.01);
+    assert_int_equal(hkf_position_update(&f, still, R(1.0), R(frame_s), &out), HKF_OK);
+    assert_int_equal(out.flags, 0u); /* the real head is still taken */
+    for (i = 0; i < most; ++i) { /* x 900 in a row: they agree */
+        const hkf_real_t moved[3] = {R(900.0), R(0.0), R(900.0)};
+        assert_int_equal(hkf_position_update(&f, moved, R(1.0), R(frame_s), &out), HKF_OK);
+        assert_int_equal(out.flags, HKF_FLAG_GATED);
+    }
+    {
+        const hkf_real_t moved[3] = {R(900.0), R(0.0), R(900.0)};
+        assert_int_equal(hkf_position_update(&f, moved, R(1.0), R(frame_s), &out), HKF_OK);
+        assert_int_equal(out.flags, HKF_FLAG_REACQUIRED);
+    }
+}
+
+/* The centre set as a program published it; out of range or non-finite leaves it as it was. */
+static void test_set_center(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_filter(1.0, 2.0, 60.0);
+    const hkf_real_t center[3] = {R(1.5), R(-2.0), R(1.0)};
+    const hkf_real_t beyond[3] = {R(0.0), R(0.0), R(1001.0)};
+    hkf_position_state_t st;
+    assert_int_equal(hkf_position_set_center(&f, center), HKF_OK);
+    st = state_of(&f);
+    assert_true(fabs(D(st.center[0]) - 1.5) < TEST_TOL && fabs(D(st.center[2]) - 1.0) < TEST_TOL);
+    assert_int_equal(hkf_position_set_center(&f, beyond), HKF_ERROR_POSITION_RANGE);
+    st = state_of(&f);
+    assert_true(fabs(D(st.center[2]) - 1.0) < TEST_TOL);
+    hkf_position_restart(&f); /* a restart keeps it */
+    assert_true(fabs(D(state_of(&f).center[2]) - 1.0) < TEST_TOL);
+    hkf_position_reset(&f); /* a reset forgets it */
+    assert_true(fabs(D(state_of(&f).center[2])) < TEST_TOL);
+    assert_int_equal(hkf_position_set_center(NULL, center), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_position_set_center(&f, NULL), HKF_ERROR_NULL_ARGUMENT);
+}
+
 /* The range: whatever comes in, the state, the output and every extrapolation stay within
  * +-HKF_MAX_ABS_POSITION, and the rate within +-HKF_MAX_SPEED. */
 static void test_range(void **state)
@@ -471,6 +557,12 @@ static void test_extrapolate_coast_then_stale(void **state)
         }
         previous = out;
     }
+    for (i = 1; i <= 6; ++i) { /* held for 5 s to 30 s: the variance grows all the while (it stopped at 10 s) */
+        assert_int_equal(hkf_position_extrapolate(&f, R(5.0 * i), &out), HKF_OK);
+        assert_true(D(out.variance[0]) > D(previous.variance[0]) && out.status == HKF_STATUS_LOST);
+        previous = out;
+    }
+    assert_int_equal(hkf_position_extrapolate(&f, R(2.0), &previous), HKF_OK);
     assert_int_equal(hkf_position_extrapolate(&f, R(-0.1), &out), HKF_ERROR_DT_RANGE);
     assert_int_equal(hkf_position_extrapolate(&f, R(0.1), NULL), HKF_ERROR_NULL_ARGUMENT);
     assert_int_equal(hkf_position_get_state(&f, NULL), HKF_ERROR_NULL_ARGUMENT);
@@ -592,6 +684,9 @@ int main(void)
         cmocka_unit_test(test_center_recenter_reset),
         cmocka_unit_test(test_gap_restarts),
         cmocka_unit_test(test_gate),
+        cmocka_unit_test(test_gate_after_gap),
+        cmocka_unit_test(test_gate_restart_needs_agreement),
+        cmocka_unit_test(test_set_center),
         cmocka_unit_test(test_range),
         cmocka_unit_test(test_extrapolate_coast_then_stale),
         cmocka_unit_test(test_errors),

@@ -227,6 +227,65 @@ static void test_position_alone_follows_a_clock_step(void **state)
     assert_true(fabsf(pose.x + 0.5f * (79 - 21)) < 1.0f);
 }
 
+/* Round 4, moderate item 1: a forged frame with the next seq, stamped 0.7 s ahead (past the
+ * position's max_dt 0.5 s, inside the 5 s clock rule), was published as x 1000, y -1000, z 1000,
+ * TRACKING: a first position after a gap went ungated. Now it is gated against the held track. */
+static void test_forged_position_after_a_gap_gated(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    const int64_t ahead = 700000;
+    int i;
+    (void)state;
+    assert_true(ahead > (int64_t)(1e6 * (double)config.position.max_dt) && ahead < STREAM_CLOCK_JUMP_US);
+    for (i = 0; i < 30; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        m.x = 2.0f, m.y = 1.0f, m.z = 60.0f;
+        assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    }
+    m = measurement(T0 + 29 * FRAME_US + ahead, 1, 0, 5, 0); /* the forged frame: the next seq */
+    m.model = "mesh_pnp";
+    m.x = 1000.0f, m.y = -1000.0f, m.z = 1000.0f;
+    assert_int_equal(filter_node_receive(&node, &m, T0 + 29 * FRAME_US + 1000, &pose), 1);
+    print_message("a forged position 0.7 s ahead: published (%.2f, %.2f, %.2f)\n", pose.x, pose.y, pose.z);
+    assert_true(fabsf(pose.x - 2.0f) < 0.5f && fabsf(pose.y - 1.0f) < 0.5f && fabsf(pose.z - 60.0f) < 0.5f);
+    assert_int_equal(node.counts.positions_gated, 1);
+}
+
+/* Round 4, moderate item 3: RECENTER while the position coasts toward the camera. The coast went
+ * below z = 0 in libhkf while the pose showed FILTER_NODE_MIN_Z, and the centre was set on the
+ * former (z -43.9): hkf-opentrack then sent TZ +44.9 cm right after RECENTER. Now the centre is
+ * the position as published, and the pose right after reads 0 from it. */
+static void test_recenter_during_a_coast_toward_the_camera(void **state)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    hkf_tracker_command_t command = {0, HKF_TRACKER_COMMAND_T_RECENTER};
+    int i;
+    (void)state;
+    for (i = 0; i < 30; ++i) { /* toward the camera at 60 cm/s, to 2 cm */
+        m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        m.x = 0.0f, m.y = 0.0f, m.z = 2.0f + 2.0f * (float)(29 - i);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    }
+    for (; i < 45; ++i) { /* the positions stop, the angles go on: the position coasts on toward the camera */
+        m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+        m.model = "mesh_pnp";
+        assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    }
+    assert_true(pose.z == FILTER_NODE_MIN_Z);
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    m = measurement(T0 + i * FRAME_US, 1, 0, 5, 0);
+    m.model = "mesh_pnp";
+    assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    print_message("RECENTER during a coast toward the camera: centre z %.2f cm, z %.2f cm\n", pose.position_center[2],
+                  pose.z);
+    assert_true(pose.position_center[2] >= FILTER_NODE_MIN_Z);
+    assert_true(fabsf(pose.z - pose.position_center[2]) < 1e-4f && fabsf(pose.x - pose.position_center[0]) < 1e-4f);
+}
+
 /* Item 5: positions far off, once or for long, never publish a position beyond the range the
  * node accepts, nor z below FILTER_NODE_MIN_Z; one forged message is refused by the gate; bad
  * positions (NaN, inf, z < 0, beyond 1000 cm) are counted and change nothing. */
@@ -369,6 +428,8 @@ int main(void)
         cmocka_unit_test_setup(test_position_follows_after_clock_step_back, setup),
         cmocka_unit_test_setup(test_position_alone_follows_a_clock_step, setup),
         cmocka_unit_test_setup(test_position_gated_and_bounded, setup),
+        cmocka_unit_test_setup(test_forged_position_after_a_gap_gated, setup),
+        cmocka_unit_test_setup(test_recenter_during_a_coast_toward_the_camera, setup),
         cmocka_unit_test_setup(test_position_coast_bounded, setup),
         cmocka_unit_test_setup(test_reset_forgets_second_offset, setup),
     };

@@ -97,25 +97,31 @@ static void test_ticks_stop_then_lost(void **state)
     assert_true(pose.status == HKF_HEAD_POSE_T_LOST && due == A0 + coast_us + FILTER_NODE_LOST_REPEAT_US);
 }
 
-/* A stamp at the clock's end: nothing can be stamped after it, and nothing stays due, so the live
- * loop does not wake at once for ever (it spun so before). */
-static void test_nothing_due_at_the_clock_end(void **state)
+/* Hardening round 4, moderate item 4: a stream stamped 0.2 s before the clock's end, then 2.5 s of
+ * silence. Before, its first stamp started a track that no LOST pose could follow (none could be
+ * stamped), so the last pose stayed TRACKING. Now such stamps are corrupt (the clock's end rule,
+ * stream_admission.h): no pose is published for them, nothing is due, and the live loop's wake time
+ * is never in the past (it spun on a stamp at the clock's end once). */
+static void test_nothing_held_at_the_clock_end(void **state)
 {
     filter_node_t node;
     node_schedule_t s;
     hkf_head_pose_t pose;
-    hkf_head_pose_measurement_t m = measurement(1, INT64_MAX - 1000, 0.0);
     int64_t due, wake;
-    const int64_t now = A0 + 10 * FILTER_NODE_LOST_REPEAT_US;
-    int published = 0;
+    const int64_t now = A0 + 30 * FRAME_US + 2500000;
+    int i, published = 0;
     (void)state;
     assert_int_equal(filter_node_init(&node, &config), 0);
     node_schedule_init(&s, TICK_US, 1);
-    assert_int_equal(filter_node_receive(&node, &m, A0, &pose), 1);
+    for (i = 0; i < 30; ++i) {
+        const hkf_head_pose_measurement_t m = measurement(1 + i, INT64_MAX - 200000 + i * 1000, 0.0);
+        published += filter_node_receive(&node, &m, A0 + i * FRAME_US, &pose);
+    }
     while (published < 100 && node_schedule_next(&s, &node, now, &pose, &due)) {
         ++published;
     }
     assert_int_equal(published, 0);
+    assert_int_equal(node.counts.clock_jumps, 30);
     wake = node_schedule_wake(&s, &node);
     assert_true(wake == 0 || wake > now);
 }
@@ -195,7 +201,7 @@ int main(void)
         cmocka_unit_test(test_ticks_on_the_capture_grid),
         cmocka_unit_test(test_ticks_stop_then_lost),
         cmocka_unit_test(test_live_and_log_agree),
-        cmocka_unit_test(test_nothing_due_at_the_clock_end),
+        cmocka_unit_test(test_nothing_held_at_the_clock_end),
     };
     node_config_defaults(&config);
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -103,6 +103,24 @@ static void test_one_bad_stamp_refused(void **state)
     assert_int_equal(offer(&a, 7, T0 + 6 * FRAME_US + STREAM_CLOCK_JUMP_US, 6 * FRAME_US, &dt), STREAM_GO_ON);
 }
 
+/* The clock's end rule: stamps later than STREAM_LATEST_UTIME are refused as the first of a stream
+ * and as a run that agrees; the latest allowed one is taken. */
+static void test_clock_end_refused(void **state)
+{
+    stream_admission_t a;
+    double dt;
+    int i;
+    (void)state;
+    stream_admission_init(&a);
+    for (i = 0; i < 2 * STREAM_RESYNC_MESSAGES; ++i) {
+        assert_int_equal(offer(&a, 1 + i, INT64_MAX - 200000 + i * FRAME_US, i * FRAME_US, &dt), STREAM_CLOCK_JUMP);
+        assert_int_equal(a.have_time, 0);
+    }
+    assert_int_equal(offer(&a, 20, STREAM_LATEST_UTIME, 20 * FRAME_US, &dt), STREAM_GO_ON);
+    assert_true(a.last_utime == STREAM_LATEST_UTIME);
+    assert_int_equal(offer(&a, 21, STREAM_LATEST_UTIME + 1, 21 * FRAME_US, &dt), STREAM_CLOCK_JUMP);
+}
+
 /* STREAM_RESYNC_MESSAGES jumped stamps in a row that agree with each other mean the clock moved: the
  * last of them comes with STREAM_NEW_CLOCK and no reference, and is taken with a step of 0. */
 static void test_clock_jump_followed(void **state)
@@ -173,6 +191,7 @@ int main(void)
         cmocka_unit_test(test_order_rule),
         cmocka_unit_test(test_one_publisher),
         cmocka_unit_test(test_one_bad_stamp_refused),
+        cmocka_unit_test(test_clock_end_refused),
         cmocka_unit_test(test_clock_jump_followed),
         cmocka_unit_test(test_inconsistent_stamps_never_followed),
         cmocka_unit_test(test_stale_rule),

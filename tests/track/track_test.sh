@@ -79,11 +79,30 @@ clip=$videos/d18.mp4
 bad_args "give one of --camera N and --source FILE" --camera 0 --source "$clip"
 bad_args "give one of --camera N and --source FILE" --realtime
 bad_args "unknown option --nonsense" --source "$clip" --nonsense
-bad_args "--rate wants a frequency above 0" --source "$clip" --rate 0
+bad_args "--rate wants a frequency from 0.1" --source "$clip" --rate 0
+bad_args "--rate wants a frequency from 0.1" --source "$clip" --rate 0.05
+bad_args "--opentrack-port wants a UDP port from 1 to 65535" --source "$clip" --opentrack --opentrack-port 99999
+bad_args "memq:// stays inside one process" --source "$clip" --lcm-url memq://
 bad_args "--seconds wants a duration >= 0" --source "$clip" --seconds -1
 bad_args "--detector wants retina, short or full" --source "$clip" --detector wide
 bad_args "a file:// log is for hkf-estimator" --source "$clip" --lcm-url "file://$work/x.lcmlog"
 bad_args "an open quote" --source "$clip" --opentrack --opentrack-args "--invert 'yaw"
 bad_args "is missing" --source "$clip" --build "$work/no-build"
+# a child that refuses what hkf-track passed on: its exit 2 is hkf-track's
+status=0
+"${track[@]}" --source "$clip" --logs "$work/logs_bad" --opentrack --opentrack-args "--lead 1e9" >"$work/child.txt" 2>&1 || status=$?
+[ "$status" = 2 ] || fail "a child's bad arguments: hkf-track exit $status, not 2: $(cat "$work/child.txt")"
+# two trackers: the second on the same LCM URL, or the same log folder, is refused and starts nothing
+"${track[@]}" --source "$videos/d3.mp4" --realtime --logs "$work/logs_first" >"$work/first.txt" 2>&1 &
+first_pid=$!
+pids+=("$first_pid")
+for _ in $(seq 50); do grep -q "Ctrl-C stops" "$work/first.txt" && break; sleep 0.1; done
+bad_args "another hkf-track runs on this LCM URL" --source "$clip" --logs "$work/logs_second"
+bad_args "another hkf-track writes its logs in this folder" --source "$clip" --logs "$work/logs_first" \
+  --lcm-url "udpm://239.255.76.67:7668?ttl=0"
+sleep 2  # a status line a second
+kill -INT "$first_pid"
+wait "$first_pid" || fail "the first tracker did not stop cleanly"
+grep -q "poses/s" "$work/first.txt" || fail "the first tracker showed no status line"
 "${track[@]}" --help | grep -q "^usage: hkf-track" || fail "--help"
 echo "track_test: passed ($received poses reached the UDP receiver; programs stopped on Ctrl-C)"

@@ -30,13 +30,35 @@ static void usage(FILE *to)
             "  --help          this text (--version: the version)\n");
 }
 
+/* Publishes command on channel of the LCM URL (resolved as LCM resolves it, then checked): 0, or 1 (said). */
+static int send(const char *lcm_url, const char *channel, const hkf_tracker_command_t *command)
+{
+    lcm_file_url_t log_file;
+    lcm_t *lcm;
+    int result;
+    lcm_url = lcm_url_resolve(lcm_url); /* '': $LCM_DEFAULT_URL, as LCM reads it */
+    if (lcm_file_url_check(lcm_url, "output", NULL, 0, "hkf-cmd", &log_file) != 0) {
+        return 1; /* a file:// URL to a named pipe, a device, a file that is no log or in read mode */
+    }
+    lcm = lcm_create(lcm_url);
+    if (lcm == NULL) {
+        fprintf(stderr, "hkf-cmd: cannot open LCM provider '%s'\n", lcm_url);
+        return 1;
+    }
+    result = hkf_tracker_command_t_publish(lcm, channel, command);
+    lcm_destroy(lcm);
+    if (result != 0) {
+        fprintf(stderr, "hkf-cmd: publishing on %s failed\n", channel);
+        return 1;
+    }
+    return lcm_file_url_verify(&log_file, 1, "hkf-cmd") != 0 ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *lcm_url = LCM_URL_DEFAULT, *channel = "HEAD_TRACKER_CMD", *verb = NULL;
     hkf_tracker_command_t command;
-    lcm_file_url_t log_file;
-    lcm_t *lcm;
-    int i, result;
+    int i;
     for (i = 1; i < argc; ++i) {
         if (argument_help_or_version(argv[i], "hkf-cmd", usage)) {
             return 0;
@@ -70,22 +92,7 @@ int main(int argc, char **argv)
     }
     command.utime = clock_wall_us();
     safe_files_fail_writes_past_size_limit();
-    lcm_url = lcm_url_resolve(lcm_url); /* '': $LCM_DEFAULT_URL, as LCM reads it */
-    if (lcm_file_url_check(lcm_url, "output", NULL, 0, "hkf-cmd", &log_file) != 0) {
-        return 1; /* a file:// URL to a named pipe, a device or in read mode: it would hang or lose the command */
-    }
-    lcm = lcm_create(lcm_url);
-    if (lcm == NULL) {
-        fprintf(stderr, "hkf-cmd: cannot open LCM provider '%s'\n", lcm_url);
-        return 1;
-    }
-    result = hkf_tracker_command_t_publish(lcm, channel, &command);
-    lcm_destroy(lcm);
-    if (result == 0 && lcm_file_url_verify(&log_file, 1, "hkf-cmd") != 0) {
-        return 1;
-    }
-    if (result != 0) {
-        fprintf(stderr, "hkf-cmd: publishing on %s failed\n", channel);
+    if (send(lcm_url, channel, &command) != 0) {
         return 1;
     }
     printf("hkf-cmd: %s sent on %s\n", verb, channel);

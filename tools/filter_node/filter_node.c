@@ -419,6 +419,19 @@ int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pos
     return 1;
 }
 
+/* RECENTER's position centre: the position last published (at the angles' frame time), as the pose
+ * carried it - held or coasting, never nearer than FILTER_NODE_MIN_Z - so that it reads 0 after. */
+static void recenter_position(filter_node_t *node)
+{
+    hkf_head_pose_t published;
+    memset(&published, 0, sizeof published);
+    fill_position(node, node->admission.last_utime, &published);
+    if (hkf_position_started(&node->position)) {
+        const hkf_real_t center[3] = {published.x, published.y, published.z};
+        (void)hkf_position_set_center(&node->position, center); /* within the range: fill_position bounds it */
+    }
+}
+
 int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command)
 {
     switch (command->command) {
@@ -426,8 +439,7 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         ++node->counts.commands;
         second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
-        /* on the position last published (the angles' frame time): held or coasting, it reads 0 */
-        (void)hkf_position_recenter_at(&node->position, (hkf_real_t)position_ahead(node, node->admission.last_utime));
+        recenter_position(node);
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;

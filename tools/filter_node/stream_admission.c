@@ -58,6 +58,9 @@ stream_verdict_t stream_admission_check(stream_admission_t *a, int64_t seq, int6
     if (!from_followed_publisher(a, seq, arrival_utime)) {
         return STREAM_OTHER_PUBLISHER;
     }
+    if (utime > STREAM_LATEST_UTIME) { /* the clock's end rule: a corrupt stamp, never a time reference */
+        return STREAM_CLOCK_JUMP;
+    }
     if (a->have_time && fabs(clock_skew_us(utime, arrival_utime, a->last_utime, a->last_arrival_utime)) >
                             (double)STREAM_CLOCK_JUMP_US) { /* the clock rule */
         if (!follows_refused_stamps(a, utime, arrival_utime)) {

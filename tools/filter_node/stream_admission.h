@@ -17,6 +17,10 @@
  *   agree with each other, mean the last one taken was the odd one out (a forged stamp ahead of
  *   time, or the capture and receive clocks stepped back together, e.g. NTP): they are followed
  *   as after a clock jump. One message can hold tracking up for two frames at most;
+ * - clock's end rule: a capture time later than STREAM_LATEST_UTIME (within a year of the int64
+ *   clock's end, the year 294,246) is a corrupt stamp and refused as a clock jump, even as the first
+ *   or as one of a run that agree: a track on such a clock could not stamp the LOST poses of a
+ *   silence (filter_node_silence), and would be held as TRACKING;
  * - order: a capture time older than the last one taken is out of order, an equal one a duplicate.
  *
  * The arrival clock is the receive clock: a monotonic clock live, the log's event timestamps
@@ -35,6 +39,7 @@ extern "C" {
 #define STREAM_RESYNC_MESSAGES 3
 #define STREAM_MAX_SEQ_STEP 300            /* frames: 10 s at 30 fps of dropped frames */
 #define STREAM_TIMEOUT_US 1000000LL        /* 1 s without the followed publisher */
+#define STREAM_LATEST_UTIME (INT64_MAX - 31557600000000LL) /* us: a Julian year before the clock's end */
 
 typedef struct {
     int have_time;                    /* a measurement has been taken: */

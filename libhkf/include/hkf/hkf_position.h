@@ -13,8 +13,10 @@
  * while the head moves and damps the rate while it is still - a still head
  * reads still and a lean is followed without the lag one fixed q would need.
  * An outlier gate refuses a measurement farther from the prediction than a
- * head can move in the step (max_speed x dt, plus 3 sigmas of the innovation);
- * after max_gate_rejections in a row the next one restarts the track there.
+ * head can move in the step (max_speed x dt, plus 3 sigmas of the innovation),
+ * after a gap beyond max_dt too (against the track as it was held); after
+ * max_gate_rejections in a row that agree with each other the next one
+ * restarts the track there.
  * The state stays within +-HKF_MAX_ABS_POSITION on every axis. Between
  * measurements (hkf_position_extrapolate) the position coasts at its rate for
  * up to max_dt, then is stale: held where the coast ended, rate 0, status
@@ -84,7 +86,8 @@ typedef struct {
     hkf_real_t last_z[3], last_step[3]; /* cm: the second difference's history */
     hkf_real_t last_dt;               /* s: the step before (equal steps make a second difference) */
     int history;                      /* measurements in the history, 0-2 */
-    unsigned gate_rejections;         /* measurements the gate refused in a row */
+    unsigned gate_rejections;         /* measurements the gate refused in a row, each agreeing with the one before */
+    hkf_real_t refused_z[3];          /* cm: the last of them */
     int started;                      /* a measurement has started the track */
     int centered;                     /* the center is set (a restart keeps it; a reset clears it) */
 } hkf_position_filter_t;
@@ -147,6 +150,11 @@ int hkf_position_recenter(hkf_position_filter_t *f);
 
 /* The center := the position hkf_position_extrapolate gives `ahead` s on (what was published then). */
 int hkf_position_recenter_at(hkf_position_filter_t *f, hkf_real_t ahead);
+
+/* The center := center (cm, each axis finite and within +-HKF_MAX_ABS_POSITION), as a program
+ * published it (e.g. bounded to its own range); kept by a restart, forgotten by a reset.
+ * HKF_ERROR_NON_FINITE or HKF_ERROR_POSITION_RANGE leave the center as it was. */
+int hkf_position_set_center(hkf_position_filter_t *f, const hkf_real_t center[3]);
 
 #ifdef __cplusplus
 }
