@@ -96,6 +96,55 @@ static void test_check_refuses(void **state)
     assert_int_equal(lcm_file_url_verify(&u, 5, "test"), 0); /* not a file: nothing to read back */
 }
 
+/* Round 4: an output is never a file inside an input folder (a source folder of images, a dataset),
+ * at any depth, existing or not, through links; never a file that is not an LCM log; '' resolves as
+ * LCM resolves it ($LCM_DEFAULT_URL, then LCM's own default), and that URL is checked. */
+static void test_folders_logs_and_the_default_url(void **state)
+{
+    lcm_file_url_t u;
+    char images[256], image[256], deeper[256], link[256], path[600];
+    const char *keep[1];
+    FILE *f;
+    (void)state;
+    snprintf(images, sizeof images, "%s/images", folder);
+    snprintf(deeper, sizeof deeper, "%s/images/more", folder);
+    snprintf(image, sizeof image, "%s/images/image00002.jpg", folder);
+    snprintf(link, sizeof link, "%s/images_link", folder);
+    assert_int_equal(mkdir(images, 0700), 0);
+    assert_int_equal(mkdir(deeper, 0700), 0);
+    assert_int_equal(symlink(images, link), 0);
+    f = fopen(image, "w");
+    assert_non_null(f);
+    assert_true(fputs("\xff\xd8\xff not an LCM log", f) >= 0);
+    assert_int_equal(fclose(f), 0);
+    keep[0] = images;
+    assert_true(safe_writes_over(image, images));
+    snprintf(path, sizeof path, "%s/new.lcmlog", deeper);
+    assert_true(safe_writes_over(path, images)); /* new, two folders down */
+    snprintf(path, sizeof path, "%s/image00002.jpg", link);
+    assert_true(safe_writes_over(path, images)); /* through a link */
+    snprintf(path, sizeof path, "%s/images.lcmlog", folder);
+    assert_false(safe_writes_over(path, images)); /* beside it: a name that starts alike */
+    assert_int_equal(lcm_file_url_check(url_of("images/image00002.jpg", "?mode=w"), "output", keep, 1, "test", &u), -1);
+    assert_int_equal(lcm_file_url_check(url_of("images/more/x.lcmlog", "?mode=w"), "output", keep, 1, "test", &u), -1);
+    assert_int_equal(lcm_file_url_check(url_of("images.lcmlog", "?mode=w"), "output", keep, 1, "test", &u), 0);
+    assert_int_equal(lcm_file_url_check(url_of("images/image00002.jpg", "?mode=w"), "output", NULL, 0, "test", &u), -1);
+    assert_null(safe_open_output(image, "w", keep, 1, "test"));
+    assert_int_equal(setenv("LCM_DEFAULT_URL", url_of("images/image00002.jpg", "?mode=w"), 1), 0);
+    assert_string_equal(lcm_url_resolve(""), url_of("images/image00002.jpg", "?mode=w"));
+    assert_string_equal(lcm_url_resolve(NULL), url_of("images/image00002.jpg", "?mode=w"));
+    assert_string_equal(lcm_url_resolve("memq://"), "memq://");
+    assert_int_equal(lcm_file_url_check("", "output", keep, 1, "test", &u), -1);
+    assert_int_equal(setenv("LCM_DEFAULT_URL", "", 1), 0);
+    assert_string_equal(lcm_url_resolve(""), LCM_URL_DEFAULT);
+    assert_int_equal(unsetenv("LCM_DEFAULT_URL"), 0);
+    assert_string_equal(lcm_url_resolve(""), LCM_URL_DEFAULT);
+    f = fopen(image, "rb");
+    assert_non_null(f);
+    assert_int_equal(fgetc(f), 0xff); /* untouched */
+    assert_int_equal(fclose(f), 0);
+}
+
 /* Publishes n commands through LCM's file provider at url; returns how many LCM took. */
 static unsigned long publish(const char *url, int n)
 {
@@ -145,6 +194,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_parse_modes),
         cmocka_unit_test(test_check_refuses),
+        cmocka_unit_test(test_folders_logs_and_the_default_url),
         cmocka_unit_test(test_verify_counts_events),
     };
     return cmocka_run_group_tests(tests, make_folder, remove_folder);
