@@ -45,6 +45,22 @@ status=0
 grep -q "$work/home/.config/hkf/hkf-filter.conf:1" "$work/bad.txt" || fail "a bad user file is not named: $(cat "$work/bad.txt")"
 "$filter" --help >/dev/null || fail "--help with a bad user file"
 
+# round 4: a dangling or looping link found by the search is a bad file, not none
+for target in nowhere hkf-filter.conf; do
+  rm -f "$work/home/.config/hkf/hkf-filter.conf"
+  ln -s "$target" "$work/home/.config/hkf/hkf-filter.conf"
+  status=0
+  "$filter" --print-config >/dev/null 2>"$work/bad.txt" || status=$?
+  [ "$status" = 2 ] || fail "a link to $target as the user's file: exit $status, not 2"
+  grep -q "cannot read '$work/home/.config/hkf/hkf-filter.conf'" "$work/bad.txt" || fail "the link is not named: $(cat "$work/bad.txt")"
+done
+rm "$work/home/.config/hkf/hkf-filter.conf"
+printf 'lc_theta = 6\n' >"$work/home/.config/hkf/hkf-filter.conf"
+# an option's value that reads like --config is no --config: the search stays on
+"$filter" --csv --config --print-config >"$work/value.txt"
+expect lc_theta "6 # $work/home/.config/hkf/hkf-filter.conf:1" "$work/value.txt"
+[ ! -e ./--config ] || fail "--print-config wrote a CSV"
+
 HKF_SYSTEM_CONFIG_DIR=$work/none HOME=$work/none "$filter" --print-config >"$work/none.txt"
 grep -q "$work" "$work/none.txt" && fail "a file was read where none exists"
 echo "config_files_test: system, user, XDG, --set and --config origins as expected; a bad file is exit 2"

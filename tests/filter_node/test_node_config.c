@@ -333,6 +333,8 @@ static void test_check_names_where(void **state)
     assert_int_equal(node_config_set(&c, "position_max_gate_rejections=0", error, sizeof error), 0);
     assert_int_equal(node_config_check(&c, error, sizeof error), -1);
     assert_non_null(strstr(error, "--set: position_max_gate_rejections = 0; invalid position settings"));
+    assert_non_null(strstr(error, "position_max_gate_rejections 0")); /* round 4: the position's keys named, */
+    assert_null(strstr(error, "gate_sigma"));                         /* not the angles' gate */
 }
 
 /* A value beyond the number type, NaN or infinite is said to be that (not
@@ -351,6 +353,12 @@ static void test_values_and_files_reported_as_they_are(void **state)
     assert_non_null(strstr(error, "NaN"));
     assert_int_equal(node_config_set(&c, "process_noise=1 inf 1", error, sizeof error), -1);
     assert_non_null(strstr(error, "infinite"));
+    if (sizeof(hkf_real_t) < sizeof(double)) { /* round 4: a value that is 0 only in the number type */
+        assert_int_equal(node_config_set(&c, "process_noise=1e-300 1 1", error, sizeof error), -1);
+        assert_non_null(strstr(error, "beyond the range"));
+    }
+    assert_int_equal(node_config_set(&c, "process_noise=1e-400 1 1", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "process_noise=0 1 1", error, sizeof error), 0);
     assert_true(c.settings.lc_theta == hkf_default_settings.lc_theta); /* nothing changed */
     path = write_temp("lc_xi = 0.5\n");
     {

@@ -176,6 +176,30 @@ static void test_predict(void **state)
 }
 
 /* Nothing non-finite is ever produced: a NaN or infinite angle or centre is refused. */
+/* Round 4: --predict across the yaw seam is a turn (wrapped, then sent), not a corrupt pose; a
+ * prediction toward the camera stops at OPENTRACK_MIN_Z (it sent TZ -155 cm with the centre at 60);
+ * a status hkf-filter never publishes (7) is corrupt, not sent as tracked. */
+static void test_predict_bounded(void **state)
+{
+    opentrack_mapping_t mapping = opentrack_default_mapping();
+    hkf_head_pose_t pose = pose_at(0.0f, 178.0f, 0.0f), moved;
+    double v[OPENTRACK_FIELDS];
+    (void)state;
+    pose.yaw_rate = 200.0f; /* 178 deg + 200 deg/s x 0.02 s = 182 deg: -178 */
+    pose.z = 2.0f, pose.z_rate = -3000.0f;
+    pose.position_center[2] = 60.0f;
+    moved = opentrack_predict(&pose, 0.02);
+    assert_true(fabs((double)moved.yaw + 178.0) < 1e-3);
+    assert_true(moved.z == (float)OPENTRACK_MIN_Z);
+    assert_int_equal(opentrack_pose_values(&mapping, &moved, v), 0);
+    assert_true(fabs(v[OPENTRACK_YAW] + 178.0) < 1e-3 && v[OPENTRACK_Z] == OPENTRACK_MIN_Z - 60.0);
+    pose = pose_at(1.0f, 2.0f, 3.0f);
+    pose.status = 7;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), -4);
+    pose.status = HKF_HEAD_POSE_T_COASTING;
+    assert_int_equal(opentrack_pose_values(&mapping, &pose, v), 0);
+}
+
 static void test_non_finite_refused(void **state)
 {
     const opentrack_mapping_t mapping = opentrack_default_mapping();
@@ -222,6 +246,7 @@ int main(void)
         cmocka_unit_test(test_position),
         cmocka_unit_test(test_relative_angles_wrapped),
         cmocka_unit_test(test_predict),
+        cmocka_unit_test(test_predict_bounded),
         cmocka_unit_test(test_non_finite_refused),
         cmocka_unit_test(test_beyond_a_head_refused),
     };

@@ -143,12 +143,39 @@ static void test_poses_checked(void **state)
     assert_non_null(strstr(line, "p50 15.0 ms"));
 }
 
+/* A filter that stops (SIGSTOP) or hangs: its last pose is not shown as current; after
+ * TRACK_SILENT_LINES silent seconds the line says so, and the pose returns when poses do. */
+static void test_silent_filter_said(void **state)
+{
+    hkf_head_pose_t pose;
+    uint8_t bytes[512];
+    char line[512];
+    int i;
+    (void)state;
+    memset(&pose, 0, sizeof pose);
+    pose.status = HKF_HEAD_POSE_T_TRACKING;
+    const int size = hkf_head_pose_t_encode(bytes, 0, sizeof bytes, &pose);
+    deliver("HEAD_POSE", bytes, size);
+    track_monitor_line(&monitor, 1.0, 1.0, line, sizeof line);
+    assert_non_null(strstr(line, "TRACKING"));
+    for (i = 1; i <= 3; ++i) {
+        track_monitor_line(&monitor, 1.0 + i, 1.0, line, sizeof line);
+        print_message("%s\n", line);
+        assert_true(i < TRACK_SILENT_LINES ? strstr(line, "TRACKING") != NULL : strstr(line, "TRACKING") == NULL);
+    }
+    assert_non_null(strstr(line, "no filtered pose for 3 s"));
+    deliver("HEAD_POSE", bytes, size);
+    track_monitor_line(&monitor, 5.0, 1.0, line, sizeof line);
+    assert_non_null(strstr(line, "TRACKING"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_model_length_minus_one, setup, teardown),
         cmocka_unit_test_setup_teardown(test_long_model_claims_do_not_grow, setup, teardown),
         cmocka_unit_test_setup_teardown(test_poses_checked, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_silent_filter_said, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

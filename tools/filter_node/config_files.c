@@ -7,13 +7,14 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 
-/* Adds FOLDER[/SUB]/hkf-filter.conf when it exists (any kind of file: reading it says what is wrong). */
+/* Adds FOLDER[/SUB]/hkf-filter.conf when it exists (any kind of file, a dangling or looping link
+ * included: reading it says what is wrong). */
 static void add_if_present(config_files_t *found, const char *folder, const char *sub)
 {
     struct stat info;
     char *path = found->path[found->count];
     int n = snprintf(path, CONFIG_FILES_PATH_MAX, "%s%s/%s", folder, sub, CONFIG_FILES_NAME);
-    if (n > 0 && n < CONFIG_FILES_PATH_MAX && stat(path, &info) == 0) ++found->count;
+    if (n > 0 && n < CONFIG_FILES_PATH_MAX && lstat(path, &info) == 0) ++found->count;
 }
 
 void config_files_find(config_files_t *found)

@@ -21,6 +21,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     int result;
     memset(node, 0, sizeof *node);
     node->config = config;
+    node->published_utime = INT64_MIN;
     stream_admission_init(&node->admission);
     second_model_init(&node->second);
     second_position_init(&node->second_position);
@@ -123,10 +124,25 @@ static void take_second_position(filter_node_t *node, const hkf_head_pose_measur
     }
 }
 
+/* A posterior at utime older than the pose published before it (--rate's ticks went past a late frame):
+ * moved on to that pose's time (hkf_extrapolate), so that no pose is stamped earlier than the one before. */
+static void not_before_published(filter_node_t *node, const hkf_output_t **out, int64_t *utime, hkf_output_t *moved)
+{
+    if (*utime < node->published_utime &&
+        hkf_extrapolate(&node->filter, (hkf_real_t)(((double)node->published_utime - (double)*utime) * 1e-6), moved) ==
+            HKF_OK) {
+        *out = moved;
+        *utime = node->published_utime;
+    }
+}
+
 static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utime, hkf_head_pose_t *pose)
 {
     hkf_real_t center[3] = {0, 0, 0};
+    hkf_output_t moved;
     int a;
+    not_before_published(node, &out, &utime, &moved);
+    node->published_utime = utime;
     memset(pose, 0, sizeof *pose);
     pose->utime = utime;
     pose->measurement_utime = node->last_measurement_utime;
@@ -278,6 +294,7 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
 static void resync_clock(filter_node_t *node)
 {
     ++node->counts.clock_resyncs;
+    node->published_utime = INT64_MIN; /* poses on the new clock follow their own */
     if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
         restart_track(node);
     } else {

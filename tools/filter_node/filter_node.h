@@ -103,6 +103,7 @@ typedef struct {
     int64_t last_measurement_utime;   /* capture time of the last valid measurement used */
     int64_t lost_published;           /* LOST poses published in the current silence */
     int64_t seq;
+    int64_t published_utime;          /* the last pose's utime: none later is older (INT64_MIN: none on this clock) */
     second_model_t second;            /* the kept frames and the second model's offset (second_model.h) */
     hkf_position_filter_t position;   /* the head's position: the followed model's measurements (z > 0) */
     int64_t position_utime;           /* capture time of the last position taken */
@@ -114,6 +115,10 @@ typedef struct {
 int filter_node_init(filter_node_t *node, const node_config_t *config);
 
 #define FILTER_NODE_MIN_Z 1.0f /* cm: the nearest position taken and published (z = 0: not measured) */
+
+/* Poses are never stamped earlier than the pose before them on one capture clock: a measurement whose
+ * frame arrived after --rate ticks went past its capture time is published as its posterior moved on to
+ * the last tick's time (flagged extrapolated), and ticks at or before a published pose are skipped. */
 
 /* Handles one measurement that arrived at arrival_utime (the receive clock:
  * a monotonic clock live, the log's event timestamp offline): a second model's measurement of a

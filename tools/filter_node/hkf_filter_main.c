@@ -92,16 +92,29 @@ static void usage(FILE *to)
             "included); 2 for bad arguments or settings.\n");
 }
 
+static const char **string_option(options_t *o, const char *arg, const char **lcm_url);
+
+/* How many values follow option arg on the command line (--offline's two, another option's one, 0). */
+static int values_of(options_t *o, const char *arg)
+{
+    const char *ignored;
+    if (strcmp(arg, "--offline") == 0) {
+        return 2;
+    }
+    return string_option(o, arg, &ignored) != NULL || strcmp(arg, "--rate") == 0 || strcmp(arg, "--config") == 0 ||
+           strcmp(arg, "--set") == 0;
+}
+
 /* Without --config on the command line: the system's and the user's files, where they exist
  * (config_files.h), read before any --set. 0, or 2 (said) when one is bad. */
 static int read_found_configs(int argc, char **argv, options_t *o)
 {
     config_files_t found;
     char error[600];
-    for (int i = 1; i < argc; ++i) { /* --help and --version answer whatever the files hold */
+    for (int i = 1; i < argc; i += 1 + values_of(o, argv[i])) { /* an option's value is no option: --csv --config */
         if (strcmp(argv[i], "--config") == 0 || strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0 ||
             strcmp(argv[i], "--version") == 0) {
-            return 0;
+            return 0; /* --help and --version answer whatever the files hold */
         }
     }
     config_files_find(&found);

@@ -32,6 +32,8 @@ static const hkf_setting_t per_model_settings[] = {
 };
 #define PER_MODEL_SETTING_COUNT ((int)(sizeof per_model_settings / sizeof per_model_settings[0]))
 #define POSITION_PREFIX "position_"
+#define STRING_OF(x) #x
+#define STRING_OF_VALUE(x) STRING_OF(x) /* a macro's value as text */
 
 static int key_count(void)
 {
@@ -177,8 +179,9 @@ static int parse_reals(const char *text, hkf_real_t *out, int n)
         if (end == p) {
             return -1;
         }
-        if (errno == ERANGE || !isfinite(v) || !isfinite((double)(hkf_real_t)v)) {
-            beyond = 1; /* underflow to 0 included: "1e-400" is not what was meant */
+        if (errno == ERANGE || !isfinite(v) || !isfinite((double)(hkf_real_t)v) ||
+            (v != 0.0 && (double)(hkf_real_t)v == 0.0)) {
+            beyond = 1; /* underflow to 0 included, in double ("1e-400") or in hkf_real_t ("1e-300" in float) */
         }
         out[i] = (hkf_real_t)v;
         p = end;
@@ -642,7 +645,11 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
     char where[600] = "";
     if (result != HKF_OK) {
         describe_origins(config, NULL, GROUP_POSITION, result, where, sizeof where);
-        snprintf(error, error_size, "%sinvalid position settings (position_*): %s", where, hkf_result_string(result));
+        snprintf(error, error_size, "%sinvalid position settings (position_*): %s", where,
+                 result == HKF_ERROR_SETTING_GATE /* libhkf's text names the angles' gate_sigma too */
+                     ? "position_max_speed is not in [0, " STRING_OF_VALUE(HKF_MAX_SPEED) "] cm/s, or the gate is on "
+                       "(position_max_speed > 0) with position_max_gate_rejections 0"
+                     : hkf_result_string(result));
         return -1;
     }
     result = hkf_init(&probe, &config->settings);

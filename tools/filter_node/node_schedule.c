@@ -65,6 +65,9 @@ int node_schedule_next(node_schedule_t *s, filter_node_t *node, int64_t now, hkf
     /* ticks first: they end where extrapolation does, at coast_time, and LOST is due no earlier */
     while ((tick = tick_due(s, node, &t)) != 0 && tick <= now) {
         s->ticks_after = t;
+        if (t <= node->published_utime) {
+            continue; /* a late frame's pose was published at or after it */
+        }
         if (filter_node_extrapolate(node, t, pose)) {
             *due = tick;
             return 1;

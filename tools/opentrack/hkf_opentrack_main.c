@@ -39,6 +39,7 @@ typedef struct {
 
 typedef struct {
     unsigned long received, sent, held, centered, non_finite, absurd, send_errors, decode_errors, position_beyond;
+    unsigned long unknown_status; /* poses of a status hkf-filter never publishes: corrupt */
 } bridge_counts_t;
 
 typedef struct {
@@ -327,6 +328,12 @@ static int pack_pose(bridge_t *bridge, const hkf_head_pose_t *pose, int count)
     int result;
     memcpy(values, bridge->last_values, sizeof values); /* the last position, should this one be beyond */
     result = opentrack_pose_values(&o->mapping, &sent, values);
+    if (result == -4) {
+        if (count && bridge->counts.unknown_status++ < 5) {
+            fprintf(stderr, "hkf-opentrack: a pose of unknown status %d not sent: corrupt\n", (int)pose->status);
+        }
+        return -1;
+    }
     if (result == -1 || result == -2) {
         if (count && result == -2 && bridge->counts.absurd++ < 5) {
             fprintf(stderr, "hkf-opentrack: a pose beyond +-180 deg (pitch %g, yaw %g, roll %g) not sent: forged "
@@ -345,14 +352,16 @@ static int pack_pose(bridge_t *bridge, const hkf_head_pose_t *pose, int count)
     return 0;
 }
 
-/* One pose -> the packet to send (or none); then sent unless --rate sends it. */
-static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
+/* One pose -> the packet to send (or none); then sent unless --rate sends it. 0, or -1 when it is
+ * not sent: then --rate sends nothing until a pose is (the last packet is no longer the head's), as
+ * without --rate, and opentrack holds the camera where it was. */
+static int handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
 {
     const options_t *o = bridge->options;
     ++bridge->counts.received;
     if (pose->status == HKF_HEAD_POSE_T_LOST && o->lost == LOST_HOLD) {
         if (!bridge->have_packet) {
-            return; /* nothing to hold yet */
+            return 0; /* nothing to hold yet */
         }
         ++bridge->counts.held;
     } else if (pose->status == HKF_HEAD_POSE_T_LOST && o->lost == LOST_CENTER) {
@@ -361,11 +370,13 @@ static void handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
         bridge->have_packet = 1;
         ++bridge->counts.centered;
     } else if (pack_pose(bridge, pose, 1) != 0) {
-        return;
+        bridge->have_packet = 0;
+        return -1;
     }
     if (o->rate_hz <= 0.0) {
         send_packet(bridge);
     }
+    return 0;
 }
 
 /* --rate with --predict: the last pose moved on to this tick (a LOST pose stays as it was sent). */
@@ -386,9 +397,8 @@ static void on_pose(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
         }
         return;
     }
-    handle_pose(bridge, &pose);
+    bridge->have_pose = handle_pose(bridge, &pose) == 0; /* --predict moves on only a pose that was sent */
     bridge->pose = pose;
-    bridge->have_pose = 1;
     hkf_head_pose_t_decode_cleanup(&pose);
 }
 
@@ -457,8 +467,8 @@ int main(int argc, char **argv)
     fprintf(stderr,
             "hkf-opentrack: %lu poses received, %lu datagrams sent to %s port %s (%lu repeats of the last pose "
             "while LOST, %lu centre poses while LOST); dropped: %lu non-finite, %lu beyond +-180 deg, %lu send "
-            "errors, %lu undecodable; %lu positions beyond +-1000 cm held at the last\n",
+            "errors, %lu undecodable, %lu of unknown status; %lu positions beyond +-1000 cm held at the last\n",
             c->received, c->sent, options.host, options.port, c->held, c->centered, c->non_finite, c->absurd,
-            c->send_errors, c->decode_errors, c->position_beyond);
+            c->send_errors, c->decode_errors, c->unknown_status, c->position_beyond);
     return status;
 }

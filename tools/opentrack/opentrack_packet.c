@@ -53,6 +53,10 @@ int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pos
                             pose->position_center[2]};
     double position[3];
     int a, i, position_beyond = 0;
+    if (pose->status != HKF_HEAD_POSE_T_TRACKING && pose->status != HKF_HEAD_POSE_T_COASTING &&
+        pose->status != HKF_HEAD_POSE_T_LOST) {
+        return -4;
+    }
     for (i = 0; i < 6; ++i) {
         if (isfinite(given[i]) && fabs((double)given[i]) > OPENTRACK_MAX_ABS_ANGLE) {
             return -2;
@@ -94,13 +98,14 @@ hkf_head_pose_t opentrack_predict(const hkf_head_pose_t *pose, double horizon)
     if (pose->status == HKF_HEAD_POSE_T_LOST || !(horizon > 0.0 && isfinite(horizon))) {
         return moved;
     }
-    moved.pitch = (float)((double)pose->pitch + (double)pose->pitch_rate * horizon);
-    moved.yaw = (float)((double)pose->yaw + (double)pose->yaw_rate * horizon);
-    moved.roll = (float)((double)pose->roll + (double)pose->roll_rate * horizon);
+    moved.pitch = (float)wrap_degrees((double)pose->pitch + (double)pose->pitch_rate * horizon);
+    moved.yaw = (float)wrap_degrees((double)pose->yaw + (double)pose->yaw_rate * horizon);
+    moved.roll = (float)wrap_degrees((double)pose->roll + (double)pose->roll_rate * horizon);
     if (pose->z > 0.f) { /* a position measured */
+        const double z = (double)pose->z + (double)pose->z_rate * horizon;
         moved.x = (float)((double)pose->x + (double)pose->x_rate * horizon);
         moved.y = (float)((double)pose->y + (double)pose->y_rate * horizon);
-        moved.z = (float)((double)pose->z + (double)pose->z_rate * horizon);
+        moved.z = (float)(z > OPENTRACK_MIN_Z ? z : OPENTRACK_MIN_Z);
     }
     return moved;
 }

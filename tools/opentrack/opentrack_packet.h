@@ -56,6 +56,7 @@ int opentrack_axis_from_name(const char *name);
  * camera round). */
 #define OPENTRACK_MAX_ABS_ANGLE 180.0
 #define OPENTRACK_MAX_ABS_POSITION 1000.0 /* cm: libhkf's HKF_MAX_ABS_POSITION */
+#define OPENTRACK_MIN_Z 1.0 /* cm: the nearest z hkf-filter publishes (FILTER_NODE_MIN_Z; 0: not measured) */
 
 /* The six values for one pose: the angles relative to the centre wrapped into
  * [-180, 180), every value scaled and then kept within +-OPENTRACK_MAX_ABS_ANGLE
@@ -63,13 +64,16 @@ int opentrack_axis_from_name(const char *name);
  * is not finite, -2 when one is beyond OPENTRACK_MAX_ABS_ANGLE (neither is ever
  * sent); -3 when the position or its centre is not finite or beyond
  * OPENTRACK_MAX_ABS_POSITION: the angles are in values, the position's three
- * are left as they were (the caller's last). */
+ * are left as they were (the caller's last); -4 when the status is none that
+ * hkf-filter publishes (TRACKING, COASTING, LOST): corrupt, never sent. */
 int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pose_t *pose,
                           double values[OPENTRACK_FIELDS]);
 
 /* --predict: the pose moved on by its rates for `horizon` s (angles and position), so that a
- * pose sent some time after its capture shows where the head is when it is sent. The pose
- * itself when LOST (its rates are 0) or when horizon is not finite or negative. */
+ * pose sent some time after its capture shows where the head is when it is sent: the angles
+ * wrapped into [-180, 180) (a turn past the seam is a turn, not a corrupt pose), z no nearer
+ * than OPENTRACK_MIN_Z (a prediction toward the camera stops there, as the filter's coast does).
+ * The pose itself when LOST (its rates are 0) or when horizon is not finite or negative. */
 hkf_head_pose_t opentrack_predict(const hkf_head_pose_t *pose, double horizon);
 
 /* The horizon of --predict for a pose captured at capture_us and sent at now_us (one wall

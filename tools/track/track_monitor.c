@@ -113,7 +113,12 @@ void track_monitor_line(track_monitor_t *m, double elapsed, double interval, cha
     } else if (m->latencies > 0) { /* a file read as fast as it goes: its stamps are the file's time */
         APPEND(", no latency (a file faster than real time: --realtime measures it)");
     }
-    if (m->have_last && used < size) pose_text(&m->last, out + used, size - used);
+    m->silent_lines = m->poses == 0 ? m->silent_lines + 1 : 0;
+    if (m->have_last && m->silent_lines >= TRACK_SILENT_LINES) {
+        APPEND(", no filtered pose for %d s: is hkf-filter stopped or hung?", m->silent_lines);
+    } else if (m->have_last && used < size) {
+        pose_text(&m->last, out + used, size - used);
+    }
     m->raw = m->faces = m->poses = m->second = 0;
     m->latencies = 0;
 }

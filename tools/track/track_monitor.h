@@ -29,6 +29,7 @@ typedef struct {
     int have_seq;
     hkf_head_pose_t last;
     int have_last;
+    int silent_lines;   /* status lines in a row without a pose */
     long decode_errors;
 } track_monitor_t;
 
@@ -42,7 +43,11 @@ void track_monitor_take_raw(track_monitor_t *m, const void *data, int size);
 void track_monitor_take_pose(track_monitor_t *m, const void *data, int size);
 
 /* The status line for the `interval` seconds since the last one, `elapsed` s
- * after the start, into out; the counts start again. */
+ * after the start, into out; the counts start again. The latest pose is shown
+ * while poses come; after TRACK_SILENT_LINES lines without one (hkf-filter
+ * publishes at least a LOST pose a second), the line says the filter is silent
+ * instead of showing its last pose as if it were current. */
+#define TRACK_SILENT_LINES 2
 void track_monitor_line(track_monitor_t *m, double elapsed, double interval, char *out, size_t size);
 
 #ifdef __cplusplus
