@@ -13,6 +13,7 @@
 
 #include "angle_bins_model.hpp"
 #include "face_tracker.hpp"
+#include "frame_source.hpp"
 #include "safe_files.h"
 
 namespace hkf_estimator {
@@ -181,7 +182,7 @@ EvalResult evaluate_dataset(const DatasetRun &run, std::ostream &predictions, co
         const LabelRow &row = rows[static_cast<size_t>(i)];
         ++result.images;
         const std::string path = run.dir + "/images/" + row.image;
-        const cv::Mat image = safe_is_regular_file(path.c_str()) ? cv::imread(path, cv::IMREAD_COLOR) : cv::Mat();  // a pipe would block
+        const cv::Mat image = read_image_file(path);  // none for a named pipe, damage, or beyond the size cap
 
         if (image.empty() || face_crop_rect(row.box, 0.f, image.size()).empty()) {
             ++result.unreadable;

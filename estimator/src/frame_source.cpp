@@ -104,14 +104,25 @@ void FrameSource::check_not_repeating(const cv::Mat &image)
                              "size mid-stream, e.g. concatenated MJPEG?)");
 }
 
+cv::Mat read_image_file(const std::string &path)
+{
+    if (!safe_is_regular_file(path.c_str())) return cv::Mat();
+    try {
+        cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+        return !image.empty() && within_frame_cap(image.cols, image.rows) ? image : cv::Mat();
+    } catch (const cv::Exception &) {  // beyond OPENCV_IO_MAX_IMAGE_PIXELS: refused from its header
+        return cv::Mat();
+    }
+}
+
 bool FrameSource::read(Frame &frame)
 {
     if (!images_.empty()) {
         for (;;) {  // an image that cannot be read (damaged, not an image, too large) is skipped and counted
             if (next_image_ >= images_.size()) return false;
             const std::string &path = images_[next_image_++];
-            frame.image = safe_is_regular_file(path.c_str()) ? cv::imread(path, cv::IMREAD_COLOR) : cv::Mat();  // a pipe would block
-            if (!frame.image.empty() && within_frame_cap(frame.image.cols, frame.image.rows)) break;
+            frame.image = read_image_file(path);
+            if (!frame.image.empty()) break;
             if (skipped_images_++ < 5)
                 std::fprintf(stderr, "hkf-estimator: cannot read the image %s (damaged, not an image, not a regular "
                              "file, or larger than %lld px); skipped\n", path.c_str(), static_cast<long long>(kMaxFramePixels));

@@ -24,6 +24,11 @@ constexpr int64_t kMaxFramePixels = 7680LL * 4320;  // 8K UHD, 33.2 M pixels
 constexpr int kMaxFrameSide = 16384;                // px
 constexpr long kMaxCameraIndex = 999;
 
+// An image file as a BGR frame, or an empty one when it is no regular file (a named pipe would block),
+// cannot be decoded, or is beyond kMaxFramePixels: OpenCV refuses that from the header alone when
+// OPENCV_IO_MAX_IMAGE_PIXELS was in the environment as it loaded (main sees to it), else after decoding.
+cv::Mat read_image_file(const std::string &path);
+
 class FrameSource {
 public:
     // "0" or "/dev/video0": a camera; a named pipe or character device: a live

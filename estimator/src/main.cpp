@@ -384,8 +384,13 @@ int main(int argc, char **argv)
 {
     using namespace hkf_estimator;
     Options o;
-    // OpenCV reads this on its first image: beyond it, imread gives no image (the cap of frame_source.hpp)
-    setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
+    // OpenCV reads its image size cap as it loads, before main: without one in the environment, run again
+    // with ours (frame_source.hpp), so that a larger image is refused from its header, not decoded first
+    // (a 9000 x 9000 image took 360 MB). Should the exec fail, the cap is checked after decoding.
+    if (std::getenv("OPENCV_IO_MAX_IMAGE_PIXELS") == nullptr) {
+        setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
+        execv("/proc/self/exe", argv);
+    }
     safe_files_fail_writes_past_size_limit();  // a file-size limit: a reported write error, not SIGXFSZ
     switch (parse(argc, argv, o)) {
     case 1: return 0;

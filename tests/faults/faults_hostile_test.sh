@@ -438,5 +438,28 @@ for program in "$filter" "$estimator" "$cmd" "$opentrack" "$build/tools/hkf-trac
   [ "$status" = 1 ] || fail "$(basename "$program") --help > /dev/full: exit $status (expected 1)"
 done
 echo "--print-config and --help onto a full disk: exit 1"
+# an image beyond the size cap is refused from its header, not decoded first (9000 x 9000: 243 MB)
+mkdir big_images big_ds big_ds/images
+"$python" - big_images/a_big.png <<'PY'
+import sys
+from PIL import Image
+Image.new("RGB", (9000, 9000), (90, 90, 90)).save(sys.argv[1])
+PY
+cp src_images/* big_images/
+cp big_images/a_big.png big_ds/images/
+{ head -n 1 ds/labels.csv; echo "a_big.png,10,5,0,100,100,300,300"; tail -n +2 ds/labels.csv; } >big_ds/labels.csv
+cp ds/images/* big_ds/images/
+"$python" - "$estimator" <<'PY' || fail "an image beyond the size cap was decoded"
+import resource, subprocess, sys
+def peak_after(args):
+    subprocess.run([sys.argv[1], *args], check=True, capture_output=True)
+    return resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024  # MB, the largest child so far
+small = peak_after(["--source", "src_images", "--lcm-url", "memq://"])
+big = peak_after(["--source", "big_images", "--lcm-url", "memq://"])
+print(f"peak memory: {small:.0f} MB on 3 images, {big:.0f} MB with a 9000 x 9000 image among them")
+assert big - small < 100, "decoded before it was refused"
+PY
+expect_exit 0 "--dataset with an image beyond the size cap" "$estimator" --dataset big_ds --predictions big.csv
+said "4 images (1 unreadable"
 cd - >/dev/null
 echo "faults_hostile_test: all checks passed"
