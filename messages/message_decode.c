@@ -5,6 +5,7 @@
 
 #include "hkf_head_pose_measurement_v1_t.h"
 #include "hkf_head_pose_v1_t.h"
+#include "hkf_head_pose_v2_t.h"
 
 /* The wire layout of a measurement: hash, utime, seq (8 bytes each), the model string as a
  * big-endian int32 length with its NUL and the bytes, then valid (1), pitch, yaw, roll (4 each),
@@ -82,31 +83,51 @@ int message_model_id_too_long(const void *data, int size)
     return length > MODEL_BYTES_MAX && length <= size - (MODEL_AT + 4);
 }
 
+/* The fields every version of the pose has (hkf 0.1's), from old into pose. */
+#define COPY_ANGLE_FIELDS(pose, old)                                                                              \
+    do {                                                                                                          \
+        (pose)->utime = (old).utime, (pose)->measurement_utime = (old).measurement_utime, (pose)->seq = (old).seq; \
+        (pose)->status = (old).status;                                                                            \
+        (pose)->pitch = (old).pitch, (pose)->yaw = (old).yaw, (pose)->roll = (old).roll;                          \
+        (pose)->pitch_rate = (old).pitch_rate, (pose)->yaw_rate = (old).yaw_rate;                                 \
+        (pose)->roll_rate = (old).roll_rate;                                                                      \
+        memcpy((pose)->variance, (old).variance, sizeof (pose)->variance);                                        \
+        memcpy((pose)->r, (old).r, sizeof (pose)->r);                                                             \
+        memcpy((pose)->center, (old).center, sizeof (pose)->center);                                              \
+        (pose)->loop_closure_active = (old).loop_closure_active, (pose)->extrapolated = (old).extrapolated;       \
+        (pose)->latency_us = (old).latency_us;                                                                    \
+    } while (0)
+
+/* hkf 0.2's pose as a 0.3 one: the position without its status (measured when z > 0: TRACKING). */
+static int decode_pose_v2(const void *data, int size, hkf_head_pose_t *pose)
+{
+    hkf_head_pose_v2_t old;
+    if (hkf_head_pose_v2_t_decode(data, 0, size, &old) < 0) {
+        return -1;
+    }
+    memset(pose, 0, sizeof *pose);
+    COPY_ANGLE_FIELDS(pose, old);
+    pose->x = old.x, pose->y = old.y, pose->z = old.z;
+    pose->x_rate = old.x_rate, pose->y_rate = old.y_rate, pose->z_rate = old.z_rate;
+    memcpy(pose->position_variance, old.position_variance, sizeof pose->position_variance);
+    memcpy(pose->position_center, old.position_center, sizeof pose->position_center);
+    pose->position_status = old.z > 0.f ? HKF_HEAD_POSE_T_TRACKING : 0; /* 0.2 did not say: as a measured one */
+    return 0;
+}
+
 int message_decode_pose(const void *data, int size, hkf_head_pose_t *pose)
 {
     hkf_head_pose_v1_t old;
     if (hkf_head_pose_t_decode(data, 0, size, pose) >= 0) {
         return 0;
     }
+    if (decode_pose_v2(data, size, pose) == 0) {
+        return 0;
+    }
     if (hkf_head_pose_v1_t_decode(data, 0, size, &old) < 0) {
         return -1;
     }
     memset(pose, 0, sizeof *pose);
-    pose->utime = old.utime;
-    pose->measurement_utime = old.measurement_utime;
-    pose->seq = old.seq;
-    pose->status = old.status;
-    pose->pitch = old.pitch;
-    pose->yaw = old.yaw;
-    pose->roll = old.roll;
-    pose->pitch_rate = old.pitch_rate;
-    pose->yaw_rate = old.yaw_rate;
-    pose->roll_rate = old.roll_rate;
-    memcpy(pose->variance, old.variance, sizeof pose->variance);
-    memcpy(pose->r, old.r, sizeof pose->r);
-    memcpy(pose->center, old.center, sizeof pose->center);
-    pose->loop_closure_active = old.loop_closure_active;
-    pose->extrapolated = old.extrapolated;
-    pose->latency_us = old.latency_us;
+    COPY_ANGLE_FIELDS(pose, old);
     return 0;
 }

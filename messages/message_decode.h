@@ -1,9 +1,10 @@
 /*
- * message_decode.h - hkf's messages decoded from LCM payloads, checked, and with hkf 0.1's
- * versions read as hkf 0.2's (written once here for hkf-filter, hkf-opentrack and hkf-annotate).
+ * message_decode.h - hkf's messages decoded from LCM payloads, checked, and with older versions
+ * read as today's (written once here for hkf-filter, hkf-opentrack, hkf-annotate and hkf-track).
  *
  * hkf 0.1's messages are head_pose_measurement_v1_t and head_pose_v1_t: the same fields but no
- * position. Read as 0.2's, their position is 0 (z = 0: not measured).
+ * position. Read as today's, their position is 0 (z = 0: not measured). hkf 0.2's pose is
+ * head_pose_v2_t: no position_status.
  */
 #ifndef MESSAGE_DECODE_H
 #define MESSAGE_DECODE_H
@@ -26,8 +27,9 @@ int message_decode_measurement(const void *data, int size, hkf_head_pose_measure
  * MODEL_NAME_MAX: the one mistake a user makes, so the programs say it. */
 int message_model_id_too_long(const void *data, int size);
 
-/* A HEAD_POSE payload, hkf 0.2's or 0.1's (which carries no position: x, y, z and their rates,
- * variances and centre are 0). Returns 0 with *pose decoded, or -1. */
+/* A HEAD_POSE payload, hkf 0.3's, 0.2's (which carries no position_status: TRACKING where z > 0,
+ * else 0) or 0.1's (which carries no position: x, y, z and their rates, variances, centre and
+ * status are 0). Returns 0 with *pose decoded, or -1. */
 int message_decode_pose(const void *data, int size, hkf_head_pose_t *pose);
 
 #ifdef __cplusplus

@@ -362,6 +362,7 @@ static void test_position_coast_bounded(void **state)
         assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
     }
     print_message("leaning at 15 cm/s: x %.2f cm (measured %.2f), rate %.2f cm/s\n", pose.x, last_measured, pose.x_rate);
+    assert_int_equal(pose.position_status, HKF_HEAD_POSE_T_TRACKING); /* measured in this frame */
     assert_true(pose.x_rate > 5.0f);
     rate = pose.x_rate;
     for (; i < 150; ++i) { /* 3 s of angles without a position */
@@ -374,6 +375,9 @@ static void test_position_coast_bounded(void **state)
         last_variance = pose.position_variance[0];
         if (since > max_dt) {
             assert_true(pose.x_rate == 0.0f);
+            assert_int_equal(pose.position_status, HKF_HEAD_POSE_T_LOST); /* stale: held */
+        } else if (since < max_dt) {
+            assert_int_equal(pose.position_status, HKF_HEAD_POSE_T_COASTING); /* round 4: the message says so */
         }
     }
     held = pose;

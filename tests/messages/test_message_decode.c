@@ -12,6 +12,7 @@
 
 #include "hkf_head_pose_measurement_v1_t.h"
 #include "hkf_head_pose_v1_t.h"
+#include "hkf_head_pose_v2_t.h"
 #include "message_decode.h"
 
 #define T0 1700000000000000LL
@@ -87,10 +88,12 @@ static void test_decode_reads_v1(void **state)
     assert_int_equal(message_decode_measurement(buffer, size + 12, &back), -1); /* neither layout */
 }
 
-/* hkf 0.1's pose (head_pose_v1_t) still decodes, its position 0; hkf 0.2's as it is. */
-static void test_decode_both_versions(void **state)
+/* hkf 0.1's pose (head_pose_v1_t) still decodes, its position 0; hkf 0.2's (head_pose_v2_t) with
+ * its position, a measured one's status TRACKING; hkf 0.3's as it is. */
+static void test_decode_every_version(void **state)
 {
     hkf_head_pose_v1_t old;
+    hkf_head_pose_v2_t older_position;
     hkf_head_pose_t pose, back;
     unsigned char buffer[512];
     int size;
@@ -104,13 +107,26 @@ static void test_decode_both_versions(void **state)
     assert_int_equal(hkf_head_pose_v1_t_encode(buffer, 0, size, &old), size);
     assert_int_equal(message_decode_pose(buffer, size, &back), 0);
     assert_true(back.yaw == 12.0f && back.center[1] == 2.0f && back.z == 0.0f && back.status == HKF_HEAD_POSE_T_TRACKING);
+    assert_int_equal(back.position_status, 0);
+    memset(&older_position, 0, sizeof older_position);
+    older_position.status = HKF_HEAD_POSE_T_COASTING;
+    older_position.yaw = 3.0f;
+    older_position.z = 61.0f;
+    older_position.position_center[2] = 60.0f;
+    older_position.latency_us = 7;
+    size = hkf_head_pose_v2_t_encoded_size(&older_position);
+    assert_int_equal(hkf_head_pose_v2_t_encode(buffer, 0, size, &older_position), size);
+    assert_int_equal(message_decode_pose(buffer, size, &back), 0);
+    assert_true(back.yaw == 3.0f && back.z == 61.0f && back.position_center[2] == 60.0f && back.latency_us == 7);
+    assert_true(back.status == HKF_HEAD_POSE_T_COASTING && back.position_status == HKF_HEAD_POSE_T_TRACKING);
     memset(&pose, 0, sizeof pose);
     pose.yaw = 2.0f;
     pose.z = 55.0f;
+    pose.position_status = HKF_HEAD_POSE_T_LOST;
     size = hkf_head_pose_t_encoded_size(&pose);
     assert_int_equal(hkf_head_pose_t_encode(buffer, 0, size, &pose), size);
     assert_int_equal(message_decode_pose(buffer, size, &back), 0);
-    assert_true(back.z == 55.0f && back.yaw == 2.0f);
+    assert_true(back.z == 55.0f && back.yaw == 2.0f && back.position_status == HKF_HEAD_POSE_T_LOST);
     buffer[0] ^= 0x5a; /* neither type's hash */
     assert_int_equal(message_decode_pose(buffer, size, &back), -1);
 }
@@ -142,7 +158,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_decode_checks_layout),
         cmocka_unit_test(test_decode_reads_v1),
-        cmocka_unit_test(test_decode_both_versions),
+        cmocka_unit_test(test_decode_every_version),
         cmocka_unit_test(test_long_model_id_named),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

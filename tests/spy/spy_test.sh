@@ -26,7 +26,7 @@ if [ "$(id -u)" = 0 ] && command -v Xvfb >/dev/null && unshare --net true 2>/dev
     sleep 5
     kill $spy $xvfb 2>/dev/null; wait 2>/dev/null' _ "$spy" "$out" || true
   cat "$out"
-  grep -q "Found 5 LCM types" "$out" || { echo "FAIL: lcm-spy did not find the 5 hkf types (3, and hkf 0.1's two)" >&2; rm -f "$out"; exit 1; }
+  grep -q "Found 6 LCM types" "$out" || { echo "FAIL: lcm-spy did not find the 6 hkf types (3, hkf 0.1's two and 0.2's pose)" >&2; rm -f "$out"; exit 1; }
   rm -f "$out"
 else
   echo "(lcm-spy start-up not checked: needs root, unshare and Xvfb)"

@@ -60,6 +60,9 @@ static void fill_position(const filter_node_t *node, int64_t utime, hkf_head_pos
         pose->position_variance[a] = (float)out.variance[a];
         pose->position_center[a] = (float)state.center[a];
     }
+    pose->position_status = out.status == HKF_STATUS_TRACKING   ? HKF_HEAD_POSE_T_TRACKING
+                            : out.status == HKF_STATUS_COASTING ? HKF_HEAD_POSE_T_COASTING
+                                                                : HKF_HEAD_POSE_T_LOST;
     if (pose->z < FILTER_NODE_MIN_Z) {
         pose->z = FILTER_NODE_MIN_Z; /* a coast toward the camera stops at it */
     }

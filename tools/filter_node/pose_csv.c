@@ -7,7 +7,7 @@ int pose_csv_write_header(FILE *csv)
 {
     return fprintf(csv, "utime,measurement_utime,seq,status,pitch,yaw,roll,pitch_rate,yaw_rate,roll_rate,"
                  "var_pitch,var_yaw,var_roll,r_pitch,r_yaw,r_roll,loop_closure_active,extrapolated,latency_us,"
-                 "x,y,z,x_rate,y_rate,z_rate,var_x,var_y,var_z,center_x,center_y,center_z\n") < 0 ? -1 : 0;
+                 "x,y,z,x_rate,y_rate,z_rate,var_x,var_y,var_z,center_x,center_y,center_z,position_status\n") < 0 ? -1 : 0;
 }
 
 int pose_csv_write(FILE *csv, const hkf_head_pose_t *p)
@@ -19,9 +19,9 @@ int pose_csv_write(FILE *csv, const hkf_head_pose_t *p)
                 (double)p->r[2], p->loop_closure_active, p->extrapolated, (long long)p->latency_us) < 0) {
         return -1;
     }
-    /* the position: cm, cm/s, cm^2 */
-    return fprintf(csv, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", (double)p->x, (double)p->y,
+    /* the position: cm, cm/s, cm^2, its status */
+    return fprintf(csv, "%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d\n", (double)p->x, (double)p->y,
                    (double)p->z, (double)p->x_rate, (double)p->y_rate, (double)p->z_rate, (double)p->position_variance[0],
                    (double)p->position_variance[1], (double)p->position_variance[2], (double)p->position_center[0],
-                   (double)p->position_center[1], (double)p->position_center[2]) < 0 ? -1 : 0;
+                   (double)p->position_center[1], (double)p->position_center[2], p->position_status) < 0 ? -1 : 0;
 }
