@@ -4,7 +4,8 @@
  * filter_node_offline (the code the program runs), into a log in memory.
  * Checks that the run ends, that every pose written reads back (so the output
  * log is whole) and is finite, and that the reader's account adds up: whole
- * events + skipped + cut bytes never exceed the input.
+ * events + skipped + cut bytes never exceed the input. hkf-track's status line (track_monitor.h)
+ * takes every pose written, as the launcher would, and counts each.
  *
  * Input: [rate byte][the log's bytes]; an odd rate byte adds --rate ticks.
  */
@@ -18,6 +19,7 @@
 
 #include "filter_node_offline.h"
 #include "fuzz_checks.h"
+#include "track_monitor.h"
 
 #define CHECK(condition, what) fuzz_check((condition), "fuzz_node_log", (what))
 #include "lcm_log_reader.h"
@@ -33,6 +35,8 @@ static void print_totals(void)
 static unsigned long read_back(const char *bytes, size_t size)
 {
     static unsigned char data[512];
+    static track_monitor_t monitor;
+    char line[512];
     lcm_log_reader_t reader;
     lcm_log_event_t event;
     unsigned long poses = 0;
@@ -40,6 +44,7 @@ static unsigned long read_back(const char *bytes, size_t size)
     if (size == 0) {
         return 0;
     }
+    memset(&monitor, 0, sizeof monitor);
     f = fmemopen((void *)bytes, size, "rb");
     CHECK(f != NULL && lcm_log_reader_open(&reader, f) == 0, "cannot read the output back");
     while (lcm_log_reader_next(&reader, &event, data, (int)sizeof data)) {
@@ -47,9 +52,13 @@ static unsigned long read_back(const char *bytes, size_t size)
         CHECK(event.data_read && strcmp(event.channel, "HEAD_POSE") == 0, "a stray event in the output");
         CHECK(hkf_head_pose_t_decode(data, 0, event.datalen, &pose) == event.datalen, "an output pose does not decode");
         fuzz_check_pose(&pose, "fuzz_node_log");
+        CHECK(pose.position_status >= 0 && pose.position_status <= HKF_HEAD_POSE_T_LOST, "a position status unknown");
         hkf_head_pose_t_decode_cleanup(&pose);
+        track_monitor_take_pose(&monitor, data, event.datalen);
         ++poses;
     }
+    CHECK(monitor.decode_errors == 0 && (unsigned long)monitor.total_poses == poses, "the monitor missed a pose");
+    track_monitor_line(&monitor, 1.0, 1.0, line, sizeof line);
     CHECK(reader.skipped == 0 && lcm_log_reader_cut(&reader) == 0, "the output log is damaged");
     fclose(f);
     return poses;
