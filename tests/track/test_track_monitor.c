@@ -46,7 +46,7 @@ static int measurement_bytes(int64_t seq, uint8_t *buffer, int size)
 {
     hkf_head_pose_measurement_t m;
     memset(&m, 0, sizeof m);
-    m.utime = 1700000000000000LL + seq * 33333;
+    m.utime = 1700000000000000LL + (seq % 1000) * 33333; /* seqs may be near the int64 ends */
     m.seq = seq;
     m.model = "mesh_pnp";
     m.valid = 1;
@@ -118,6 +118,20 @@ static void test_long_model_claims_do_not_grow(void **state)
     free(bytes);
 }
 
+/* Frame counters near the int64 ends (found by fuzz_node_messages: the second model's window
+ * overflowed): a second model's measurement of a frame 5 before the last is told apart there too. */
+static void test_seq_at_the_ends(void **state)
+{
+    uint8_t bytes[256];
+    (void)state;
+    deliver("HEAD_POSE_RAW", bytes, measurement_bytes(INT64_MIN + 10, bytes, sizeof bytes));
+    deliver("HEAD_POSE_RAW", bytes, measurement_bytes(INT64_MIN + 5, bytes, sizeof bytes));
+    deliver("HEAD_POSE_RAW", bytes, measurement_bytes(INT64_MAX, bytes, sizeof bytes));
+    deliver("HEAD_POSE_RAW", bytes, measurement_bytes(INT64_MAX - 1, bytes, sizeof bytes));
+    assert_int_equal(monitor.raw, 2);
+    assert_int_equal(monitor.second, 2);
+}
+
 /* Poses: a real one is counted and shown; a cut one and a measurement on the pose channel are
  * counted as undecodable and leave the shown pose as it was. */
 static void test_poses_checked(void **state)
@@ -174,6 +188,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_model_length_minus_one, setup, teardown),
         cmocka_unit_test_setup_teardown(test_long_model_claims_do_not_grow, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_seq_at_the_ends, setup, teardown),
         cmocka_unit_test_setup_teardown(test_poses_checked, setup, teardown),
         cmocka_unit_test_setup_teardown(test_silent_filter_said, setup, teardown),
     };

@@ -19,7 +19,8 @@ void track_monitor_take_raw(track_monitor_t *m, const void *data, int size)
         ++m->decode_errors;
         return;
     }
-    if (m->have_seq && m->last_seq - TRACK_SECOND_MODEL_WINDOW < raw.seq && raw.seq <= m->last_seq) {
+    /* seqs may be anything: the window in double (last_seq - 300 overflowed near INT64_MIN: fuzz_node_messages) */
+    if (m->have_seq && raw.seq <= m->last_seq && (double)m->last_seq - (double)raw.seq < TRACK_SECOND_MODEL_WINDOW) {
         ++m->second;
     } else {
         m->last_seq = raw.seq, m->have_seq = 1;
