@@ -342,8 +342,8 @@ static int gap_gated(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t
     return gated(f, z, r_scale, dt);
 }
 
-/* HKF_OK, or why a measurement z with R scale r_scale, dt s after the last, is refused. */
-static int check_measurement(const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
+/* HKF_OK, or why a position (a measurement, a centre) is refused: not finite, or beyond the range. */
+static int check_position(const hkf_real_t z[3])
 {
     int a;
     for (a = 0; a < 3; ++a) {
@@ -353,6 +353,16 @@ static int check_measurement(const hkf_real_t z[3], hkf_real_t r_scale, hkf_real
         if (hkf_abs(z[a]) > HKF_REAL_FROM(HKF_MAX_ABS_POSITION)) {
             return HKF_ERROR_POSITION_RANGE;
         }
+    }
+    return HKF_OK;
+}
+
+/* HKF_OK, or why a measurement z with R scale r_scale, dt s after the last, is refused. */
+static int check_measurement(const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
+{
+    const int result = check_position(z);
+    if (result != HKF_OK) {
+        return result;
     }
     if (!hkf_is_finite(r_scale) || !hkf_is_finite(dt)) {
         return HKF_ERROR_NON_FINITE;
@@ -534,17 +544,13 @@ int hkf_position_recenter(hkf_position_filter_t *f)
 
 int hkf_position_set_center(hkf_position_filter_t *f, const hkf_real_t center[3])
 {
-    int a;
+    int a, result;
     if (f == NULL || center == NULL) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    for (a = 0; a < 3; ++a) {
-        if (!hkf_is_finite(center[a])) {
-            return HKF_ERROR_NON_FINITE;
-        }
-        if (hkf_abs(center[a]) > HKF_REAL_FROM(HKF_MAX_ABS_POSITION)) {
-            return HKF_ERROR_POSITION_RANGE;
-        }
+    result = check_position(center);
+    if (result != HKF_OK) {
+        return result;
     }
     for (a = 0; a < 3; ++a) {
         f->center[a] = center[a];
