@@ -434,8 +434,14 @@ int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pos
     out.status = HKF_STATUS_LOST; /* as the filter itself does after coast_time: angle held, rate zero */
     out.rate[0] = out.rate[1] = out.rate[2] = 0;
     out.flags |= HKF_FLAG_EXTRAPOLATED; /* not a posterior */
-    /* stamped when it became due on the capture clock, so live and offline agree */
-    fill_pose(node, &out, node->admission.last_utime + after, pose);
+    /* stamped when it became due on the capture clock, so live and offline agree; a nominal stamp, so no
+     * reference for later poses: a frame captured before it that arrives after it (an estimator stalled
+     * beyond the coast time) keeps its own stamp rather than be extrapolated up to coast_time */
+    {
+        const int64_t reference = node->published_utime;
+        fill_pose(node, &out, node->admission.last_utime + after, pose);
+        node->published_utime = reference;
+    }
     return 1;
 }
 

@@ -116,9 +116,11 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
 
 #define FILTER_NODE_MIN_Z 1.0f /* cm: the nearest position taken and published (z = 0: not measured) */
 
-/* Poses are never stamped earlier than the pose before them on one capture clock: a measurement whose
- * frame arrived after --rate ticks went past its capture time is published as its posterior moved on to
- * the last tick's time (flagged extrapolated), and ticks at or before a published pose are skipped. */
+/* Poses are never stamped earlier than the pose before them on one capture clock, a silence's LOST pose
+ * aside: a measurement whose frame arrived after --rate ticks went past its capture time is published
+ * as its posterior moved on to the last tick's time (flagged extrapolated), and ticks at or before a
+ * published pose are skipped. A LOST pose is stamped when it fell due (filter_node_silence); a frame
+ * captured before that and arriving after it keeps its own stamp. */
 
 /* Handles one measurement that arrived at arrival_utime (the receive clock:
  * a monotonic clock live, the log's event timestamp offline): a second model's measurement of a
