@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Draws raw head poses (an LCM log of hkf.head_pose_measurement_t) against
-the filtered ones (hkf-filter's CSV): pitch, yaw and roll over time, PNG.
+the filtered ones (hkf-filter's CSV): pitch, yaw and roll over time, PNG. Each
+estimator model's measurements (the face mesh's, and WHENet's at big turns) have
+a colour and a legend entry of their own.
 usage: plot_poses.py RAW.lcmlog FILTERED.csv OUT.png --types BUILD/lcmtypes/python"""
 import argparse
 import csv
@@ -35,10 +37,15 @@ def main():
         print("plot_poses: nothing to draw", file=sys.stderr)
         return 1
     t0 = raw[0].utime
+    models = list(dict.fromkeys(m.model for m in raw))  # in the order they first appear: the first model first
+    colours = dict(zip(models, ["tab:gray", "tab:orange", "tab:green", "tab:purple", "tab:brown"] * 4))
     fig, axes = plt.subplots(3, 1, figsize=(11, 7), sharex=True)
     for ax, name in zip(axes, ("pitch", "yaw", "roll")):
-        ax.plot([(m.utime - t0) / 1e6 for m in raw if m.valid], [getattr(m, name) for m in raw if m.valid], ".",
-                markersize=3, color="tab:gray", label="raw estimate")
+        for model in models:
+            mine = [m for m in raw if m.valid and m.model == model]
+            if mine:
+                ax.plot([(m.utime - t0) / 1e6 for m in mine], [getattr(m, name) for m in mine], ".", markersize=3,
+                        color=colours[model], label=f"raw: {model} ({len(mine)} frames)")
         ax.plot([(int(r["utime"]) - t0) / 1e6 for r in filtered], [float(r[name]) for r in filtered], "-",
                 color="tab:blue", linewidth=1.5, label="filtered")
         lost = [(m.utime - t0) / 1e6 for m in raw if not m.valid]
