@@ -10,20 +10,22 @@
  * (tests/fit/fit_test.sh does, and checks these numbers.) lambda = 1e4 marks an
  * axis whose error grows quadratically over the whole range: only
  * lambda / sigma^2 is determined there, and lambda is held at r_max. A source
- * of its own, so firmware that does not name them does not link them.
+ * of its own, so firmware that does not name them does not link them. Written with
+ * HKF_NOISE_CURVE, which suits every numeric build (Q16.16 holds a curve as its
+ * floor and curvature: tests/filter/test_equations.c checks them in each build).
  */
 #include "hkf/hkf.h"
 
 /* 1,386 faces found of 1,475 within +-99 deg; count-weighted RMS residual 0.73 / 0.88 / 0.67 deg */
 const hkf_noise_curve_t hkf_noise_mesh_pnp[3] = {
-    {HKF_REAL(10002.921), HKF_REAL(10000.0), HKF_REAL(-2.092), HKF_REAL(688.07)},
-    {HKF_REAL(10001.931), HKF_REAL(9999.999), HKF_REAL(-5.515), HKF_REAL(1391.36)},
-    {HKF_REAL(29.637), HKF_REAL(27.126), HKF_REAL(0.94), HKF_REAL(34.82)},
+    HKF_NOISE_CURVE(10002.921, 10000.0, -2.092, 688.07),
+    HKF_NOISE_CURVE(10001.931, 9999.999, -5.515, 1391.36),
+    HKF_NOISE_CURVE(29.637, 27.126, 0.94, 34.82),
 };
 
 /* 1,475 of 1,475 (label-box crops); residual 1.26 / 0.47 / 1.96 deg */
 const hkf_noise_curve_t hkf_noise_whenet[3] = {
-    {HKF_REAL(10002.981), HKF_REAL(10000.0), HKF_REAL(-4.72), HKF_REAL(748.61)},
-    {HKF_REAL(4.517), HKF_REAL(1.055), HKF_REAL(5.016), HKF_REAL(20.49)},
-    {HKF_REAL(10001.315), HKF_REAL(10000.0), HKF_REAL(-1.592), HKF_REAL(819.28)},
+    HKF_NOISE_CURVE(10002.981, 10000.0, -4.72, 748.61),
+    HKF_NOISE_CURVE(4.517, 1.055, 5.016, 20.49),
+    HKF_NOISE_CURVE(10001.315, 10000.0, -1.592, 819.28),
 };

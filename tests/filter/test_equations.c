@@ -83,6 +83,38 @@ static void test_update_eq4_to_7(void **state)
     assert_near(ahead.angle[0], 1 + 3.0 * k0 + 3.0 * k1, TEST_TOL);
 }
 
+/* The shipped estimators' curves (hkf_noise_mesh_pnp, hkf_noise_whenet) in every numeric build: hkf_init
+ * takes them (Q16.16 refused them with error -33 when they were written as positional initialisers, tau
+ * landing in its floor) and Eq. 8 gives, within the build's rounding, what the fitted values give in
+ * double. The values as dev/fit fitted them (hkf_estimator_curves.c). */
+static void test_shipped_curves_in_every_build(void **state)
+{
+    static const double fitted[2][3][4] = {
+        {{10002.921, 10000.0, -2.092, 688.07}, {10001.931, 9999.999, -5.515, 1391.36}, {29.637, 27.126, 0.94, 34.82}},
+        {{10002.981, 10000.0, -4.72, 748.61}, {4.517, 1.055, 5.016, 20.49}, {10001.315, 10000.0, -1.592, 819.28}},
+    };
+    const hkf_noise_curve_t *const shipped[2] = {hkf_noise_mesh_pnp, hkf_noise_whenet};
+    static const double angles[] = {-90.0, -60.0, -20.0, 0.0, 5.0, 30.0, 75.0, 99.0};
+    int model, a, i;
+    (void)state;
+    for (model = 0; model < 2; ++model) {
+        hkf_settings_t s = hkf_default_settings;
+        hkf_filter_t f;
+        for (a = 0; a < 3; ++a) {
+            s.noise[a] = shipped[model][a];
+        }
+        assert_int_equal(hkf_init(&f, &s), HKF_OK);
+        for (a = 0; a < 3; ++a) {
+            for (i = 0; i < (int)(sizeof angles / sizeof angles[0]); ++i) {
+                const double *c = fitted[model][a], x = angles[i] - c[2];
+                const double e = c[0] - c[1] * exp(-x * x / (2.0 * c[3] * c[3]));
+                const double expected = e < D(s.r_min) ? D(s.r_min) : e > D(s.r_max) ? D(s.r_max) : e;
+                assert_near(hkf_observation_noise(&f, a, R(angles[i])), expected, 2e-3 * expected + 2e-3);
+            }
+        }
+    }
+}
+
 /* Eq. 8, amplitude form, with the FSA-Net curves of Table I (values worked
  * out in double: yaw 3.53 at mu, 7.5833 at 90, 6.1960 at -45; pitch 3.5996
  * at 0, 14.1886 at 30; roll 3.36 at mu (the centre error the preset chose;
@@ -455,6 +487,7 @@ int main(void)
         cmocka_unit_test(test_yaw_crosses_180),
         cmocka_unit_test(test_predict_with_cross_terms),
         cmocka_unit_test(test_yaw_at_exactly_180),
+        cmocka_unit_test(test_shipped_curves_in_every_build),
         cmocka_unit_test(test_every_step_wraps_yaw),
         cmocka_unit_test(test_loop_closure_then_r_across_the_seam),
         cmocka_unit_test(test_loop_closure_per_axis_at_exactly_theta),
