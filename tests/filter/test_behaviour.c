@@ -168,6 +168,18 @@ static void test_recenter_and_reset(void **state)
     assert_true(out.flags & HKF_FLAG_LOOP_CLOSURE);
     assert_int_equal(hkf_init(&f, &s), HKF_OK); /* init forgets everything */
     assert_int_equal(hkf_get_center(&f, c), HKF_ERROR_NOT_INITIALIZED);
+    /* the centre a track set (its first measurement) is forgotten by reset: the next track sets its own */
+    set3(z, 1, 12, 3);
+    assert_int_equal(hkf_update(&f, z, 0, &out), HKF_OK);
+    assert_int_equal(hkf_get_center(&f, c), HKF_OK);
+    assert_near(c[1], 12, TEST_TOL);
+    hkf_reset(&f);
+    assert_int_equal(hkf_get_center(&f, c), HKF_ERROR_NOT_INITIALIZED);
+    set3(z, -2, 40, 1);
+    assert_int_equal(hkf_update(&f, z, 0, &out), HKF_OK);
+    assert_int_equal(hkf_get_center(&f, c), HKF_OK);
+    assert_near(c[1], 40, TEST_TOL);
+    assert_near(c[0], -2, TEST_TOL);
 }
 
 /* hkf_init copies the settings in every numeric build: a settings struct
