@@ -12,6 +12,7 @@
 #include "hkf/hkf.h"
 #include "hkf/hkf_calibration.h"
 #include "head_motion_sim.h"
+#include "pose_angles.h"
 
 /* The display: opentrack or a simulator reads the latest pose DISPLAY_HZ times a
  * second; a frame's pose is there CAPTURE_TO_PUBLISH_S after its capture (the
@@ -98,11 +99,7 @@ static int parse_options(int argc, char **argv, demo_options_t *o)
 
 static double wrapped(int axis, double d)
 {
-    if (axis == HKF_AXIS_YAW) {
-        d = fmod(d + 180.0, 360.0);
-        d = (d < 0.0 ? d + 360.0 : d) - 180.0;
-    }
-    return d;
+    return axis == HKF_AXIS_YAW ? pose_angle_wrap(d) : d;
 }
 
 static void score_frame(demo_score_t *s, const sim_frame_t *frame, const double angle[3],

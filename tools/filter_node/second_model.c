@@ -4,6 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "pose_angles.h"
+
 void second_model_init(second_model_t *s)
 {
     memset(s, 0, sizeof *s);
@@ -117,12 +119,6 @@ static int redo_step(const node_config_t *config, hkf_filter_t *f, hkf_calibrati
     return result != HKF_OK ? result : hkf_calibration_update(c, f, taken, frame->dt);
 }
 
-/* deg in [-180, 180) */
-static double wrap180(double angle)
-{
-    return angle - 360.0 * floor((angle + 180.0) / 360.0);
-}
-
 /* The frame's second measurement (frame->z2) moved onto the first model's
  * frame: plus the running mean of (first - second) over the frames both
  * measured, updated with this frame's difference when the first measured it too. */
@@ -142,7 +138,7 @@ static void align_second(second_model_t *s, const node_config_t *config, second_
         for (a = 0; a < 3; ++a) {
             double difference = (double)frame->z[a] - (double)frame->z2[a];
             if (a == HKF_AXIS_YAW) {
-                difference = wrap180(difference);
+                difference = pose_angle_wrap(difference);
             }
             s->offset[a] += (hkf_real_t)((difference - (double)s->offset[a]) / (double)n);
         }
@@ -151,7 +147,7 @@ static void align_second(second_model_t *s, const node_config_t *config, second_
     for (a = 0; a < 3; ++a) {
         double v = (double)frame->z2[a] + (double)s->offset[a];
         if (a == HKF_AXIS_YAW) {
-            v = wrap180(v);
+            v = pose_angle_wrap(v);
         }
         frame->z2[a] =
             (hkf_real_t)(v < HKF_MAX_ABS_ANGLE ? (v > -HKF_MAX_ABS_ANGLE ? v : -HKF_MAX_ABS_ANGLE) : HKF_MAX_ABS_ANGLE);

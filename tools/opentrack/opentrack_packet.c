@@ -5,6 +5,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "pose_angles.h"
+
 opentrack_mapping_t opentrack_default_mapping(void)
 {
     opentrack_mapping_t m;
@@ -27,16 +29,6 @@ int opentrack_axis_from_name(const char *name)
         }
     }
     return -1;
-}
-
-/* [-180, 180): an angle relative to the centre takes the short way round. */
-static double wrap_degrees(double angle)
-{
-    double wrapped = fmod(angle + 180.0, 360.0);
-    if (wrapped < 0.0) {
-        wrapped += 360.0;
-    }
-    return wrapped - 180.0;
 }
 
 /* x within [-limit, limit] */
@@ -63,13 +55,14 @@ int opentrack_pose_values(const opentrack_mapping_t *mapping, const hkf_head_pos
         }
         position_beyond |= !isfinite(place[i]) || fabs((double)place[i]) > OPENTRACK_MAX_ABS_POSITION;
     }
-    for (i = 0; i < 3; ++i) { /* hkf's camera frame is opentrack's x, y, z */
-        position[i] = (double)place[i] - (mapping->relative_to_center ? (double)place[3 + i] : 0.0);
-    }
-    if (mapping->relative_to_center) {
-        pitch = wrap_degrees(pitch - (double)pose->center[0]);
-        yaw = wrap_degrees(yaw - (double)pose->center[1]);
-        roll = wrap_degrees(roll - (double)pose->center[2]);
+    if (mapping->relative_to_center) { /* hkf's camera frame is opentrack's x, y, z */
+        double from_center[3];
+        pose_from_center(pose, from_center, position);
+        pitch = from_center[0], yaw = from_center[1], roll = from_center[2];
+    } else {
+        for (i = 0; i < 3; ++i) {
+            position[i] = (double)place[i];
+        }
     }
     /* the convention mapping (opentrack_packet.h): roll changes sign */
     angle[OPENTRACK_AXIS_YAW] = yaw;
@@ -98,9 +91,9 @@ hkf_head_pose_t opentrack_predict(const hkf_head_pose_t *pose, double horizon)
     if (pose->status == HKF_HEAD_POSE_T_LOST || !(horizon > 0.0 && isfinite(horizon))) {
         return moved;
     }
-    moved.pitch = (float)wrap_degrees((double)pose->pitch + (double)pose->pitch_rate * horizon);
-    moved.yaw = (float)wrap_degrees((double)pose->yaw + (double)pose->yaw_rate * horizon);
-    moved.roll = (float)wrap_degrees((double)pose->roll + (double)pose->roll_rate * horizon);
+    moved.pitch = (float)pose_angle_wrap((double)pose->pitch + (double)pose->pitch_rate * horizon);
+    moved.yaw = (float)pose_angle_wrap((double)pose->yaw + (double)pose->yaw_rate * horizon);
+    moved.roll = (float)pose_angle_wrap((double)pose->roll + (double)pose->roll_rate * horizon);
     if (pose->z > 0.f) { /* a position measured */
         const double z = (double)pose->z + (double)pose->z_rate * horizon;
         moved.x = (float)((double)pose->x + (double)pose->x_rate * horizon);

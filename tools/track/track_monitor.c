@@ -8,6 +8,7 @@
 
 #include "lcm_wait.h"
 #include "message_decode.h"
+#include "pose_angles.h"
 
 /* A second model's measurement of a frame already counted carries that frame's seq (it may come late). */
 #define TRACK_SECOND_MODEL_WINDOW 300
@@ -85,17 +86,15 @@ static const char *status_name(int status)
                                                 : "?";
 }
 
-/* The pose from the centre: pitch, yaw (wrapped to [-180, 180)), roll and, when measured, x, y, z. */
+/* The pose from the centre (pose_from_center): pitch, yaw, roll and, when measured, x, y, z. */
 static size_t pose_text(const hkf_head_pose_t *p, char *out, size_t size)
 {
     size_t used = 0;
-    double yaw = fmod((double)p->yaw - p->center[1] + 180.0, 360.0);
-    yaw = (yaw < 0.0 ? yaw + 360.0 : yaw) - 180.0;
-    APPEND(", %s pitch %+6.1f yaw %+6.1f roll %+6.1f deg", status_name(p->status), (double)p->pitch - p->center[0],
-           yaw, (double)p->roll - p->center[2]);
+    double angles[3], position[3];
+    pose_from_center(p, angles, position);
+    APPEND(", %s pitch %+6.1f yaw %+6.1f roll %+6.1f deg", status_name(p->status), angles[0], angles[1], angles[2]);
     if (p->z > 0.0f) {
-        APPEND(", x %+5.1f y %+5.1f z %+5.1f cm", (double)p->x - p->position_center[0],
-               (double)p->y - p->position_center[1], (double)p->z - p->position_center[2]);
+        APPEND(", x %+5.1f y %+5.1f z %+5.1f cm", position[0], position[1], position[2]);
     }
     APPEND(" from centre");
     return used;
