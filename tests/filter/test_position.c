@@ -477,6 +477,36 @@ static void test_gate_restart_needs_agreement(void **state)
     }
 }
 
+/* The gate at its edge (constant R and q, so the edge is known): on an axis, max_speed dt + 3 sqrt(S) from the
+ * prediction, S = the predicted variance (Eq. 1-3) + R. A measurement 1 % inside it is taken, 1 % beyond it
+ * refused, in every numeric build. */
+static void test_gate_edge(void **state)
+{
+    (void)state;
+    hkf_position_settings_t s = constant_settings();
+    hkf_position_filter_t f;
+    const hkf_real_t still[3] = {R(0.0), R(0.0), R(60.0)};
+    const double dt = frame_s, q = D(s.process_noise[0]), r = D(s.measurement_noise[0]);
+    hkf_position_output_t out;
+    int i, side;
+    s.max_speed = R(6.0);
+    for (side = 0; side < 2; ++side) {
+        f = started_filter_with(&s, 0.0, 0.0, 60.0);
+        for (i = 0; i < 120; ++i) {
+            assert_int_equal(hkf_position_update(&f, still, R(1.0), R(dt), &out), HKF_OK);
+        }
+        {
+            const hkf_position_state_t st = state_of(&f);
+            const double p00 = D(st.p00[0]) + dt * (2.0 * D(st.p01[0]) + dt * D(st.p11[0])) + q * dt * dt * dt / 3.0;
+            const double edge = 6.0 * dt + 3.0 * sqrt(p00 + r), x = D(st.position[0]) + D(st.rate[0]) * dt;
+            const hkf_real_t z[3] = {R(x + edge * (side == 0 ? 0.99 : 1.01)), R(0.0), R(60.0)};
+            assert_int_equal(hkf_position_update(&f, z, R(1.0), R(dt), &out), HKF_OK);
+            print_message("edge %.4f cm: %s side -> flags %u\n", edge, side == 0 ? "inner" : "outer", out.flags);
+            assert_int_equal(out.flags, side == 0 ? 0u : (unsigned)HKF_FLAG_GATED);
+        }
+    }
+}
+
 /* The centre set as a program published it; out of range or non-finite leaves it as it was. */
 static void test_set_center(void **state)
 {
@@ -687,6 +717,7 @@ int main(void)
         cmocka_unit_test(test_gate_after_gap),
         cmocka_unit_test(test_gate_restart_needs_agreement),
         cmocka_unit_test(test_set_center),
+        cmocka_unit_test(test_gate_edge),
         cmocka_unit_test(test_range),
         cmocka_unit_test(test_extrapolate_coast_then_stale),
         cmocka_unit_test(test_errors),
