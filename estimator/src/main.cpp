@@ -386,7 +386,8 @@ int main(int argc, char **argv)
     Options o;
     // OpenCV reads its image size cap as it loads, before main: without one in the environment, run again
     // with ours (frame_source.hpp), so that a larger image is refused from its header, not decoded first
-    // (a 9000 x 9000 image took 360 MB). Should the exec fail, the cap is checked after decoding.
+    // (a 9000 x 9000 image took 360 MB). Should the exec fail, the cap is checked after decoding. With the
+    // variable already set (by a user, or under valgrind, whose /proc/self/exe is its own), nothing is re-run.
     if (std::getenv("OPENCV_IO_MAX_IMAGE_PIXELS") == nullptr) {
         setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
         execv("/proc/self/exe", argv);
