@@ -124,6 +124,16 @@ static void test_nothing_held_at_the_clock_end(void **state)
     assert_int_equal(node.counts.clock_jumps, 30);
     wake = node_schedule_wake(&s, &node);
     assert_true(wake == 0 || wake > now);
+    /* the latest stamp taken, then a year of LOST repeats: the next LOST could not be stamped, so none is due
+     * (the live loop spun on such a due time once) */
+    {
+        const hkf_head_pose_measurement_t m = measurement(100, STREAM_LATEST_UTIME, 0.0);
+        assert_int_equal(filter_node_receive(&node, &m, A0 + 40 * FRAME_US, &pose), 1);
+        assert_true(filter_node_silence_due(&node) != 0);
+        node.lost_published = (STREAM_LATEST_UTIME - INT64_MAX) / -FILTER_NODE_LOST_REPEAT_US + 1;
+        assert_true(filter_node_silence_due(&node) == 0);
+        assert_int_equal(filter_node_silence(&node, INT64_MAX, &pose), 0);
+    }
 }
 
 typedef struct {
