@@ -30,6 +30,54 @@ static void print_messages(void)
     fprintf(stderr, "fuzz_node_messages: %llu messages in total\n", messages);
 }
 
+/* hkf-track's status line takes the payload as HEAD_POSE_RAW and as HEAD_POSE; now and then it makes its line. */
+static void monitor_payload(track_monitor_t *monitor, uint8_t kind, const uint8_t *data, size_t length)
+{
+    char line[512];
+    track_monitor_take_raw(monitor, data, (int)length);
+    track_monitor_take_pose(monitor, data, (int)length);
+    if (kind % 16 == 15) {
+        track_monitor_line(monitor, 1.0, 1.0, line, sizeof line);
+        CHECK(memchr(line, '\0', sizeof line) != NULL, "an unterminated status line");
+    }
+}
+
+/* The payload as a HEAD_POSE_RAW measurement through the node, arriving at `arrival`; every pose it would
+ * publish is checked, and on kind 2 one extrapolated after it. */
+static void measurement_payload(filter_node_t *node, uint8_t kind, const uint8_t *data, size_t length, int64_t arrival)
+{
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    if (message_decode_measurement(data, (int)length, &m) != 0) {
+        return;
+    }
+    CHECK(m.model != NULL && memchr(m.model, '\0', NODE_MODEL_NAME_MAX + 1) != NULL, "unterminated model");
+    const unsigned long jumps = node->counts.clock_jumps;
+    const int64_t reference = node->admission.last_utime, published = node->published_utime;
+    if (filter_node_receive(node, &m, arrival, &pose)) {
+        fuzz_check_pose(&pose, "fuzz_node_messages");
+        /* at its capture time, or moved on to the pose published before it (never earlier) */
+        CHECK(pose.utime == m.utime || (pose.utime == published && published > m.utime && pose.extrapolated),
+              "a pose published for another capture time");
+    }
+    CHECK(node->counts.clock_jumps == jumps || node->admission.last_utime == reference,
+          "a stamp rejected as a clock jump became the time reference");
+    if (kind % 4 == 2 && m.utime < INT64_MAX - 300000 &&
+        filter_node_extrapolate(node, m.utime + (int64_t)(kind * 997), &pose)) {
+        fuzz_check_pose(&pose, "fuzz_node_messages");
+    }
+    hkf_head_pose_measurement_t_decode_cleanup(&m);
+}
+
+/* The payload as a HEAD_TRACKER_CMD command to the node. */
+static void command_payload(filter_node_t *node, const uint8_t *data, size_t length)
+{
+    hkf_tracker_command_t command;
+    if (hkf_tracker_command_t_decode(data, 0, (int)length, &command) >= 0) {
+        (void)filter_node_command(node, &command);
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -37,7 +85,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static node_config_t config;
     static filter_node_t node;
     static track_monitor_t monitor;
-    char line[512];
     int64_t arrival = 1700000000000000LL;
     static int registered;
     if (!registered) {
@@ -52,44 +99,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const uint8_t kind = data[0];
         size_t length = data[1];
         uint32_t step;
-        hkf_head_pose_t pose;
         memcpy(&step, data + 2, sizeof step);
         arrival += (int64_t)(step % 2000000u) - 1000; /* mostly forward, sometimes back a little */
         data += 6;
         size -= 6;
         length = length < size ? length : size;
         ++messages;
-        track_monitor_take_raw(&monitor, data, (int)length);
-        track_monitor_take_pose(&monitor, data, (int)length);
-        if (kind % 16 == 15) {
-            track_monitor_line(&monitor, 1.0, 1.0, line, sizeof line);
-            CHECK(memchr(line, '\0', sizeof line) != NULL, "an unterminated status line");
-        }
+        monitor_payload(&monitor, kind, data, length);
         if (kind % 4 == 3) {
-            hkf_tracker_command_t command;
-            if (hkf_tracker_command_t_decode(data, 0, (int)length, &command) >= 0) {
-                (void)filter_node_command(&node, &command);
-            }
+            command_payload(&node, data, length);
         } else {
-            hkf_head_pose_measurement_t m;
-            if (message_decode_measurement(data, (int)length, &m) == 0) {
-                CHECK(m.model != NULL && memchr(m.model, '\0', NODE_MODEL_NAME_MAX + 1) != NULL, "unterminated model");
-                const unsigned long jumps = node.counts.clock_jumps;
-                const int64_t reference = node.admission.last_utime, published = node.published_utime;
-                if (filter_node_receive(&node, &m, arrival, &pose)) {
-                    fuzz_check_pose(&pose, "fuzz_node_messages");
-                    /* at its capture time, or moved on to the pose published before it (never earlier) */
-                    CHECK(pose.utime == m.utime || (pose.utime == published && published > m.utime && pose.extrapolated),
-                          "a pose published for another capture time");
-                }
-                CHECK(node.counts.clock_jumps == jumps || node.admission.last_utime == reference,
-                      "a stamp rejected as a clock jump became the time reference");
-                if (kind % 4 == 2 && m.utime < INT64_MAX - 300000 &&
-                    filter_node_extrapolate(&node, m.utime + (int64_t)(kind * 997), &pose)) {
-                    fuzz_check_pose(&pose, "fuzz_node_messages");
-                }
-                hkf_head_pose_measurement_t_decode_cleanup(&m);
-            }
+            measurement_payload(&node, kind, data, length, arrival);
         }
         data += length;
         size -= length;

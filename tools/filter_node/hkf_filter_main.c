@@ -92,43 +92,6 @@ static void usage(FILE *to)
             "included); 2 for bad arguments or settings.\n");
 }
 
-static const char **string_option(options_t *o, const char *arg, const char **lcm_url);
-
-/* How many values follow option arg on the command line (--offline's two, another option's one, 0). */
-static int values_of(options_t *o, const char *arg)
-{
-    const char *ignored;
-    if (strcmp(arg, "--offline") == 0) {
-        return 2;
-    }
-    return string_option(o, arg, &ignored) != NULL || strcmp(arg, "--rate") == 0 || strcmp(arg, "--config") == 0 ||
-           strcmp(arg, "--set") == 0;
-}
-
-/* Without --config on the command line: the system's and the user's files, where they exist
- * (config_files.h), read before any --set. 0, or 2 (said) when one is bad. */
-static int read_found_configs(int argc, char **argv, options_t *o)
-{
-    config_files_t found;
-    char error[600];
-    for (int i = 1; i < argc; i += 1 + values_of(o, argv[i])) { /* an option's value is no option: --csv --config */
-        if (strcmp(argv[i], "--config") == 0 || strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0 ||
-            strcmp(argv[i], "--version") == 0) {
-            return 0; /* --help and --version answer whatever the files hold */
-        }
-    }
-    config_files_find(&found);
-    for (int i = 0; i < found.count; ++i) {
-        o->config_paths[o->config_count++] = o->found_config[i];
-        memcpy(o->found_config[i], found.path[i], sizeof found.path[i]);
-        if (node_config_read_file(&o->config, found.path[i], error, sizeof error) != 0) {
-            fprintf(stderr, "hkf-filter: %s\n", error);
-            return 2;
-        }
-    }
-    return 0;
-}
-
 /* Every channel name is one LCM accepts: 0, or 2 (said). */
 static int check_channels(const options_t *o)
 {
@@ -194,6 +157,41 @@ static int settings_option(options_t *o, const char *arg, const char *value)
         return 0;
     }
     return -1;
+}
+
+/* How many values follow option arg on the command line (--offline's two, another option's one, 0). */
+static int values_of(options_t *o, const char *arg)
+{
+    const char *ignored;
+    if (strcmp(arg, "--offline") == 0) {
+        return 2;
+    }
+    return string_option(o, arg, &ignored) != NULL || strcmp(arg, "--rate") == 0 || strcmp(arg, "--config") == 0 ||
+           strcmp(arg, "--set") == 0;
+}
+
+/* Without --config on the command line: the system's and the user's files, where they exist
+ * (config_files.h), read before any --set. 0, or 2 (said) when one is bad. */
+static int read_found_configs(int argc, char **argv, options_t *o)
+{
+    config_files_t found;
+    char error[600];
+    for (int i = 1; i < argc; i += 1 + values_of(o, argv[i])) { /* an option's value is no option: --csv --config */
+        if (strcmp(argv[i], "--config") == 0 || strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0 ||
+            strcmp(argv[i], "--version") == 0) {
+            return 0; /* --help and --version answer whatever the files hold */
+        }
+    }
+    config_files_find(&found);
+    for (int i = 0; i < found.count; ++i) {
+        o->config_paths[o->config_count++] = o->found_config[i];
+        memcpy(o->found_config[i], found.path[i], sizeof found.path[i]);
+        if (node_config_read_file(&o->config, found.path[i], error, sizeof error) != 0) {
+            fprintf(stderr, "hkf-filter: %s\n", error);
+            return 2;
+        }
+    }
+    return 0;
 }
 
 /* 0 = run, 1 = done (help, print-config), 2 = bad arguments */
@@ -326,7 +324,24 @@ static void on_command(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 }
 
 static int paths_to_keep(const options_t *o, const char *except, const char **keep);
-static int open_csv(node_run_t *run, const char *const *keep, int count);
+
+/* --csv, with its header (outputs_distinct has checked it is no other file of the run; live, `keep`
+ * holds the logs the LCM URLs name). */
+static int open_csv(node_run_t *run, const char *const *keep, int count)
+{
+    const options_t *o = run->options;
+    if (o->csv_path == NULL) {
+        return 0;
+    }
+    run->csv = safe_open_output(o->csv_path, "w", keep, count, "hkf-filter");
+    if (run->csv == NULL) {
+        return -1;
+    }
+    if (pose_csv_write_header(run->csv) != 0) {
+        run->csv_errors = 1;
+    }
+    return 0;
+}
 
 /* The live URLs' file:// rules (lcm_file_url.h), before LCM opens either: the input reads a regular
  * file; the output writes none of the run's other files. 0, or -1 with the reason. */
@@ -459,24 +474,6 @@ static int paths_to_keep(const options_t *o, const char *except, const char **ke
         }
     }
     return n;
-}
-
-/* --csv, with its header (outputs_distinct has checked it is no other file of the run; live, `keep`
- * holds the logs the LCM URLs name). */
-static int open_csv(node_run_t *run, const char *const *keep, int count)
-{
-    const options_t *o = run->options;
-    if (o->csv_path == NULL) {
-        return 0;
-    }
-    run->csv = safe_open_output(o->csv_path, "w", keep, count, "hkf-filter");
-    if (run->csv == NULL) {
-        return -1;
-    }
-    if (pose_csv_write_header(run->csv) != 0) {
-        run->csv_errors = 1;
-    }
-    return 0;
 }
 
 /* No output may be an input or the other output: checked for all before any is opened. */
