@@ -13,7 +13,9 @@ their arrival times. The truth of frame i is at capture time t0 + i / fps; betwe
 is interpolated, so each datagram is compared with where the head is when it arrives.
 
 Per variant (the defaults; the paper's settings; raw: hkf-filter with R -> 0, the filter
-bypassed; the bridge at 250 Hz with --predict and --lead):
+bypassed; the bridge at 250 Hz with --predict and --lead), and raw in the same run as the defaults: each
+measurement as it reaches the node (its HEAD_POSE_RAW message, stamped on arrival by lcm-logger), measured as
+if it were a datagram; the shares of raw's jitter are of this raw:
   onset        the first datagram 1 deg toward a move, after the truth shows 1 deg (ms)
   half-move    the first datagram half way, after the truth is half way (ms)
   at arrival   RMS of datagram minus the truth when it arrives, on moving frames (deg)
@@ -352,7 +354,7 @@ def tz_of_datagram(values):
 
 def row_text(name, m, raw_jitter):
     share = m["jitter"] / raw_jitter if raw_jitter and np.isfinite(raw_jitter) else np.nan
-    unsent = f"{m['poses'] - m['datagrams']}" if m["poses"] >= m["datagrams"] else "-"  # -: a fixed rate, not one per pose
+    unsent = f"{m['poses'] - m['datagrams']}" if m["poses"] >= m["datagrams"] else "-"  # -: not one datagram per pose
     lost = f"{m['dropped']} / {m['without_pose']} / {unsent}"
     return (f"| {name} | {np.nanmedian(m['onset']):.0f} | {np.nanmax(m['onset']):.0f} | {np.nanmedian(m['half']):.0f} | "
             f"{m['at_arrival']:.2f} | {100 * np.nanmax(m['overshoot']):.1f} % | {m['jitter']:.3f} ({100 * share:.0f} %) | "
@@ -390,7 +392,18 @@ def plot(path, runs, title):
     plt.close(fig)
 
 
+SAME_RUN_RAW = "raw, as it reaches the node (the defaults' run)"
+
+
+def raw_as_datagrams(raw):
+    """The valid raw measurements of a run as the receiver would hold them: (arrival, the six values), with
+    roll and z where roll_of_datagram and tz_of_datagram read them."""
+    valid = raw[raw[:, 3] != 0]
+    return [(t, (0.0, 0.0, z, 0.0, 0.0, -roll)) for t, roll, z in zip(valid[:, 0], valid[:, 4], valid[:, 5])]
+
+
 def run_clip(build, out, clip, variants, axis, to_truth):
+    """Each variant through the chain; after the defaults, raw from the same run (SAME_RUN_RAW)."""
     results = []
     for variant in variants:
         work = os.path.join(out, "runs", clip.name, variant.name.replace(" ", "_").replace(",", "").replace("(", "")
@@ -404,7 +417,18 @@ def run_clip(build, out, clip, variants, axis, to_truth):
         log(f"{clip.name}: {variant.name}: {len(datagrams)} datagrams, onset median {np.nanmedian(m['onset']):.0f} ms, "
             f"at arrival {m['at_arrival']:.2f}, {time.time() - started:.0f} s")
         results.append((variant.name, m))
+        if variant.name == "defaults":
+            same = measure_run(clip, raw_as_datagrams(raw), raw, poses, summary, axis, to_truth)
+            same["stages"], same["clip"] = [np.nan] * 3, clip
+            same["poses"] = 0  # not one datagram per pose: its row shows "-"
+            results.append((SAME_RUN_RAW, same))
     return results
+
+
+def raw_jitter_of(runs):
+    """The denominator of the jitter shares: the same run's raw where there is one, else the bypass variant's."""
+    named = dict(runs)
+    return (named.get(SAME_RUN_RAW) or named.get("raw (filter bypassed)") or runs[0][1])["jitter"]
 
 
 def main():
@@ -426,7 +450,8 @@ def main():
 
 def short_case(build, out):
     clip = make_clip(out, frontal_frame(build, out, REPORT_CLIPS[0]), REPORT_CLIPS[0], 30.0, "roll", short=True)
-    (_, m), = run_clip(build, out, clip, variants_for(True), roll_of_datagram, roll_truth)
+    named = dict(run_clip(build, out, clip, variants_for(True), roll_of_datagram, roll_truth))
+    m, raw = named["defaults"], named[SAME_RUN_RAW]
     problems = []
     if m["datagrams"] == 0:
         problems.append("no datagram arrived")
@@ -436,10 +461,29 @@ def short_case(build, out):
         problems.append(f"the median onset is {np.nanmedian(m['onset']):.0f} ms (at most {SHORT_MAX_ONSET_MS:.0f})")
     log(f"short: {m['datagrams']} datagrams for {m['frames']} frames; onset median {np.nanmedian(m['onset']):.0f} ms, "
         f"worst {np.nanmax(m['onset']):.0f} ms; half-move {np.nanmedian(m['half']):.0f} ms; at arrival "
-        f"{m['at_arrival']:.2f} deg; stages {', '.join(f'{s:.1f}' for s in stages_or_nan(m))} ms")
+        f"{m['at_arrival']:.2f} deg; stages {', '.join(f'{s:.1f}' for s in stages_or_nan(m))} ms; raw in the same run: "
+        f"onset median {np.nanmedian(raw['onset']):.0f} ms, worst {np.nanmax(raw['onset']):.0f} ms, at arrival "
+        f"{raw['at_arrival']:.2f} deg")
     for problem in problems:
         log(f"FAIL: {problem}")
     return 1 if problems else 0
+
+
+def goal_lines(named):
+    """The issue's end-to-end goals for the defaults, against raw from the same run."""
+    mine, raw = named["defaults"], named[SAME_RUN_RAW]
+    onset = (np.nanmedian(mine["onset"]), np.nanmax(mine["onset"]))
+    raw_onset = (np.nanmedian(raw["onset"]), np.nanmax(raw["onset"]))
+    checks = [("onset median and worst no later than raw's",
+               f"{onset[0]:.0f} / {onset[1]:.0f} ms against {raw_onset[0]:.0f} / {raw_onset[1]:.0f} ms",
+               onset[0] <= raw_onset[0] and onset[1] <= raw_onset[1]),
+              ("RMSE at arrival, moving, <= 0.8x raw's", f"{mine['at_arrival'] / raw['at_arrival']:.2f}x",
+               mine["at_arrival"] <= 0.8 * raw["at_arrival"]),
+              ("still jitter <= 10 % of raw's", f"{100 * mine['jitter'] / raw['jitter']:.0f} %",
+               mine["jitter"] <= 0.1 * raw["jitter"]),
+              ("overshoot <= 5 % of the move", f"{100 * np.nanmax(mine['overshoot']):.1f} %",
+               np.nanmax(mine["overshoot"]) <= 0.05)]
+    return [f"- the defaults, {what}: {value} ({'met' if ok else 'NOT met'})" for what, value, ok in checks]
 
 
 def stages_or_nan(m):
@@ -476,17 +520,18 @@ def full_report(build, out):
         for fps in (30.0, 60.0):
             clip = make_clip(out, frame, clip_name, fps, "roll", short=False)
             runs = run_clip(build, out, clip, variants_for(False, lead), roll_of_datagram, roll_truth)
-            raw_jitter = runs[0][1]["jitter"]
+            raw_jitter = raw_jitter_of(runs)
             lines += [f"## {clip.name} (held out): roll", "", HEADER] + [row_text(n, m, raw_jitter) for n, m in runs] + [""]
+            lines += goal_lines(dict(runs)) + [""]
             stage_rows += [f"| {clip.name} | {n} | " + " | ".join(f"{s:.1f}" for s in m["stages"]) + " |"
                            for n, m in runs if np.isfinite(m["stages"]).all()]
             if clip_name == REPORT_CLIPS[0] and fps == 30.0:
-                shown = [r for r in runs if r[0] in ("raw (filter bypassed)", "defaults") or "--predict" in r[0]]
+                shown = [r for r in runs if r[0] in (SAME_RUN_RAW, "defaults") or "--predict" in r[0]]
                 plot(os.path.join(out, "e2e_roll.png"), shown, f"{clip.name}: truth and the datagrams as they arrive")
         lean = make_clip(out, frame, clip_name, 30.0, "lean", short=False)
         runs = run_clip(build, out, lean, [Variant("raw (filter bypassed)", RAW_OPTIONS), Variant("defaults")],
                         tz_of_datagram, lambda c: lean_truth_cm(build, out, c))
-        raw_jitter = runs[0][1]["jitter"]
+        raw_jitter = raw_jitter_of(runs)
         lines += [f"## {lean.name} (held out): position TZ, cm", "", HEADER.replace("deg", "cm")]
         lines += [row_text(n, m, raw_jitter) for n, m in runs] + [""]
     lines += ["## Where the time goes (medians, ms; one datagram per pose)", "",

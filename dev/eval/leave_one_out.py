@@ -51,10 +51,11 @@ CALIBRATED = {
     "process_noise": [4000, 16000],         # deg^2/s^3: MOVE's q (16384 is fixed point's limit)
     "start_rate": [0.01, 0.05, 0.3],        # 1/s: how often a still head starts to move
     "stop_rate": [16, 64],                  # 1/s: how often a moving head stops
-    "still_wander": [0, 0.1, 0.2, 0.3],     # deg^2: how far a resting head's estimate wanders (HOLD's R + this)
+    "still_wander": [0, 0.03, 0.1, 0.2, 0.3, 0.5, 1.0],  # deg^2 (widened: 0.3 was the edge): how far a resting head's estimate wanders (HOLD's R + this)
     "loop_closure": ["off", "norm"],
+    "noise_rise": [0.2, 1, 5],              # 1/s: how fast the measured noise n may rise (a noisy clip's n lags)
 }
-CALIBRATED_FIXED = ["noise_time=0.3", "noise_rise=0.2", "noise_mode=adaptive"]
+CALIBRATED_FIXED = ["noise_time=0.3", "noise_mode=adaptive"]
 # the paper's filter (hkf_paper_settings), for comparison
 PAPER = ["noise_time=0", "process_noise=500 1000 500", "start_rate=0", "loop_closure=norm", "noise_mode=adaptive"]
 ONE_EURO_MIN_CUTOFF = [0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0]

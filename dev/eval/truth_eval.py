@@ -325,7 +325,7 @@ def report(rows, clips):
     return text
 
 
-FRONTIER_SHARES = [0.08, 0.10, 0.125, 0.15, 0.20, 0.25]  # still jitter as a share of raw's
+FRONTIER_SHARES = [0.05, 0.08, 0.10, 0.15, 0.20, 0.25, 0.30]  # still jitter as a share of raw's
 FRONTIER_FAMILIES = [(evaluate.TWO_MODELS_NAME, "C3", "o"), ("1 euro", "C0", "s"), ("hkf adaptive R", "C2", "^")]
 
 
