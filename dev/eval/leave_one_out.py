@@ -20,8 +20,11 @@ added, so that the frame noise is x1.5 and x2 of the clip's own (its still
 frames' RMS residual from the reference): the still jitter as a share of raw,
 and its change.
 
+The jitter-lag frontier on each judged clip: the least lag hkf's grid and the 1 euro sweep reach at a still
+jitter of at most 5-30 % of raw's (frontier.md, real_frontier.png).
+
 usage: leave_one_out.py [--build DIR] [--out DIR]
-writes OUT/loo/{loo.md, noise.md, loo_sweep.csv, loo.png} and prints the tables.
+writes OUT/loo/{loo.md, noise.md, frontier.md, loo_sweep.csv, loo.png, real_frontier.png} and prints the tables.
 """
 import argparse
 import csv
@@ -290,6 +293,74 @@ def report(clips, grid, folder, build, types, work):
         f.write(text)
     print(text)
     plot(clips, names, loo_points, os.path.join(folder, "loo.png"))
+    text = frontier_report(clips, names)
+    with open(os.path.join(folder, "frontier.md"), "w") as f:
+        f.write(text)
+    print(text)
+    plot_frontier(clips, names, os.path.join(folder, "real_frontier.png"))
+
+
+FRONTIER_SHARES = [0.05, 0.08, 0.10, 0.15, 0.20, 0.25, 0.30]  # still jitter as a share of raw's (the issue's span)
+
+
+def best_lag(points, limit):
+    """The least lag among settings no more jittery than limit (deg), or nan."""
+    fits = [p["lag_ms"] for p in points if p["jitter"] <= limit and np.isfinite(p["lag_ms"])]
+    return min(fits) if fits else float("nan")
+
+
+def frontier_report(clips, names):
+    """The jitter-lag frontier on the real clips: per judged clip, the least lag hkf's grid and the 1 euro
+    filter's sweep reach at a still jitter of at most each share of raw's, and their ratio (every setting on
+    every clip: an in-sample frontier, what the design can reach, not what one default gives)."""
+    lines = ["The jitter-lag frontier on the real clips: the least lag (ms) at a still jitter of at most a share of "
+             "raw's (hkf: every setting of the leave-one-out grid; 1 euro: its sweep; in-sample on each clip).\n",
+             "| clip | filter | " + " | ".join(f"<= {100 * s:g} %" for s in FRONTIER_SHARES) + " |",
+             "| --- | --- | " + " | ".join("---:" for _ in FRONTIER_SHARES) + " |"]
+
+    def cell(v, bold=False):
+        return "-" if not np.isfinite(v) else (f"**{v:.2f}**" if bold else f"{v:.0f}")
+    for name in names:
+        c = clips[name]
+        limits = [share * c["raw"]["jitter"] for share in FRONTIER_SHARES]
+        mine = [best_lag(c["hkf"], x) for x in limits]
+        euro = [best_lag(c["euro"], x) for x in limits]
+        ratio = [a / b if np.isfinite(a) and np.isfinite(b) and b > 0 else float("nan") for a, b in zip(mine, euro)]
+        lines.append(f"| {name} | hkf | " + " | ".join(cell(v) for v in mine) + " |")
+        lines.append(f"| {name} | 1 euro | " + " | ".join(cell(v) for v in euro) + " |")
+        lines.append(f"| {name} | hkf / 1 euro | " + " | ".join(cell(v, True) for v in ratio) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def plot_frontier(clips, names, path):
+    """Per judged clip: still jitter (share of raw's) against lag, hkf's grid and front, the 1 euro filter's
+    sweep and front, the defaults and raw."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(names), figsize=(4.2 * len(names), 3.9), squeeze=False)
+    for ax, name in zip(axes[0], names):
+        c = clips[name]
+        raw = c["raw"]["jitter"]
+        for points, colour, marker, label in ((c["hkf"], "C3", "o", "hkf"), (c["euro"], "C0", "s", "1 euro")):
+            ax.plot([p["jitter"] / raw for p in points], [p["lag_ms"] for p in points], marker, color=colour,
+                    alpha=0.15, ms=3)
+            f = evaluate.front(points)
+            ax.plot([p["jitter"] / raw for p in f], [p["lag_ms"] for p in f], "-" + marker, color=colour, ms=3,
+                    label=f"{label} (front)")
+        ax.plot([c["defaults"]["jitter"] / raw], [c["defaults"]["lag_ms"]], "*", color="k", ms=13, label="hkf defaults")
+        ax.plot([1.0], [0.0], "D", color="0.4", ms=6, label="raw")
+        ax.axvspan(FRONTIER_SHARES[0], FRONTIER_SHARES[-1], color="0.9", zorder=0)
+        ax.set_xlim(0, 1.05)
+        ax.set_ylim(-5, 160)
+        ax.set_xlabel("still jitter, share of raw's")
+        ax.set_ylabel("lag, ms")
+        ax.set_title(name)
+        ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
 
 
 def baseline_report(clips, baseline, folder):
