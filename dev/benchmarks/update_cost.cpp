@@ -10,6 +10,8 @@
  *   step_libhkf_position  hkf_position_update: the head's position (x, y, z), default settings
  *   step_libhkf_pair      hkf_update_pair: the paper's filter, a second estimator's measurement
  *                         with Hopenet's curves (two measurements, not the same work)
+ *   step_libhkf_pair_prepared  hkf_update_pair_prepared: the same, the second model prepared once
+ *                         (hkf_model_noise_init); the same posteriors, checked
  *   step_opencv           cv::KalmanFilter(6, 3): predict + correct
  *   step_eigen            a fixed-size Eigen 6-state filter, generic matrix form
  *
@@ -132,6 +134,13 @@ NOINLINE int step_libhkf_pair(hkf_filter_t *f, const Input *in, const hkf_model_
 {
     const hkf_real_t z2[3] = {in->z[0] + 1.5f, in->z[1] - 2.0f, in->z[2] + 0.5f};
     return hkf_update_pair(f, in->z, z2, second, in->dt, out);
+}
+
+NOINLINE int step_libhkf_pair_prepared(hkf_filter_t *f, const Input *in, const hkf_model_prepared_t *second,
+                                      hkf_output_t *out)
+{
+    const hkf_real_t z2[3] = {in->z[0] + 1.5f, in->z[1] - 2.0f, in->z[2] + 0.5f};
+    return hkf_update_pair_prepared(f, in->z, z2, second, in->dt, out);
 }
 
 NOINLINE int step_libhkf_position(hkf_position_filter_t *f, const Input *in, hkf_position_output_t *out)
@@ -300,10 +309,12 @@ int main(int argc, char **argv)
     hkf_settings_t hopenet = paper;
     for (int a = 0; a < 3; ++a) hopenet.noise[a] = hkf_noise_hopenet[a];
     const hkf_model_noise_t second = hkf_model_noise_of(&hopenet);
-    hkf_filter_t f_paper, f_constant, f_defaults, f_pair;
+    hkf_model_prepared_t second_prepared;
+    hkf_filter_t f_paper, f_constant, f_defaults, f_pair, f_pair_prepared;
     hkf_calibration_t calibration;
     if (hkf_init(&f_paper, &paper) != HKF_OK || hkf_init(&f_constant, &constant) != HKF_OK ||
         hkf_init(&f_defaults, &hkf_default_settings) != HKF_OK || hkf_init(&f_pair, &paper) != HKF_OK ||
+        hkf_init(&f_pair_prepared, &paper) != HKF_OK || hkf_model_noise_init(&second_prepared, &second) != HKF_OK ||
         hkf_calibration_init(&calibration, &hkf_default_calibration_settings, &f_defaults) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: hkf_init failed\n");
         return 1;
@@ -317,14 +328,15 @@ int main(int argc, char **argv)
     EigenFilter eigen_filter(paper);
 
     double worst_cv = 0.0, worst_eigen = 0.0;
-    long closures = 0;
+    long closures = 0, pair_differences = 0;
     for (const Input &in : inputs) {
-        hkf_output_t a, b, c, d;
+        hkf_output_t a, b, c, d, e;
         float yaw_cv, yaw_eigen;
         if (step_libhkf_paper(&f_paper, &in, &a) != HKF_OK || step_libhkf_constant(&f_constant, &in, &b) != HKF_OK ||
             step_libhkf_defaults(&f_defaults, &in, &c) != HKF_OK ||
             step_libhkf_calibration(&calibration, &f_defaults, &in) != HKF_OK ||
-            step_libhkf_pair(&f_pair, &in, &second, &d) != HKF_OK) {
+            step_libhkf_pair(&f_pair, &in, &second, &d) != HKF_OK ||
+            step_libhkf_pair_prepared(&f_pair_prepared, &in, &second_prepared, &e) != HKF_OK) {
             std::fprintf(stderr, "hkf-bench-update: hkf_update failed\n");
             return 1;
         }
@@ -336,10 +348,12 @@ int main(int argc, char **argv)
         step_opencv(&cv_filter, &in, &yaw_cv);
         step_eigen(&eigen_filter, &in, &yaw_eigen);
         closures += (a.flags & HKF_FLAG_LOOP_CLOSURE) != 0;
+        pair_differences += std::memcmp(d.angle, e.angle, sizeof d.angle) != 0 || std::memcmp(d.r, e.r, sizeof d.r) != 0;
         worst_cv = std::max(worst_cv, static_cast<double>(std::fabs(wrap180(yaw_cv - a.angle[1]))));
         worst_eigen = std::max(worst_eigen, static_cast<double>(std::fabs(wrap180(yaw_eigen - a.angle[1]))));
     }
-    std::printf("steps %ld\nloop_closures %ld\nworst_yaw_difference_opencv %.2e\nworst_yaw_difference_eigen %.2e\n",
-                steps, closures, worst_cv, worst_eigen);
+    std::printf("steps %ld\nloop_closures %ld\nworst_yaw_difference_opencv %.2e\nworst_yaw_difference_eigen %.2e\n"
+                "pair_prepared_differences %ld\n",
+                steps, closures, worst_cv, worst_eigen, pair_differences);
     return 0;
 }

@@ -20,6 +20,7 @@ STEPS = [
     ("step_libhkf_defaults", "libhkf hkf_update: the defaults (motion adaptation; R at the calibrated noise level)"),
     ("step_libhkf_calibration", "libhkf hkf_calibration_update: the noise calibration beside the defaults"),
     ("step_libhkf_pair", "libhkf hkf_update_pair: two estimators' measurements, each with its own Eq. 8 curves"),
+    ("step_libhkf_pair_prepared", "libhkf hkf_update_pair_prepared: the same, the second model prepared once"),
     ("step_libhkf_position", "libhkf hkf_position_update: the head's position x, y, z"),
     ("step_eigen", "Eigen fixed-size 6-state filter, same work"),
     ("step_opencv", "cv::KalmanFilter(6, 3) predict + correct, same work"),
@@ -80,6 +81,8 @@ def main():
     print(f"Same work: loop closure applied on {facts['loop_closures']} of {facts['steps']} steps; largest yaw "
           f"difference from libhkf: OpenCV {float(facts['worst_yaw_difference_opencv']):.1e} deg, "
           f"Eigen {float(facts['worst_yaw_difference_eigen']):.1e} deg.")
+    if facts.get("pair_prepared_differences", "0") != "0":
+        fail(f"hkf_update_pair_prepared differed from hkf_update_pair on {facts['pair_prepared_differences']} steps")
 
 
 if __name__ == "__main__":

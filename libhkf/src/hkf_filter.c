@@ -286,7 +286,7 @@ static void count_missing(hkf_filter_t *f, hkf_real_t dt)
 }
 
 /* hkf_init's first half: the settings checked and kept, their Eq. 8 curves
- * prepared; all hkf_update_pair needs of the second model's. */
+ * prepared; all hkf_update_pair needs of the second model's (hkf_model_noise_init). */
 static int prepare_settings(hkf_filter_t *f, const hkf_settings_t *s)
 {
     int a, result = hkf_settings_check(s);
@@ -515,21 +515,25 @@ int hkf_update(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], hkf_rea
     return update_with(f, f, z, dt, out);
 }
 
-/* The filter's settings with a second model's noise, prepared in `noise2` as hkf_init prepares a filter's
- * (its Eq. 8 curves in the filter's layout), and checked as hkf_init checks them. */
-static int prepare_second(hkf_filter_t *noise2, const hkf_filter_t *f, const hkf_model_noise_t *second)
+/* A second model's noise prepared as hkf_init prepares a filter's (its Eq. 8 curves in the filter's
+ * layout) and checked as hkf_init checks it. The steps read nothing else of `curves` (R's mode, curves,
+ * constant and clamp: observation_noise_lanes), so the other settings are the defaults', which pass. */
+int hkf_model_noise_init(hkf_model_prepared_t *p, const hkf_model_noise_t *second)
 {
-    hkf_settings_t *s = &noise2->settings;
+    hkf_settings_t s;
     int a;
-    *s = *HKF_SETTINGS(f);
-    s->noise_mode = second->noise_mode;
-    for (a = 0; a < HKF_AXES; ++a) {
-        s->noise[a] = second->noise[a];
-        s->r_const[a] = second->r_const[a];
+    if (p == 0 || second == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
     }
-    s->r_min = second->r_min;
-    s->r_max = second->r_max;
-    return prepare_settings(noise2, s);
+    s = hkf_default_settings;
+    s.noise_mode = second->noise_mode;
+    for (a = 0; a < HKF_AXES; ++a) {
+        s.noise[a] = second->noise[a];
+        s.r_const[a] = second->r_const[a];
+    }
+    s.r_min = second->r_min;
+    s.r_max = second->r_max;
+    return prepare_settings(&p->curves, &s);
 }
 
 /* The second model's measurement z2 after the first's step (whose flags are first_flags): a sequential
@@ -564,35 +568,42 @@ static void update_second(hkf_filter_t *restrict f, const hkf_filter_t *noise2, 
     write_output(f, first_flags, out);
 }
 
-int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], const hkf_real_t z2[restrict 3],
-                    const hkf_model_noise_t *second, hkf_real_t dt, hkf_output_t *restrict out)
+int hkf_update_pair_prepared(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], const hkf_real_t z2[restrict 3],
+                             const hkf_model_prepared_t *second, hkf_real_t dt, hkf_output_t *restrict out)
 {
-    hkf_filter_t noise2; /* the second model's Eq. 8 curves, prepared as hkf_init prepares a filter's */
     hkf_output_t first;
     int result;
     if (f == 0 || (z == 0 && z2 == 0) || second == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    /* everything about the second measurement is checked before the state changes */
-    result = prepare_second(&noise2, f, second);
-    if (result == HKF_OK && z2 != 0) {
-        result = check_angles(z2);
-    }
-    if (result != HKF_OK) {
-        return result;
-    }
     if (z2 == 0) { /* only the first model measured this frame */
         return hkf_update(f, z, dt, out);
     }
+    result = check_angles(z2); /* everything about the second measurement is checked before the state changes */
+    if (result != HKF_OK) {
+        return result;
+    }
     if (z == 0) { /* only the second: its measurement with its own R, as hkf_update takes one */
-        return update_with(f, &noise2, z2, dt, out);
+        return update_with(f, &second->curves, z2, dt, out);
     }
     /* predict (Eq. 1-3) and the first measurement (Eq. 4-9), or the track's start from it; then the second */
     result = hkf_update(f, z, dt, &first);
     if (result == HKF_OK) {
-        update_second(f, &noise2, z2, first.flags, out);
+        update_second(f, &second->curves, z2, first.flags, out);
     }
     return result;
+}
+
+int hkf_update_pair(hkf_filter_t *restrict f, const hkf_real_t z[restrict 3], const hkf_real_t z2[restrict 3],
+                    const hkf_model_noise_t *second, hkf_real_t dt, hkf_output_t *restrict out)
+{
+    hkf_model_prepared_t prepared;
+    int result;
+    if (f == 0 || (z == 0 && z2 == 0) || second == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = hkf_model_noise_init(&prepared, second); /* checked before the state changes, z2 or not */
+    return result != HKF_OK ? result : hkf_update_pair_prepared(f, z, z2, &prepared, dt, out);
 }
 
 int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3])

@@ -504,6 +504,76 @@ static void test_pair_second_clamp_is_its_own(void **state)
     }
 }
 
+/* A second model prepared once (hkf_model_noise_init) steps the filter as hkf_update_pair does, bit for
+ * bit: the defaults (the adaptation on) with the gate on and WHENet's curves as the second model, over
+ * turns with frames where either model is missing and a second measurement the gate refuses; the filters and outputs compared
+ * whole after every frame. */
+static void test_pair_prepared_is_pair(void **state)
+{
+    hkf_settings_t s = hkf_default_settings, second = hkf_default_settings;
+    hkf_model_noise_t noise;
+    hkf_model_prepared_t prepared;
+    hkf_filter_t each, once;
+    hkf_output_t oe, oo;
+    int i, a, gated = 0;
+    (void)state;
+    for (a = 0; a < HKF_AXES; ++a) {
+        second.noise[a] = hkf_noise_whenet[a];
+    }
+    noise = hkf_model_noise_of(&second);
+    assert_int_equal(hkf_model_noise_init(&prepared, &noise), HKF_OK);
+    s.gate_sigma = R(5); /* the defaults' gate is off */
+    memset(&each, 0, sizeof each); /* the padding alike, so that the filters compare whole */
+    memset(&once, 0, sizeof once);
+    assert_int_equal(hkf_init(&each, &s), HKF_OK);
+    assert_int_equal(hkf_init(&once, &s), HKF_OK);
+    for (i = 0; i < 240; ++i) {
+        hkf_real_t z[3], z2[3];
+        const int first_missing = i % 11 == 5, second_missing = i % 3 != 0 && !first_missing;
+        set3(z, 8.0 * sin(0.05 * i), 70.0 * sin(0.03 * i), 2.0 * cos(0.07 * i));
+        set3(z2, D(z[0]) + 1.5, D(z[1]) - 2.0 + (i == 120 ? 40.0 : 0.0), D(z[2]) + 0.5);
+        memset(&oe, 0, sizeof oe);
+        memset(&oo, 0, sizeof oo);
+        assert_int_equal(hkf_update_pair(&each, first_missing ? NULL : z, second_missing ? NULL : z2, &noise, R(0.033), &oe),
+                         HKF_OK);
+        assert_int_equal(hkf_update_pair_prepared(&once, first_missing ? NULL : z, second_missing ? NULL : z2, &prepared,
+                                                  R(0.033), &oo),
+                         HKF_OK);
+        assert_memory_equal(&oe, &oo, sizeof oe);
+        assert_memory_equal(&each, &once, sizeof each);
+        gated += (oo.flags & HKF_FLAG_GATED) != 0;
+    }
+    assert_true(gated > 0); /* the jump at frame 120 was refused: the gate's path was compared too */
+}
+
+/* hkf_model_noise_init checks the model as hkf_update_pair does, and a bad one prepares nothing usable. */
+static void test_model_noise_init_checks(void **state)
+{
+    hkf_settings_t bad = plain_settings();
+    hkf_model_noise_t noise;
+    hkf_model_prepared_t prepared;
+    hkf_filter_t f, before;
+    hkf_real_t z[3];
+    (void)state;
+    noise = hkf_model_noise_of(&bad);
+    assert_int_equal(hkf_model_noise_init(NULL, &noise), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_model_noise_init(&prepared, NULL), HKF_ERROR_NULL_ARGUMENT);
+    bad.noise[2].sigma = 0;
+    noise = hkf_model_noise_of(&bad);
+    assert_int_equal(hkf_model_noise_init(&prepared, &noise), HKF_ERROR_SETTING_SIGMA);
+    bad = plain_settings();
+    bad.r_min = R(5);
+    bad.r_max = R(1);
+    noise = hkf_model_noise_of(&bad);
+    assert_int_equal(hkf_model_noise_init(&prepared, &noise), HKF_ERROR_SETTING_R_RANGE);
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    set3(z, 1, 2, 3);
+    memcpy(&before, &f, sizeof f);
+    assert_int_equal(hkf_update_pair(&f, z, z, &noise, R(0.033), NULL), HKF_ERROR_SETTING_R_RANGE);
+    assert_int_equal(hkf_update_pair_prepared(&f, z, z, NULL, R(0.033), NULL), HKF_ERROR_NULL_ARGUMENT);
+    assert_memory_equal(&before, &f, sizeof f);
+}
+
 /* hkf_get_status follows the track: none, a measurement, a frame without one; and NULL has none. */
 static void test_status_accessor(void **state)
 {
@@ -681,6 +751,8 @@ int main(void)
         cmocka_unit_test(test_status_accessor),
         cmocka_unit_test(test_pair_bad_input_changes_nothing),
         cmocka_unit_test(test_pair_with_one_model_missing),
+        cmocka_unit_test(test_pair_prepared_is_pair),
+        cmocka_unit_test(test_model_noise_init_checks),
         cmocka_unit_test(test_pair_with_the_gate),
         cmocka_unit_test(test_coast_boundary_exact),
         cmocka_unit_test(test_two_models_by_hand),

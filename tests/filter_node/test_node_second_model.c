@@ -47,8 +47,9 @@ static void test_second_model_fused_into_its_frame(void **state)
     const hkf_settings_t hopenet = node_config_for_model(&config, "hopenet", &known2);
     const hkf_model_noise_t s2 = hkf_model_noise_of(&hopenet);
     (void)state;
-    node.second.align_frames = 0; /* the models' offset is another test's */
-    config.second_alone_from_yaw = 180; /* and so is the rule for large turns: fused on every frame */
+    config.second_alone_from_yaw = 180; /* the rule for large turns is another test's: fused on every frame */
+    assert_int_equal(filter_node_init(&node, &config), HKF_OK); /* the node resolves its config at start */
+    node.second.align_frames = 0; /* and so is the models' offset */
     assert_true(known1 && known2);
     assert_int_equal(hkf_init(&reference, &s1), HKF_OK);
     second_only = make_pair_frames(first, second, FRAMES, &reference, &s2);

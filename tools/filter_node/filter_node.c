@@ -7,12 +7,12 @@
 static int setup_filter(filter_node_t *node, const char *model)
 {
     int known;
-    const hkf_settings_t s = node_config_for_model(node->config, model, &known);
+    const resolved_model_t *resolved = resolved_models_find(&node->models, model, &known);
     if (model != node->model) {
         strncpy(node->model, model, sizeof node->model - 1);
         node->model[sizeof node->model - 1] = '\0';
     }
-    const int result = hkf_init(&node->filter, &s);
+    const int result = hkf_init(&node->filter, &resolved->settings);
     return result != HKF_OK ? result : hkf_calibration_init(&node->calibration, &node->config->calibration, &node->filter);
 }
 
@@ -26,6 +26,9 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     second_model_init(&node->second);
     second_position_init(&node->second_position);
     result = hkf_position_init(&node->position, &config->position);
+    if (result == HKF_OK) {
+        result = resolved_models_init(&node->models, config);
+    }
     if (result != HKF_OK) {
         return result; /* cannot happen: the config was checked */
     }
@@ -256,7 +259,7 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
         }
         second_model_forget_frames(&node->second);
     }
-    (void)node_config_for_model(node->config, node->model, &known);
+    (void)resolved_models_find(&node->models, node->model, &known);
     node->counts.unknown_models += !known;
     second_model_keep_frame(&node->second, m, z, dt, &node->filter, &node->calibration);
     if (hkf_update(&node->filter, z, dt, &out) != HKF_OK) {
@@ -335,11 +338,11 @@ static int admitted(filter_node_t *node, const hkf_head_pose_measurement_t *m, i
 static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
 {
     int known;
-    if (!second_model_fuse(&node->second, node->config, index, m, &node->filter, &node->calibration)) {
+    if (!second_model_fuse(&node->second, &node->models, index, m, &node->filter, &node->calibration)) {
         ++node->counts.unpaired;
         return;
     }
-    (void)node_config_for_model(node->config, node->second.frames[index].second_model, &known);
+    (void)resolved_models_find(&node->models, node->second.frames[index].second_model, &known);
     if (m->utime > node->last_measurement_utime) {
         node->last_measurement_utime = m->utime;
     }

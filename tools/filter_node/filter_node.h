@@ -62,6 +62,7 @@
 #include "hkf_head_pose_t.h"
 #include "hkf_tracker_command_t.h"
 #include "node_config.h"
+#include "resolved_models.h"
 #include "second_model.h"
 #include "stream_admission.h"
 
@@ -93,6 +94,7 @@ typedef struct {
 
 typedef struct {
     const node_config_t *config;
+    resolved_models_t models;         /* the config's models, resolved once (resolved_models.h) */
     hkf_filter_t filter;
     hkf_calibration_t calibration;    /* beside the filter: its noise level (hkf/hkf_calibration.h) */
     char model[NODE_MODEL_NAME_MAX];  /* the model the filter is set up for */
@@ -111,7 +113,8 @@ typedef struct {
     filter_node_counts_t counts;
 } filter_node_t;
 
-/* 0, or a hkf_result_t when the base settings are invalid. */
+/* 0, or a hkf_result_t when the base settings are invalid. The models' settings and the pair's
+ * rule are resolved here (resolved_models.h): a config changed later needs filter_node_init again. */
 int filter_node_init(filter_node_t *node, const node_config_t *config);
 
 #define FILTER_NODE_MIN_Z 1.0f /* cm: the nearest position taken and published (z = 0: not measured) */

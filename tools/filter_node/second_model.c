@@ -82,24 +82,23 @@ int second_model_too_late(const second_model_t *s, const hkf_head_pose_measureme
 }
 
 /* Where the first model measures a large turn, the second's measurement is taken alone. */
-static int first_set_aside(const node_config_t *config, const second_model_frame_t *frame)
+static int first_set_aside(const resolved_models_t *models, const second_model_frame_t *frame)
 {
-    return frame->valid && fabs((double)frame->z[HKF_AXIS_YAW]) >= (double)config->second_alone_from_yaw;
+    return frame->valid && fabs((double)frame->z[HKF_AXIS_YAW]) >= (double)models->second_alone_from_yaw;
 }
 
 /* One kept frame's filter step on f, as the node made it, with the frame's second measurement if it
  * has one; *taken is the measurement the step took first (NULL: none), for the calibration. */
-static int redo_filter_step(const node_config_t *config, hkf_filter_t *f, const second_model_frame_t *frame,
+static int redo_filter_step(const resolved_models_t *models, hkf_filter_t *f, const second_model_frame_t *frame,
                             const hkf_real_t **taken)
 {
     *taken = frame->valid ? frame->z : NULL;
     if (frame->paired) {
         int known;
-        const hkf_settings_t settings = node_config_for_model(config, frame->second_model, &known);
-        const hkf_model_noise_t second = hkf_model_noise_of(&settings);
-        const int first = frame->valid && !first_set_aside(config, frame);
+        const resolved_model_t *second = resolved_models_find(models, frame->second_model, &known);
+        const int first = frame->valid && !first_set_aside(models, frame);
         *taken = first ? frame->z : frame->z2;
-        return hkf_update_pair(f, first ? frame->z : NULL, frame->z2, &second, frame->dt, NULL);
+        return hkf_update_pair_prepared(f, first ? frame->z : NULL, frame->z2, &second->noise, frame->dt, NULL);
     }
     if (frame->valid) {
         return hkf_update(f, frame->z, frame->dt, NULL);
@@ -108,11 +107,11 @@ static int redo_filter_step(const node_config_t *config, hkf_filter_t *f, const 
 }
 
 /* One kept frame's step on f and its calibration c, as the node made it. */
-static int redo_step(const node_config_t *config, hkf_filter_t *f, hkf_calibration_t *c,
+static int redo_step(const resolved_models_t *models, hkf_filter_t *f, hkf_calibration_t *c,
                      const second_model_frame_t *frame)
 {
     const hkf_real_t *taken;
-    const int result = redo_filter_step(config, f, frame, &taken);
+    const int result = redo_filter_step(models, f, frame, &taken);
     if (result == HKF_ERROR_NOT_INITIALIZED) {
         return HKF_OK; /* no track yet, as the node found */
     }
@@ -122,7 +121,7 @@ static int redo_step(const node_config_t *config, hkf_filter_t *f, hkf_calibrati
 /* The frame's second measurement (frame->z2) moved onto the first model's
  * frame: plus the running mean of (first - second) over the frames both
  * measured, updated with this frame's difference when the first measured it too. */
-static void align_second(second_model_t *s, const node_config_t *config, second_model_frame_t *frame)
+static void align_second(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame)
 {
     int a;
     if (strncmp(s->model, frame->second_model, sizeof s->model) != 0) {
@@ -133,7 +132,7 @@ static void align_second(second_model_t *s, const node_config_t *config, second_
     }
     /* learnt only where the first model is trusted (where the two are fused): at a large turn the
      * mesh's own error is what the second model is there to avoid */
-    if (frame->valid && s->align_frames > 0 && !first_set_aside(config, frame)) {
+    if (frame->valid && s->align_frames > 0 && !first_set_aside(models, frame)) {
         const long n = s->offset_frames < s->align_frames ? s->offset_frames + 1 : s->align_frames;
         for (a = 0; a < 3; ++a) {
             double difference = (double)frame->z[a] - (double)frame->z2[a];
@@ -154,7 +153,7 @@ static void align_second(second_model_t *s, const node_config_t *config, second_
     }
 }
 
-int second_model_fuse(second_model_t *s, const node_config_t *config, int index, const hkf_head_pose_measurement_t *m,
+int second_model_fuse(second_model_t *s, const resolved_models_t *models, int index, const hkf_head_pose_measurement_t *m,
                       hkf_filter_t *filter, hkf_calibration_t *calibration)
 {
     hkf_filter_t f, before[FILTER_NODE_PAIR_FRAMES];
@@ -170,13 +169,13 @@ int second_model_fuse(second_model_t *s, const node_config_t *config, int index,
     frame->z2[0] = m->pitch;
     frame->z2[1] = m->yaw;
     frame->z2[2] = m->roll;
-    align_second(s, config, frame);
+    align_second(s, models, frame);
     f = frame->before;
     c = frame->calibration_before;
     for (i = 0; i < count; ++i) {
         before[i] = f;
         calibration_before[i] = c;
-        if (redo_step(config, &f, &c, &s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES]) != HKF_OK) {
+        if (redo_step(models, &f, &c, &s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES]) != HKF_OK) {
             frame->paired = 0; /* cannot happen (the steps were made before, z2 is checked): nothing changes */
             return 0;
         }

@@ -1,7 +1,7 @@
 /*
  * second_model.h - two models on one channel, the node's side (filter_node.h
  * states the rules): the last frames' filter steps kept in a ring, a second
- * model's measurement of one of them fused there (hkf_update_pair) and the
+ * model's measurement of one of them fused there (hkf_update_pair_prepared) and the
  * frames after it redone, and the second model moved onto the first's frame
  * by the running mean of their difference.
  */
@@ -14,6 +14,7 @@
 #include "hkf/hkf_calibration.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "node_config.h"
+#include "resolved_models.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -75,10 +76,10 @@ int second_model_frame_of(const second_model_t *s, const hkf_head_pose_measureme
 int second_model_too_late(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model);
 
 /* Fuses m, the second measurement of kept frame `index`, into *filter (and
- * its *calibration): that frame's step again with both, then the steps of the
- * frames after it. Returns 1 when fused, 0 when not (the frame already has
- * one). */
-int second_model_fuse(second_model_t *s, const node_config_t *config, int index, const hkf_head_pose_measurement_t *m,
+ * its *calibration): that frame's step again with both (the second model's R
+ * and the pair's rule from `models`), then the steps of the frames after it. Returns 1 when fused,
+ * 0 when not (the frame already has one). */
+int second_model_fuse(second_model_t *s, const resolved_models_t *models, int index, const hkf_head_pose_measurement_t *m,
                       hkf_filter_t *filter, hkf_calibration_t *calibration);
 
 #ifdef __cplusplus

@@ -291,9 +291,25 @@ hkf_model_noise_t hkf_model_noise_of(const hkf_settings_t *s);
  * untouched. Either z or z2 may be NULL (that model found no face this
  * frame, or has not run on it): then the other alone is taken, as hkf_update
  * takes it but with its own model's R (and the adaptation weighs by it).
- * Both NULL: an error. Costs a filter-sized temporary on the stack. */
+ * Both NULL: an error. Prepares `second` on every call, in a filter-sized temporary on the stack
+ * (hkf_update_pair_prepared takes it prepared once). */
 int hkf_update_pair(hkf_filter_t *f, const hkf_real_t z[3], const hkf_real_t z2[3], const hkf_model_noise_t *second,
                     hkf_real_t dt, hkf_output_t *out);
+
+/* A second model's noise prepared once, for hkf_update_pair_prepared (init once, process many, as
+ * CMSIS-DSP's filters do): hkf_update_pair prepares and checks `second` on every call, about half of
+ * its cost. Private: members may change between versions. */
+typedef struct {
+    hkf_filter_t curves; /* its Eq. 8 curves, R's mode, constant and clamp, as hkf_init lays out a filter's */
+} hkf_model_prepared_t;
+
+/* Checks `second` as hkf_init checks those settings (HKF_ERROR_SETTING_*; HKF_ERROR_NULL_ARGUMENT) and
+ * prepares it in *p. Independent of any filter: one prepared model serves every filter. */
+int hkf_model_noise_init(hkf_model_prepared_t *p, const hkf_model_noise_t *second);
+
+/* hkf_update_pair with a prepared second model: the same steps and results, bit for bit. */
+int hkf_update_pair_prepared(hkf_filter_t *f, const hkf_real_t z[3], const hkf_real_t z2[3],
+                             const hkf_model_prepared_t *second, hkf_real_t dt, hkf_output_t *out);
 
 /* No measurement this frame (face lost): predict dt s ahead. See the coasting
  * rule at the top of libhkf/src/hkf_filter.c. Writes the prediction to out (which may be NULL). */
