@@ -574,6 +574,52 @@ static void test_model_noise_init_checks(void **state)
     assert_memory_equal(&before, &f, sizeof f);
 }
 
+/* Yaw in [-180, 180): d + 180 wrapped into it. */
+static double behind(double yaw)
+{
+    const double y = yaw + 180.0;
+    return y >= 180.0 ? y - 360.0 : y;
+}
+
+/* The seam in both models: the same head, once facing the camera (yaw near 0) and once facing away
+ * (yaw near +-180, its readings on both sides of the seam), with the defaults (HOLD and MOVE; R constant,
+ * as Eq. 8's would differ between the two poses): a rest
+ * with noise, a turn across, a rest again. HOLD's innovation and MOVE's are taken the short way round,
+ * so the two filters agree frame by frame: pitch, roll, rates and MOVE's probability equal, yaw 180 deg
+ * apart. (Unwrapped, HOLD would see a 360 deg jump at every crossing and lose the rest to MOVE.) */
+static void test_yaw_seam_in_both_models(void **state)
+{
+    hkf_settings_t s = hkf_default_settings;
+    hkf_filter_t front, seam;
+    hkf_output_t of, os;
+    hkf_state_t sf, ss;
+    int i, a;
+    double worst = 0.0;
+    (void)state;
+    s.noise_mode = HKF_NOISE_CONSTANT; /* Eq. 8's R depends on the pose: facing away is worse measured */
+    assert_int_equal(hkf_init(&front, &s), HKF_OK);
+    assert_int_equal(hkf_init(&seam, &s), HKF_OK);
+    for (i = 0; i < 200; ++i) {
+        const double noise = (i % 2 ? 0.4 : -0.4) + 0.1 * sin(1.7 * i);
+        const double yaw = (i < 80 ? 0.0 : i < 100 ? 1.5 * (i - 80) : 30.0) - 15.0 + noise; /* -15 .. 15 deg */
+        hkf_real_t zf[3], zs[3];
+        set3(zf, 2.0 + noise, yaw, -1.0 + noise);
+        set3(zs, 2.0 + noise, behind(yaw), -1.0 + noise);
+        assert_int_equal(hkf_update(&front, zf, R(0.033), &of), HKF_OK);
+        assert_int_equal(hkf_update(&seam, zs, R(0.033), &os), HKF_OK);
+        assert_int_equal(hkf_get_state(&front, &sf), HKF_OK);
+        assert_int_equal(hkf_get_state(&seam, &ss), HKF_OK);
+        for (a = 0; a < HKF_AXES; ++a) {
+            const double gap = a == HKF_AXIS_YAW ? behind(D(os.angle[a]) - D(of.angle[a])) : D(os.angle[a]) - D(of.angle[a]);
+            worst = fabs(gap) > worst ? fabs(gap) : worst;
+            assert_near(gap, 0.0, 0.02);
+            assert_near(os.rate[a], D(of.rate[a]), 0.5);
+            assert_near(ss.moving[a], D(sf.moving[a]), 0.02);
+        }
+    }
+    print_message("the yaw seam: the filters facing away and facing the camera at most %.4f deg apart\n", worst);
+}
+
 /* hkf_get_status follows the track: none, a measurement, a frame without one; and NULL has none. */
 static void test_status_accessor(void **state)
 {
@@ -752,6 +798,7 @@ int main(void)
         cmocka_unit_test(test_pair_bad_input_changes_nothing),
         cmocka_unit_test(test_pair_with_one_model_missing),
         cmocka_unit_test(test_pair_prepared_is_pair),
+        cmocka_unit_test(test_yaw_seam_in_both_models),
         cmocka_unit_test(test_model_noise_init_checks),
         cmocka_unit_test(test_pair_with_the_gate),
         cmocka_unit_test(test_coast_boundary_exact),
