@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "face_crop.hpp"
 #include "head_rotation.hpp"
 #include "network_outputs.hpp"
 #include "onnx_network.hpp"
@@ -47,17 +48,6 @@ std::optional<HeadPose> AngleBinsModel::estimate(const cv::Mat &frame, const Fac
         pose.has_position = true;
     }
     return pose;
-}
-
-cv::Rect face_crop_rect(const cv::Rect2f &box, float margin, const cv::Size &image)
-{
-    const float dx = box.width * margin, dy = box.height * margin;
-    const int x0 = std::max(0, static_cast<int>(std::floor(box.x - dx)));
-    const int y0 = std::max(0, static_cast<int>(std::floor(box.y - dy)));
-    const int x1 = std::min(image.width, static_cast<int>(std::ceil(box.x + box.width + dx)));
-    const int y1 = std::min(image.height, static_cast<int>(std::ceil(box.y + box.height + dy)));
-    if (x1 <= x0 || y1 <= y0) return cv::Rect();
-    return cv::Rect(x0, y0, x1 - x0, y1 - y0);
 }
 
 }  // namespace hkf_estimator

@@ -39,8 +39,4 @@ private:
     std::vector<std::string> outputs_;
 };
 
-// The crop of a face box enlarged by margin (a fraction of the box's width
-// and height on each side), clipped to the image; empty if nothing is left.
-cv::Rect face_crop_rect(const cv::Rect2f &box, float margin, const cv::Size &image);
-
 }  // namespace hkf_estimator

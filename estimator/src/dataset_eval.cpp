@@ -11,7 +11,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "angle_bins_model.hpp"
+#include "face_crop.hpp"
 #include "face_tracker.hpp"
 #include "frame_source.hpp"
 #include "safe_files.h"

@@ -10,18 +10,11 @@
 #include <opencv2/core.hpp>
 
 #include "face_detector.hpp"
+#include "head_pose.hpp"
 #include "head_position.hpp"
 #include "model_spec.hpp"
 
 namespace hkf_estimator {
-
-struct HeadPose {
-    HeadPose() = default;
-    HeadPose(float pitch_deg, float yaw_deg, float roll_deg) : pitch(pitch_deg), yaw(yaw_deg), roll(roll_deg) {}
-    float pitch = 0.f, yaw = 0.f, roll = 0.f;  // deg, hkf convention (docs/programs.md: "Angle convention")
-    bool has_position = false;                 // the model measured the position:
-    HeadPosition position;                     // cm, camera frame (head_position.hpp)
-};
 
 class HeadPoseEstimator {
 public:

@@ -10,7 +10,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "angle_bins_model.hpp"
+#include "head_pose.hpp"
 
 namespace hkf_estimator {
 

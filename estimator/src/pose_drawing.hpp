@@ -7,7 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "face_detector.hpp"
-#include "angle_bins_model.hpp"
+#include "head_pose.hpp"
 
 namespace hkf_estimator {
 

@@ -19,6 +19,7 @@
 #include "head_pose_estimator.hpp"
 #include "model_spec.hpp"
 #include "angle_bins_model.hpp"
+#include "face_crop.hpp"
 
 static double median(std::vector<double> v)
 {
