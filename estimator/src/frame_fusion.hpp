@@ -12,11 +12,12 @@
 
 #include "hkf/hkf.h"
 #include "head_pose_estimator.hpp"
+#include "model_pairing.h"
 
 namespace hkf_estimator {
 
-// hkf-filter's default pair_second_alone_from_yaw (tools/filter_node/node_config.h), deg
-constexpr float kSecondAloneFromYaw = 25.f;
+// the pairing rule's constant, which hkf-filter's pair_second_alone_from_yaw defaults to (model_pairing.h), deg
+constexpr float kSecondAloneFromYaw = static_cast<float>(HKF_SECOND_ALONE_FROM_YAW);
 
 class FrameFusion {
 public:

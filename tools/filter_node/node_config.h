@@ -13,6 +13,7 @@
 #include "hkf/hkf_calibration.h"
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
+#include "model_pairing.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -65,7 +66,7 @@ typedef struct {
     char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* where each base key was set ("": the default) */
 } node_config_t;
 
-#define NODE_SECOND_ALONE_FROM_YAW 25.0 /* deg: chosen on AFLW2000's even images (docs/programs.md) */
+#define NODE_SECOND_ALONE_FROM_YAW HKF_SECOND_ALONE_FROM_YAW /* deg: the estimator's too (model_pairing.h) */
 
 /* libhkf's defaults, and the models "fsanet" and "hopenet" with the paper's Table I curves (r_const =
  * each curve's minimum), "mesh_pnp" and "whenet" with theirs; mesh_pnp's position_r_scale is 1 (the
