@@ -1,7 +1,7 @@
 /*
  * arguments.h - what every program's command line shares: a number option
- * read whole and checked against its range, --help and --version, and the
- * clocks the programs stamp and wait with.
+ * read whole and checked against its range, --help and --version. (The clocks
+ * are clocks.h's.)
  */
 #ifndef ARGUMENTS_H
 #define ARGUMENTS_H
@@ -21,11 +21,6 @@ int argument_number(const char *text, double low, double high, double *value);
  * VERSION" printed): the program has answered and exits 0; else 0. When the
  * answer cannot be written (stdout on a full disk), it says so and exits 1. */
 int argument_help_or_version(const char *arg, const char *program, void (*usage)(FILE *to));
-
-/* Microseconds: the wall clock (capture stamps, as the estimator writes them)
- * and the monotonic clock (waits and arrival times). */
-int64_t clock_wall_us(void);
-int64_t clock_monotonic_us(void);
 
 #ifdef __cplusplus
 }

@@ -4,7 +4,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "bench_clock.h"
-#include "arguments.h"
+#include "clocks.h"
 
 #include <sys/select.h>
 #include <time.h>

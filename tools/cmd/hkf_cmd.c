@@ -12,6 +12,7 @@
 #include <lcm/lcm.h>
 
 #include "arguments.h"
+#include "clocks.h"
 #include "hkf_tracker_command_t.h"
 #include "lcm_file_url.h"
 #include "safe_files.h"

@@ -8,7 +8,7 @@
 
 #include <lcm/lcm.h>
 
-#include "arguments.h"
+#include "clocks.h"
 #include "lcm_file_url.h"
 #include "lcm_wait.h"
 #include "message_decode.h"

@@ -18,6 +18,7 @@
 #include <lcm/lcm.h>
 
 #include "arguments.h"
+#include "clocks.h"
 
 #include "lcm_file_url.h"
 #include "lcm_wait.h"

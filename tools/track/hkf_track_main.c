@@ -12,6 +12,7 @@
 #include <lcm/lcm.h>
 
 #include "arguments.h"
+#include "clocks.h"
 #include "lcm_wait.h"
 #include "safe_files.h"
 #include "track_exclusive.h"
