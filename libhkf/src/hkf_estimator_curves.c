@@ -12,7 +12,7 @@
  * lambda / sigma^2 is determined there, and lambda is held at r_max. A source
  * of its own, so firmware that does not name them does not link them. Written with
  * HKF_NOISE_CURVE, which suits every numeric build (Q16.16 holds a curve as its
- * floor and curvature: tests/filter/test_equations.c checks them in each build).
+ * floor and curvature: tests/libhkf/test_equations.c checks them in each build).
  */
 #include "hkf/hkf.h"
 

@@ -7,7 +7,7 @@
  * For programs that read settings as text (a config file, a command line, a
  * controller's serial console) and must say what a value should have been.
  * Optional: firmware that never calls it does not link it, and hkf_init
- * checks the settings without it. tests/filter/test_settings_table.c checks
+ * checks the settings without it. tests/libhkf/test_settings_table.c checks
  * that every range here is the one hkf_init applies.
  *
  *     const hkf_setting_t *d = hkf_setting_find(hkf_settings_table, hkf_settings_table_count, "lc_xi");
