@@ -233,31 +233,19 @@ private:
     long stalls_ = 0;
 };
 
-// The frame with the face, the raw pose (and position) and the last filtered pose drawn.
+// The frame with the face, the raw pose (and position) and the last filtered pose drawn, as
+// hkf-annotate draws them (pose_drawing.hpp), with the face's keypoints.
 cv::Mat annotated_frame(const cv::Mat &frame, const std::optional<Face> &face, const HeadPose &pose, FilteredPose &filtered)
 {
     cv::Mat image = frame.clone();
-    if (!face) {
-        cv::putText(image, "no face", {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 255), 2);
-        return image;
+    std::optional<HeadPose> last_filtered;
+    {
+        std::lock_guard<std::mutex> lock(filtered.mutex);
+        if (filtered.have) last_filtered = filtered.pose;
     }
-    draw_face(image, *face);
-    const cv::Point2f c(face->box.x + face->box.width / 2, face->box.y + face->box.height / 2);
-    draw_pose_axes(image, pose, c, 0.8f * face->box.width, 2);
-    char text[96];
-    std::snprintf(text, sizeof text, "raw p %.1f y %.1f r %.1f", pose.pitch, pose.yaw, pose.roll);
-    cv::putText(image, text, {10, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
-    if (pose.has_position) {
-        std::snprintf(text, sizeof text, "head x %.1f y %.1f z %.1f cm", pose.position.x, pose.position.y, pose.position.z);
-        cv::putText(image, text, {10, 75}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 255), 2);
-    }
-    std::lock_guard<std::mutex> lock(filtered.mutex);
-    if (filtered.have) {
-        draw_pose_axes(image, filtered.pose, c, 0.8f * face->box.width, 5);
-        std::snprintf(text, sizeof text, "filtered p %.1f y %.1f r %.1f", filtered.pose.pitch, filtered.pose.yaw,
-                      filtered.pose.roll);
-        cv::putText(image, text, {10, 50}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2);
-    }
+    if (face) draw_face(image, *face);
+    draw_annotation(image, face ? std::optional<cv::Rect2f>(face->box) : std::nullopt,
+                    face ? std::optional<HeadPose>(pose) : std::nullopt, last_filtered);
     return image;
 }
 
