@@ -1,0 +1,128 @@
+// hkf-bench-layers - where a network's forward pass spends its time in OpenCV's DNN module (the
+// shipped runtime): cv::dnn::Net::getPerfProfile after each forward, summed by layer type, medians
+// over the runs. For the second model's speed (WHENet's EfficientNet-B0 runs 8x slower in OpenCV 4.6
+// than in onnxruntime: docs/estimator.md).
+// usage: hkf-bench-layers MODEL.onnx [WIDTH HEIGHT [RUNS [THREADS]]]   (defaults 224 224 40 1)
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/dnn.hpp>
+
+namespace {
+
+void usage(FILE *to)
+{
+    std::fprintf(to, "usage: hkf-bench-layers MODEL.onnx [WIDTH HEIGHT [RUNS [THREADS]]]\n"
+                     "  the forward pass's time per layer type in OpenCV's DNN module (medians over RUNS,\n"
+                     "  default 40, on THREADS threads, default 1), for an NCHW float input of WIDTH x HEIGHT\n"
+                     "  (default 224 x 224)\n");
+}
+
+double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+bool whole_number(const char *text, long low, long high, long *out)
+{
+    char *end = nullptr;
+    const long v = std::strtol(text, &end, 10);
+    if (end == text || *end != '\0' || v < low || v > high) return false;
+    *out = v;
+    return true;
+}
+
+struct LayerTimes {
+    std::string name, type;
+    std::vector<double> ms;  // per run
+};
+
+struct TypeTimes {
+    int layers = 0;
+    std::vector<double> ms;  // per run, summed over the type's layers
+};
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    if (argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "--version") == 0)) {
+        if (std::strcmp(argv[1], "--version") == 0) std::printf("hkf-bench-layers %s\n", HKF_VERSION);
+        else usage(stdout);
+        return 0;
+    }
+    long width = 224, height = 224, runs = 40, threads = 1;
+    if (argc < 2 || argc == 3 || argc > 6 ||
+        (argc >= 4 && (!whole_number(argv[2], 8, 4096, &width) || !whole_number(argv[3], 8, 4096, &height))) ||
+        (argc >= 5 && !whole_number(argv[4], 3, 100000, &runs)) || (argc >= 6 && !whole_number(argv[5], 1, 64, &threads))) {
+        usage(stderr);
+        return 2;
+    }
+    cv::dnn::Net net;
+    try {
+        net = cv::dnn::readNetFromONNX(argv[1]);
+    } catch (const cv::Exception &e) {
+        std::fprintf(stderr, "hkf-bench-layers: cannot read '%s': %s\n", argv[1], e.what());
+        return 1;
+    }
+    cv::setNumThreads(static_cast<int>(threads));
+    net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+    net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+    const int shape[] = {1, 3, static_cast<int>(height), static_cast<int>(width)};
+    cv::Mat input(4, shape, CV_32F);
+    cv::RNG rng(7);
+    rng.fill(input, cv::RNG::NORMAL, 0.0, 1.0);  // the time does not depend on the values
+    const std::vector<std::string> names = net.getLayerNames();
+    std::map<std::string, TypeTimes> by_type;
+    std::vector<LayerTimes> by_layer(names.size());
+    std::vector<double> total_ms;
+    const double tick_ms = 1000.0 / cv::getTickFrequency();
+    for (long run = 0; run < runs + 2; ++run) {  // two warm-up runs, not counted
+        net.setInput(input);
+        net.forward();
+        std::vector<double> ticks;
+        const int64 total = net.getPerfProfile(ticks);
+        if (run < 2) continue;
+        total_ms.push_back(static_cast<double>(total) * tick_ms);
+        std::map<std::string, double> this_run;
+        for (size_t i = 0; i < ticks.size() && i < names.size(); ++i) {
+            const cv::Ptr<cv::dnn::Layer> layer = net.getLayer(net.getLayerId(names[i]));
+            const std::string type = layer ? layer->type : "?";
+            this_run[type] += ticks[i] * tick_ms;
+            by_layer[i].name = names[i];
+            by_layer[i].type = type;
+            by_layer[i].ms.push_back(ticks[i] * tick_ms);
+            if (run == 2) ++by_type[type].layers;
+        }
+        for (const auto &t : this_run) by_type[t.first].ms.push_back(t.second);
+    }
+    const double total = median(total_ms);
+    std::vector<std::pair<double, std::string>> order;
+    for (const auto &t : by_type) order.emplace_back(median(t.second.ms), t.first);
+    std::sort(order.rbegin(), order.rend());
+    std::printf("%s, %ldx%ld, OpenCV %s, %ld thread%s, %ld runs: forward pass %.1f ms (median)\n\n", argv[1], width,
+                height, CV_VERSION, threads, threads == 1 ? "" : "s", runs, total);
+    std::printf("| layer type | layers (after OpenCV's fusion) | ms (median) | share |\n| --- | ---: | ---: | ---: |\n");
+    for (const auto &o : order) {
+        const TypeTimes &t = by_type[o.second];
+        if (o.first <= 0.0 && t.layers == 0) continue;
+        std::printf("| %s | %d | %.2f | %.0f %% |\n", o.second.c_str(), t.layers, o.first, total > 0 ? 100.0 * o.first / total : 0.0);
+    }
+    std::vector<std::pair<double, size_t>> slowest;
+    for (size_t i = 0; i < by_layer.size(); ++i) slowest.emplace_back(median(by_layer[i].ms), i);
+    std::sort(slowest.rbegin(), slowest.rend());
+    std::printf("\nThe slowest layers:\n\n| layer | type | ms (median) |\n| --- | --- | ---: |\n");
+    for (size_t k = 0; k < slowest.size() && k < 10; ++k) {
+        const LayerTimes &l = by_layer[slowest[k].second];
+        std::printf("| %s | %s | %.2f |\n", l.name.c_str(), l.type.c_str(), slowest[k].first);
+    }
+    return 0;
+}
