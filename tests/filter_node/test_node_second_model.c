@@ -72,6 +72,7 @@ static void test_second_model_fused_into_its_frame(void **state)
     assert_int_equal(published, FRAMES - (i < LATE + 1 ? i : LATE + 1));
     assert_int_equal(node.counts.paired, FRAMES);
     assert_int_equal(node.counts.unpaired, 0);
+    assert_int_equal(node.counts.received, 2 * FRAMES); /* each model's, each counted once */
     assert_int_equal(node.counts.other_publisher, 0);
     assert_int_equal(node.counts.unknown_models, 0);
     assert_int_equal(hkf_get_output(&node.filter, &ours), HKF_OK);

@@ -280,7 +280,6 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
 static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose, int *taken)
 {
     hkf_real_t dt;
-    ++node->counts.received;
     *taken = take_time(node, m, &dt);
     if (!*taken) {
         return 0;
@@ -291,6 +290,7 @@ static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, hk
 int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
 {
     int taken;
+    ++node->counts.received;
     return measure(node, m, pose, &taken);
 }
 
@@ -330,7 +330,6 @@ static int admitted(filter_node_t *node, const hkf_head_pose_measurement_t *m, i
         ++node->counts.out_of_order;
         break;
     }
-    ++node->counts.received;
     return 0;
 }
 
@@ -354,7 +353,6 @@ static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_meas
  * angles fused into that frame, its position standing in where the first model measured none. */
 static void take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, int index)
 {
-    ++node->counts.received;
     if (m->valid && !finite_angles(m)) {
         ++node->counts.bad_values;
     } else if (!m->valid || index < 0) {
@@ -370,6 +368,7 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
 {
     const int second_of = second_model_frame_of(&node->second, m);
     int publish, taken;
+    ++node->counts.received; /* every measurement that reaches the node, whatever becomes of it */
     if (second_of >= 0 ||
         (stream_admission_following(&node->admission) && second_model_too_late(&node->second, m, node->model))) {
         take_second(node, m, second_of);
