@@ -50,79 +50,117 @@ struct TypeTimes {
     std::vector<double> ms;  // per run, summed over the type's layers
 };
 
-}  // namespace
+// The command line: 0 to go on, else the exit status (help, version: 0; bad: 2).
+struct Options {
+    const char *model = nullptr;
+    long width = 224, height = 224, runs = 40, threads = 1;
+};
 
-int main(int argc, char **argv)
+int parse(int argc, char **argv, Options *o)
 {
     if (argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "--version") == 0)) {
         if (std::strcmp(argv[1], "--version") == 0) std::printf("hkf-bench-layers %s\n", HKF_VERSION);
         else usage(stdout);
-        return 0;
+        return -1;
     }
-    long width = 224, height = 224, runs = 40, threads = 1;
     if (argc < 2 || argc == 3 || argc > 6 ||
-        (argc >= 4 && (!whole_number(argv[2], 8, 4096, &width) || !whole_number(argv[3], 8, 4096, &height))) ||
-        (argc >= 5 && !whole_number(argv[4], 3, 100000, &runs)) || (argc >= 6 && !whole_number(argv[5], 1, 64, &threads))) {
+        (argc >= 4 && (!whole_number(argv[2], 8, 4096, &o->width) || !whole_number(argv[3], 8, 4096, &o->height))) ||
+        (argc >= 5 && !whole_number(argv[4], 3, 100000, &o->runs)) ||
+        (argc >= 6 && !whole_number(argv[5], 1, 64, &o->threads))) {
         usage(stderr);
         return 2;
     }
-    cv::dnn::Net net;
-    try {
-        net = cv::dnn::readNetFromONNX(argv[1]);
-    } catch (const cv::Exception &e) {
-        std::fprintf(stderr, "hkf-bench-layers: cannot read '%s': %s\n", argv[1], e.what());
-        return 1;
-    }
-    cv::setNumThreads(static_cast<int>(threads));
-    net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-    net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
-    const int shape[] = {1, 3, static_cast<int>(height), static_cast<int>(width)};
+    o->model = argv[1];
+    return 0;
+}
+
+// The runs' timings: the whole pass, per layer type, per layer.
+struct Profile {
+    std::vector<double> total_ms;
+    std::map<std::string, TypeTimes> by_type;
+    std::vector<LayerTimes> by_layer;
+};
+
+// RUNS forward passes (after two not counted), each one's getPerfProfile summed by layer type.
+Profile profile(cv::dnn::Net &net, const Options &o)
+{
+    const int shape[] = {1, 3, static_cast<int>(o.height), static_cast<int>(o.width)};
     cv::Mat input(4, shape, CV_32F);
     cv::RNG rng(7);
     rng.fill(input, cv::RNG::NORMAL, 0.0, 1.0);  // the time does not depend on the values
     const std::vector<std::string> names = net.getLayerNames();
-    std::map<std::string, TypeTimes> by_type;
-    std::vector<LayerTimes> by_layer(names.size());
-    std::vector<double> total_ms;
     const double tick_ms = 1000.0 / cv::getTickFrequency();
-    for (long run = 0; run < runs + 2; ++run) {  // two warm-up runs, not counted
+    Profile p;
+    p.by_layer.resize(names.size());
+    for (long run = 0; run < o.runs + 2; ++run) {
         net.setInput(input);
         net.forward();
         std::vector<double> ticks;
         const int64 total = net.getPerfProfile(ticks);
         if (run < 2) continue;
-        total_ms.push_back(static_cast<double>(total) * tick_ms);
+        p.total_ms.push_back(static_cast<double>(total) * tick_ms);
         std::map<std::string, double> this_run;
         for (size_t i = 0; i < ticks.size() && i < names.size(); ++i) {
             const cv::Ptr<cv::dnn::Layer> layer = net.getLayer(net.getLayerId(names[i]));
             const std::string type = layer ? layer->type : "?";
             this_run[type] += ticks[i] * tick_ms;
-            by_layer[i].name = names[i];
-            by_layer[i].type = type;
-            by_layer[i].ms.push_back(ticks[i] * tick_ms);
-            if (run == 2) ++by_type[type].layers;
+            p.by_layer[i].name = names[i];
+            p.by_layer[i].type = type;
+            p.by_layer[i].ms.push_back(ticks[i] * tick_ms);
+            if (run == 2) ++p.by_type[type].layers;
         }
-        for (const auto &t : this_run) by_type[t.first].ms.push_back(t.second);
+        for (const auto &t : this_run) p.by_type[t.first].ms.push_back(t.second);
     }
-    const double total = median(total_ms);
+    return p;
+}
+
+void print_by_type(const Profile &p, double total)
+{
     std::vector<std::pair<double, std::string>> order;
-    for (const auto &t : by_type) order.emplace_back(median(t.second.ms), t.first);
+    for (const auto &t : p.by_type) order.emplace_back(median(t.second.ms), t.first);
     std::sort(order.rbegin(), order.rend());
-    std::printf("%s, %ldx%ld, OpenCV %s, %ld thread%s, %ld runs: forward pass %.1f ms (median)\n\n", argv[1], width,
-                height, CV_VERSION, threads, threads == 1 ? "" : "s", runs, total);
     std::printf("| layer type | layers (after OpenCV's fusion) | ms (median) | share |\n| --- | ---: | ---: | ---: |\n");
     for (const auto &o : order) {
-        const TypeTimes &t = by_type[o.second];
+        const TypeTimes &t = p.by_type.at(o.second);
         if (o.first <= 0.0 && t.layers == 0) continue;
         std::printf("| %s | %d | %.2f | %.0f %% |\n", o.second.c_str(), t.layers, o.first, total > 0 ? 100.0 * o.first / total : 0.0);
     }
+}
+
+void print_slowest(const Profile &p)
+{
     std::vector<std::pair<double, size_t>> slowest;
-    for (size_t i = 0; i < by_layer.size(); ++i) slowest.emplace_back(median(by_layer[i].ms), i);
+    for (size_t i = 0; i < p.by_layer.size(); ++i) slowest.emplace_back(median(p.by_layer[i].ms), i);
     std::sort(slowest.rbegin(), slowest.rend());
     std::printf("\nThe slowest layers:\n\n| layer | type | ms (median) |\n| --- | --- | ---: |\n");
     for (size_t k = 0; k < slowest.size() && k < 10; ++k) {
-        const LayerTimes &l = by_layer[slowest[k].second];
+        const LayerTimes &l = p.by_layer[slowest[k].second];
         std::printf("| %s | %s | %.2f |\n", l.name.c_str(), l.type.c_str(), slowest[k].first);
     }
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    Options o;
+    const int status = parse(argc, argv, &o);
+    if (status != 0) return status < 0 ? 0 : status;
+    cv::dnn::Net net;
+    try {
+        net = cv::dnn::readNetFromONNX(o.model);
+    } catch (const cv::Exception &e) {
+        std::fprintf(stderr, "hkf-bench-layers: cannot read '%s': %s\n", o.model, e.what());
+        return 1;
+    }
+    cv::setNumThreads(static_cast<int>(o.threads));
+    net.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+    net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+    const Profile p = profile(net, o);
+    const double total = median(p.total_ms);
+    std::printf("%s, %ldx%ld, OpenCV %s, %ld thread%s, %ld runs: forward pass %.1f ms (median)\n\n", o.model, o.width,
+                o.height, CV_VERSION, o.threads, o.threads == 1 ? "" : "s", o.runs, total);
+    print_by_type(p, total);
+    print_slowest(p);
     return 0;
 }

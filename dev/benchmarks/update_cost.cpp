@@ -292,6 +292,53 @@ static std::vector<Input> drive_inputs(long steps)
     return inputs;
 }
 
+/* libhkf's filters, each variant's own, as main steps them. */
+struct LibhkfFilters {
+    hkf_filter_t paper, constant, defaults, pair, pair_prepared;
+    hkf_calibration_t calibration;
+    hkf_model_noise_t second;
+    hkf_model_prepared_t second_prepared;
+    hkf_position_filter_t position;
+};
+
+/* The variants' settings (paper: the paper's, its loop closure widened) and filters; false when one fails (said). */
+static bool init_libhkf(LibhkfFilters *l, const hkf_settings_t &paper)
+{
+    hkf_settings_t constant = paper, hopenet = paper;
+    constant.noise_mode = HKF_NOISE_CONSTANT;
+    constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
+    for (int a = 0; a < 3; ++a) hopenet.noise[a] = hkf_noise_hopenet[a];
+    l->second = hkf_model_noise_of(&hopenet);
+    if (hkf_init(&l->paper, &paper) != HKF_OK || hkf_init(&l->constant, &constant) != HKF_OK ||
+        hkf_init(&l->defaults, &hkf_default_settings) != HKF_OK || hkf_init(&l->pair, &paper) != HKF_OK ||
+        hkf_init(&l->pair_prepared, &paper) != HKF_OK || hkf_model_noise_init(&l->second_prepared, &l->second) != HKF_OK ||
+        hkf_calibration_init(&l->calibration, &hkf_default_calibration_settings, &l->defaults) != HKF_OK ||
+        hkf_position_init(&l->position, &hkf_position_default_settings) != HKF_OK) {
+        std::fprintf(stderr, "hkf-bench-update: a libhkf init failed\n");
+        return false;
+    }
+    return true;
+}
+
+/* One step of every libhkf variant on in; *paper_out the paper's posterior; *pair_differences counts the
+ * steps where the prepared pair differs from hkf_update_pair. false when a step fails (said). */
+static bool step_libhkf(LibhkfFilters *l, const Input &in, hkf_output_t *paper_out, long *pair_differences)
+{
+    hkf_output_t b, c, d, e;
+    hkf_position_output_t position;
+    if (step_libhkf_paper(&l->paper, &in, paper_out) != HKF_OK || step_libhkf_constant(&l->constant, &in, &b) != HKF_OK ||
+        step_libhkf_defaults(&l->defaults, &in, &c) != HKF_OK ||
+        step_libhkf_calibration(&l->calibration, &l->defaults, &in) != HKF_OK ||
+        step_libhkf_pair(&l->pair, &in, &l->second, &d) != HKF_OK ||
+        step_libhkf_pair_prepared(&l->pair_prepared, &in, &l->second_prepared, &e) != HKF_OK ||
+        step_libhkf_position(&l->position, &in, &position) != HKF_OK) {
+        std::fprintf(stderr, "hkf-bench-update: a libhkf step failed\n");
+        return false;
+    }
+    *pair_differences += std::memcmp(d.angle, e.angle, sizeof d.angle) != 0 || std::memcmp(d.r, e.r, sizeof d.r) != 0;
+    return true;
+}
+
 int main(int argc, char **argv)
 {
     long steps = 0;
@@ -300,28 +347,10 @@ int main(int argc, char **argv)
         return exit_code;
     }
     const std::vector<Input> inputs = drive_inputs(steps);
-
     hkf_settings_t paper = hkf_paper_settings;
-    hkf_settings_t constant = paper;
-    constant.noise_mode = HKF_NOISE_CONSTANT;
-    constant.loop_closure = HKF_LOOP_CLOSURE_OFF;
     paper.lc_theta = 6.0f; /* wider than the paper's 2 deg so this noisy drive closes the loop often */
-    hkf_settings_t hopenet = paper;
-    for (int a = 0; a < 3; ++a) hopenet.noise[a] = hkf_noise_hopenet[a];
-    const hkf_model_noise_t second = hkf_model_noise_of(&hopenet);
-    hkf_model_prepared_t second_prepared;
-    hkf_filter_t f_paper, f_constant, f_defaults, f_pair, f_pair_prepared;
-    hkf_calibration_t calibration;
-    if (hkf_init(&f_paper, &paper) != HKF_OK || hkf_init(&f_constant, &constant) != HKF_OK ||
-        hkf_init(&f_defaults, &hkf_default_settings) != HKF_OK || hkf_init(&f_pair, &paper) != HKF_OK ||
-        hkf_init(&f_pair_prepared, &paper) != HKF_OK || hkf_model_noise_init(&second_prepared, &second) != HKF_OK ||
-        hkf_calibration_init(&calibration, &hkf_default_calibration_settings, &f_defaults) != HKF_OK) {
-        std::fprintf(stderr, "hkf-bench-update: hkf_init failed\n");
-        return 1;
-    }
-    hkf_position_filter_t f_position;
-    if (hkf_position_init(&f_position, &hkf_position_default_settings) != HKF_OK) {
-        std::fprintf(stderr, "hkf-bench-update: hkf_position_init failed\n");
+    static LibhkfFilters libhkf;
+    if (!init_libhkf(&libhkf, paper)) {
         return 1;
     }
     OpenCvFilter cv_filter(paper);
@@ -330,25 +359,14 @@ int main(int argc, char **argv)
     double worst_cv = 0.0, worst_eigen = 0.0;
     long closures = 0, pair_differences = 0;
     for (const Input &in : inputs) {
-        hkf_output_t a, b, c, d, e;
+        hkf_output_t a;
         float yaw_cv, yaw_eigen;
-        if (step_libhkf_paper(&f_paper, &in, &a) != HKF_OK || step_libhkf_constant(&f_constant, &in, &b) != HKF_OK ||
-            step_libhkf_defaults(&f_defaults, &in, &c) != HKF_OK ||
-            step_libhkf_calibration(&calibration, &f_defaults, &in) != HKF_OK ||
-            step_libhkf_pair(&f_pair, &in, &second, &d) != HKF_OK ||
-            step_libhkf_pair_prepared(&f_pair_prepared, &in, &second_prepared, &e) != HKF_OK) {
-            std::fprintf(stderr, "hkf-bench-update: hkf_update failed\n");
-            return 1;
-        }
-        hkf_position_output_t position;
-        if (step_libhkf_position(&f_position, &in, &position) != HKF_OK) {
-            std::fprintf(stderr, "hkf-bench-update: hkf_position_update failed\n");
+        if (!step_libhkf(&libhkf, in, &a, &pair_differences)) {
             return 1;
         }
         step_opencv(&cv_filter, &in, &yaw_cv);
         step_eigen(&eigen_filter, &in, &yaw_eigen);
         closures += (a.flags & HKF_FLAG_LOOP_CLOSURE) != 0;
-        pair_differences += std::memcmp(d.angle, e.angle, sizeof d.angle) != 0 || std::memcmp(d.r, e.r, sizeof d.r) != 0;
         worst_cv = std::max(worst_cv, static_cast<double>(std::fabs(wrap180(yaw_cv - a.angle[1]))));
         worst_eigen = std::max(worst_eigen, static_cast<double>(std::fabs(wrap180(yaw_eigen - a.angle[1]))));
     }
