@@ -54,7 +54,7 @@ DEFAULTS_NAME = "hkf defaults"  # hkf-filter as shipped: one setting
 TWO_MODELS_NAME = "hkf two models"
 TWO_MODEL_Q = [4000, 16000]
 TWO_MODEL_START = [0.01, 0.03, 0.05, 0.1, 0.3, 1.0]
-TWO_MODEL_WANDER = [0, 0.03, 0.1, 0.2, 0.3, 0.5, 1.0]  # deg^2: widened so that no optimum sits at an edge
+TWO_MODEL_WANDER = [0, 0.03, 0.1, 0.2, 0.3, 0.5, 1.0, 2.0, 4.0]  # deg^2: widened so that no optimum sits at an edge
 # every filter compared, in the tables' order
 FILTER_NAMES = list(HKF_VARIANTS) + [TWO_MODELS_NAME, "1 euro", "Accela", "EWMA"]
 GOAL_LAG_CUT = 0.30  # the goal set for the filter on real clips: the defaults lag at least 30 % less than the best 1 euro and Accela at equal jitter
