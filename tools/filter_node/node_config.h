@@ -41,7 +41,7 @@ typedef struct {
     hkf_noise_curve_t noise[3];      /* its Eq. 8 curves: pitch, yaw, roll */
     hkf_real_t r_const[3];           /* its constant R, deg^2 */
     /* Any other setting may be the model's own (e.g. its process_noise): own_keys has bit k where
-     * the k-th key of node_config.c's table is, and own holds its value; the rest come from the base. */
+     * key k of node_keys.h is, and own holds its value; the rest come from the base. */
     hkf_settings_t own;
     node_model_settings_t own_node;  /* the node's per-model keys it owns (position_r_scale) */
     unsigned long own_keys;
