@@ -23,6 +23,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "frame_capture.hpp"
 #include "frame_source.hpp"
 #include "hkf/head_pose_measurement_t.hpp"
 #include "hkf/head_pose_t.hpp"
@@ -34,53 +35,6 @@ namespace {
 
 std::atomic<bool> stop_requested{false};
 extern "C" void on_signal(int) { stop_requested = true; }
-
-// The one-frame slot between the capture and the processing thread.
-class LatestFrame {
-public:
-    // Puts a frame in. When the slot is full: with drop_old, the old frame is
-    // replaced (and counted); without, the call waits until it is taken.
-    void put(Frame frame, bool drop_old)
-    {
-        std::unique_lock<std::mutex> lock(mutex_);
-        if (!drop_old) taken_.wait(lock, [&] { return !full_ || closed_; });
-        if (full_) ++dropped_;
-        frame_ = std::move(frame);
-        full_ = true;
-        arrived_.notify_one();
-    }
-    // The newest frame, waiting up to `timeout`; nullopt when none came in that
-    // time, or (ended = true) once the source has ended and the slot is empty.
-    std::optional<Frame> take(std::chrono::milliseconds timeout, bool &ended)
-    {
-        std::unique_lock<std::mutex> lock(mutex_);
-        arrived_.wait_for(lock, timeout, [&] { return full_ || closed_; });
-        ended = !full_ && closed_;
-        if (!full_) return std::nullopt;
-        full_ = false;
-        taken_.notify_one();
-        return std::move(frame_);
-    }
-    void close()
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        closed_ = true;
-        arrived_.notify_all();
-        taken_.notify_all();
-    }
-    long dropped() const
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        return dropped_;
-    }
-
-private:
-    mutable std::mutex mutex_;
-    std::condition_variable arrived_, taken_;
-    Frame frame_;
-    bool full_ = false, closed_ = false;
-    long dropped_ = 0;
-};
 
 struct FilteredPose {
     std::mutex mutex;
@@ -145,93 +99,6 @@ void warm_up(TrackerDetectors detectors)
     detectors.search->detect(blank);
     if (detectors.region != detectors.search) detectors.region->detect(blank);
 }
-
-// The capture thread: frames from the source into the slot (a file paced at its
-// frame rate with --realtime) until it ends, fails, or a stop is requested.
-class Capture {
-public:
-    Capture(FrameSource &source, LatestFrame &slot, const PipelineOptions &options, bool drop_old)
-        : slot_(slot), thread_([this, &source, &options, drop_old] { run(source, options, drop_old); })
-    {
-    }
-    // Closes the slot and joins the thread; false when it does not stop within a second (a
-    // thread blocked inside a hung camera or stream cannot be interrupted: it is left).
-    bool stop()
-    {
-        slot_.close();  // a capture waiting to hand over a frame gives up
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-        while (!done_ && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        if (!done_) return false;
-        thread_.join();
-        return true;
-    }
-    ~Capture()
-    {
-        if (thread_.joinable()) thread_.detach();  // only a hung one; the process leaves with _Exit
-    }
-    bool failed() const { return failed_; }
-    const std::string &error() const { return error_; }
-
-private:
-    void run(FrameSource &source, const PipelineOptions &options, bool drop_old)
-    {
-        try {
-            const int64_t start = wall_utime();
-            for (long n = 0; !stop_requested && (options.max_frames == 0 || n < options.max_frames); ++n) {
-                Frame frame;
-                if (!source.read(frame)) break;
-                if (options.realtime && !source.live()) {  // pace a file at its frame rate
-                    const int64_t due = start + static_cast<int64_t>(1e6 * static_cast<double>(frame.index) / source.fps());
-                    std::this_thread::sleep_for(std::chrono::microseconds(std::max<int64_t>(0, due - wall_utime())));
-                    frame.utime = wall_utime();
-                }
-                slot_.put(std::move(frame), drop_old);
-            }
-        } catch (const std::exception &e) {  // EstimatorError, or OpenCV's own on a broken source
-            error_ = e.what();
-            failed_ = true;
-        }
-        slot_.close();
-        done_ = true;
-    }
-
-    LatestFrame &slot_;
-    std::atomic<bool> failed_{false}, done_{false};
-    std::string error_;
-    std::thread thread_;  // last: started once the rest is in place
-};
-
-// A source that stops delivering frames (a camera unplugged or hung, a stream
-// stalled) is reported after kStallWarning; the loop keeps waiting for it.
-class StallWatch {
-public:
-    static constexpr std::chrono::seconds kStallWarning{2};
-    void no_frame(const FrameSource &source)
-    {
-        const auto now = std::chrono::steady_clock::now();
-        if (!stalled_ && now - last_ >= kStallWarning) {
-            stalled_ = true;
-            ++stalls_;
-            std::fprintf(stderr, "hkf-estimator: no frame from %s for %.1f s (camera unplugged or stalled?); waiting\n",
-                         source.description().c_str(), std::chrono::duration<double>(now - last_).count());
-        }
-    }
-    void frame()
-    {
-        const auto now = std::chrono::steady_clock::now();
-        if (stalled_) {
-            std::fprintf(stderr, "hkf-estimator: frames again after %.1f s\n", std::chrono::duration<double>(now - last_).count());
-            stalled_ = false;
-        }
-        last_ = now;
-    }
-    long stalls() const { return stalls_; }
-
-private:
-    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-    bool stalled_ = false;
-    long stalls_ = 0;
-};
 
 // The frame with the face, the raw pose (and position) and the last filtered pose drawn, as
 // hkf-annotate draws them (pose_drawing.hpp), with the face's keypoints.
@@ -537,7 +404,7 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
 
     const bool drop_old = source.live() || options.realtime;
     LatestFrame slot;
-    Capture capture(source, slot, options, drop_old);
+    Capture capture(source, slot, options, drop_old, stop_requested);
     std::fprintf(stderr, "hkf-estimator: %s -> %s on %s (model %s)\n", source.description().c_str(), options.channel.c_str(),
                  options.lcm_url.c_str(), model.spec().name.c_str());
     std::mutex lcm_mutex;
