@@ -3,21 +3,21 @@
 
 #include <cmath>
 
+#include "hkf/hkf_models.h"
+
 namespace hkf_estimator {
 namespace {
 
 // The filter settings whose R is the model's: hkf-filter's defaults with the model's built-in curves.
 void init_noise(hkf_filter_t &filter, const std::string &model)
 {
-    const hkf_noise_curve_t *curves = model == "mesh_pnp" ? hkf_noise_mesh_pnp
-                                      : model == "whenet" ? hkf_noise_whenet
-                                                          : nullptr;
-    if (curves == nullptr)
-        throw EstimatorError("hkf-filter has no built-in noise curves for model '" + model +
+    const hkf_model_info_t *info = hkf_find_model(model.c_str());  // libhkf's table of models, as hkf-filter's
+    if (info == nullptr)
+        throw EstimatorError("libhkf's table of models (hkf/hkf_models.h) has no noise curves for model '" + model +
                              "' to fuse it with: measure it alone (--second-model none)");
     hkf_settings_t settings = hkf_default_settings;
     settings.noise_mode = HKF_NOISE_ADAPTIVE;
-    for (int a = 0; a < 3; ++a) settings.noise[a] = curves[a];
+    for (int a = 0; a < 3; ++a) settings.noise[a] = info->noise[a];
     if (hkf_init(&filter, &settings) != HKF_OK) throw EstimatorError("libhkf refused the settings of " + model);
 }
 

@@ -16,6 +16,7 @@
 
 #include "hkf/hkf_settings_table.h"
 #include "model_name.h"
+#include "hkf/hkf_models.h"
 #include "node_config.h"
 
 #ifndef SHIPPED_CONFIG
@@ -75,6 +76,7 @@ static int same_models(const node_model_t *a, const node_model_t *b, int n)
 static void test_shipped_file_equals_defaults(void **state)
 {
     node_config_t from_file, defaults;
+    int i;
     (void)state;
     node_config_defaults(&defaults);
     memset(&from_file, 0, sizeof from_file);
@@ -96,6 +98,16 @@ static void test_shipped_file_equals_defaults(void **state)
     assert_true(node_config_model_settings(&from_file, "whenet").position_r_scale ==
                 node_config_model_settings(&defaults, "whenet").position_r_scale);
     assert_true(from_file.model_settings.position_r_scale == defaults.model_settings.position_r_scale);
+    /* every model's own settings: the file's, and the built-in ones from libhkf's table of models */
+    for (i = 0; i < hkf_model_count; ++i) {
+        int known_file, known_defaults;
+        const hkf_settings_t f = node_config_for_model(&from_file, hkf_models[i].name, &known_file);
+        const hkf_settings_t d = node_config_for_model(&defaults, hkf_models[i].name, &known_defaults);
+        assert_true(known_file && known_defaults);
+        assert_true(same_settings(&f, &d));
+        assert_true(d.still_wander ==
+                    (hkf_models[i].still_wander > 0 ? hkf_models[i].still_wander : defaults.settings.still_wander));
+    }
 }
 
 /* The position's quality is the model's (position_r_scale): the mesh fit's 1 built in, the face box's

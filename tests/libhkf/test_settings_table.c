@@ -2,12 +2,17 @@
  * test_settings_table.c - libhkf's settings table says what hkf_init and
  * hkf_position_init do: every setting is in it once, each end of its range
  * is accepted, a value just outside is refused with the descriptor's error,
- * and hkf_setting_in_range agrees with the init on both sides.
+ * and hkf_setting_in_range agrees with the init on both sides. The table of
+ * models: each one found by its name, once, its curves and its own still_wander
+ * a set hkf_init takes in this numeric build.
  */
 #include "test_support.h"
 
+#include "hkf/hkf_models.h"
 #include "hkf/hkf_position.h"
 #include "hkf/hkf_settings_table.h"
+
+#include <string.h>
 
 typedef struct {
     const hkf_setting_t *table;
@@ -160,11 +165,40 @@ static void test_every_setting_once(void **state)
     }
 }
 
+static void test_models_table(void **state)
+{
+    int i, j;
+    (void)state;
+    assert_true(hkf_model_count >= 4);
+    for (i = 0; i < hkf_model_count; ++i) {
+        const hkf_model_info_t *m = &hkf_models[i];
+        hkf_settings_t s = hkf_default_settings;
+        hkf_filter_t f;
+        assert_ptr_equal(hkf_find_model(m->name), m);
+        for (j = 0; j < i; ++j) {
+            assert_true(strcmp(hkf_models[j].name, m->name) != 0);
+        }
+        memcpy(s.noise, m->noise, sizeof s.noise);
+        s.noise_mode = HKF_NOISE_ADAPTIVE;
+        if (m->still_wander > 0) {
+            s.still_wander = m->still_wander;
+        }
+        assert_int_equal(hkf_init(&f, &s), HKF_OK);
+        assert_true(m->still_wander >= 0 && m->position_r_scale >= 0);
+    }
+    assert_ptr_equal(hkf_find_model("mesh_pnp")->noise, hkf_noise_mesh_pnp);
+    assert_ptr_equal(hkf_find_model("whenet")->noise, hkf_noise_whenet);
+    assert_null(hkf_find_model("no_such_model"));
+    assert_null(hkf_find_model("mesh_pn"));
+    assert_null(hkf_find_model(NULL));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ranges_are_what_init_applies),
         cmocka_unit_test(test_every_setting_once),
+        cmocka_unit_test(test_models_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

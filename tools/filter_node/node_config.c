@@ -3,6 +3,7 @@
  * node_config_print.c). */
 #include "node_config.h"
 
+#include "hkf/hkf_models.h"
 #include "model_name.h"
 #include "node_config_parts.h"
 #include "node_keys.h"
@@ -11,7 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 
-/* The paper's two estimators and ours are in the table from the start. */
+/* A model of libhkf's table (hkf_models.h) in the node's from the start. */
 static void add_builtin_model(node_config_t *config, const char *name, const hkf_noise_curve_t noise[3])
 {
     node_model_t *m = &config->models[config->model_count++];
@@ -36,20 +37,24 @@ static void own_builtin_real(node_model_t *m, const char *name, hkf_real_t value
 
 void node_config_defaults(node_config_t *config)
 {
+    int i;
     memset(config, 0, sizeof *config);
     config->settings = hkf_default_settings;
     config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
     config->position = hkf_position_default_settings;
     config->calibration = hkf_default_calibration_settings;
     config->model_settings.position_r_scale = (hkf_real_t)NODE_BOX_POSITION_R_SCALE;
-    add_builtin_model(config, "fsanet", hkf_noise_fsanet);
-    add_builtin_model(config, "hopenet", hkf_noise_hopenet);
-    add_builtin_model(config, "mesh_pnp", hkf_noise_mesh_pnp); /* fitted by dev/fit */
-    own_builtin_real(&config->models[config->model_count - 1], "position_r_scale", (hkf_real_t)1.0); /* the mesh fit's */
-    add_builtin_model(config, "whenet", hkf_noise_whenet);
-    /* WHENet's estimate of a resting face wanders further than the mesh's: 1 deg^2 brings its still jitter
-     * level with the mesh's (docs/evaluation.md) */
-    own_builtin_real(&config->models[config->model_count - 1], "still_wander", (hkf_real_t)1.0);
+    for (i = 0; i < hkf_model_count; ++i) { /* libhkf's table of models: each one's curves and own values */
+        const hkf_model_info_t *info = &hkf_models[i];
+        node_model_t *m = &config->models[config->model_count];
+        add_builtin_model(config, info->name, info->noise);
+        if (info->position_r_scale > 0) {
+            own_builtin_real(m, "position_r_scale", info->position_r_scale);
+        }
+        if (info->still_wander > 0) {
+            own_builtin_real(m, "still_wander", info->still_wander);
+        }
+    }
 }
 
 /* The same in the config's own settings, to write. */
