@@ -1,7 +1,8 @@
 // hkf-bench-layers - where a network's forward pass spends its time in OpenCV's DNN module (the
 // shipped runtime): cv::dnn::Net::getPerfProfile after each forward, summed by layer type, medians
 // over the runs. For the second model's speed (WHENet's EfficientNet-B0 runs 8x slower in OpenCV 4.6
-// than in onnxruntime: docs/estimator.md).
+// than in onnxruntime: docs/estimator.md). Then the same network quantized to int8 by OpenCV itself
+// (cv::dnn::Net::quantize, calibrated on the same input), its whole pass: the shipped runtime's int8 path.
 // usage: hkf-bench-layers MODEL.onnx [WIDTH HEIGHT [RUNS [THREADS]]]   (defaults 224 224 40 1)
 #include <algorithm>
 #include <cstdio>
@@ -139,6 +140,33 @@ void print_slowest(const Profile &p)
     }
 }
 
+// The median forward pass (ms) of net quantized to int8 by OpenCV (calibrated on one random input: the time
+// does not depend on the values); a negative value when OpenCV cannot quantize it (said).
+double int8_forward_ms(cv::dnn::Net &net, const Options &o)
+{
+    const int shape[] = {1, 3, static_cast<int>(o.height), static_cast<int>(o.width)};
+    cv::Mat input(4, shape, CV_32F);
+    cv::RNG rng(7);
+    rng.fill(input, cv::RNG::NORMAL, 0.0, 1.0);
+    cv::dnn::Net int8;
+    try {
+        int8 = net.quantize(std::vector<cv::Mat>{input}, CV_32F, CV_32F);
+    } catch (const cv::Exception &e) {
+        std::fprintf(stderr, "hkf-bench-layers: OpenCV cannot quantize %s: %s\n", o.model, e.what());
+        return -1.0;
+    }
+    std::vector<double> ms;
+    const double tick_ms = 1000.0 / cv::getTickFrequency();
+    for (long run = 0; run < o.runs + 2; ++run) {
+        int8.setInput(input);
+        int8.forward();
+        std::vector<double> ticks;
+        const int64 total = int8.getPerfProfile(ticks);
+        if (run >= 2) ms.push_back(static_cast<double>(total) * tick_ms);
+    }
+    return median(ms);
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -162,5 +190,9 @@ int main(int argc, char **argv)
                 o.height, CV_VERSION, o.threads, o.threads == 1 ? "" : "s", o.runs, total);
     print_by_type(p, total);
     print_slowest(p);
+    const double int8_ms = int8_forward_ms(net, o);
+    if (int8_ms >= 0.0)
+        std::printf("\nQuantized to int8 by OpenCV (cv::dnn::Net::quantize): forward pass %.1f ms (median), %.2fx the "
+                    "float pass\n", int8_ms, total > 0 ? int8_ms / total : 0.0);
     return 0;
 }

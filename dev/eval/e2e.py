@@ -75,8 +75,9 @@ def log(message):
 
 
 class Variant:
-    def __init__(self, name, filter_options=(), bridge_options=()):
+    def __init__(self, name, filter_options=(), bridge_options=(), estimator_options=()):
         self.name, self.filter_options, self.bridge_options = name, list(filter_options), list(bridge_options)
+        self.estimator_options = list(estimator_options)
 
 
 def variants_for(short, lead_ms=None):
@@ -201,7 +202,7 @@ def run_chain(build, clip, variant, work):
                          + variant.bridge_options, stdout=logs["bridge"], stderr=subprocess.STDOUT)]
     time.sleep(0.7)  # every subscriber listening before the first frame
     estimator = subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", clip.folder,
-                                "--fps", f"{clip.fps:g}", "--realtime", "--lcm-url", URL],
+                                "--fps", f"{clip.fps:g}", "--realtime", "--lcm-url", URL] + variant.estimator_options,
                                stdout=subprocess.PIPE, stderr=logs["estimator"], text=True)
     time.sleep(0.5)
     for proc in reversed(background):
@@ -217,20 +218,25 @@ def run_chain(build, clip, variant, work):
     return receiver.datagrams, log_path, estimator.stdout
 
 
-def read_chain_log(path, types_dir):
-    """The first model's raw measurements and the published poses, with their arrival times (us)."""
+def decoded_events(path, types_dir):
+    """(arrival us, channel, decoded message) of each HEAD_POSE_RAW and HEAD_POSE event of a logger's log."""
     import lcm
     sys.path.insert(0, types_dir)
     from hkf import head_pose_measurement_t, head_pose_t
-    raw, poses = [], []
+    types = {"HEAD_POSE_RAW": head_pose_measurement_t, "HEAD_POSE": head_pose_t}
     for event in lcm.EventLog(path, "r"):
-        if event.channel == "HEAD_POSE_RAW":
-            m = head_pose_measurement_t.decode(event.data)
-            if m.model == "mesh_pnp":
-                raw.append((event.timestamp, m.utime, m.seq, m.valid, m.roll, m.z))
-        elif event.channel == "HEAD_POSE":
-            p = head_pose_t.decode(event.data)
-            poses.append((event.timestamp, p.utime, p.measurement_utime, p.extrapolated))
+        if event.channel in types:
+            yield event.timestamp, event.channel, types[event.channel].decode(event.data)
+
+
+def read_chain_log(path, types_dir):
+    """The first model's raw measurements and the published poses, with their arrival times (us)."""
+    raw, poses = [], []
+    for timestamp, channel, m in decoded_events(path, types_dir):
+        if channel == "HEAD_POSE_RAW" and m.model == "mesh_pnp":
+            raw.append((timestamp, m.utime, m.seq, m.valid, m.roll, m.z))
+        elif channel == "HEAD_POSE":
+            poses.append((timestamp, m.utime, m.measurement_utime, m.extrapolated))
     return np.array(raw, float), np.array(poses, float)
 
 
