@@ -134,7 +134,7 @@ static void test_second_model_position(void **state)
         second.x = 1.5f, second.y = -2.0f, second.z = truth + 3.0f - noise;
         (void)filter_node_receive(&node, &second, utime + 1000, &pose);
         if (i == 29 || i == 59) {
-            const int64_t at = node.position_utime;
+            const int64_t at = node.position.utime;
             assert_true(filter_node_extrapolate(&node, utime + 2000, &pose) >= 0);
             print_message("frame %d: z %.2f cm (the head at %.0f cm; the last position taken at frame %lld)\n", i,
                           pose.z, truth, (long long)((at - T0) / FRAME_US - 1));
@@ -212,7 +212,7 @@ static void test_position_alone_follows_a_clock_step(void **state)
     second.pitch = second.yaw = second.roll = NAN;
     second.x = 30.0f, second.y = 0.0f, second.z = 60.0f;
     assert_int_equal(filter_node_receive(&node, &second, m.utime + 1000, &pose), 0);
-    assert_true(hkf_position_started(&node.position)); /* the position alone has started */
+    assert_true(hkf_position_started(&node.position.filter)); /* the position alone has started */
     for (++i; i < 80; ++i) { /* the clock steps back 1 h; the mesh measures x 0 -> -29 cm */
         const float x = -0.5f * (float)(i - 21);
         m = measurement(T0 + i * FRAME_US + gap - back, 1, 0, 5, 0);

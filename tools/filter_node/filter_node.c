@@ -24,8 +24,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     node->published_utime = INT64_MIN;
     stream_admission_init(&node->admission);
     second_model_init(&node->second);
-    second_position_init(&node->second_position);
-    result = hkf_position_init(&node->position, &config->position);
+    result = node_position_init(&node->position, &config->position);
     if (result == HKF_OK) {
         result = resolved_models_init(&node->models, config);
     }
@@ -35,99 +34,29 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     return setup_filter(node, "");
 }
 
-/* Seconds from the last position taken to capture time utime, 0 when utime is not later
- * (stamps may be anything: in double). */
-static double position_ahead(const filter_node_t *node, int64_t utime)
-{
-    const double ahead = ((double)utime - (double)node->position_utime) * 1e-6;
-    return ahead > 0.0 ? ahead : 0.0;
-}
-
-/* The filtered position at capture time utime (hkf_position_extrapolate): the last one
- * taken moved on by its rate for up to the position's max_dt, then held with rate 0 while
- * its variance grows; within the range the node accepts. */
-static void fill_position(const filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
-{
-    const hkf_position_filter_t *p = &node->position;
-    float *position[3] = {&pose->x, &pose->y, &pose->z}, *rate[3] = {&pose->x_rate, &pose->y_rate, &pose->z_rate};
-    hkf_position_output_t out;
-    hkf_position_state_t state;
-    int a;
-    if (hkf_position_extrapolate(p, (hkf_real_t)position_ahead(node, utime), &out) != HKF_OK ||
-        hkf_position_get_state(p, &state) != HKF_OK) {
-        return; /* all 0: no position measured yet */
-    }
-    for (a = 0; a < 3; ++a) {
-        *position[a] = (float)out.position[a];
-        *rate[a] = (float)out.rate[a];
-        pose->position_variance[a] = (float)out.variance[a];
-        pose->position_center[a] = (float)state.center[a];
-    }
-    pose->position_status = out.status == HKF_STATUS_TRACKING   ? HKF_HEAD_POSE_T_TRACKING
-                            : out.status == HKF_STATUS_COASTING ? HKF_HEAD_POSE_T_COASTING
-                                                                : HKF_HEAD_POSE_T_LOST;
-    if (pose->z < FILTER_NODE_MIN_Z) {
-        pose->z = FILTER_NODE_MIN_Z; /* a coast toward the camera stops at it */
-    }
-}
-
-/* A measurement's position: 1 when it carries one the node takes (FILTER_NODE_MIN_Z <= z and every
- * axis within HKF_MAX_ABS_POSITION), 0 when it carries none (no face, or z = 0: not measured), -1
- * when it carries a bad one (non-finite, z < 0 or too near, beyond the range). */
-static int position_of(const hkf_head_pose_measurement_t *m)
-{
-    const float most = (float)HKF_MAX_ABS_POSITION;
-    if (!m->valid || m->z == 0.f) {
-        return 0;
-    }
-    return isfinite(m->x) && isfinite(m->y) && isfinite(m->z) && fabsf(m->x) <= most && fabsf(m->y) <= most &&
-                   m->z >= FILTER_NODE_MIN_Z && m->z <= most
-               ? 1
-               : -1;
-}
-
-/* A position xyz measured at utime (R scaled by r_scale) into the position filter, if later than the last. */
-static void update_position(filter_node_t *node, const float xyz[3], int64_t utime, float r_scale)
-{
-    const hkf_real_t z[3] = {xyz[0], xyz[1], xyz[2]};
-    hkf_position_output_t out;
-    /* the first position's dt is unused; a gap beyond max_dt restarts the track in hkf_position_update */
-    const double dt = hkf_position_started(&node->position) ? ((double)utime - (double)node->position_utime) * 1e-6 : 0.02;
-    if (dt > 0.0 && hkf_position_update(&node->position, z, (hkf_real_t)r_scale, (hkf_real_t)dt, &out) == HKF_OK) {
-        node->position_utime = utime;
-        node->counts.positions_gated += (out.flags & HKF_FLAG_GATED) != 0;
-    }
-}
-
 /* How much noisier m's model measures the position than the position filter's R says (its config). */
 static float position_r_scale(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
     return (float)node_config_model_settings(node->config, m->model).position_r_scale;
 }
 
-/* The first model's frame m: its position (measured, or a bad one counted) into the position
- * filter, and noted for a second model's measurement of the frame. */
+/* What a measurement's position became, counted. */
+static void count_position(filter_node_t *node, node_position_result_t result)
+{
+    node->counts.bad_positions += result == NODE_POSITION_BAD;
+    node->counts.positions_gated += result == NODE_POSITION_GATED;
+}
+
+/* The first model's frame m: its position into the position filter (node_position.h). */
 static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
-    const float xyz[3] = {m->x, m->y, m->z};
-    const int measured = position_of(m);
-    node->counts.bad_positions += measured < 0;
-    second_position_note_first(&node->second_position, m->seq, m->utime, measured > 0, xyz);
-    if (measured > 0) {
-        update_position(node, xyz, m->utime, position_r_scale(node, m));
-    }
+    count_position(node, node_position_take_first(&node->position, m, position_r_scale(node, m)));
 }
 
 /* A second model's measurement m: its position stands in where the first model measured none. */
 static void take_second_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
-    const float xyz[3] = {m->x, m->y, m->z};
-    const int measured = position_of(m);
-    float moved[3];
-    node->counts.bad_positions += measured < 0;
-    if (measured > 0 && second_position_take(&node->second_position, m->seq, m->utime, xyz, moved)) {
-        update_position(node, moved, m->utime, position_r_scale(node, m));
-    }
+    count_position(node, node_position_take_second(&node->position, m, position_r_scale(node, m)));
 }
 
 /* A posterior at utime older than the pose published before it (--rate's ticks went past a late frame):
@@ -173,7 +102,7 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
     pose->loop_closure_active = (out->flags & HKF_FLAG_LOOP_CLOSURE) != 0;
     pose->extrapolated = (out->flags & HKF_FLAG_EXTRAPOLATED) != 0;
     pose->latency_us = 0;
-    fill_position(node, utime, pose);
+    node_position_fill(&node->position, utime, pose);
     ++node->counts.published;
 }
 
@@ -184,10 +113,9 @@ static void restart_track(filter_node_t *node)
 {
     hkf_reset(&node->filter);
     (void)hkf_calibration_reset(&node->calibration, &node->filter);
-    hkf_position_restart(&node->position);
+    node_position_restart(&node->position);
     ++node->counts.restarts;
     second_model_forget_frames(&node->second);
-    second_position_forget_frames(&node->second_position);
 }
 
 static int finite_angles(const hkf_head_pose_measurement_t *m)
@@ -304,9 +232,8 @@ static void resync_clock(filter_node_t *node)
     if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
         restart_track(node);
     } else {
-        hkf_position_restart(&node->position);
+        node_position_restart(&node->position);
         second_model_forget_frames(&node->second);
-        second_position_forget_frames(&node->second_position);
     }
 }
 
@@ -447,19 +374,6 @@ int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pos
     return 1;
 }
 
-/* RECENTER's position centre: the position last published (at the angles' frame time), as the pose
- * carried it - held or coasting, never nearer than FILTER_NODE_MIN_Z - so that it reads 0 after. */
-static void recenter_position(filter_node_t *node)
-{
-    hkf_head_pose_t published;
-    memset(&published, 0, sizeof published);
-    fill_position(node, node->admission.last_utime, &published);
-    if (hkf_position_started(&node->position)) {
-        const hkf_real_t center[3] = {published.x, published.y, published.z};
-        (void)hkf_position_set_center(&node->position, center); /* within the range: fill_position bounds it */
-    }
-}
-
 int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command)
 {
     switch (command->command) {
@@ -467,13 +381,13 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         ++node->counts.commands;
         second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
-        recenter_position(node);
+        /* the position's centre: the position last published (at the angles' frame time), so that it reads 0 after */
+        node_position_recenter(&node->position, node->admission.last_utime);
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;
         second_model_forget_frames(&node->second);
-        second_position_init(&node->second_position); /* the models' offset too: nothing of before stays */
-        hkf_position_reset(&node->position);
+        node_position_reset(&node->position); /* the models' offset too: nothing of before stays */
         (void)setup_filter(node, node->model);
         return 0;
     default:

@@ -58,7 +58,7 @@
 #include "hkf/hkf.h"
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
-#include "second_position.h"
+#include "node_position.h"
 #include "hkf_head_pose_t.h"
 #include "hkf_tracker_command_t.h"
 #include "node_config.h"
@@ -107,9 +107,7 @@ typedef struct {
     int64_t seq;
     int64_t published_utime;          /* the last pose's utime: none later is older (INT64_MIN: none on this clock) */
     second_model_t second;            /* the kept frames and the second model's offset (second_model.h) */
-    hkf_position_filter_t position;   /* the head's position: the followed model's measurements (z > 0) */
-    int64_t position_utime;           /* capture time of the last position taken */
-    second_position_t second_position; /* the first model's last positions, the second's offset (second_position.h) */
+    node_position_t position;         /* the head's position, a second model's standing in (node_position.h) */
     filter_node_counts_t counts;
 } filter_node_t;
 
@@ -117,7 +115,6 @@ typedef struct {
  * rule are resolved here (resolved_models.h): a config changed later needs filter_node_init again. */
 int filter_node_init(filter_node_t *node, const node_config_t *config);
 
-#define FILTER_NODE_MIN_Z 1.0f /* cm: the nearest position taken and published (z = 0: not measured) */
 
 /* Poses are never stamped earlier than the pose before them on one capture clock, a silence's LOST pose
  * aside: a measurement whose frame arrived after --rate ticks went past its capture time is published
