@@ -59,7 +59,7 @@ TUNE_CLIP = "d12"
 REPORT_CLIPS = ["d10", "d18"]
 SHORT_MAX_ONSET_MS = 150.0
 ROLL, Z = 2, 2
-PIVOT_CM = 10.0  # hkf-estimator's --pivot default (estimator/src/head_position.hpp): the pivot behind the face
+PIVOT_CM = 10.0  # hkf-estimator's --pivot default (estimator/src/models/head_position.hpp): the pivot behind the face
 SAMPLE_DELAY_S = 0.04  # still jitter: what the receiver holds this long after each frame's capture
 RAW_OPTIONS = ["noise_time=0", "noise_mode=constant", "r_const=0.0001 0.0001 0.0001", "r_min=0.0001",
                "loop_closure=off", "start_rate=0", "process_noise=1000000 1000000 1000000",

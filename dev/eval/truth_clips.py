@@ -6,7 +6,7 @@ noise and JPEG compression each time, written as a folder of images that
 An in-plane rotation of the image by theta about the face centre is the head
 turned by theta about the line of sight through that centre (the optical
 axis for a face in the middle of the image). In hkf's angles (R = Ry(yaw)
-Rx(pitch) Rz(roll), estimator/src/head_rotation.cpp) that is a roll of
+Rx(pitch) Rz(roll), estimator/src/models/head_rotation.cpp) that is a roll of
 exactly theta for a face in the middle looking into the camera; otherwise the
 three angles move together, as truth_angles() computes from the face's own
 pose (the estimator's reading of the unturned face: its error enters the
@@ -30,7 +30,7 @@ JPEG_QUALITY = 90      # each frame compressed afresh
 
 
 def _rotation(pitch, yaw, roll):
-    """hkf's head rotation (head -> camera), as estimator/src/head_rotation.cpp."""
+    """hkf's head rotation (head -> camera), as estimator/src/models/head_rotation.cpp."""
     p, y, r = np.radians([pitch, yaw, roll])
     ry = np.array([[np.cos(y), 0, np.sin(y)], [0, 1, 0], [-np.sin(y), 0, np.cos(y)]])
     rx = np.array([[1, 0, 0], [0, np.cos(p), np.sin(p)], [0, -np.sin(p), np.cos(p)]])

@@ -1,5 +1,5 @@
 // test_network_outputs.cpp - reading the networks' outputs
-// (estimator/src/network_outputs.cpp) on outputs whose right answer is known
+// (estimator/src/models/network_outputs.cpp) on outputs whose right answer is known
 // by hand: sizes and types refused, anchors laid out as BlazeFace's, a box and
 // keypoints decoded into the frame, a score threshold, the bins' expectation,
 // the face flag's sigmoid.

@@ -1,5 +1,5 @@
 // fuzz_estimator_outputs.cpp - libFuzzer target for reading the networks'
-// outputs (estimator/src/network_outputs.cpp): the face detector's scores and
+// outputs (estimator/src/models/network_outputs.cpp): the face detector's scores and
 // regressors, an angle-bins head, the mesh's face flag and landmarks, each of
 // any size and element type the input chooses (a model file that does not
 // match its description) and with any values (NaN, infinities, huge).
