@@ -299,8 +299,8 @@ static void test_silence_reported_lost(void **state)
 /* Two models on one channel: every frame's second measurement (model
  * "hopenet", from the same simulated head with its own noise) arrives 3 frames
  * late, as from a second core; on some frames only the second model found the
- * face. Nothing is published for a second measurement, each is fused into its
- * own frame, and in the end the node's filter is where libhkf gets stepping
+ * face. Each second measurement is fused into its own frame (and the posterior
+ * with it published at once), and in the end the node's filter is where libhkf gets stepping
  * frame by frame with hkf_update_pair (z NULL where the first found no face). */
 
 int main(void)

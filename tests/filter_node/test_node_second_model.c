@@ -42,7 +42,7 @@ static void test_second_model_fused_into_its_frame(void **state)
     static hkf_head_pose_measurement_t first[FRAMES], second[FRAMES];
     hkf_filter_t reference, before;
     hkf_output_t ours, theirs;
-    int known1, known2, i, a, published = 0, second_only; /* frames only the second model measured */
+    int known1, known2, i, a, published = 0, published_second = 0, second_only; /* frames only the second model measured */
     const hkf_settings_t s1 = node_config_for_model(&config, "fsanet", &known1);
     const hkf_settings_t hopenet = node_config_for_model(&config, "hopenet", &known2);
     const hkf_model_noise_t s2 = hkf_model_noise_of(&hopenet);
@@ -59,9 +59,14 @@ static void test_second_model_fused_into_its_frame(void **state)
             published += filter_node_receive(&node, &first[i], first[i].utime + 2000, &pose);
         }
         if (i >= LATE) {
+            hkf_output_t now;
             memcpy(&before, &node.filter, sizeof before);
-            assert_int_equal(filter_node_receive(&node, &second[i - LATE], first[i - LATE].utime + 40000, &pose), 0);
+            /* the posterior with it published at once, at the newest frame's time (not with the next frame) */
+            assert_int_equal(filter_node_receive(&node, &second[i - LATE], first[i - LATE].utime + 40000, &pose), 1);
             assert_true(memcmp(&before, &node.filter, sizeof before) != 0); /* taken */
+            assert_int_equal(hkf_get_output(&node.filter, &now), HKF_OK);
+            assert_true(pose.utime == first[i < FRAMES ? i : FRAMES - 1].utime && pose.yaw == (float)now.angle[1]);
+            ++published_second;
         }
     }
     assert_true(second_only > 20);
@@ -70,6 +75,7 @@ static void test_second_model_fused_into_its_frame(void **state)
     for (i = 0; i < FRAMES && !first[i].valid; ++i) {
     }
     assert_int_equal(published, FRAMES - (i < LATE + 1 ? i : LATE + 1));
+    assert_int_equal(published_second, FRAMES);
     assert_int_equal(node.counts.paired, FRAMES);
     assert_int_equal(node.counts.unpaired, 0);
     assert_int_equal(node.counts.received, 2 * FRAMES); /* each model's, each counted once */
@@ -110,8 +116,9 @@ static void test_second_model_late_or_repeated_not_used(void **state)
     assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
     assert_memory_equal(&before, &node.filter, sizeof before);
     other.yaw = 12.0f;
-    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
+    assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 1); /* published at once */
     assert_true(memcmp(&before, &node.filter, sizeof before) != 0);
+    assert_true(pose.utime == m[39].utime); /* at the newest frame's time */
     memcpy(&before, &node.filter, sizeof before);
     other.yaw = 14.0f; /* the same frame's second again */
     assert_int_equal(filter_node_receive(&node, &other, T0 + 40 * FRAME_US, &pose), 0);
@@ -121,7 +128,7 @@ static void test_second_model_late_or_repeated_not_used(void **state)
     assert_int_equal(node.counts.bad_values, 1);
     assert_int_equal(node.counts.other_publisher, 0);
     assert_int_equal(node.counts.restarts, 0);
-    /* the next frame's pose carries the fused frame; the model table is not switched */
+    /* the next frame's pose follows; the model table is not switched */
     m[0] = measurement(T0 + 40 * FRAME_US, 1, 1.0, 10.0, -2.0);
     m[0].seq = m[39].seq + 1;
     assert_int_equal(filter_node_receive(&node, &m[0], m[0].utime + 2000, &pose), 1);
@@ -149,7 +156,8 @@ static void test_second_model_alone_starts_and_keeps_track(void **state)
         second.pitch = -5.0f;
         second.yaw = 70.0f;
         second.roll = 3.0f;
-        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 1);
+        assert_true(fabsf(pose.yaw - 70.0f) < 1.0f && pose.status == HKF_HEAD_POSE_T_TRACKING);
     }
     assert_int_equal(published, 29);
     assert_int_equal(node.counts.paired, 30);
@@ -183,8 +191,8 @@ static void test_second_model_offset_aligned(void **state)
         assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
         assert_int_equal(filter_node_receive(&alone, &m, m.utime + 2000, &p_alone), 1);
         assert_int_equal(filter_node_receive(&unaligned, &m, m.utime + 2000, &p_unaligned), 1);
-        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
-        assert_int_equal(filter_node_receive(&unaligned, &second, m.utime + 30000, &p_unaligned), 0);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 1);
+        assert_int_equal(filter_node_receive(&unaligned, &second, m.utime + 30000, &p_unaligned), 1);
         if (i >= 200) {
             bias_aligned[0] += (pose.pitch - p_alone.pitch) / 200.0;
             bias_aligned[1] += (pose.yaw - p_alone.yaw) / 200.0;
@@ -218,7 +226,7 @@ static void test_second_model_offset_from_the_first_frames(void **state)
         second.pitch = m.pitch - 4.0f;
         second.yaw = m.yaw + 3.0f;
         (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
-        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 1);
     }
     assert_int_equal(node.second.offset_frames, 10);
     assert_float_equal(node.second.offset[0], 4.0, 1e-4);
@@ -230,7 +238,7 @@ static void test_second_model_offset_from_the_first_frames(void **state)
         second.model = "hopenet";
         second.pitch = m.pitch - 12.0f;
         (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
-        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 1);
     }
     assert_int_equal(node.second.offset_frames, 10);
     assert_float_equal(node.second.offset[0], 4.0, 1e-4);
@@ -260,7 +268,7 @@ static void test_second_model_offset_across_the_seam(void **state)
         second.yaw = (float)(yaw + 2.0 >= 180.0 ? yaw + 2.0 - 360.0 : yaw + 2.0);
         assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
         assert_int_equal(filter_node_receive(&alone, &m, m.utime + 2000, &first_alone), 1);
-        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 0);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 1);
         if (i >= 20) {
             const double d = fabs(fmod(pose.yaw - first_alone.yaw + 540.0, 360.0) - 180.0);
             worst = d > worst ? d : worst;
@@ -304,7 +312,7 @@ static void test_second_model_alone_at_large_yaw(void **state)
         second.yaw = z2[1];
         second.roll = z2[2];
         assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
-        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 1);
         assert_int_equal(hkf_update_pair(&reference, yaw >= 25.0 ? NULL : z, z2, &s2,
                                          (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6), NULL), HKF_OK);
         assert_int_equal(hkf_calibration_update(&calibration, &reference, yaw >= 25.0 ? z2 : z,

@@ -260,13 +260,13 @@ static int admitted(filter_node_t *node, const hkf_head_pose_measurement_t *m, i
     return 0;
 }
 
-/* Fuses m, the second measurement of kept frame `index` (second_model_fuse), and counts it. */
-static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
+/* Fuses m, the second measurement of kept frame `index` (second_model_fuse), and counts it: 1 when fused. */
+static int fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
 {
     int known;
     if (!second_model_fuse(&node->second, &node->models, index, m, &node->filter, &node->calibration)) {
         ++node->counts.unpaired;
-        return;
+        return 0;
     }
     (void)resolved_models_find(&node->models, node->second.frames[index].second_model, &known);
     if (m->utime > node->last_measurement_utime) {
@@ -274,20 +274,37 @@ static void fuse_second(filter_node_t *node, int index, const hkf_head_pose_meas
     }
     node->counts.unknown_models += !known;
     ++node->counts.paired;
+    return 1;
+}
+
+/* The posterior once a second measurement is fused, at the newest frame's time: what the second model
+ * measured reaches the game now, not with the next frame (a frame later at a big turn, where it is the
+ * only good measurement). 0 while there is no track. */
+static int pose_after_fusing(filter_node_t *node, hkf_head_pose_t *pose)
+{
+    hkf_output_t out;
+    if (hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED || hkf_get_output(&node->filter, &out) != HKF_OK) {
+        return 0;
+    }
+    fill_pose(node, &out, node->admission.last_utime, pose);
+    return 1;
 }
 
 /* A second model's measurement m of a frame taken (the kept frame `index`, or -1: too late): its
- * angles fused into that frame, its position standing in where the first model measured none. */
-static void take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, int index)
+ * angles fused into that frame, its position standing in where the first model measured none.
+ * Returns 1 when *pose, the posterior with it, is to be published. */
+static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, int index, hkf_head_pose_t *pose)
 {
+    int fused = 0;
     if (m->valid && !finite_angles(m)) {
         ++node->counts.bad_values;
     } else if (!m->valid || index < 0) {
         ++node->counts.unpaired;
     } else {
-        fuse_second(node, index, m);
+        fused = fuse_second(node, index, m);
     }
     take_second_position(node, m);
+    return fused && pose_after_fusing(node, pose);
 }
 
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
@@ -298,8 +315,7 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
     ++node->counts.received; /* every measurement that reaches the node, whatever becomes of it */
     if (second_of >= 0 ||
         (stream_admission_following(&node->admission) && second_model_too_late(&node->second, m, node->model))) {
-        take_second(node, m, second_of);
-        return 0;
+        return take_second(node, m, second_of, pose);
     }
     if (!admitted(node, m, arrival_utime)) {
         return 0;

@@ -24,8 +24,9 @@
  *   The node keeps the last FILTER_NODE_PAIR_FRAMES frames' steps; it goes back
  *   to the frame, takes both measurements there in one hkf_update_pair step
  *   (each with its own model's Eq. 8 curves; the second alone when the first
- *   found no face) and redoes the frames after it. Nothing is published for a
- *   second measurement: the next frame's pose carries it. One per frame; a
+ *   found no face) and redoes the frames after it. The posterior with it is
+ *   published at once, at the newest frame's time (the next frame would carry it
+ *   a frame later: at a big turn it is the only good measurement). One per frame; a
  *   second measurement older than the kept frames (its seq and utime are
  *   one of the followed publisher's last frames) is counted, not used. A
  *   restart, a command or a clock resync forgets the kept frames. Two models
