@@ -93,6 +93,17 @@ def validate(mutants, root):
     return errors
 
 
+def remove_stale(src, kept):
+    """Files of an earlier copy that the tree no longer has (moved or deleted) removed, so that they are not
+    built or included in place of the tree's own; the links to the set-up's folders are left alone."""
+    for folder, dirs, names in os.walk(src):
+        dirs[:] = [d for d in dirs if not os.path.islink(os.path.join(folder, d))]
+        for name in names:
+            path = os.path.join(folder, name)
+            if not os.path.islink(path) and os.path.relpath(path, src) not in kept:
+                os.remove(path)
+
+
 def scratch_copy(work):
     """The tracked files (and the working tree's changes) in WORK/src, with the
     set-up's models and Python and the team's data reachable as in the tree."""
@@ -106,6 +117,7 @@ def scratch_copy(work):
         os.makedirs(os.path.dirname(target), exist_ok=True)
         if not os.path.exists(target) or open(target, "rb").read() != open(os.path.join(ROOT, f), "rb").read():
             shutil.copy(os.path.join(ROOT, f), target)  # stamped now, not with the tree's time: it must rebuild
+    remove_stale(src, {f for f in files if f})
     for link in (".models", ".venv", ".third_party"):
         if os.path.exists(os.path.join(ROOT, link)) and not os.path.lexists(os.path.join(src, link)):
             os.symlink(os.path.join(ROOT, link), os.path.join(src, link))
