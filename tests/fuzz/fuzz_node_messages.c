@@ -56,8 +56,12 @@ static void measurement_payload(filter_node_t *node, uint8_t kind, const uint8_t
     const int64_t reference = node->admission.last_utime, published = node->published_utime;
     if (filter_node_receive(node, &m, arrival, &pose)) {
         fuzz_check_pose(&pose, "fuzz_node_messages");
-        /* at its capture time, or moved on to the pose published before it (never earlier) */
-        CHECK(pose.utime == m.utime || (pose.utime == published && published > m.utime && pose.extrapolated),
+        /* at its capture time; a second model's measurement of an earlier frame at the newest frame's time
+         * (the time reference, which it leaves as it was); or moved on to the pose published before it
+         * (never earlier) */
+        CHECK(pose.utime == m.utime ||
+                  (pose.utime == reference && reference > m.utime && node->admission.last_utime == reference) ||
+                  (pose.utime == published && published > m.utime && pose.extrapolated),
               "a pose published for another capture time");
     }
     CHECK(node->counts.clock_jumps == jumps || node->admission.last_utime == reference,
