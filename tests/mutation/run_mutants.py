@@ -184,7 +184,7 @@ def run_tests(build_dir, tests, timeout):
     return result.returncode == 0, count, result.stdout
 
 
-def main():
+def arguments():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--list", default=os.path.join(ROOT, "tests", "mutation", "mutants.txt"))
     parser.add_argument("--work", default=os.path.join(ROOT, "out", "mutate"))
@@ -198,7 +198,91 @@ def main():
                              "the quick sample in ./run test")
     parser.add_argument("--min-score", type=float, default=1.0, help="exit 0 at this score or above")
     parser.add_argument("--timeout", type=int, default=300, help="seconds per test")
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def check_selection(build_dir, mutants):
+    """--check-selection: the full run's tests resolved in a configured build; the exit status."""
+    names, _, errors = selection(os.path.abspath(build_dir), mutants)
+    if errors:
+        print("\n".join(f"run_mutants: {e}" for e in errors), file=sys.stderr)
+        return 1
+    print(f"run_mutants: the full run's baseline selects {len(names)} tests for "
+          f"{len({m.tests for m in mutants})} expressions: {' '.join(names)}")
+    return 0
+
+
+def chosen_mutants(mutants, args):
+    chosen = [m for m in mutants if m.path.startswith("libhkf/")] if args.libhkf_only else mutants
+    if args.only:
+        wanted = {int(n) for n in args.only.split(",")}
+        return [m for m in mutants if m.number in wanted]
+    return chosen[::args.sample] if args.sample else chosen
+
+
+def green_baseline(args, chosen):
+    """The scratch copy built and the chosen mutants' tests passing on it: (src, build dir, cmake options), or
+    None (said)."""
+    work = os.path.abspath(args.work)
+    src = scratch_copy(work)
+    build_dir = os.path.join(work, "build-libhkf" if args.libhkf_only else "build")
+    options = ["-DHKF_BUILD_TOOLS=OFF"] if args.libhkf_only else []
+    ok, log = build(build_dir, src, options)
+    if not ok:
+        print(log, file=sys.stderr)
+        print("run_mutants: the unmutated tree does not build", file=sys.stderr)
+        return None
+    names, baseline, errors = selection(build_dir, chosen)
+    if errors:
+        print("\n".join(f"run_mutants: {e}" for e in errors), file=sys.stderr)
+        return None
+    ok, count, log = run_tests(build_dir, baseline, args.timeout)
+    if not ok or count == 0:
+        print(log[-3000:], file=sys.stderr)
+        print("run_mutants: the tests fail (or none match) on the unmutated tree", file=sys.stderr)
+        return None
+    print(f"run_mutants: baseline green ({count} tests); {len(chosen)} mutants to run", flush=True)
+    return src, build_dir, options
+
+
+def run_mutant(m, src, build_dir, options, timeout):
+    """One mutant planted, built and its tests run, the file restored: ("killed" | "survived" | "stillborn", what)."""
+    path = os.path.join(src, m.path)
+    original = open(path).read()
+    try:
+        with open(path, "w") as f:
+            f.write(original.replace(m.before, m.after, 1))
+        ok, log = build(build_dir, src, options)
+        if not ok:
+            return "stillborn", "does not build (fix the list)"
+        passed, count, log = run_tests(build_dir, m.tests, timeout)
+        if passed:
+            return "survived", f"SURVIVED {count} tests"
+        failed = re.findall(r"\d+ - (\S+) \(", log)
+        return "killed", f"killed by {', '.join(failed[:3]) or 'the tests'}"
+    finally:
+        with open(path, "w") as f:
+            f.write(original)
+
+
+def report(chosen, killed, survivors, stillborn, wall, min_score):
+    """The score and the survivors; the exit status."""
+    scored = killed + len(survivors)
+    score = killed / scored if scored else 0.0
+    unexplained = [m for m in survivors if not m.what.startswith("EQUIVALENT")]
+    print(f"run_mutants: {killed} of {scored} mutants killed: score {100 * score:.1f} %"
+          + (f"; {len(stillborn)} did not build" if stillborn else "")
+          + f"; wall time {wall / 60:.1f} min ({len(chosen)} mutants, {os.cpu_count()} cores)")
+    for m in survivors:
+        print(f"  survivor [{m.number}] {m.path} (line {m.line} of the list): {m.what}")
+    if survivors:
+        print(f"run_mutants: {len(survivors) - len(unexplained)} survivors marked EQUIVALENT (each with its probe), "
+              f"{len(unexplained)} unexplained")
+    return 0 if score >= min_score and not unexplained and not stillborn else 1
+
+
+def main():
+    args = arguments()
     mutants, errors = parse(args.list)
     errors += validate(mutants, ROOT)
     if errors:
@@ -208,78 +292,23 @@ def main():
     if args.check:
         return 0
     if args.check_selection:
-        names, _, errors = selection(os.path.abspath(args.check_selection), mutants)
-        if errors:
-            print("\n".join(f"run_mutants: {e}" for e in errors), file=sys.stderr)
-            return 1
-        print(f"run_mutants: the full run's baseline selects {len(names)} tests for "
-              f"{len({m.tests for m in mutants})} expressions: {' '.join(names)}")
-        return 0
+        return check_selection(args.check_selection, mutants)
     run_started = time.time()
-    chosen = [m for m in mutants if m.path.startswith("libhkf/")] if args.libhkf_only else mutants
-    if args.only:
-        wanted = {int(n) for n in args.only.split(",")}
-        chosen = [m for m in mutants if m.number in wanted]
-    elif args.sample:
-        chosen = chosen[::args.sample]
-    work = os.path.abspath(args.work)
-    src = scratch_copy(work)
-    build_dir = os.path.join(work, "build-libhkf" if args.libhkf_only else "build")
-    options = ["-DHKF_BUILD_TOOLS=OFF"] if args.libhkf_only else []
-    ok, log = build(build_dir, src, options)
-    if not ok:
-        print(log, file=sys.stderr)
-        print("run_mutants: the unmutated tree does not build", file=sys.stderr)
+    chosen = chosen_mutants(mutants, args)
+    prepared = green_baseline(args, chosen)
+    if prepared is None:
         return 1
-    names, baseline, errors = selection(build_dir, chosen)
-    if errors:
-        print("\n".join(f"run_mutants: {e}" for e in errors), file=sys.stderr)
-        return 1
-    ok, count, log = run_tests(build_dir, baseline, args.timeout)
-    if not ok or count == 0:
-        print(log[-3000:], file=sys.stderr)
-        print("run_mutants: the tests fail (or none match) on the unmutated tree", file=sys.stderr)
-        return 1
-    print(f"run_mutants: baseline green ({count} tests); {len(chosen)} mutants to run", flush=True)
-    killed, survivors, stillborn = 0, [], []
+    src, build_dir, options = prepared
+    outcome = {"killed": [], "survived": [], "stillborn": []}
     started = time.time()
     for m in chosen:
-        path = os.path.join(src, m.path)
-        original = open(path).read()
-        try:
-            with open(path, "w") as f:
-                f.write(original.replace(m.before, m.after, 1))
-            ok, log = build(build_dir, src, options)
-            if not ok:
-                stillborn.append(m)
-                verdict = "does not build (fix the list)"
-            else:
-                passed, count, log = run_tests(build_dir, m.tests, args.timeout)
-                if passed:
-                    survivors.append(m)
-                    verdict = f"SURVIVED {count} tests"
-                else:
-                    killed += 1
-                    failed = re.findall(r"\d+ - (\S+) \(", log)
-                    verdict = f"killed by {', '.join(failed[:3]) or 'the tests'}"
-        finally:
-            with open(path, "w") as f:
-                f.write(original)
+        kind, verdict = run_mutant(m, src, build_dir, options, args.timeout)
+        outcome[kind].append(m)
         print(f"[{m.number:3d}] {m.path}: {m.what}: {verdict} ({time.time() - started:.0f} s)", flush=True)
-    scored = killed + len(survivors)
-    score = killed / scored if scored else 0.0
-    unexplained = [m for m in survivors if not m.what.startswith("EQUIVALENT")]
-    wall = time.time() - run_started
-    print(f"run_mutants: {killed} of {scored} mutants killed: score {100 * score:.1f} %"
-          + (f"; {len(stillborn)} did not build" if stillborn else "")
-          + f"; wall time {wall / 60:.1f} min ({len(chosen)} mutants, {os.cpu_count()} cores)")
-    for m in survivors:
-        print(f"  survivor [{m.number}] {m.path} (line {m.line} of the list): {m.what}")
-    if survivors:
-        print(f"run_mutants: {len(survivors) - len(unexplained)} survivors marked EQUIVALENT (each with its probe), "
-              f"{len(unexplained)} unexplained")
+    status = report(chosen, len(outcome["killed"]), outcome["survived"], outcome["stillborn"],
+                    time.time() - run_started, args.min_score)
     build(build_dir, src, options)  # leave the scratch build unmutated
-    return 0 if score >= args.min_score and not unexplained and not stillborn else 1
+    return status
 
 
 if __name__ == "__main__":
