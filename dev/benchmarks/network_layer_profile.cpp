@@ -75,6 +75,16 @@ int parse(int argc, char **argv, Options *o)
     return 0;
 }
 
+// An NCHW float input of the options' size, random: the time does not depend on the values.
+cv::Mat random_input(const Options &o)
+{
+    const int shape[] = {1, 3, static_cast<int>(o.height), static_cast<int>(o.width)};
+    cv::Mat input(4, shape, CV_32F);
+    cv::RNG rng(7);
+    rng.fill(input, cv::RNG::NORMAL, 0.0, 1.0);
+    return input;
+}
+
 // The runs' timings: the whole pass, per layer type, per layer.
 struct Profile {
     std::vector<double> total_ms;
@@ -85,10 +95,7 @@ struct Profile {
 // RUNS forward passes (after two not counted), each one's getPerfProfile summed by layer type.
 Profile profile(cv::dnn::Net &net, const Options &o)
 {
-    const int shape[] = {1, 3, static_cast<int>(o.height), static_cast<int>(o.width)};
-    cv::Mat input(4, shape, CV_32F);
-    cv::RNG rng(7);
-    rng.fill(input, cv::RNG::NORMAL, 0.0, 1.0);  // the time does not depend on the values
+    const cv::Mat input = random_input(o);
     const std::vector<std::string> names = net.getLayerNames();
     const double tick_ms = 1000.0 / cv::getTickFrequency();
     Profile p;
@@ -140,14 +147,11 @@ void print_slowest(const Profile &p)
     }
 }
 
-// The median forward pass (ms) of net quantized to int8 by OpenCV (calibrated on one random input: the time
-// does not depend on the values); a negative value when OpenCV cannot quantize it (said).
+// The median forward pass (ms) of net quantized to int8 by OpenCV (calibrated on the random input); a negative
+// value when OpenCV cannot quantize it (said).
 double int8_forward_ms(cv::dnn::Net &net, const Options &o)
 {
-    const int shape[] = {1, 3, static_cast<int>(o.height), static_cast<int>(o.width)};
-    cv::Mat input(4, shape, CV_32F);
-    cv::RNG rng(7);
-    rng.fill(input, cv::RNG::NORMAL, 0.0, 1.0);
+    const cv::Mat input = random_input(o);
     cv::dnn::Net int8;
     try {
         int8 = net.quantize(std::vector<cv::Mat>{input}, CV_32F, CV_32F);
