@@ -14,7 +14,10 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utility.hpp>
+#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/dnn.hpp>
+
+#include "fast_layers.hpp"
 
 namespace {
 
@@ -179,6 +182,8 @@ int main(int argc, char **argv)
     const int status = parse(argc, argv, &o);
     if (status != 0) return status < 0 ? 0 : status;
     cv::dnn::Net net;
+    hkf_estimator::register_fast_layers();  // a graph rewritten by dev/models/fast_layers.py uses them
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);  // not a warning per node of their domain
     try {
         net = cv::dnn::readNetFromONNX(o.model);
     } catch (const cv::Exception &e) {

