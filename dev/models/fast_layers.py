@@ -3,7 +3,13 @@
 gives OpenCV's DNN module (estimator/src/models/fast_layers.hpp), with onnx alone:
 - every swish, Mul(x, Sigmoid(x)), becomes one node hkf.Swish(x);
 - every depthwise Conv (group = channels, one input channel per group) becomes hkf.DepthwiseConv,
-  its padding as four attributes, and a swish right after it taken in (attribute swish = 1).
+  its padding as four attributes, and a swish right after it taken in (attribute swish = 1);
+- every 1x1 Conv (stride 1, no padding) on planes of at least MIN_PIXELS pixels becomes
+  hkf.PointwiseConv, a swish after it taken in likewise (the squeeze-and-excitation's 1x1 convolutions,
+  on one pixel, stay OpenCV's);
+- a squeeze-and-excitation's gate, Mul(x, Sigmoid(s)) read only by such a pointwise convolution, becomes
+  that convolution's second input (it scales the weights); its global average pooling of a depthwise
+  convolution's output becomes that convolution's second output.
 The weights and every other node stay as they are, so the network computes the same function
 (up to float rounding: the swish's exp is a polynomial, the sums' order differs).
 Usage: fast_layers.py IN.onnx OUT.onnx
@@ -15,6 +21,7 @@ import onnx
 from onnx import helper, numpy_helper
 
 DOMAIN = "hkf"
+MIN_PIXELS = 16  # below, a pointwise tile (32 pixels) would be mostly padding
 
 
 def attribute(node, name, default=None):
@@ -66,17 +73,43 @@ def depthwise(node, weights):
         return None
     return helper.make_node("DepthwiseConv", list(node.input), list(node.output), name=node.name, domain=DOMAIN,
                             kernel=int(kernel[0]), stride=int(strides[0]), pad_top=int(pads[0]),
-                            pad_left=int(pads[1]), pad_bottom=int(pads[2]), pad_right=int(pads[3]), swish=0)
+                            pad_left=int(pads[1]), pad_bottom=int(pads[2]), pad_right=int(pads[3]), swish=0, means=0)
 
 
-def fuse_depthwise(nodes, weights):
-    """Depthwise Conv -> hkf.DepthwiseConv, taking in an hkf.Swish that alone reads it."""
-    out, drop, count = [], set(), 0
+def pointwise(node, weights, pixels):
+    """The hkf.PointwiseConv for a Conv node, or None when it is not a 1x1 convolution on a plane
+    of MIN_PIXELS or more (pixels: input name -> H * W, from ONNX's shape inference)."""
+    if node.op_type != "Conv" or len(node.input) not in (2, 3) or node.input[1] not in weights:
+        return None
+    w = weights[node.input[1]]
+    if (w.ndim != 4 or w.shape[2:] != (1, 1) or attribute(node, "group", 1) != 1 or
+            list(attribute(node, "strides", [1, 1])) != [1, 1] or list(attribute(node, "pads", [0, 0, 0, 0])) != [0] * 4 or
+            list(attribute(node, "dilations", [1, 1])) != [1, 1] or attribute(node, "auto_pad") not in (None, b"NOTSET") or
+            pixels.get(node.input[0], 0) < MIN_PIXELS):
+        return None
+    return helper.make_node("PointwiseConv", list(node.input), list(node.output), name=node.name, domain=DOMAIN, swish=0)
+
+
+def plane_pixels(model):
+    """Each tensor's H * W where shape inference knows it (4-d tensors)."""
+    inferred = onnx.shape_inference.infer_shapes(model)
+    pixels = {}
+    for info in list(inferred.graph.value_info) + list(inferred.graph.input):
+        dims = [d.dim_value for d in info.type.tensor_type.shape.dim]
+        if len(dims) == 4 and dims[2] > 0 and dims[3] > 0:
+            pixels[info.name] = dims[2] * dims[3]
+    return pixels
+
+
+def fuse_convolutions(nodes, weights, pixels):
+    """Depthwise Conv -> hkf.DepthwiseConv, 1x1 Conv -> hkf.PointwiseConv, each taking in an
+    hkf.Swish that alone reads it. Returns the nodes and how many of each."""
+    out, drop, counts = [], set(), {"DepthwiseConv": 0, "PointwiseConv": 0}
     consumers = consumers_of(nodes)
     for node in nodes:
         if id(node) in drop:
             continue
-        new = depthwise(node, weights)
+        new = depthwise(node, weights) or pointwise(node, weights, pixels)
         if new is None:
             out.append(node)
             continue
@@ -88,19 +121,62 @@ def fuse_depthwise(nodes, weights):
                 if a.name == "swish":
                     a.i = 1
         out.append(new)
-        count += 1
-    return out, count
+        counts[new.op_type] += 1
+    return out, counts
+
+
+def fuse_gates(nodes):
+    """Mul(x, Sigmoid(s)) read only by an hkf.PointwiseConv -> the gate as its last input."""
+    producers = {out: node for node in nodes for out in node.output}
+    consumers = consumers_of(nodes)
+    drop, count = set(), 0
+    for node in nodes:
+        if node.op_type != "Mul" or len(node.input) != 2:
+            continue
+        readers = consumers.get(node.output[0], [])
+        if len(readers) != 1 or readers[0].op_type != "PointwiseConv" or readers[0].input[0] != node.output[0]:
+            continue
+        for x, g in (node.input, list(reversed(node.input))):
+            gate = producers.get(g)
+            if gate is not None and gate.op_type == "Sigmoid" and gate.input[0] != x:
+                readers[0].input[0] = x
+                readers[0].input.append(g)
+                drop.add(id(node))
+                count += 1
+                break
+    return [n for n in nodes if id(n) not in drop], count
+
+
+def fuse_means(nodes):
+    """GlobalAveragePool of an hkf.DepthwiseConv's output -> that convolution's second output."""
+    producers = {out: node for node in nodes for out in node.output}
+    drop, count = set(), 0
+    for node in nodes:
+        if node.op_type != "GlobalAveragePool":
+            continue
+        source = producers.get(node.input[0])
+        if source is not None and source.op_type == "DepthwiseConv" and len(source.output) == 1:
+            source.output.append(node.output[0])
+            for a in source.attribute:
+                if a.name == "means":
+                    a.i = 1
+            drop.add(id(node))
+            count += 1
+    return [n for n in nodes if id(n) not in drop], count
 
 
 def rewrite(model):
     weights = {t.name: numpy_helper.to_array(t) for t in model.graph.initializer}
+    pixels = plane_pixels(model)
     nodes = list(model.graph.node)
     nodes, swishes = fuse_swish(nodes)
-    nodes, convolutions = fuse_depthwise(nodes, weights)
+    nodes, counts = fuse_convolutions(nodes, weights, pixels)
+    nodes, counts["gates"] = fuse_gates(nodes)
+    nodes, counts["means"] = fuse_means(nodes)
     del model.graph.node[:]
     model.graph.node.extend(nodes)
     model.opset_import.append(helper.make_opsetid(DOMAIN, 1))
-    return swishes, convolutions
+    return swishes, counts
 
 
 def main():
@@ -110,14 +186,15 @@ def main():
     args = parser.parse_args()
     try:
         model = onnx.load(args.source)
-        swishes, convolutions = rewrite(model)
+        swishes, counts = rewrite(model)
         onnx.checker.check_model(model)
         onnx.save(model, args.target)
     except (OSError, ValueError, onnx.checker.ValidationError) as e:
         print(f"fast_layers: {e}", file=sys.stderr)
         return 1
-    print(f"fast_layers: wrote {args.target}: {swishes} swishes, {convolutions} depthwise convolutions "
-          f"({len(model.graph.node)} nodes)")
+    print(f"fast_layers: wrote {args.target}: {swishes} swishes, {counts['DepthwiseConv']} depthwise and "
+          f"{counts['PointwiseConv']} pointwise convolutions, {counts['gates']} gates and {counts['means']} means "
+          f"taken in ({len(model.graph.node)} nodes)")
     return 0
 
 

@@ -1,8 +1,10 @@
 // test_fast_layers.cpp - the layers the estimator gives OpenCV's DNN module
 // (estimator/src/models/fast_layers.cpp), run inside cv::dnn::Net as a rewritten graph runs
 // them, against plain loops in double written here: the depthwise convolution at WHENet's
-// kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112; the swish
-// alone, fused by OpenCV into a convolution before it, and over its whole range; bad
+// kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112, with its
+// planes' means; the pointwise convolution on planes that end in part of a tile, with output
+// channels that end in part of one, gated (the weights scaled, or the input), without a bias;
+// the swish alone, fused by OpenCV into a convolution before it, and over its whole range; bad
 // attributes and weights refused when the layer is made.
 #include <setjmp.h>
 #include <stdarg.h>
@@ -187,6 +189,95 @@ void test_swish_as_a_layer(void **)
         assert_true(std::fabs(out.ptr<float>()[i] - swish_reference(input.ptr<float>()[i])) < 1e-5);
 }
 
+// The depthwise layer's second output (means = 1): each output plane's mean.
+void test_depthwise_means(void **)
+{
+    const Case c = {6, 14, 14, 5, 1, 2, 2, 2, 2, 1};
+    const cv::Mat input = random_blob({1, c.channels, c.height, c.width}, 10, 1.0f);
+    cv::dnn::LayerParams params =
+        depthwise_params(c, random_blob({c.channels, 1, c.kernel, c.kernel}, 11, 0.3f), random_blob({c.channels}, 12, 0.5f));
+    params.set("means", 1);
+    cv::dnn::Net net;
+    net.addLayerToPrev(params.name, params.type, params);
+    net.setInput(input);
+    std::vector<std::vector<cv::Mat>> outputs;  // every output of the layer "dw"
+    net.forward(outputs, std::vector<cv::String>{"dw"});
+    assert_int_equal(static_cast<int>(outputs[0].size()), 2);
+    const cv::Mat &planes = outputs[0][0], &means = outputs[0][1];
+    assert_int_equal(static_cast<int>(means.total()), c.channels);
+    const int plane = planes.size[2] * planes.size[3];
+    for (int ch = 0; ch < c.channels; ++ch) {
+        double sum = 0.0;
+        for (int i = 0; i < plane; ++i) sum += planes.ptr<float>()[ch * plane + i];
+        assert_true(std::fabs(means.ptr<float>()[ch] - sum / plane) < 1e-5);
+    }
+}
+
+struct PointwiseCase {
+    int in_c, out_c, height, width, swish, bias, gate;
+};
+
+// The largest |layer - reference| of a 1x1 convolution, relative to the output's largest magnitude.
+double pointwise_error(const PointwiseCase &c)
+{
+    const cv::Mat input = random_blob({1, c.in_c, c.height, c.width}, 13, 1.0f);
+    const cv::Mat weights = random_blob({c.out_c, c.in_c, 1, 1}, 14, 0.3f);
+    const cv::Mat bias = random_blob({c.out_c}, 15, 0.5f);
+    cv::Mat gate = random_blob({1, c.in_c, 1, 1}, 16, 1.0f);
+    for (size_t i = 0; i < gate.total(); ++i) gate.ptr<float>()[i] = 1.0f / (1.0f + std::exp(-gate.ptr<float>()[i]));
+    cv::dnn::LayerParams p;
+    p.name = "pw";
+    p.type = "hkf.PointwiseConv";
+    p.set("swish", c.swish);
+    p.blobs = {weights};
+    if (c.bias) p.blobs.push_back(bias);
+    cv::dnn::Net net;
+    const int id = net.addLayer(p.name, p.type, p);
+    net.connect(0, 0, id, 0);
+    if (c.gate) {
+        net.setInputsNames({"x", "g"});
+        net.connect(0, 1, id, 1);
+        net.setInput(input, "x");
+        net.setInput(gate, "g");
+    } else {
+        net.setInput(input);
+    }
+    const cv::Mat out = net.forward("pw");
+    const int pixels = c.height * c.width;
+    assert_int_equal(static_cast<int>(out.total()), c.out_c * pixels);
+    double worst = 0.0, scale = 1e-6;
+    for (int o = 0; o < c.out_c; ++o) {
+        for (int i = 0; i < pixels; ++i) {
+            double sum = c.bias ? bias.ptr<float>()[o] : 0.0;
+            for (int k = 0; k < c.in_c; ++k)
+                sum += static_cast<double>(weights.ptr<float>()[o * c.in_c + k]) * input.ptr<float>()[k * pixels + i] *
+                       (c.gate ? gate.ptr<float>()[k] : 1.0f);
+            const double expected = c.swish ? swish_reference(sum) : sum;
+            worst = std::max(worst, std::fabs(out.ptr<float>()[o * pixels + i] - expected));
+            scale = std::max(scale, std::fabs(expected));
+        }
+    }
+    return worst / scale;
+}
+
+void test_pointwise_matches_the_loops(void **)
+{
+    const PointwiseCase cases[] = {
+        {16, 96, 112, 112, 1, 1, 0},  // WHENet's first expansion: whole tiles
+        {32, 16, 56, 56, 0, 1, 1},    // gated, more pixels than outputs: the weights scaled
+        {240, 80, 14, 14, 1, 1, 0},   // 196 pixels: six tiles and 4 pixels
+        {1152, 320, 7, 7, 0, 1, 1},   // gated, fewer pixels than outputs: the input scaled
+        {20, 21, 5, 4, 1, 0, 0},      // no bias; 21 outputs end in part of a tile, 20 pixels in part of one
+        {9, 3, 33, 1, 0, 0, 1},
+    };
+    for (const PointwiseCase &c : cases) {
+        const double error = pointwise_error(c);
+        print_message("pointwise %d -> %d on %dx%d, swish %d, bias %d, gate %d: relative error %.2e\n", c.in_c, c.out_c,
+                      c.height, c.width, c.swish, c.bias, c.gate, error);
+        assert_true(error < 1e-5);
+    }
+}
+
 bool refused(Case c, int weight_kernel, int bias_size)
 {
     const cv::Mat weights = random_blob({c.channels, 1, weight_kernel, weight_kernel}, 7, 1.0f);
@@ -218,6 +309,16 @@ void test_bad_layers_refused(void **)
     assert_true(refused(c, 3, 4));
     assert_true(refused(good, 5, 4));  // weights of another kernel size
     assert_true(refused(good, 3, 3));  // a bias per channel missing
+    cv::dnn::LayerParams p;
+    p.type = "hkf.PointwiseConv";
+    p.blobs = {random_blob({4, 3, 3, 3}, 17, 1.0f)};  // not 1x1
+    bool pointwise_refused = false;
+    try {
+        (void)cv::dnn::LayerFactory::createLayerInstance(p.type, p);
+    } catch (const cv::Exception &) {
+        pointwise_refused = true;
+    }
+    assert_true(pointwise_refused);
 }
 
 }  // namespace
@@ -228,6 +329,8 @@ int main()
     hkf_estimator::register_fast_layers();  // twice: a second call changes nothing
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_depthwise_matches_the_loops),
+        cmocka_unit_test(test_depthwise_means),
+        cmocka_unit_test(test_pointwise_matches_the_loops),
         cmocka_unit_test(test_swish_over_its_range),
         cmocka_unit_test(test_swish_fused_into_a_convolution),
         cmocka_unit_test(test_swish_as_a_layer),

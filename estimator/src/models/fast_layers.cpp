@@ -12,6 +12,7 @@
 #include <opencv2/dnn.hpp>
 #include <opencv2/dnn/all_layers.hpp>
 #include <opencv2/dnn/layer.details.hpp>
+#include <opencv2/dnn/shape_utils.hpp>
 
 // The loops below are built for the wider vectors too and the CPU's best taken at load time (GCC's
 // function multiversioning); a build for the baseline alone where the compiler cannot.
@@ -58,6 +59,37 @@ int int_param(const cv::dnn::LayerParams &params, const char *name)
     return params.get<int>(name);
 }
 
+// One tile of a 1x1 convolution: kRows output channels x kPixels pixels, summed in 2 * kRows vector
+// registers over the input channels (GCC's vector extension: 16 floats, one AVX-512 register, two AVX2
+// ones). packed: the tile's weights as [cin][kRows]; in: cin rows of `pitch` floats from the tile's
+// first pixel; out: kRows rows of `out_pitch` floats.
+constexpr int kRows = 8, kPixels = 32;
+typedef float Floats16 __attribute__((vector_size(64)));
+
+HKF_VECTOR_CLONES void pointwise_tile(const float *packed, int cin, const float *in, long pitch, const float *bias,
+                                      float *out, long out_pitch)
+{
+    Floats16 sum[kRows][2];
+    for (int r = 0; r < kRows; ++r) {
+        sum[r][0] = Floats16{} + bias[r];
+        sum[r][1] = sum[r][0];
+    }
+    for (int c = 0; c < cin; ++c) {
+        Floats16 x0, x1;
+        std::memcpy(&x0, in + c * pitch, sizeof x0);
+        std::memcpy(&x1, in + c * pitch + 16, sizeof x1);
+        const float *w = packed + static_cast<long>(c) * kRows;
+        for (int r = 0; r < kRows; ++r) {
+            sum[r][0] += x0 * w[r];
+            sum[r][1] += x1 * w[r];
+        }
+    }
+    for (int r = 0; r < kRows; ++r) {
+        std::memcpy(out + r * out_pitch, &sum[r][0], sizeof sum[r][0]);
+        std::memcpy(out + r * out_pitch + 16, &sum[r][1], sizeof sum[r][1]);
+    }
+}
+
 // "hkf.Swish": an activation, so that OpenCV fuses it into the convolution before it (forwardSlice
 // is then called on each stripe of that convolution's output).
 class SwishLayer : public cv::dnn::ActivationLayer {
@@ -93,7 +125,9 @@ public:
 };
 
 // "hkf.DepthwiseConv": input N x C x H x W, blobs[0] the kernels C x 1 x k x k, blobs[1] the bias
-// (C); attributes kernel, stride, pad_top, pad_left, pad_bottom, pad_right, swish (0 or 1).
+// (C); attributes kernel, stride, pad_top, pad_left, pad_bottom, pad_right, swish (0 or 1), means (0 or
+// 1): with means 1 a second output, each output plane's mean, N x C x 1 x 1 (the global average pooling
+// of the squeeze-and-excitation that reads it, taken while the plane is in cache).
 class DepthwiseConvLayer : public cv::dnn::Layer {
 public:
     explicit DepthwiseConvLayer(const cv::dnn::LayerParams &params)
@@ -106,6 +140,7 @@ public:
         pad_bottom_ = int_param(params, "pad_bottom");
         pad_right_ = int_param(params, "pad_right");
         swish_ = params.get<int>("swish", 0) != 0;
+        means_ = params.get<int>("means", 0) != 0;
         if (kernel_ < 1 || kernel_ > 15 || stride_ < 1 || stride_ > 4 || pad_top_ < 0 || pad_left_ < 0 ||
             pad_bottom_ < 0 || pad_right_ < 0 || pad_top_ >= kernel_ || pad_left_ >= kernel_ ||
             pad_bottom_ >= kernel_ || pad_right_ >= kernel_)
@@ -131,6 +166,7 @@ public:
         CV_Assert(padded_h >= kernel_ && padded_w >= kernel_);
         outputs.assign(1, cv::dnn::MatShape{inputs[0][0], inputs[0][1], (padded_h - kernel_) / stride_ + 1,
                                             (padded_w - kernel_) / stride_ + 1});
+        if (means_) outputs.push_back(cv::dnn::MatShape{inputs[0][0], inputs[0][1], 1, 1});
         return false;
     }
 
@@ -144,13 +180,19 @@ public:
         cv::Mat &out = outputs[0];
         CV_Assert(in.type() == CV_32F && in.isContinuous() && out.isContinuous());
         const int planes = in.size[0] * in.size[1];
+        float *means = means_ && outputs.size() == 2 ? outputs[1].ptr<float>() : nullptr;
         cv::parallel_for_(cv::Range(0, planes), [&](const cv::Range &range) {
             std::vector<float> padded, extended;
-            for (int p = range.start; p < range.end; ++p) convolve_plane(in, out, p, padded, extended);
+            for (int p = range.start; p < range.end; ++p) {
+                convolve_plane(in, out, p, padded, extended);
+                if (means != nullptr) means[p] = plane_mean(out.ptr<float>() + out.size[2] * out.size[3] * static_cast<size_t>(p),
+                                                            out.size[2] * out.size[3]);
+            }
         });
     }
 
 private:
+
     // The extended outputs sum[j], j < count, of a K x K kernel at STRIDE: all K^2 taps of one output
     // summed in registers (one store per output), the loop over j vectorised.
     template <int K, int STRIDE>
@@ -220,10 +262,160 @@ private:
     }
 
     int kernel_ = 0, stride_ = 1, pad_top_ = 0, pad_left_ = 0, pad_bottom_ = 0, pad_right_ = 0;
+    bool swish_ = false, means_ = false;
+};
+
+// "hkf.PointwiseConv": a 1x1 convolution (stride 1, no padding) as a matrix product, tiled as
+// pointwise_tile; input N x Cin x H x W, and optionally a second one, a gate N x Cin x 1 x 1 that
+// multiplies each input channel first (squeeze-and-excitation's: W (g x) = (W diag g) x, so it scales
+// the weights, or the input where that is fewer products); blobs[0] the weights Cout x Cin x 1 x 1,
+// blobs[1] the bias (Cout; none: 0); attribute swish (0 or 1). The weights are packed into tiles once,
+// when the layer is made. A plane's last pixels, fewer than a tile, are copied into a zero-padded tile.
+class PointwiseConvLayer : public cv::dnn::Layer {
+public:
+    explicit PointwiseConvLayer(const cv::dnn::LayerParams &params)
+    {
+        setParamsFrom(params);
+        swish_ = params.get<int>("swish", 0) != 0;
+        if (blobs.empty() || blobs.size() > 2 || blobs[0].dims != 4 || blobs[0].size[2] != 1 || blobs[0].size[3] != 1 ||
+            blobs[0].type() != CV_32F || (blobs.size() == 2 && (blobs[1].type() != CV_32F ||
+                                                                 static_cast<int>(blobs[1].total()) != blobs[0].size[0])))
+            CV_Error(cv::Error::StsBadArg, "hkf.PointwiseConv: wants a Cout x Cin x 1 x 1 kernel and a bias of Cout");
+        out_channels_ = blobs[0].size[0];
+        in_channels_ = blobs[0].size[1];
+        const int tiles = (out_channels_ + kRows - 1) / kRows;
+        packed_.assign(static_cast<size_t>(tiles) * in_channels_ * kRows, 0.0f);
+        bias_.assign(static_cast<size_t>(tiles) * kRows, 0.0f);
+        const cv::Mat weights = blobs[0].isContinuous() ? blobs[0] : blobs[0].clone();
+        for (int o = 0; o < out_channels_; ++o) {
+            for (int c = 0; c < in_channels_; ++c)
+                packed_[(static_cast<size_t>(o / kRows) * in_channels_ + c) * kRows + o % kRows] =
+                    weights.ptr<float>()[static_cast<size_t>(o) * in_channels_ + c];
+            if (blobs.size() == 2) bias_[o] = blobs[1].ptr<float>()[o];
+        }
+    }
+
+    static cv::Ptr<cv::dnn::Layer> create(cv::dnn::LayerParams &params)
+    {
+        return cv::makePtr<PointwiseConvLayer>(params);
+    }
+
+    bool getMemoryShapes(const std::vector<cv::dnn::MatShape> &inputs, const int,
+                         std::vector<cv::dnn::MatShape> &outputs, std::vector<cv::dnn::MatShape> &) const override
+    {
+        CV_Assert((inputs.size() == 1 || inputs.size() == 2) && inputs[0].size() == 4 && inputs[0][1] == in_channels_);
+        if (inputs.size() == 2)  // the gate: one value per image and input channel
+            CV_Assert(inputs[1].size() >= 2 && inputs[1][0] == inputs[0][0] && inputs[1][1] == in_channels_ &&
+                      cv::dnn::total(inputs[1]) == inputs[0][0] * in_channels_);
+        outputs.assign(1, cv::dnn::MatShape{inputs[0][0], out_channels_, inputs[0][2], inputs[0][3]});
+        return false;
+    }
+
+    void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
+                 cv::OutputArrayOfArrays) override
+    {
+        std::vector<cv::Mat> inputs, outputs;
+        inputs_arr.getMatVector(inputs);
+        outputs_arr.getMatVector(outputs);
+        const cv::Mat &in = inputs[0];
+        cv::Mat &out = outputs[0];
+        CV_Assert(in.type() == CV_32F && in.isContinuous() && out.isContinuous());
+        const int pixels = in.size[2] * in.size[3], batch = in.size[0];
+        const int pixel_tiles = (pixels + kPixels - 1) / kPixels, row_tiles = (out_channels_ + kRows - 1) / kRows;
+        // tasks: every pixel tile, its output rows split so that there are at least 8 tasks to share
+        const int groups = std::min(row_tiles, std::max(1, (8 + pixel_tiles - 1) / pixel_tiles));
+        const int rows_per_group = (row_tiles + groups - 1) / groups;
+        for (int image = 0; image < batch; ++image) {
+            const float *src = in.ptr<float>() + static_cast<size_t>(image) * in_channels_ * pixels;
+            const float *weights = packed_.data();
+            if (inputs.size() == 2) apply_gate(inputs[1].ptr<float>() + static_cast<size_t>(image) * in_channels_, pixels, &src, &weights);
+            float *dst = out.ptr<float>() + static_cast<size_t>(image) * out_channels_ * pixels;
+            cv::parallel_for_(cv::Range(0, pixel_tiles * groups), [&](const cv::Range &range) {
+                std::vector<float> tail;
+                for (int task = range.start; task < range.end; ++task) {
+                    const int first_row_tile = task % groups * rows_per_group;
+                    multiply_tiles(weights, src, dst, pixels, task / groups * kPixels, first_row_tile,
+                                   std::min(row_tiles, first_row_tile + rows_per_group), tail);
+                }
+            });
+        }
+    }
+
+private:
+    // The gate g (Cin values) applied: to a copy of the weights (Cout x Cin products) or of the input
+    // (Cin x pixels), whichever is fewer; *src or *weights then point at the copy.
+    void apply_gate(const float *gate, int pixels, const float **src, const float **weights)
+    {
+        if (static_cast<long>(pixels) <= out_channels_) {
+            gated_.resize(static_cast<size_t>(in_channels_) * pixels);
+            for (int c = 0; c < in_channels_; ++c)
+                for (int i = 0; i < pixels; ++i)
+                    gated_[static_cast<size_t>(c) * pixels + i] = (*src)[static_cast<size_t>(c) * pixels + i] * gate[c];
+            *src = gated_.data();
+        } else {
+            gated_.resize(packed_.size());
+            const size_t tiles = packed_.size() / (static_cast<size_t>(in_channels_) * kRows);
+            for (size_t i = 0; i < tiles * in_channels_; ++i)  // [tile][Cin][kRows]: row i's input channel i % Cin
+                for (int r = 0; r < kRows; ++r) gated_[i * kRows + r] = packed_[i * kRows + r] * gate[i % in_channels_];
+            *weights = gated_.data();
+        }
+    }
+
+    // The output rows of tiles [first, last) at the pixels from `pixel` (a tile's, or what is left).
+    void multiply_tiles(const float *packed, const float *src, float *dst, int pixels, int pixel, int first, int last,
+                        std::vector<float> &tail) const
+    {
+        const int count = std::min(kPixels, pixels - pixel);
+        const float *tile_in = src + pixel;
+        long pitch = pixels;
+        if (count < kPixels) {
+            tail.assign(static_cast<size_t>(in_channels_) * kPixels, 0.0f);
+            for (int c = 0; c < in_channels_; ++c)
+                std::memcpy(&tail[static_cast<size_t>(c) * kPixels], src + static_cast<size_t>(c) * pixels + pixel,
+                            sizeof(float) * count);
+            tile_in = tail.data();
+            pitch = kPixels;
+        }
+        float scratch[kRows * kPixels];
+        for (int t = first; t < last; ++t) {
+            const int rows = std::min(kRows, out_channels_ - t * kRows);
+            float *tile_out = dst + static_cast<size_t>(t) * kRows * pixels + pixel;
+            const float *weights = packed + static_cast<size_t>(t) * in_channels_ * kRows;
+            if (count == kPixels && rows == kRows) {
+                pointwise_tile(weights, in_channels_, tile_in, pitch, &bias_[t * kRows], tile_out, pixels);
+            } else {
+                pointwise_tile(weights, in_channels_, tile_in, pitch, &bias_[t * kRows], scratch, kPixels);
+                for (int r = 0; r < rows; ++r)
+                    std::memcpy(tile_out + static_cast<size_t>(r) * pixels, scratch + r * kPixels, sizeof(float) * count);
+            }
+            if (swish_)
+                for (int r = 0; r < rows; ++r)
+                    swish_in_place(tile_out + static_cast<size_t>(r) * pixels, tile_out + static_cast<size_t>(r) * pixels,
+                                   count);
+        }
+    }
+
+    int out_channels_ = 0, in_channels_ = 0;
     bool swish_ = false;
+    std::vector<float> packed_, bias_;  // weights as [tile][Cin][kRows]; the bias padded to whole tiles
+    std::vector<float> gated_;          // the gated weights or input of the image being run
 };
 
 }  // namespace
+
+// The mean of n floats: 16 running sums (a loop the compiler vectorises; one sum would be a chain of
+// dependent additions), added in double at the end.
+HKF_VECTOR_CLONES float plane_mean(const float *plane, long n)
+{
+    float partial[16] = {};
+    long i = 0;
+    for (; i + 16 <= n; i += 16)
+        for (int k = 0; k < 16; ++k) partial[k] += plane[i + k];
+    double sum = 0.0;
+    for (; i < n; ++i) sum += plane[i];
+    for (int k = 0; k < 16; ++k) sum += partial[k];
+    return static_cast<float>(sum / static_cast<double>(n));
+}
 
 HKF_VECTOR_CLONES void swish_in_place(const float *src, float *dst, long n)
 {
@@ -239,6 +431,7 @@ void register_fast_layers()
     std::call_once(once, [] {
         cv::dnn::LayerFactory::registerLayer("hkf.Swish", SwishLayer::create);
         cv::dnn::LayerFactory::registerLayer("hkf.DepthwiseConv", DepthwiseConvLayer::create);
+        cv::dnn::LayerFactory::registerLayer("hkf.PointwiseConv", PointwiseConvLayer::create);
     });
 }
 

@@ -14,7 +14,10 @@ namespace hkf_estimator {
 // Registers both layer types with OpenCV's layer factory (once; safe to call again, from any thread).
 void register_fast_layers();
 
-// swish(x) = x / (1 + exp(-x)) over n floats (dst may be src), the activation both layers apply.
+// swish(x) = x / (1 + exp(-x)) over n floats (dst may be src), the activation the layers apply.
 void swish_in_place(const float *src, float *dst, long n);
+
+// The mean of n > 0 floats (the depthwise layer's second output, per plane).
+float plane_mean(const float *plane, long n);
 
 }  // namespace hkf_estimator
