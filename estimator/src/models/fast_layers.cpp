@@ -61,34 +61,54 @@ int int_param(const cv::dnn::LayerParams &params, const char *name)
 
 // One tile of a 1x1 convolution: kRows output channels x kPixels pixels, summed in 2 * kRows vector
 // registers over the input channels (GCC's vector extension: 16 floats, one AVX-512 register, two AVX2
-// ones). packed: the tile's weights as [cin][kRows]; in: cin rows of `pitch` floats from the tile's
-// first pixel; out: kRows rows of `out_pitch` floats.
+// ones).
 constexpr int kRows = 8, kPixels = 32;
 typedef float Floats16 __attribute__((vector_size(64)));
 
-HKF_VECTOR_CLONES void pointwise_tile(const float *packed, int cin, const float *in, long pitch, const float *bias,
-                                      float *out, long out_pitch)
+struct Tile {
+    const float *weights;  // the tile's weights, [cin][kRows]
+    int cin;
+    const float *in;       // cin rows of in_pitch floats from the tile's first pixel
+    long in_pitch;
+    const float *bias;     // kRows
+    float *out;            // kRows rows of out_pitch floats
+    long out_pitch;
+};
+
+HKF_VECTOR_CLONES void pointwise_tile(const Tile &t)
 {
     Floats16 sum[kRows][2];
     for (int r = 0; r < kRows; ++r) {
-        sum[r][0] = Floats16{} + bias[r];
+        sum[r][0] = Floats16{} + t.bias[r];
         sum[r][1] = sum[r][0];
     }
-    for (int c = 0; c < cin; ++c) {
+    for (int c = 0; c < t.cin; ++c) {
         Floats16 x0, x1;
-        std::memcpy(&x0, in + c * pitch, sizeof x0);
-        std::memcpy(&x1, in + c * pitch + 16, sizeof x1);
-        const float *w = packed + static_cast<long>(c) * kRows;
+        std::memcpy(&x0, t.in + c * t.in_pitch, sizeof x0);
+        std::memcpy(&x1, t.in + c * t.in_pitch + 16, sizeof x1);
+        const float *w = t.weights + static_cast<long>(c) * kRows;
         for (int r = 0; r < kRows; ++r) {
             sum[r][0] += x0 * w[r];
             sum[r][1] += x1 * w[r];
         }
     }
     for (int r = 0; r < kRows; ++r) {
-        std::memcpy(out + r * out_pitch, &sum[r][0], sizeof sum[r][0]);
-        std::memcpy(out + r * out_pitch + 16, &sum[r][1], sizeof sum[r][1]);
+        std::memcpy(t.out + r * t.out_pitch, &sum[r][0], sizeof sum[r][0]);
+        std::memcpy(t.out + r * t.out_pitch + 16, &sum[r][1], sizeof sum[r][1]);
     }
 }
+
+// The tensors a layer's forward gets, each float and continuous (as OpenCV allocates them).
+struct Tensors {
+    std::vector<cv::Mat> in, out;
+    Tensors(cv::InputArrayOfArrays inputs, cv::OutputArrayOfArrays outputs)
+    {
+        inputs.getMatVector(in);
+        outputs.getMatVector(out);
+        for (const cv::Mat &m : in) CV_Assert(m.type() == CV_32F && m.isContinuous());
+        for (const cv::Mat &m : out) CV_Assert(m.type() == CV_32F && m.isContinuous());
+    }
+};
 
 // "hkf.Swish": an activation, so that OpenCV fuses it into the convolution before it (forwardSlice
 // is then called on each stripe of that convolution's output).
@@ -109,13 +129,9 @@ public:
     void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
                  cv::OutputArrayOfArrays) override
     {
-        std::vector<cv::Mat> inputs, outputs;
-        inputs_arr.getMatVector(inputs);
-        outputs_arr.getMatVector(outputs);
-        for (size_t i = 0; i < inputs.size(); ++i) {
-            CV_Assert(inputs[i].type() == CV_32F && inputs[i].isContinuous() && outputs[i].isContinuous());
-            swish_in_place(inputs[i].ptr<float>(), outputs[i].ptr<float>(), static_cast<long>(inputs[i].total()));
-        }
+        Tensors t(inputs_arr, outputs_arr);
+        for (size_t i = 0; i < t.in.size(); ++i)
+            swish_in_place(t.in[i].ptr<float>(), t.out[i].ptr<float>(), static_cast<long>(t.in[i].total()));
     }
 
     void forwardSlice(const float *src, float *dst, int len, size_t plane_size, int cn0, int cn1) const override
@@ -173,14 +189,11 @@ public:
     void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
                  cv::OutputArrayOfArrays) override
     {
-        std::vector<cv::Mat> inputs, outputs;
-        inputs_arr.getMatVector(inputs);
-        outputs_arr.getMatVector(outputs);
-        const cv::Mat &in = inputs[0];
-        cv::Mat &out = outputs[0];
-        CV_Assert(in.type() == CV_32F && in.isContinuous() && out.isContinuous());
+        Tensors t(inputs_arr, outputs_arr);
+        const cv::Mat &in = t.in[0];
+        cv::Mat &out = t.out[0];
         const int planes = in.size[0] * in.size[1];
-        float *means = means_ && outputs.size() == 2 ? outputs[1].ptr<float>() : nullptr;
+        float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
         cv::parallel_for_(cv::Range(0, planes), [&](const cv::Range &range) {
             std::vector<float> padded, extended;
             for (int p = range.start; p < range.end; ++p) {
@@ -314,27 +327,23 @@ public:
     void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
                  cv::OutputArrayOfArrays) override
     {
-        std::vector<cv::Mat> inputs, outputs;
-        inputs_arr.getMatVector(inputs);
-        outputs_arr.getMatVector(outputs);
-        const cv::Mat &in = inputs[0];
-        cv::Mat &out = outputs[0];
-        CV_Assert(in.type() == CV_32F && in.isContinuous() && out.isContinuous());
+        Tensors t(inputs_arr, outputs_arr);
+        const cv::Mat &in = t.in[0];
+        cv::Mat &out = t.out[0];
         const int pixels = in.size[2] * in.size[3], batch = in.size[0];
         const int pixel_tiles = (pixels + kPixels - 1) / kPixels, row_tiles = (out_channels_ + kRows - 1) / kRows;
         // tasks: every pixel tile, its output rows split so that there are at least 8 tasks to share
         const int groups = std::min(row_tiles, std::max(1, (8 + pixel_tiles - 1) / pixel_tiles));
         const int rows_per_group = (row_tiles + groups - 1) / groups;
         for (int image = 0; image < batch; ++image) {
-            const float *src = in.ptr<float>() + static_cast<size_t>(image) * in_channels_ * pixels;
-            const float *weights = packed_.data();
-            if (inputs.size() == 2) apply_gate(inputs[1].ptr<float>() + static_cast<size_t>(image) * in_channels_, pixels, &src, &weights);
-            float *dst = out.ptr<float>() + static_cast<size_t>(image) * out_channels_ * pixels;
+            Image m{packed_.data(), in.ptr<float>() + static_cast<size_t>(image) * in_channels_ * pixels,
+                    out.ptr<float>() + static_cast<size_t>(image) * out_channels_ * pixels, pixels};
+            if (t.in.size() == 2) apply_gate(t.in[1].ptr<float>() + static_cast<size_t>(image) * in_channels_, &m);
             cv::parallel_for_(cv::Range(0, pixel_tiles * groups), [&](const cv::Range &range) {
                 std::vector<float> tail;
                 for (int task = range.start; task < range.end; ++task) {
                     const int first_row_tile = task % groups * rows_per_group;
-                    multiply_tiles(weights, src, dst, pixels, task / groups * kPixels, first_row_tile,
+                    multiply_tiles(m, task / groups * kPixels, first_row_tile,
                                    std::min(row_tiles, first_row_tile + rows_per_group), tail);
                 }
             });
@@ -342,36 +351,43 @@ public:
     }
 
 private:
+    // One image's product: the packed weights, its input and output planes of `pixels` floats.
+    struct Image {
+        const float *weights, *src;
+        float *dst;
+        int pixels;
+    };
+
     // The gate g (Cin values) applied: to a copy of the weights (Cout x Cin products) or of the input
-    // (Cin x pixels), whichever is fewer; *src or *weights then point at the copy.
-    void apply_gate(const float *gate, int pixels, const float **src, const float **weights)
+    // (Cin x pixels), whichever is fewer; m's weights or src then point at the copy.
+    void apply_gate(const float *gate, Image *m)
     {
+        const int pixels = m->pixels;
         if (static_cast<long>(pixels) <= out_channels_) {
             gated_.resize(static_cast<size_t>(in_channels_) * pixels);
             for (int c = 0; c < in_channels_; ++c)
                 for (int i = 0; i < pixels; ++i)
-                    gated_[static_cast<size_t>(c) * pixels + i] = (*src)[static_cast<size_t>(c) * pixels + i] * gate[c];
-            *src = gated_.data();
+                    gated_[static_cast<size_t>(c) * pixels + i] = m->src[static_cast<size_t>(c) * pixels + i] * gate[c];
+            m->src = gated_.data();
         } else {
             gated_.resize(packed_.size());
             const size_t tiles = packed_.size() / (static_cast<size_t>(in_channels_) * kRows);
             for (size_t i = 0; i < tiles * in_channels_; ++i)  // [tile][Cin][kRows]: row i's input channel i % Cin
                 for (int r = 0; r < kRows; ++r) gated_[i * kRows + r] = packed_[i * kRows + r] * gate[i % in_channels_];
-            *weights = gated_.data();
+            m->weights = gated_.data();
         }
     }
 
     // The output rows of tiles [first, last) at the pixels from `pixel` (a tile's, or what is left).
-    void multiply_tiles(const float *packed, const float *src, float *dst, int pixels, int pixel, int first, int last,
-                        std::vector<float> &tail) const
+    void multiply_tiles(const Image &m, int pixel, int first, int last, std::vector<float> &tail) const
     {
-        const int count = std::min(kPixels, pixels - pixel);
-        const float *tile_in = src + pixel;
+        const int pixels = m.pixels, count = std::min(kPixels, pixels - pixel);
+        const float *tile_in = m.src + pixel;
         long pitch = pixels;
         if (count < kPixels) {
             tail.assign(static_cast<size_t>(in_channels_) * kPixels, 0.0f);
             for (int c = 0; c < in_channels_; ++c)
-                std::memcpy(&tail[static_cast<size_t>(c) * kPixels], src + static_cast<size_t>(c) * pixels + pixel,
+                std::memcpy(&tail[static_cast<size_t>(c) * kPixels], m.src + static_cast<size_t>(c) * pixels + pixel,
                             sizeof(float) * count);
             tile_in = tail.data();
             pitch = kPixels;
@@ -379,12 +395,12 @@ private:
         float scratch[kRows * kPixels];
         for (int t = first; t < last; ++t) {
             const int rows = std::min(kRows, out_channels_ - t * kRows);
-            float *tile_out = dst + static_cast<size_t>(t) * kRows * pixels + pixel;
-            const float *weights = packed + static_cast<size_t>(t) * in_channels_ * kRows;
+            float *tile_out = m.dst + static_cast<size_t>(t) * kRows * pixels + pixel;
+            const float *weights = m.weights + static_cast<size_t>(t) * in_channels_ * kRows;
             if (count == kPixels && rows == kRows) {
-                pointwise_tile(weights, in_channels_, tile_in, pitch, &bias_[t * kRows], tile_out, pixels);
+                pointwise_tile(Tile{weights, in_channels_, tile_in, pitch, &bias_[t * kRows], tile_out, pixels});
             } else {
-                pointwise_tile(weights, in_channels_, tile_in, pitch, &bias_[t * kRows], scratch, kPixels);
+                pointwise_tile(Tile{weights, in_channels_, tile_in, pitch, &bias_[t * kRows], scratch, kPixels});
                 for (int r = 0; r < rows; ++r)
                     std::memcpy(tile_out + static_cast<size_t>(r) * pixels, scratch + r * kPixels, sizeof(float) * count);
             }
