@@ -14,18 +14,42 @@
 #define T0 1700000000000000LL
 #define FRAME_US 33333LL
 
-/* A measurement as the node handles it: checked, then, when it goes on and is in order, taken with
- * its arrival. Returns the verdict; *dt the step taken (-1 when not taken). */
+/* A measurement with good values as the node offers it (stream_admission_admit). Returns the verdict;
+ * *dt the step taken (-1 when not taken). */
 static stream_verdict_t offer(stream_admission_t *a, int64_t seq, int64_t utime, int64_t arrival, double *dt)
 {
-    const stream_verdict_t verdict = stream_admission_check(a, seq, utime, arrival);
-    *dt = -1.0;
-    if ((verdict == STREAM_GO_ON || verdict == STREAM_NEW_CLOCK) &&
-        stream_admission_order(a, utime) == STREAM_IN_ORDER) {
-        *dt = stream_admission_take(a, utime);
-        stream_admission_took_arrival(a, arrival);
-    }
-    return verdict;
+    const stream_admission_result_t r = stream_admission_admit(a, seq, utime, arrival, 1);
+    *dt = r.taken ? r.dt : -1.0;
+    return r.verdict;
+}
+
+/* The node's one call: bad values are refused after the other rules (the reference and the clock rule's
+ * arrival stay); by capture time alone, the order rule and the values decide. */
+static void test_admit_in_one_call(void **state)
+{
+    stream_admission_t a;
+    stream_admission_result_t r;
+    (void)state;
+    stream_admission_init(&a);
+    r = stream_admission_admit(&a, 1, T0, 1000, 1);
+    assert_true(r.verdict == STREAM_GO_ON && r.order == STREAM_IN_ORDER && r.taken && r.dt == 0.0);
+    r = stream_admission_admit(&a, 2, T0 + FRAME_US, 1000 + FRAME_US, 0); /* bad values */
+    assert_true(r.verdict == STREAM_GO_ON && r.order == STREAM_IN_ORDER && !r.taken);
+    assert_true(a.last_utime == T0 && a.last_arrival_utime == 1000);
+    r = stream_admission_admit(&a, 3, T0 + 2 * FRAME_US, 1000 + 2 * FRAME_US, 1);
+    assert_true(r.taken && r.dt > 0.0666 && r.dt < 0.0667);
+    r = stream_admission_admit(&a, 4, T0 + 2 * FRAME_US, 1000 + 3 * FRAME_US, 1);
+    assert_true(r.verdict == STREAM_GO_ON && r.order == STREAM_DUPLICATE && !r.taken);
+    r = stream_admission_admit(&a, 5000, T0 + 3 * FRAME_US, 1000 + 3 * FRAME_US, 1); /* another publisher */
+    assert_true(r.verdict == STREAM_OTHER_PUBLISHER && !r.taken);
+    assert_true(a.last_utime == T0 + 2 * FRAME_US);
+    stream_admission_init(&a);
+    r = stream_admission_admit_time(&a, T0, 1);
+    assert_true(r.verdict == STREAM_GO_ON && r.taken && r.dt == 0.0);
+    r = stream_admission_admit_time(&a, T0 - 1, 1);
+    assert_true(r.order == STREAM_OUT_OF_ORDER && !r.taken);
+    r = stream_admission_admit_time(&a, T0 + FRAME_US, 0);
+    assert_true(r.order == STREAM_IN_ORDER && !r.taken && a.last_utime == T0);
 }
 
 /* A steady stream is taken frame by frame, its steps in seconds; the first step is 0. */
@@ -187,6 +211,7 @@ static void test_stale_rule(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_admit_in_one_call),
         cmocka_unit_test(test_steady_stream_taken),
         cmocka_unit_test(test_order_rule),
         cmocka_unit_test(test_one_publisher),

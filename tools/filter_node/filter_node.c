@@ -125,13 +125,13 @@ static int finite_angles(const hkf_head_pose_measurement_t *m)
            fabsf(m->roll) <= HKF_MAX_ABS_ANGLE;
 }
 
-/* The order and value rules on m's capture time and angles (stream_admission.h); when m is taken,
- * *dt is its step from the last one (0 for the first) and a gap longer than max_dt has restarted
- * the track. Returns 0 when m is rejected. */
-static int take_time(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t *dt)
+/* What admission made of m after its publisher, clock and stale rules (stream_admission.h): the order
+ * and value rules' refusals counted; when m is taken, *dt is its step from the last one (0 for the first)
+ * and a gap longer than max_dt has restarted the track. Returns 0 when m is refused. */
+static int taken(filter_node_t *node, const stream_admission_result_t *r, hkf_real_t *dt)
 {
     *dt = 0;
-    switch (stream_admission_order(&node->admission, m->utime)) {
+    switch (r->order) {
     case STREAM_OUT_OF_ORDER:
         ++node->counts.out_of_order;
         return 0;
@@ -141,15 +141,21 @@ static int take_time(filter_node_t *node, const hkf_head_pose_measurement_t *m, 
     case STREAM_IN_ORDER:
         break;
     }
-    if (m->valid && !finite_angles(m)) {
+    if (!r->taken) {
         ++node->counts.bad_values;
         return 0;
     }
-    *dt = (hkf_real_t)stream_admission_take(&node->admission, m->utime);
+    *dt = (hkf_real_t)r->dt;
     if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED && *dt > node->config->settings.max_dt) {
         restart_track(node); /* a gap longer than max_dt: the track starts again from this measurement */
     }
     return 1;
+}
+
+/* The angles' values admission asks about: finite and in range, or none (no face). */
+static int values_ok(const hkf_head_pose_measurement_t *m)
+{
+    return !m->valid || finite_angles(m);
 }
 
 /* A frame without a face: the filter coasts (hkf_predict). */
@@ -202,24 +208,19 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
     return 1;
 }
 
-/* A measurement of the followed stream: the order and value rules, then the angles (a frame with a
- * face updates them, one without coasts), the position and the pose. *taken is 1 when its capture
- * time became the time reference. Returns 1 when *pose is to be published. */
-static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose, int *taken)
+/* A measurement taken, its step dt: the angles (a frame with a face updates them, one without coasts),
+ * the position and the pose. Returns 1 when *pose is to be published. */
+static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t dt, hkf_head_pose_t *pose)
 {
-    hkf_real_t dt;
-    *taken = take_time(node, m, &dt);
-    if (!*taken) {
-        return 0;
-    }
     return m->valid ? update(node, m, dt, pose) : coast(node, m, dt, pose);
 }
 
 int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
 {
-    int taken;
+    hkf_real_t dt;
+    const stream_admission_result_t r = stream_admission_admit_time(&node->admission, m->utime, values_ok(m));
     ++node->counts.received;
-    return measure(node, m, pose, &taken);
+    return taken(node, &r, &dt) && measure(node, m, dt, pose);
 }
 
 /* The node follows a new capture clock (stream_admission.h): the track restarts as after a gap. The
@@ -237,11 +238,11 @@ static void resync_clock(filter_node_t *node)
     }
 }
 
-/* The publisher, clock and stale rules (stream_admission.h): 1 to go on with m, 0 when it is
- * refused (counted). */
-static int admitted(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime)
+/* What admission made of m by its publisher, clock and stale rules (stream_admission.h): 1 when they
+ * passed (on a new clock the track restarts), 0 when m was refused (counted). */
+static int passed(filter_node_t *node, stream_verdict_t verdict)
 {
-    switch (stream_admission_check(&node->admission, m->seq, m->utime, arrival_utime)) {
+    switch (verdict) {
     case STREAM_GO_ON:
         return 1;
     case STREAM_NEW_CLOCK:
@@ -311,22 +312,23 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
                         hkf_head_pose_t *pose)
 {
     const int second_of = second_model_frame_of(&node->second, m);
-    int publish, taken;
+    stream_admission_result_t r;
+    hkf_real_t dt;
     ++node->counts.received; /* every measurement that reaches the node, whatever becomes of it */
     if (second_of >= 0 ||
         (stream_admission_following(&node->admission) && second_model_too_late(&node->second, m, node->model))) {
         return take_second(node, m, second_of, pose);
     }
-    if (!admitted(node, m, arrival_utime)) {
+    r = stream_admission_admit(&node->admission, m->seq, m->utime, arrival_utime, values_ok(m));
+    if (!passed(node, r.verdict)) {
         return 0;
     }
     second_model_note_frame(&node->second, m->seq, m->utime);
-    publish = measure(node, m, pose, &taken);
-    if (taken) {
-        stream_admission_took_arrival(&node->admission, arrival_utime);
-        node->lost_published = 0; /* the estimator speaks: no silence */
+    if (!taken(node, &r, &dt)) {
+        return 0;
     }
-    return publish;
+    node->lost_published = 0; /* the estimator speaks: no silence */
+    return measure(node, m, dt, pose);
 }
 
 int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)

@@ -102,7 +102,30 @@ void stream_admission_took_arrival(stream_admission_t *a, int64_t arrival_utime)
     a->jump_count = 0;
 }
 
-int stream_admission_following(const stream_admission_t *a)
+stream_admission_result_t stream_admission_admit_time(stream_admission_t *a, int64_t utime, int values_ok)
 {
-    return a->have_stream;
+    stream_admission_result_t r;
+    r.verdict = STREAM_GO_ON;
+    r.order = stream_admission_order(a, utime);
+    r.taken = r.order == STREAM_IN_ORDER && values_ok;
+    r.dt = r.taken ? stream_admission_take(a, utime) : 0.0;
+    return r;
+}
+
+stream_admission_result_t stream_admission_admit(stream_admission_t *a, int64_t seq, int64_t utime, int64_t arrival_utime,
+                                                 int values_ok)
+{
+    stream_admission_result_t r;
+    const stream_verdict_t verdict = stream_admission_check(a, seq, utime, arrival_utime);
+    if (verdict != STREAM_GO_ON && verdict != STREAM_NEW_CLOCK) {
+        memset(&r, 0, sizeof r);
+        r.verdict = verdict;
+        return r;
+    }
+    r = stream_admission_admit_time(a, utime, values_ok);
+    r.verdict = verdict;
+    if (r.taken) {
+        stream_admission_took_arrival(a, arrival_utime);
+    }
+    return r;
 }

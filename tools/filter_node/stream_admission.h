@@ -62,7 +62,27 @@ typedef enum {
 
 typedef enum { STREAM_IN_ORDER, STREAM_OUT_OF_ORDER, STREAM_DUPLICATE } stream_order_t;
 
+/* What became of one measurement (stream_admission_admit, stream_admission_admit_time). */
+typedef struct {
+    stream_verdict_t verdict; /* the publisher, clock and stale rules (STREAM_GO_ON from admit_time) */
+    stream_order_t order;     /* the order rule, asked when they passed (verdict STREAM_GO_ON or STREAM_NEW_CLOCK) */
+    int taken;                /* 1: in order and its values good, so the time reference now */
+    double dt;                /* when taken: its step from the last one taken, s (0 for the first) */
+} stream_admission_result_t;
+
 void stream_admission_init(stream_admission_t *a);
+
+/* The node's one call per measurement (seq, capture time utime, arrival at arrival_utime; values_ok: its
+ * angles are finite and in range, or it has none): the publisher, clock and stale rules, then, when they
+ * pass, the order rule, and a measurement in order with good values taken with its arrival. */
+stream_admission_result_t stream_admission_admit(stream_admission_t *a, int64_t seq, int64_t utime, int64_t arrival_utime,
+                                                 int values_ok);
+
+/* The same by capture time alone (no publisher, no arrival): the order rule, then taken when in order
+ * with good values. */
+stream_admission_result_t stream_admission_admit_time(stream_admission_t *a, int64_t utime, int values_ok);
+
+/* The rules one by one (what stream_admission_admit asks, in its order): */
 
 /* The publisher, clock and stale rules for a measurement (seq, capture time utime) that arrived at
  * arrival_utime. Following a new publisher, or counting refused stamps towards a resync, is noted
@@ -81,7 +101,10 @@ double stream_admission_take(stream_admission_t *a, int64_t utime);
 void stream_admission_took_arrival(stream_admission_t *a, int64_t arrival_utime);
 
 /* 1 when a publisher is followed. */
-int stream_admission_following(const stream_admission_t *a);
+static inline int stream_admission_following(const stream_admission_t *a)
+{
+    return a->have_stream;
+}
 
 #ifdef __cplusplus
 }
