@@ -183,6 +183,8 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
 {
     const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
     hkf_output_t out;
+    hkf_filter_t before;
+    hkf_calibration_t calibration_before;
     int known;
     if (strncmp(m->model ? m->model : "", node->model, sizeof node->model) != 0) {
         if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
@@ -195,13 +197,15 @@ static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf
     }
     (void)resolved_models_find(&node->models, node->model, &known);
     node->counts.unknown_models += !known;
-    second_model_keep_frame(&node->second, m, z, dt, &node->filter, &node->calibration);
+    before = node->filter;
+    calibration_before = node->calibration;
     if (hkf_update(&node->filter, z, dt, &out) != HKF_OK) {
         ++node->counts.bad_values;
-        second_model_unkeep_newest(&node->second);
+        second_model_note_frame(&node->second, m->seq, m->utime); /* noted, not kept: the step never happened */
         return 0;
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, z, dt); /* for the next measurement's R */
+    second_model_keep_frame(&node->second, m, z, dt, &before, &calibration_before);
     node->last_measurement_utime = m->utime;
     take_position(node, m);
     fill_pose(node, &out, m->utime, pose);
@@ -311,20 +315,20 @@ static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose)
 {
-    const int second_of = second_model_frame_of(&node->second, m);
+    const int route =
+        second_model_route(&node->second, m, node->model, stream_admission_following(&node->admission));
     stream_admission_result_t r;
     hkf_real_t dt;
     ++node->counts.received; /* every measurement that reaches the node, whatever becomes of it */
-    if (second_of >= 0 ||
-        (stream_admission_following(&node->admission) && second_model_too_late(&node->second, m, node->model))) {
-        return take_second(node, m, second_of, pose);
+    if (route != SECOND_MODEL_NOT_SECOND) {
+        return take_second(node, m, route, pose);
     }
     r = stream_admission_admit(&node->admission, m->seq, m->utime, arrival_utime, values_ok(m));
     if (!passed(node, r.verdict)) {
         return 0;
     }
-    second_model_note_frame(&node->second, m->seq, m->utime);
     if (!taken(node, &r, &dt)) {
+        second_model_note_frame(&node->second, m->seq, m->utime); /* a frame of the publisher, not stepped */
         return 0;
     }
     node->lost_published = 0; /* the estimator speaks: no silence */

@@ -37,14 +37,7 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
     frame->dt = dt;
     frame->before = *before;
     frame->calibration_before = *calibration_before;
-}
-
-void second_model_unkeep_newest(second_model_t *s)
-{
-    if (s->frame_count > 0) {
-        --s->frame_count;
-        s->frame_newest = (s->frame_newest + FILTER_NODE_PAIR_FRAMES - 1) % FILTER_NODE_PAIR_FRAMES;
-    }
+    second_model_note_frame(s, m->seq, m->utime);
 }
 
 static int frame_id_slot(int64_t seq)
@@ -59,7 +52,8 @@ void second_model_note_frame(second_model_t *s, int64_t seq, int64_t utime)
     s->frame_ids[slot].utime = utime;
 }
 
-int second_model_frame_of(const second_model_t *s, const hkf_head_pose_measurement_t *m)
+/* The index of the kept frame whose second measurement m is (same seq and utime, another model), or -1. */
+static int frame_of(const second_model_t *s, const hkf_head_pose_measurement_t *m)
 {
     int i;
     for (i = 0; i < s->frame_count; ++i) {
@@ -74,11 +68,21 @@ int second_model_frame_of(const second_model_t *s, const hkf_head_pose_measureme
 
 /* Its seq and utime are those of one of the followed publisher's last frames,
  * its model another. (Another publisher's seq and utime are not.) */
-int second_model_too_late(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model)
+static int too_late(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model)
 {
     const int slot = frame_id_slot(m->seq);
     return s->frame_ids[slot].seq == m->seq && s->frame_ids[slot].utime == m->utime && m->utime != 0 &&
            strncmp(first_model, m->model ? m->model : "", NODE_MODEL_NAME_MAX) != 0;
+}
+
+int second_model_route(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model,
+                       int following)
+{
+    const int index = frame_of(s, m);
+    if (index >= 0) {
+        return index;
+    }
+    return following && too_late(s, m, first_model) ? SECOND_MODEL_TOO_LATE : SECOND_MODEL_NOT_SECOND;
 }
 
 /* Where the first model measures a large turn, the second's measurement is taken alone. */

@@ -57,23 +57,23 @@ void second_model_init(second_model_t *s);
 /* Forgets the kept frames (a restart, a command, a new clock); the offset stays. */
 void second_model_forget_frames(second_model_t *s);
 
-/* Keeps the step about to be made on `before` (and its calibration) for frame m: z (NULL: no face), dt. */
+/* Keeps the step made from `before` (and its calibration) for frame m: z (NULL: no face), dt; the frame
+ * is noted as second_model_note_frame notes one. */
 void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3],
                              hkf_real_t dt, const hkf_filter_t *before, const hkf_calibration_t *calibration_before);
 
-/* The newest kept frame's step failed: it never happened. */
-void second_model_unkeep_newest(second_model_t *s);
-
-/* Notes a frame of the followed publisher (to tell a too-late second measurement). */
+/* Notes a frame of the followed publisher that was not stepped (to tell a too-late second measurement). */
 void second_model_note_frame(second_model_t *s, int64_t seq, int64_t utime);
 
-/* The index of the kept frame whose second measurement m is (same seq and
- * utime, another model), or -1. */
-int second_model_frame_of(const second_model_t *s, const hkf_head_pose_measurement_t *m);
+#define SECOND_MODEL_TOO_LATE (-1)   /* a second measurement of a followed frame no longer kept */
+#define SECOND_MODEL_NOT_SECOND (-2) /* the first model's measurement (or another publisher's) */
 
-/* 1 when m is a second model's measurement of a followed frame already
- * passed, too old for the kept frames (first_model: the filter's). */
-int second_model_too_late(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model);
+/* Which frame m is a second model's measurement of: the index of the kept frame with its seq and utime
+ * and another model; SECOND_MODEL_TOO_LATE when, following a publisher (`following`), m's seq and utime
+ * are one of its last frames' and its model is not first_model (the filter's); else
+ * SECOND_MODEL_NOT_SECOND. */
+int second_model_route(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model,
+                       int following);
 
 /* Fuses m, the second measurement of kept frame `index`, into *filter (and
  * its *calibration): that frame's step again with both (the second model's R
