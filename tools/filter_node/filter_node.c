@@ -37,7 +37,8 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
 /* How much noisier m's model measures the position than the position filter's R says (its config). */
 static float position_r_scale(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
 {
-    return (float)node_config_model_settings(node->config, m->model).position_r_scale;
+    int known;
+    return resolved_models_find(&node->models, m->model, &known)->position_r_scale; /* resolved at start */
 }
 
 /* What a measurement's position became, counted. */

@@ -1,7 +1,8 @@
 /*
  * resolved_models.h - the config's models resolved once, when the node starts (libhkf's
  * prepare-once: hkf_model_noise_init): each model's angle settings, and its noise prepared for
- * hkf_update_pair_prepared, found by the measurement's model id; and the rule that pairs two models. A model not in the table has the
+ * hkf_update_pair_prepared, and its position's R scale, found by the measurement's model id; and the rule
+ * that pairs two models. A model not in the table has the
  * base settings (node_config_for_model's rule). The config must have passed node_config_check.
  */
 #ifndef RESOLVED_MODELS_H
@@ -17,6 +18,7 @@ extern "C" {
 typedef struct {
     hkf_settings_t settings;      /* node_config_for_model's */
     hkf_model_prepared_t noise;   /* its R (mode, Eq. 8 curves, constant, clamp) as a second model */
+    float position_r_scale;       /* its position R over the position filter's (node_config_model_settings') */
 } resolved_model_t;
 
 typedef struct {
