@@ -40,6 +40,14 @@ cv::Mat random_blob(std::vector<int> shape, unsigned seed, float spread)
     return m;
 }
 
+cv::dnn::LayerParams swish_params()
+{
+    cv::dnn::LayerParams p;
+    p.name = "swish";
+    p.type = "hkf.Swish";
+    return p;
+}
+
 cv::dnn::LayerParams depthwise_params(const Case &c, const cv::Mat &weights, const cv::Mat &bias)
 {
     cv::dnn::LayerParams p;
@@ -155,9 +163,7 @@ void test_swish_fused_into_a_convolution(void **)
     const cv::Mat linear = plain.forward().clone();
     cv::dnn::Net fused;
     fused.addLayerToPrev(conv.name, conv.type, conv);
-    cv::dnn::LayerParams swish;
-    swish.name = "swish";
-    swish.type = "hkf.Swish";
+    cv::dnn::LayerParams swish = swish_params();
     fused.addLayerToPrev(swish.name, swish.type, swish);
     fused.setInput(input);
     const cv::Mat out = fused.forward();
@@ -178,9 +184,7 @@ void test_swish_as_a_layer(void **)
 {
     const cv::Mat input = random_blob({1, 3, 9, 9}, 9, 3.0f);
     cv::dnn::Net net;
-    cv::dnn::LayerParams swish;
-    swish.name = "swish";
-    swish.type = "hkf.Swish";
+    cv::dnn::LayerParams swish = swish_params();
     net.addLayerToPrev(swish.name, swish.type, swish);
     net.setInput(input);
     const cv::Mat out = net.forward();
