@@ -1,7 +1,8 @@
 // hkf-bench-layers - where a network's forward pass spends its time in OpenCV's DNN module (the
 // shipped runtime): cv::dnn::Net::getPerfProfile after each forward, summed by layer type, medians
-// over the runs. For the second model's speed (WHENet's EfficientNet-B0 runs 8x slower in OpenCV 4.6
-// than in onnxruntime: docs/estimator.md). Then the same network quantized to int8 by OpenCV itself
+// over the runs. For the second model's speed (WHENet's EfficientNet-B0 ran 8x slower in OpenCV 4.6
+// than in onnxruntime until its graph was rewritten onto the estimator's own layers: docs/estimator.md).
+// The network is loaded as the estimator loads it (load_onnx_network: those layers registered). Then the same network quantized to int8 by OpenCV itself
 // (cv::dnn::Net::quantize, calibrated on the same input), its whole pass: the shipped runtime's int8 path.
 // usage: hkf-bench-layers MODEL.onnx [WIDTH HEIGHT [RUNS [THREADS]]]   (defaults 224 224 40 1)
 #include <algorithm>
@@ -14,10 +15,9 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utility.hpp>
-#include <opencv2/core/utils/logger.hpp>
 #include <opencv2/dnn.hpp>
 
-#include "fast_layers.hpp"
+#include "onnx_network.hpp"
 
 namespace {
 
@@ -182,12 +182,10 @@ int main(int argc, char **argv)
     const int status = parse(argc, argv, &o);
     if (status != 0) return status < 0 ? 0 : status;
     cv::dnn::Net net;
-    hkf_estimator::register_fast_layers();  // a graph rewritten by dev/models/fast_layers.py uses them
-    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);  // not a warning per node of their domain
     try {
-        net = cv::dnn::readNetFromONNX(o.model);
-    } catch (const cv::Exception &e) {
-        std::fprintf(stderr, "hkf-bench-layers: cannot read '%s': %s\n", o.model, e.what());
+        net = hkf_estimator::load_onnx_network(o.model, {});
+    } catch (const hkf_estimator::EstimatorError &e) {
+        std::fprintf(stderr, "hkf-bench-layers: %s\n", e.what());
         return 1;
     }
     cv::setNumThreads(static_cast<int>(o.threads));

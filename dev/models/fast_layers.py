@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Rewrites a converted ONNX graph (WHENet's EfficientNet-B0) onto the two layers the estimator
+"""Rewrites a converted ONNX graph (WHENet's EfficientNet-B0) onto the three layers the estimator
 gives OpenCV's DNN module (estimator/src/models/fast_layers.hpp), with onnx alone:
 - every swish, Mul(x, Sigmoid(x)), becomes one node hkf.Swish(x);
 - every depthwise Conv (group = channels, one input channel per group) becomes hkf.DepthwiseConv,
@@ -31,6 +31,12 @@ def attribute(node, name, default=None):
     return default
 
 
+def set_attribute(node, name, value):
+    for a in node.attribute:
+        if a.name == name:
+            a.i = value
+
+
 def consumers_of(nodes):
     table = {}
     for node in nodes:
@@ -39,9 +45,13 @@ def consumers_of(nodes):
     return table
 
 
+def producers_of(nodes):
+    return {out: node for node in nodes for out in node.output}
+
+
 def fuse_swish(nodes):
     """Mul(x, Sigmoid(x)) -> hkf.Swish(x); returns the new node list and how many were fused."""
-    producers = {out: node for node in nodes for out in node.output}
+    producers, consumers = producers_of(nodes), consumers_of(nodes)
     drop, replaced, count = set(), {}, 0
     for node in nodes:
         if node.op_type != "Mul" or len(node.input) != 2:
@@ -49,7 +59,7 @@ def fuse_swish(nodes):
         for x, s in (node.input, reversed(node.input)):
             sigmoid = producers.get(s)
             if sigmoid is not None and sigmoid.op_type == "Sigmoid" and sigmoid.input[0] == x:
-                if len(consumers_of(nodes).get(s, [])) != 1:
+                if len(consumers.get(s, [])) != 1:
                     continue  # the sigmoid is read elsewhere too: leave it
                 drop.add(id(sigmoid))
                 replaced[id(node)] = helper.make_node("Swish", [x], list(node.output), name=node.name, domain=DOMAIN)
@@ -117,9 +127,7 @@ def fuse_convolutions(nodes, weights, pixels):
         if len(readers) == 1 and readers[0].op_type == "Swish" and readers[0].domain == DOMAIN:
             drop.add(id(readers[0]))
             new.output[0] = readers[0].output[0]
-            for a in new.attribute:
-                if a.name == "swish":
-                    a.i = 1
+            set_attribute(new, "swish", 1)
         out.append(new)
         counts[new.op_type] += 1
     return out, counts
@@ -127,8 +135,7 @@ def fuse_convolutions(nodes, weights, pixels):
 
 def fuse_gates(nodes):
     """Mul(x, Sigmoid(s)) read only by an hkf.PointwiseConv -> the gate as its last input."""
-    producers = {out: node for node in nodes for out in node.output}
-    consumers = consumers_of(nodes)
+    producers, consumers = producers_of(nodes), consumers_of(nodes)
     drop, count = set(), 0
     for node in nodes:
         if node.op_type != "Mul" or len(node.input) != 2:
@@ -149,7 +156,7 @@ def fuse_gates(nodes):
 
 def fuse_means(nodes):
     """GlobalAveragePool of an hkf.DepthwiseConv's output -> that convolution's second output."""
-    producers = {out: node for node in nodes for out in node.output}
+    producers = producers_of(nodes)
     drop, count = set(), 0
     for node in nodes:
         if node.op_type != "GlobalAveragePool":
@@ -157,9 +164,7 @@ def fuse_means(nodes):
         source = producers.get(node.input[0])
         if source is not None and source.op_type == "DepthwiseConv" and len(source.output) == 1:
             source.output.append(node.output[0])
-            for a in source.attribute:
-                if a.name == "means":
-                    a.i = 1
+            set_attribute(source, "means", 1)
             drop.add(id(node))
             count += 1
     return [n for n in nodes if id(n) not in drop], count

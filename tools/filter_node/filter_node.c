@@ -296,7 +296,7 @@ static int pose_after_fusing(filter_node_t *node, hkf_head_pose_t *pose)
     return 1;
 }
 
-/* A second model's measurement m of a frame taken (the kept frame `index`, or -1: too late): its
+/* A second model's measurement m of a frame taken (the kept frame `index`, or SECOND_MODEL_TOO_LATE): its
  * angles fused into that frame, its position standing in where the first model measured none.
  * Returns 1 when *pose, the posterior with it, is to be published. */
 static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, int index, hkf_head_pose_t *pose)

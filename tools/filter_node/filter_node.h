@@ -125,7 +125,8 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
 
 /* Handles one measurement that arrived at arrival_utime (the receive clock:
  * a monotonic clock live, the log's event timestamp offline): a second model's measurement of a
- * frame taken, or admission (stream_admission.h), then filter_node_measurement. Returns 1 when *pose is to be published. */
+ * frame taken (second_model.h), or admission (stream_admission.h), then the angles, the position and
+ * the pose. Returns 1 when *pose is to be published. */
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose);
 

@@ -11,7 +11,6 @@
 #include <opencv2/core.hpp>
 #include <opencv2/dnn.hpp>
 #include <opencv2/dnn/all_layers.hpp>
-#include <opencv2/dnn/layer.details.hpp>
 #include <opencv2/dnn/shape_utils.hpp>
 
 // The loops below are built for the wider vectors too and the CPU's best taken at load time (GCC's
@@ -28,10 +27,10 @@ namespace {
 
 // exp(t) for t in [-87, 88] (clamped outside), written so that a compiler vectorises a loop of it: the
 // clamp as t + relu(-87 - t) and t - relu(t - 88), relu(d) = (d + |d|) / 2, which leave a t inside
-// exactly as it is (a comparison would be a branch GCC does not if-convert); t = k ln2 + r with |r| <= ln2 / 2 (Cody-Waite), exp(r)
-// by its Taylor series to r^6 (relative error below 2e-7 there), 2^k by the float's exponent bits; k
-// from the round-to-nearest trick (adding 1.5 * 2^23 leaves k in the low mantissa bits), so no
-// float-to-int conversion is made.
+// exactly as it is (a comparison would be a branch GCC does not if-convert); t = k ln2 + r with
+// |r| <= ln2 / 2 (Cody-Waite), exp(r) by its Taylor series to r^6 (relative error below 2e-7 there),
+// 2^k by the float's exponent bits; k from the round-to-nearest trick (adding 1.5 * 2^23 leaves k in
+// the low mantissa bits), so no float-to-int conversion is made.
 inline float exp_approx(float t)
 {
     const float below = -87.0f - t;
@@ -196,21 +195,20 @@ public:
         float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
         cv::parallel_for_(cv::Range(0, planes), [&](const cv::Range &range) {
             std::vector<float> padded, extended;
+            const long plane = static_cast<long>(out.size[2]) * out.size[3];
             for (int p = range.start; p < range.end; ++p) {
                 convolve_plane(in, out, p, padded, extended);
-                if (means != nullptr) means[p] = plane_mean(out.ptr<float>() + out.size[2] * out.size[3] * static_cast<size_t>(p),
-                                                            out.size[2] * out.size[3]);
+                if (means != nullptr) means[p] = plane_mean(out.ptr<float>() + plane * p, plane);
             }
         });
     }
 
 private:
-
     // The extended outputs sum[j], j < count, of a K x K kernel at STRIDE: all K^2 taps of one output
     // summed in registers (one store per output), the loop over j vectorised.
     template <int K, int STRIDE>
-    HKF_VECTOR_CLONES static void taps(const float *padded, int pitch, const float *weights, float bias, float *__restrict sum,
-                     size_t count)
+    HKF_VECTOR_CLONES static void taps(const float *padded, int pitch, const float *weights, float bias,
+                                       float *__restrict sum, size_t count)
     {
         float w[K * K];
         std::memcpy(w, weights, sizeof w);
@@ -236,11 +234,11 @@ private:
         }
     }
 
-    // One channel's plane: copied into a zero-padded buffer P of row pitch Wp, then each kernel tap
-    // (ky, kx) added as one long loop over the "extended" outputs j = oy Wp + ox, ox < Wp, which read
-    // P[stride j + ky Wp + kx]: the compiler vectorises it whatever the plane's width (on 7 x 7 planes a
-    // loop per output row would be as short as the vector). The columns ox >= the output's width are
-    // then dropped; last the bias and the swish.
+    // One channel's plane: copied into a zero-padded buffer P of row pitch Wp, then the bias and all
+    // kernel taps summed for each "extended" output j = oy Wp + ox, ox < Wp, which reads
+    // P[stride j + ky Wp + kx], in one long loop over j: the compiler vectorises it whatever the plane's
+    // width (on 7 x 7 planes a loop per output row would be as short as the vector). The columns
+    // ox >= the output's width are then dropped; last the swish.
     void convolve_plane(const cv::Mat &in, cv::Mat &out, int plane, std::vector<float> &padded,
                         std::vector<float> &extended) const
     {

@@ -1,17 +1,19 @@
-// fast_layers.hpp - two layers hkf gives OpenCV's DNN module, for the networks whose graphs
+// fast_layers.hpp - three layers hkf gives OpenCV's DNN module, for the networks whose graphs
 // dev/models/fast_layers.py rewrites at conversion time (WHENet's EfficientNet-B0):
 // - "hkf.Swish": x * sigmoid(x) as one vectorised activation, which OpenCV fuses into the
 //   convolution before it (OpenCV 4.6 runs a swish as a scalar Sigmoid layer and a product);
 // - "hkf.DepthwiseConv": a depthwise convolution of any square kernel and stride, its
-//   (possibly asymmetric) zero padding, bias and an optional swish in one pass (OpenCV 4.6's
-//   fast depthwise path takes only 3x3 kernels on planes at least 18 wide; the rest go through
-//   im2row one channel at a time, and an asymmetric padding is a layer of its own).
-// The network still runs in cv::dnn::Net; these are its layer implementations for two op types.
+//   (possibly asymmetric) zero padding, bias, an optional swish and the planes' means in one pass
+//   (OpenCV 4.6's fast depthwise path takes only 3x3 kernels on planes at least 18 wide; the rest go
+//   through im2row one channel at a time, and an asymmetric padding is a layer of its own);
+// - "hkf.PointwiseConv": a 1x1 convolution in register tiles, with an optional swish and a
+//   squeeze-and-excitation's gate (OpenCV 4.6's runs at about a third of the tile's speed here).
+// The network still runs in cv::dnn::Net; these are its layer implementations for three op types.
 #pragma once
 
 namespace hkf_estimator {
 
-// Registers both layer types with OpenCV's layer factory (once; safe to call again, from any thread).
+// Registers the layer types with OpenCV's layer factory (once; safe to call again, from any thread).
 void register_fast_layers();
 
 // swish(x) = x / (1 + exp(-x)) over n floats (dst may be src), the activation the layers apply.
