@@ -8,6 +8,7 @@
  *                         level the calibration beside it measured)
  *   step_libhkf_calibration  hkf_calibration_update after it: the noise calibration's step
  *   step_libhkf_position  hkf_position_update: the head's position (x, y, z), default settings
+ *   step_libhkf_position_calibration  hkf_calibration_update_position after it: the position's calibration
  *   step_libhkf_pair      hkf_update_pair: the paper's filter, a second estimator's measurement
  *                         with Hopenet's curves (two measurements, not the same work)
  *   step_libhkf_pair_prepared  hkf_update_pair_prepared: the same, the second model prepared once
@@ -148,6 +149,12 @@ NOINLINE int step_libhkf_position(hkf_position_filter_t *f, const Input *in, hkf
     /* a head about 60 cm away moving with the drive's angles (any signal will do: the step has no branches on it) */
     const hkf_real_t xyz[3] = {0.2f * in->z[1], 0.1f * in->z[0], 60.0f + 0.1f * in->z[2]};
     return hkf_position_update(f, xyz, 1.0f, in->dt, out);
+}
+
+NOINLINE int step_libhkf_position_calibration(hkf_calibration_t *c, hkf_position_filter_t *f, const Input *in)
+{
+    const hkf_real_t xyz[3] = {0.2f * in->z[1], 0.1f * in->z[0], 60.0f + 0.1f * in->z[2]}; /* the step's own */
+    return hkf_calibration_update_position(c, f, xyz, in->dt);
 }
 
 NOINLINE void step_opencv(OpenCvFilter *k, const Input *in, float yaw_out[1])
@@ -295,7 +302,7 @@ static std::vector<Input> drive_inputs(long steps)
 /* libhkf's filters, each variant's own, as main steps them. */
 struct LibhkfFilters {
     hkf_filter_t paper, constant, defaults, pair, pair_prepared;
-    hkf_calibration_t calibration;
+    hkf_calibration_t calibration, position_calibration;
     hkf_model_noise_t second;
     hkf_model_prepared_t second_prepared;
     hkf_position_filter_t position;
@@ -313,7 +320,9 @@ static bool init_libhkf(LibhkfFilters *l, const hkf_settings_t &paper)
         hkf_init(&l->defaults, &hkf_default_settings) != HKF_OK || hkf_init(&l->pair, &paper) != HKF_OK ||
         hkf_init(&l->pair_prepared, &paper) != HKF_OK || hkf_model_noise_init(&l->second_prepared, &l->second) != HKF_OK ||
         hkf_calibration_init(&l->calibration, &hkf_default_calibration_settings, &l->defaults) != HKF_OK ||
-        hkf_position_init(&l->position, &hkf_position_default_settings) != HKF_OK) {
+        hkf_position_init(&l->position, &hkf_position_default_settings) != HKF_OK ||
+        hkf_calibration_init_position(&l->position_calibration, &hkf_default_calibration_settings, &l->position) !=
+            HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: a libhkf init failed\n");
         return false;
     }
@@ -331,7 +340,8 @@ static bool step_libhkf(LibhkfFilters *l, const Input &in, hkf_output_t *paper_o
         step_libhkf_calibration(&l->calibration, &l->defaults, &in) != HKF_OK ||
         step_libhkf_pair(&l->pair, &in, &l->second, &d) != HKF_OK ||
         step_libhkf_pair_prepared(&l->pair_prepared, &in, &l->second_prepared, &e) != HKF_OK ||
-        step_libhkf_position(&l->position, &in, &position) != HKF_OK) {
+        step_libhkf_position(&l->position, &in, &position) != HKF_OK ||
+        step_libhkf_position_calibration(&l->position_calibration, &l->position, &in) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: a libhkf step failed\n");
         return false;
     }

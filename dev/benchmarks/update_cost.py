@@ -22,6 +22,7 @@ STEPS = [
     ("step_libhkf_pair", "libhkf hkf_update_pair: two estimators' measurements, each with its own Eq. 8 curves"),
     ("step_libhkf_pair_prepared", "libhkf hkf_update_pair_prepared: the same, the second model prepared once"),
     ("step_libhkf_position", "libhkf hkf_position_update: the head's position x, y, z"),
+    ("step_libhkf_position_calibration", "libhkf hkf_calibration_update_position: the position's calibration beside it"),
     ("step_eigen", "Eigen fixed-size 6-state filter, same work"),
     ("step_opencv", "cv::KalmanFilter(6, 3) predict + correct, same work"),
 ]

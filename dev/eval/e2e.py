@@ -63,7 +63,7 @@ PIVOT_CM = 10.0  # hkf-estimator's --pivot default (estimator/src/models/head_po
 SAMPLE_DELAY_S = 0.04  # still jitter: what the receiver holds this long after each frame's capture
 RAW_OPTIONS = ["noise_time=0", "noise_mode=constant", "r_const=0.0001 0.0001 0.0001", "r_min=0.0001",
                "loop_closure=off", "start_rate=0", "process_noise=1000000 1000000 1000000",
-               "position_noise_time=0", "position_measurement_noise=0.0001 0.0001 0.0001",
+               "position_noise_time=0", "position_r_const=0.0001 0.0001 0.0001", "position_start_rate=0",
                "position_process_noise=1000000 1000000 1000000", "position_max_speed=0"]
 LEADS_MS = [0, 15, 30]
 GOALS = {"onset_ms": 40.0, "onset_max_ms": 60.0, "onset_ms_60": 25.0, "rmse": 0.6, "jitter_share": 0.25,

@@ -1,28 +1,49 @@
-/* hkf_calibration.c - see hkf/hkf_calibration.h. The estimate's lane is hkf_noise_estimate.h's, which the
- * position's own calibration shares. */
+/* hkf_calibration.c - see hkf/hkf_calibration.h: the estimate, and its hand-over to the angle filter
+ * (hkf_position_calibration.c hands it to the position's). The estimate's lane is hkf_noise_estimate.h's. */
 #include "hkf/hkf_calibration.h"
 
 #include "hkf_internal.h"
 #include "hkf_math.h"
-#include "hkf_noise_estimate.h"
+#include "hkf_calibration_take.h"
 
 const hkf_calibration_settings_t hkf_default_calibration_settings = {
     .noise_time = HKF_REAL(0.3),
     .noise_rise = HKF_REAL(0.2),
 };
 
-int hkf_calibration_init(hkf_calibration_t *c, const hkf_calibration_settings_t *s, hkf_filter_t *f)
+int hkf_calibration_check(const hkf_calibration_settings_t *s)
 {
-    int a;
-    if (c == 0 || s == 0 || f == 0) {
-        return HKF_ERROR_NULL_ARGUMENT;
-    }
     if (!hkf_is_finite(s->noise_time) || !hkf_is_finite(s->noise_rise)) {
         return HKF_ERROR_SETTING_NON_FINITE;
     }
     if (!(s->noise_time >= 0 && s->noise_time <= HKF_REAL_FROM(HKF_MAX_TIME) && s->noise_rise >= 0 &&
           s->noise_rise <= HKF_REAL_FROM(HKF_MAX_NOISE_RISE))) {
         return HKF_ERROR_SETTING_CALIBRATION;
+    }
+    return HKF_OK;
+}
+
+void hkf_calibration_restart(hkf_calibration_t *c)
+{
+    int a;
+    for (a = 0; a < HKF_AXES; ++a) {
+        c->noise[a] = c->start[a];
+        c->power[a] = c->start[a];
+        c->last_z[a] = 0;
+        c->last_step[a] = 0;
+    }
+    c->history = 0u;
+}
+
+int hkf_calibration_init(hkf_calibration_t *c, const hkf_calibration_settings_t *s, hkf_filter_t *f)
+{
+    int a, result;
+    if (c == 0 || s == 0 || f == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    result = hkf_calibration_check(s);
+    if (result != HKF_OK) {
+        return result;
     }
     c->settings = *s;
     c->floor = HKF_SETTINGS(f)->r_min;
@@ -34,22 +55,14 @@ int hkf_calibration_init(hkf_calibration_t *c, const hkf_calibration_settings_t 
 
 int hkf_calibration_reset(hkf_calibration_t *c, hkf_filter_t *f)
 {
-    int a;
     if (c == 0 || f == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    for (a = 0; a < HKF_AXES; ++a) {
-        c->noise[a] = c->start[a];
-        c->power[a] = c->start[a];
-        c->last_z[a] = 0;
-        c->last_step[a] = 0;
-    }
-    c->history = 0u;
+    hkf_calibration_restart(c);
     return hkf_set_noise(f, c->settings.noise_time > 0 ? c->noise : 0);
 }
 
-/* The lanes of the estimate from the raw measurement z: d = (z - z_k-1) - (z_k-1 - z_k-2), yaw's steps on
- * the circle (hkf_noise_estimate.h's lane: power += beta (d^2 / 6 - power), n towards it, n >= floor). */
+/* The angles' steps, yaw's on the circle. */
 static void estimate(hkf_calibration_t *c, const hkf_real_t z[3], hkf_real_t dt)
 {
     const hkf_real_t now[3] = {z[HKF_AXIS_PITCH], hkf_wrap180(z[HKF_AXIS_YAW]), z[HKF_AXIS_ROLL]}; /* yaw on the circle */
@@ -59,18 +72,7 @@ static void estimate(hkf_calibration_t *c, const hkf_real_t z[3], hkf_real_t dt)
         step[a] = hkf_sub(now[a], c->last_z[a]);
     }
     step[HKF_AXIS_YAW] = hkf_wrap180(step[HKF_AXIS_YAW]);
-    if (c->history >= 2u) {
-        const hkf_real_t beta = hkf_step_weight(dt, c->settings.noise_time);
-        const hkf_real_t rise = hkf_add(HKF_REAL(1.0), hkf_mul(c->settings.noise_rise, dt));
-        for (a = 0; a < HKF_AXES; ++a) {
-            hkf_noise_lane(hkf_sub(step[a], c->last_step[a]), beta, rise, &c->floor, &c->power[a], &c->noise[a]);
-        }
-    }
-    for (a = 0; a < HKF_AXES; ++a) {
-        c->last_z[a] = now[a];
-        c->last_step[a] = step[a];
-    }
-    c->history += c->history < 2u ? 1u : 0u;
+    hkf_calibration_take(c, now, step, dt);
 }
 
 int hkf_calibration_update(hkf_calibration_t *c, hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt)

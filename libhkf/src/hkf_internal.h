@@ -3,12 +3,19 @@
 #define HKF_INTERNAL_H
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_calibration.h"
 
 /* HKF_OK, or the hkf_result_t of the first setting that makes no sense. */
 int hkf_settings_check(const hkf_settings_t *s);
 
 /* HKF_OK, or why one Eq. 8 curve makes no sense (HKF_ERROR_SETTING_SIGMA or _CURVE). */
 int hkf_curve_check(const hkf_noise_curve_t *c);
+
+/* The noise calibration's parts that the angles' and the position's hand-overs share
+ * (hkf_calibration.c): the settings' check and n back to its start (one measurement's lanes:
+ * hkf_calibration_take.h). */
+int hkf_calibration_check(const hkf_calibration_settings_t *s);
+void hkf_calibration_restart(hkf_calibration_t *c);
 
 /* The axis loops run over all HKF_LANES where the compiler turns them into
  * SIMD (the idle fourth lane fills a vector), and over the 3 axes alone on

@@ -1,40 +1,45 @@
-/* hkf_position.c - see hkf/hkf_position.h. The per-axis step is the angles' own
- * (hkf_filter.c): predict with F = [[1, dt], [0, 1]] and white-acceleration q
- * (Eq. 1-3), update with H = [1, 0], the gain in closed form from S = P00 + R
- * (Eq. 4-7); calibrated, the angles' noise estimate and motion detector
- * (hkf_motion.h). */
+/* hkf_position.c - see hkf/hkf_position.h. The angles' twin (hkf_filter.c): per
+ * axis the same closed-form step (hkf_kalman.h: predict with F = [[1, dt],
+ * [0, 1]] and white-acceleration q, Eq. 1-3; update with H = [1, 0], the gain
+ * from S = P00 + R, Eq. 4-7) and the same motion adaptation (hkf_two_models.h:
+ * HOLD and MOVE mixed by their likelihoods). What is the position's own: R as a
+ * measurement's scale times r_const or n, the outlier gate by a head's reach,
+ * and the coast of max_dt. */
 #include "hkf/hkf_position.h"
 
 #include <stddef.h>
 
 #include "hkf_kalman.h"
 #include "hkf_math.h"
-#include "hkf_motion.h"
+#include "hkf_two_models.h"
 
 /* Chosen on truth by construction (dev/eval/position_truth.py; the clips and figures: docs/estimator.md
- * "Head position"): the least moving z error whose still z jitter is at most half the goal's. A head leans
- * at well under 1 m/s; a mesh that misreads the face's scale, or a forged message, jumps further in one
- * step (max_speed); 6 refused frames that agree with each other (0.2 s at 30 fps) restart the track. */
+ * "Head position"): on 5 tuning clips, of 140 settings of q, still_wander and the two rates, the least
+ * moving z error (to 0.01 cm) whose still z jitter is at most half the goal's on every one, then the
+ * least still of those (stiller buys nothing the player sees). still_wander is 0.3 x r_const per axis.
+ * p0_rate is not tuned: a lean's starting speed, sd 32 cm/s. R starts at the face mesh's noise (n's
+ * start when calibrated). A head leans at well under 1 m/s; a mesh that misreads the face's scale, or a
+ * forged message, jumps further in one step (max_speed); 6 refused frames that agree with each other
+ * (0.2 s at 30 fps) restart the track. */
 const hkf_position_settings_t hkf_position_default_settings = {
-    .process_noise = {HKF_REAL(3.0), HKF_REAL(3.0), HKF_REAL(3.0)},          /* x n, 1/s^3 */
-    .measurement_noise = {HKF_REAL(0.002), HKF_REAL(0.002), HKF_REAL(0.05)}, /* cm^2: n's start */
-    .p0_rate = HKF_REAL(100.0),                                              /* (cm/s)^2 */
+    .process_noise = {HKF_REAL(3000.0), HKF_REAL(3000.0), HKF_REAL(3000.0)}, /* cm^2/s^3 */
+    .r_const = {HKF_REAL(0.002), HKF_REAL(0.002), HKF_REAL(0.05)},          /* cm^2 */
+    .r_min = HKF_REAL_FROM(HKF_MIN_VARIANCE),
+    .r_max = HKF_REAL(100.0),
+    .p0_rate = HKF_REAL(1000.0), /* (cm/s)^2 */
     .max_dt = HKF_REAL(0.5),
-    .noise_time = HKF_REAL(0.3),
-    .noise_rise = HKF_REAL(0.2),
-    .noise_floor = HKF_REAL_FROM(HKF_MIN_VARIANCE),
-    .q_boost = HKF_REAL(100.0),
-    .q_boost_time = HKF_REAL(0.2),
-    .motion_threshold = HKF_REAL(128.0),
-    .rate_damping_time = HKF_REAL(0.1),
-    .still_threshold = HKF_REAL(64.0),
+    .still_wander = {HKF_REAL(0.0006), HKF_REAL(0.0006), HKF_REAL(0.015)}, /* cm^2 */
+    .start_rate = HKF_REAL(0.3),
+    .stop_rate = HKF_REAL(1.0),
     .max_speed = HKF_REAL(300.0), /* cm/s */
     .max_gate_rejections = 5u,
 };
 
+enum { CENTER_NONE = 0, CENTER_FROM_TRACK = 1, CENTER_EXPLICIT = 2 }; /* as the angles' (hkf_filter.c) */
+
 static int in_range(hkf_real_t x, hkf_real_t low, hkf_real_t high) { return hkf_is_finite(x) && x >= low && x <= high; }
 
-/* R, q, the start and the longest step: HKF_OK or the first bad one's error. */
+/* q, R, the start and the longest step: HKF_OK or the first bad one's error. */
 static int check_noise(const hkf_position_settings_t *s)
 {
     int a;
@@ -42,9 +47,13 @@ static int check_noise(const hkf_position_settings_t *s)
         if (!in_range(s->process_noise[a], HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_PROCESS_NOISE))) {
             return HKF_ERROR_SETTING_PROCESS_NOISE;
         }
-        if (!in_range(s->measurement_noise[a], HKF_REAL_FROM(HKF_MIN_VARIANCE), HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
+        if (!in_range(s->r_const[a], HKF_REAL_FROM(HKF_MIN_VARIANCE), HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
             return HKF_ERROR_SETTING_R_CONST;
         }
+    }
+    if (!in_range(s->r_min, HKF_REAL_FROM(HKF_MIN_VARIANCE), HKF_REAL_FROM(HKF_MAX_VARIANCE)) ||
+        !in_range(s->r_max, s->r_min, HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
+        return HKF_ERROR_SETTING_R_RANGE;
     }
     if (!in_range(s->p0_rate, HKF_REAL_FROM(HKF_MIN_VARIANCE), HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
         return HKF_ERROR_SETTING_P0;
@@ -52,25 +61,20 @@ static int check_noise(const hkf_position_settings_t *s)
     if (!in_range(s->max_dt, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_TIME)) || s->max_dt == 0) {
         return HKF_ERROR_SETTING_MAX_DT;
     }
-    if (!in_range(s->noise_floor, HKF_REAL_FROM(HKF_MIN_VARIANCE), HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
-        return HKF_ERROR_SETTING_R_RANGE;
-    }
     return HKF_OK;
 }
 
-/* The calibration, the detector and the gate: HKF_OK or the first bad one's error. */
+/* The adaptation and the gate: HKF_OK or the first bad one's error. */
 static int check_adaptation(const hkf_position_settings_t *s)
 {
-    if (!in_range(s->q_boost, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_Q_BOOST)) ||
-        !in_range(s->q_boost_time, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_TIME))) {
-        return HKF_ERROR_SETTING_MOTION;
+    int a, result = HKF_OK;
+    for (a = 0; a < 3 && result == HKF_OK; ++a) {
+        result = hkf_is_finite(s->still_wander[a]) && hkf_is_finite(s->start_rate) && hkf_is_finite(s->stop_rate)
+                     ? hkf_two_models_check(s->still_wander[a], s->start_rate, s->stop_rate)
+                     : HKF_ERROR_SETTING_MOTION;
     }
-    if (!in_range(s->noise_time, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_TIME)) ||
-        !in_range(s->noise_rise, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_NOISE_RISE)) ||
-        !in_range(s->motion_threshold, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_MOTION_THRESHOLD)) ||
-        !in_range(s->rate_damping_time, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_TIME)) ||
-        !in_range(s->still_threshold, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_MOTION_THRESHOLD))) {
-        return HKF_ERROR_SETTING_CALIBRATION;
+    if (result != HKF_OK) {
+        return result;
     }
     if (!in_range(s->max_speed, HKF_REAL(0.0), HKF_REAL_FROM(HKF_MAX_SPEED)) ||
         (s->max_speed > 0 && s->max_gate_rejections == 0u)) {
@@ -81,8 +85,15 @@ static int check_adaptation(const hkf_position_settings_t *s)
 
 int hkf_position_started(const hkf_position_filter_t *f)
 {
-    return f != NULL && f->started;
+    return f != NULL && f->status != HKF_STATUS_UNINITIALIZED;
 }
+
+hkf_status_t hkf_position_get_status(const hkf_position_filter_t *f)
+{
+    return f != NULL ? f->status : HKF_STATUS_UNINITIALIZED;
+}
+
+static int two_models(const hkf_position_filter_t *f) { return f->settings.start_rate > 0; }
 
 int hkf_position_get_state(const hkf_position_filter_t *f, hkf_position_state_t *state)
 {
@@ -97,14 +108,15 @@ int hkf_position_get_state(const hkf_position_filter_t *f, hkf_position_state_t 
         state->p01[a] = f->p01[a];
         state->p11[a] = f->p11[a];
         state->center[a] = f->center[a];
-        state->noise[a] = f->settings.noise_time > 0 ? f->noise[a] : f->settings.measurement_noise[a];
+        state->noise[a] = f->noise[a] > 0 ? f->noise[a] : f->settings.r_const[a];
+        state->moving[a] = two_models(f) ? f->moving[a] : HKF_REAL(1.0);
     }
     return HKF_OK;
 }
 
 int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s)
 {
-    int result;
+    int a, result;
     if (f == NULL || s == NULL) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
@@ -116,34 +128,36 @@ int hkf_position_init(hkf_position_filter_t *f, const hkf_position_settings_t *s
         return result;
     }
     f->settings = *s;
+    for (a = 0; a < 3; ++a) {
+        f->noise[a] = 0;
+        f->center[a] = 0;
+    }
+    f->center_source = CENTER_NONE;
     hkf_position_reset(f);
     return HKF_OK;
 }
 
-void hkf_position_reset(hkf_position_filter_t *f)
+void hkf_position_restart(hkf_position_filter_t *f)
 {
     int a;
     if (f == NULL) {
         return;
     }
     for (a = 0; a < 3; ++a) {
-        f->x[a] = f->v[a] = f->p00[a] = f->p01[a] = f->p11[a] = f->center[a] = 0;
-        f->motion[a] = f->last_z[a] = f->last_step[a] = 0;
-        f->noise[a] = f->noise_power[a] = f->settings.measurement_noise[a];
+        f->x[a] = f->v[a] = f->p00[a] = f->p01[a] = f->p11[a] = f->moving[a] = f->refused_z[a] = 0;
     }
-    f->last_dt = 0;
-    f->history = 0;
     f->gate_rejections = 0u;
-    f->started = 0;
-    f->centered = 0;
+    f->status = HKF_STATUS_UNINITIALIZED;
 }
 
-void hkf_position_restart(hkf_position_filter_t *f)
+void hkf_position_reset(hkf_position_filter_t *f)
 {
-    if (f != NULL) {
-        f->started = 0;
-        f->history = 0;
-        f->gate_rejections = 0u;
+    if (f == NULL) {
+        return;
+    }
+    hkf_position_restart(f);
+    if (f->center_source != CENTER_EXPLICIT) {
+        f->center_source = CENTER_NONE;
     }
 }
 
@@ -160,10 +174,11 @@ static void keep_in_range(hkf_position_filter_t *f)
     }
 }
 
-static void write_output(const hkf_position_filter_t *f, hkf_status_t status, unsigned flags,
-                         hkf_position_output_t *out)
+/* The state into out (may be NULL), and the status kept. */
+static void write_output(hkf_position_filter_t *f, hkf_status_t status, unsigned flags, hkf_position_output_t *out)
 {
     int a;
+    f->status = status;
     if (out == NULL) {
         return;
     }
@@ -176,26 +191,15 @@ static void write_output(const hkf_position_filter_t *f, hkf_status_t status, un
     out->flags = flags;
 }
 
-static int calibrated(const hkf_position_filter_t *f) { return f->settings.noise_time > 0; }
-
-/* q of an axis: the setting, or calibrated, process_noise n, capped as the angles' */
-static hkf_real_t process_noise(const hkf_position_filter_t *f, int a)
+/* R per axis for a measurement of scale r_scale: r_scale x (n, or r_const), within [r_min, r_max]. */
+static void measurement_noise(const hkf_position_filter_t *f, hkf_real_t r_scale, hkf_real_t r[3])
 {
-    const hkf_real_t q = f->settings.process_noise[a];
-    const hkf_real_t most = HKF_REAL_FROM(HKF_MAX_BOOSTED_PROCESS_NOISE);
-    const hkf_real_t scaled = hkf_mul(q, f->noise[a]);
-    const hkf_real_t cap = q > most ? q : most;
-    if (!calibrated(f)) {
-        return q;
+    int a;
+    for (a = 0; a < 3; ++a) {
+        const hkf_real_t level = f->noise[a] > 0 ? f->noise[a] : f->settings.r_const[a];
+        const hkf_real_t scaled = hkf_mul(level, r_scale);
+        r[a] = scaled < f->settings.r_min ? f->settings.r_min : scaled > f->settings.r_max ? f->settings.r_max : scaled;
     }
-    return scaled < cap ? scaled : cap;
-}
-
-/* The axis's random walk per s for a detector evidence (hkf_motion.h); f: the filter. */
-/* R of an axis for a measurement of scale 1: the setting, or calibrated, the measured n */
-static hkf_real_t measurement_noise(const hkf_position_filter_t *f, int a)
-{
-    return calibrated(f) ? f->noise[a] : f->settings.measurement_noise[a];
 }
 
 /* P stays positive semi-definite in every build: float and double lose it to rounding when R is
@@ -223,12 +227,12 @@ static void set_axis(hkf_position_filter_t *f, int a, hkf_axis_t x)
     keep_covariance(&f->p00[a], &f->p01[a], &f->p11[a]);
 }
 
-/* Eq. 1-3 per axis (hkf_kalman.h). */
+/* Eq. 1-3 per axis (hkf_kalman.h): MOVE's prediction. */
 static void predict_axes(hkf_position_filter_t *f, hkf_real_t dt)
 {
     int a;
     for (a = 0; a < 3; ++a) {
-        set_axis(f, a, hkf_kalman_predict(axis_of(f, a), process_noise(f, a), dt));
+        set_axis(f, a, hkf_kalman_predict(axis_of(f, a), f->settings.process_noise[a], dt));
     }
 }
 
@@ -240,60 +244,26 @@ static int check_step(const hkf_position_filter_t *f, hkf_real_t dt)
     return dt > 0 && dt <= f->settings.max_dt ? HKF_OK : HKF_ERROR_DT_RANGE;
 }
 
-/* Calibrated, the noise n per axis from the raw z (hkf_motion.h: hkf_noise_lane):
- * d = (z - z_k-1) - (z_k-1 - z_k-2) cancels a constant velocity only over
- * equal steps, so a sample counts when dt is within a quarter of the step
- * before (a missed frame does not pass for noise). */
-static void noise_estimate_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t dt)
-{
-    const hkf_real_t beta = hkf_step_weight(dt, f->settings.noise_time);
-    const hkf_real_t rise = hkf_add(HKF_REAL(1.0), hkf_mul(f->settings.noise_rise, dt));
-    const hkf_real_t change = hkf_sub(dt, f->last_dt);
-    const int equal = f->history >= 2 && hkf_mul(hkf_abs(change), HKF_REAL(4.0)) <= f->last_dt;
-    int a;
-    if (f->history == 0) { /* after a frame without one: the history starts here */
-        for (a = 0; a < 3; ++a) {
-            f->last_z[a] = z[a];
-        }
-        f->history = 1;
-        return;
-    }
-    for (a = 0; a < 3; ++a) {
-        const hkf_real_t step = hkf_sub(z[a], f->last_z[a]);
-        if (equal) {
-            hkf_noise_lane(hkf_sub(step, f->last_step[a]), beta, rise, &f->settings.noise_floor, &f->noise_power[a],
-                           &f->noise[a]);
-        }
-        f->last_z[a] = z[a];
-        f->last_step[a] = step;
-    }
-    f->last_dt = dt;
-    f->history = 2;
-}
-
-/* A new track at the measurement z: rate 0, P = diag(R, p0_rate); the center there if none is set. */
-static void start_track(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale,
+/* A new track at the measurement z: rate 0, P = diag(R, p0_rate), HOLD; the center there if none is set. */
+static void start_track(hkf_position_filter_t *f, const hkf_real_t z[3], const hkf_real_t r[3],
                         hkf_position_output_t *out)
 {
     int a;
     for (a = 0; a < 3; ++a) {
         f->x[a] = z[a];
         f->v[a] = 0;
-        f->p00[a] = hkf_mul(measurement_noise(f, a), r_scale);
+        f->p00[a] = r[a];
         f->p01[a] = 0;
         f->p11[a] = f->settings.p0_rate;
-        if (!f->centered) {
+        f->moving[a] = 0;
+    }
+    if (f->center_source == CENTER_NONE) {
+        for (a = 0; a < 3; ++a) {
             f->center[a] = z[a];
         }
+        f->center_source = CENTER_FROM_TRACK;
     }
-    for (a = 0; a < 3; ++a) {
-        f->last_z[a] = z[a];
-        f->motion[a] = 0;
-    }
-    f->history = 1;
     f->gate_rejections = 0u;
-    f->started = 1;
-    f->centered = 1;
     write_output(f, HKF_STATUS_TRACKING, HKF_FLAG_REACQUIRED, out);
 }
 
@@ -311,24 +281,40 @@ static void hold_track(hkf_position_filter_t *f, hkf_real_t dt)
         f->p00[a] = held.variance[a];
         f->p01[a] = 0;
         f->p11[a] = f->settings.p0_rate;
+        f->moving[a] = 0;
     }
 }
 
-/* The outlier gate on the predicted state: an axis's innovation |y| beyond
- * max_speed dt + HKF_POSITION_GATE_SIGMAS sqrt(S), tested without a root as
- * (|y| - max_speed dt)^2 > sigmas^2 S where |y| exceeds the reach. */
-static int gated(const hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
+/* 1 when the innovation y, of variance s, lies beyond reach + HKF_POSITION_GATE_SIGMAS sqrt(s),
+ * tested without a root as (|y| - reach)^2 > sigmas^2 s where |y| exceeds the reach. */
+static int beyond_reach(hkf_real_t y, hkf_real_t s, hkf_real_t reach)
+{
+    const hkf_real_t sigmas2 = HKF_REAL_FROM(HKF_POSITION_GATE_SIGMAS * HKF_POSITION_GATE_SIGMAS);
+    const hkf_real_t beyond = hkf_sub(hkf_abs(y), reach);
+    return beyond > 0 && hkf_mul(beyond, beyond) > hkf_mul(sigmas2, s);
+}
+
+/* The outlier gate on the predicted state: z is refused when on some axis it lies beyond what every
+ * model of the head's motion reaches in the step, max_speed dt + 3 sigmas of that model's innovation:
+ * MOVE's (S = P00 + R, Eq. 5) and, with the adaptation, HOLD's (the value before MOVE's travel, its
+ * variance held_p00 + R + still_wander). So a one-frame jump that MOVE took, with the rate it implied,
+ * does not make the head's return an outlier: HOLD reaches it. */
+static int gated(const hkf_position_filter_t *f, const hkf_real_t z[3], const hkf_real_t held_p00[3],
+                 const hkf_real_t r[3], hkf_real_t dt)
 {
     const hkf_real_t reach = hkf_mul(f->settings.max_speed, dt);
-    const hkf_real_t sigmas2 = HKF_REAL_FROM(HKF_POSITION_GATE_SIGMAS * HKF_POSITION_GATE_SIGMAS);
     int a;
     if (!(f->settings.max_speed > 0)) {
         return 0;
     }
     for (a = 0; a < 3; ++a) {
-        const hkf_real_t beyond = hkf_sub(hkf_abs(hkf_sub(z[a], f->x[a])), reach);
-        const hkf_real_t s = hkf_add(f->p00[a], hkf_mul(measurement_noise(f, a), r_scale));
-        if (beyond > 0 && hkf_mul(beyond, beyond) > hkf_mul(sigmas2, s)) {
+        const hkf_real_t y = hkf_sub(z[a], f->x[a]);
+        int out = beyond_reach(y, hkf_add(f->p00[a], r[a]), reach);
+        if (out && two_models(f) && held_p00 != NULL) {
+            const hkf_real_t y_h = hkf_add(y, hkf_mul(f->v[a], dt)); /* z against the value before the travel */
+            out = beyond_reach(y_h, hkf_add(hkf_add(held_p00[a], r[a]), f->settings.still_wander[a]), reach);
+        }
+        if (out) {
             return 1;
         }
     }
@@ -336,10 +322,10 @@ static int gated(const hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real
 }
 
 /* After a gap beyond max_dt: the track as it was held (hold_track), and 1 when the gate refuses z there. */
-static int gap_gated(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
+static int gap_gated(hkf_position_filter_t *f, const hkf_real_t z[3], const hkf_real_t r[3], hkf_real_t dt)
 {
     hold_track(f, dt);
-    return gated(f, z, r_scale, dt);
+    return gated(f, z, NULL, r, dt); /* the held track: no travel, no second model */
 }
 
 /* HKF_OK, or why a position (a measurement, a centre) is refused: not finite, or beyond the range. */
@@ -375,7 +361,7 @@ static int check_measurement(const hkf_real_t z[3], hkf_real_t r_scale, hkf_real
 
 /* A refused measurement z agrees with the one refused dt s before it: on every axis no farther than a
  * head moves in dt (max_speed x dt) plus HKF_POSITION_GATE_SIGMAS sigmas of two measurements' noise. */
-static int agrees_with_refused(const hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale,
+static int agrees_with_refused(const hkf_position_filter_t *f, const hkf_real_t z[3], const hkf_real_t r[3],
                                hkf_real_t dt)
 {
     const hkf_real_t reach = hkf_mul(f->settings.max_speed, dt);
@@ -383,8 +369,7 @@ static int agrees_with_refused(const hkf_position_filter_t *f, const hkf_real_t 
     int a;
     for (a = 0; a < 3; ++a) {
         const hkf_real_t beyond = hkf_sub(hkf_abs(hkf_sub(z[a], f->refused_z[a])), reach);
-        const hkf_real_t r = hkf_mul(measurement_noise(f, a), r_scale);
-        if (beyond > 0 && hkf_mul(beyond, beyond) > hkf_mul(sigmas2, hkf_add(r, r))) {
+        if (beyond > 0 && hkf_mul(beyond, beyond) > hkf_mul(sigmas2, hkf_add(r[a], r[a]))) {
             return 0;
         }
     }
@@ -394,76 +379,82 @@ static int agrees_with_refused(const hkf_position_filter_t *f, const hkf_real_t 
 /* A measurement the gate refused: the prediction stands, or after max_gate_rejections in a row that
  * agree with each other (the head is there) the track restarts at it. One that disagrees with the
  * one refused before starts the count again. */
-static void refused(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
+static void refused(hkf_position_filter_t *f, const hkf_real_t z[3], const hkf_real_t r[3], hkf_real_t dt,
                     hkf_position_output_t *out)
 {
     int a;
-    if (f->gate_rejections > 0u && !agrees_with_refused(f, z, r_scale, dt)) {
+    if (f->gate_rejections > 0u && !agrees_with_refused(f, z, r, dt)) {
         f->gate_rejections = 0u;
     }
     if (f->gate_rejections >= f->settings.max_gate_rejections) {
-        start_track(f, z, r_scale, out);
+        start_track(f, z, r, out);
         return;
     }
     ++f->gate_rejections;
     for (a = 0; a < 3; ++a) {
         f->refused_z[a] = z[a];
     }
-    f->history = 0; /* a refused measurement breaks the second difference */
     keep_in_range(f);
     write_output(f, HKF_STATUS_COASTING, HKF_FLAG_GATED, out);
 }
 
-/* Eq. 4-7 per axis for z with R = r_scale x the axis's R; calibrated, the motion detector first. */
-static void correct_axes(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt)
+/* Eq. 4-7 per axis for z with R r: by HOLD and MOVE (hkf_two_models.h) when the adaptation is on, MOVE
+ * alone when not. The state holds MOVE's prediction, held_p00 the variances before it (HOLD's prior). */
+static void correct_axes(hkf_position_filter_t *f, const hkf_real_t z[3], const hkf_real_t held_p00[3],
+                         const hkf_real_t r[3], hkf_real_t dt)
 {
     const hkf_position_settings_t *s = &f->settings;
-    const hkf_motion_step_t motion = hkf_motion_prepare(dt, s);
-    const int detect = calibrated(f) && (s->q_boost > 0 || s->rate_damping_time > 0);
     int a;
-    for (a = 0; a < 3; ++a) {
-        hkf_motion_innovation_t in;
-        in.r = hkf_mul(measurement_noise(f, a), r_scale);
-        in.y = hkf_sub(z[a], f->x[a]);                          /* Eq. 4 */
-        in.inv_s = hkf_divisor(hkf_add(f->p00[a], in.r));       /* Eq. 5 */
-        if (detect) {
-            hkf_motion_lane(&motion, f->noise[a], in, &f->motion[a], &f->p00[a], &f->v[a]);
-            in.inv_s = hkf_divisor(hkf_add(f->p00[a], in.r));
+    if (two_models(f)) {
+        hkf_two_model_step_t c = hkf_two_models_prepare(dt, s->start_rate, s->stop_rate, 0, s->p0_rate);
+        for (a = 0; a < 3; ++a) {
+            hkf_hold_prior_t hold;
+            const hkf_real_t y = hkf_sub(z[a], f->x[a]); /* Eq. 4 */
+            c.wander = s->still_wander[a];
+            hold.p00 = held_p00[a];
+            hold.y = hkf_add(y, hkf_mul(f->v[a], dt)); /* HOLD's innovation: z against the value before the travel */
+            set_axis(f, a, hkf_two_models_update(&c, axis_of(f, a), hold, y, r[a], &f->moving[a]));
         }
-        set_axis(f, a, hkf_kalman_correct(axis_of(f, a), in.y, in.r, in.inv_s)); /* Eq. 6-7 */
+        return;
+    }
+    for (a = 0; a < 3; ++a) {
+        const hkf_real_t y = hkf_sub(z[a], f->x[a]); /* Eq. 4 */
+        set_axis(f, a, hkf_kalman_correct(axis_of(f, a), y, r[a], hkf_divisor(hkf_add(f->p00[a], r[a])))); /* Eq. 5-7 */
     }
 }
 
 int hkf_position_update(hkf_position_filter_t *f, const hkf_real_t z[3], hkf_real_t r_scale, hkf_real_t dt,
                         hkf_position_output_t *out)
 {
-    int result;
+    hkf_real_t held_p00[3], r[3];
+    int a, result;
     if (f == NULL || z == NULL) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
     result = check_measurement(z, r_scale, dt);
-    if (result == HKF_OK && f->started && dt <= 0) { /* as the angles' rule: a step back in time is refused */
+    if (result == HKF_OK && hkf_position_started(f) && dt <= 0) { /* as the angles' rule: a step back in time is refused */
         result = HKF_ERROR_DT_RANGE;
     }
     if (result != HKF_OK) {
         return result;
     }
-    if (!f->started || (check_step(f, dt) == HKF_ERROR_DT_RANGE && !gap_gated(f, z, r_scale, dt))) {
-        start_track(f, z, r_scale, out); /* a new track at the measurement (after a gap: within reach of the held one) */
+    measurement_noise(f, r_scale, r);
+    if (!hkf_position_started(f) || (check_step(f, dt) == HKF_ERROR_DT_RANGE && !gap_gated(f, z, r, dt))) {
+        start_track(f, z, r, out); /* a new track at the measurement (after a gap: within reach of the held one) */
         return HKF_OK;
+    }
+    for (a = 0; a < 3; ++a) {
+        held_p00[a] = f->p00[a];
     }
     if (f->settings.max_dt >= dt) { /* no gap: Eq. 1-3 (after a gap the state is the held track) */
         predict_axes(f, dt);
     }
-    if (gated(f, z, r_scale, dt)) {
-        refused(f, z, r_scale, dt, out);
+    if (gated(f, z, held_p00, r, dt)) {
+        refused(f, z, r, dt, out);
         return HKF_OK;
     }
     f->gate_rejections = 0u;
-    correct_axes(f, z, r_scale, dt);
-    if (calibrated(f)) {
-        noise_estimate_update(f, z, dt);
-    }
+    correct_axes(f, z, held_p00, r, dt);
     keep_in_range(f);
     write_output(f, HKF_STATUS_TRACKING, 0u, out);
     return HKF_OK;
@@ -475,7 +466,7 @@ int hkf_position_predict(hkf_position_filter_t *f, hkf_real_t dt, hkf_position_o
     if (f == NULL) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    if (!f->started) {
+    if (!hkf_position_started(f)) {
         return HKF_ERROR_NOT_INITIALIZED;
     }
     result = check_step(f, dt);
@@ -483,7 +474,6 @@ int hkf_position_predict(hkf_position_filter_t *f, hkf_real_t dt, hkf_position_o
         return result;
     }
     predict_axes(f, dt);
-    f->history = 0; /* a frame without a measurement breaks the second difference */
     keep_in_range(f);
     write_output(f, HKF_STATUS_COASTING, 0u, out);
     return HKF_OK;
@@ -496,7 +486,7 @@ int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, h
     if (f == NULL || out == NULL) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    if (!f->started) {
+    if (!hkf_position_started(f)) {
         return HKF_ERROR_NOT_INITIALIZED;
     }
     if (!hkf_is_finite(ahead)) {
@@ -511,7 +501,7 @@ int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, h
         /* Eq. 1-3 over t: [1 t] P [1 t]' + q t^3 / 3; beyond HKF_MAX_TIME (where t^3 would overflow
          * Q16.16) in proportion to the time, so it grows while the position is held */
         hkf_real_t variance = hkf_add(f->p00[a], hkf_kalman_growth(f->p01[a], f->p11[a],
-                                                                    hkf_mul(process_noise(f, a), t), t));
+                                                                    hkf_mul(f->settings.process_noise[a], t), t));
         if (ahead > t) {
             variance = hkf_mul(variance, hkf_mul(ahead, HKF_REAL_FROM(1.0 / HKF_MAX_TIME)));
         }
@@ -527,17 +517,22 @@ int hkf_position_extrapolate(const hkf_position_filter_t *f, hkf_real_t ahead, h
     return HKF_OK;
 }
 
-int hkf_position_recenter(hkf_position_filter_t *f)
+int hkf_position_set_noise(hkf_position_filter_t *f, const hkf_real_t noise[3])
 {
     int a;
     if (f == NULL) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    if (!f->started) {
-        return HKF_ERROR_NOT_INITIALIZED;
+    for (a = 0; noise != NULL && a < 3; ++a) {
+        if (!hkf_is_finite(noise[a])) {
+            return HKF_ERROR_NON_FINITE;
+        }
+        if (!(noise[a] > 0)) {
+            return HKF_ERROR_NOISE_RANGE;
+        }
     }
     for (a = 0; a < 3; ++a) {
-        f->center[a] = f->x[a];
+        f->noise[a] = noise != NULL ? noise[a] : 0;
     }
     return HKF_OK;
 }
@@ -555,20 +550,42 @@ int hkf_position_set_center(hkf_position_filter_t *f, const hkf_real_t center[3]
     for (a = 0; a < 3; ++a) {
         f->center[a] = center[a];
     }
-    f->centered = 1;
+    f->center_source = CENTER_EXPLICIT;
     return HKF_OK;
+}
+
+int hkf_position_get_center(const hkf_position_filter_t *f, hkf_real_t center[3])
+{
+    int a;
+    if (f == NULL || center == NULL) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (f->center_source == CENTER_NONE) {
+        return HKF_ERROR_NOT_INITIALIZED;
+    }
+    for (a = 0; a < 3; ++a) {
+        center[a] = f->center[a];
+    }
+    return HKF_OK;
+}
+
+int hkf_position_recenter(hkf_position_filter_t *f)
+{
+    if (f == NULL) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (!hkf_position_started(f)) {
+        return HKF_ERROR_NOT_INITIALIZED;
+    }
+    return hkf_position_set_center(f, f->x);
 }
 
 int hkf_position_recenter_at(hkf_position_filter_t *f, hkf_real_t ahead)
 {
     hkf_position_output_t out;
-    int a;
     const int result = hkf_position_extrapolate(f, ahead, &out);
     if (result != HKF_OK) {
         return result;
     }
-    for (a = 0; a < 3; ++a) {
-        f->center[a] = out.position[a];
-    }
-    return HKF_OK;
+    return hkf_position_set_center(f, out.position);
 }

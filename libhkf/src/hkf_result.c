@@ -35,13 +35,11 @@ const char *hkf_result_string(int result)
     case HKF_ERROR_SETTING_MAX_DT: return "max_dt is not in (0, " HKF_TEXT(HKF_MAX_TIME) "] s";
     case HKF_ERROR_SETTING_CURVE: return "a noise curve's tau, lambda or mu is beyond its range";
     case HKF_ERROR_SETTING_MOTION:
-        return "still_wander is not in [0, " HKF_TEXT(HKF_MAX_VARIANCE) "] deg^2, start_rate or stop_rate neither 0 nor in ["
-               HKF_TEXT(HKF_MIN_RATE) ", " HKF_TEXT(HKF_MAX_RATE) "] 1/s (the position's q_boost not in [0, " HKF_TEXT(HKF_MAX_Q_BOOST) "] or "
-               "q_boost_time not in [0, " HKF_TEXT(HKF_MAX_TIME) "] s)";
+        return "still_wander is not in [0, " HKF_TEXT(HKF_MAX_VARIANCE) "] deg^2 (the position's: cm^2), start_rate or stop_rate "
+               "neither 0 nor in [" HKF_TEXT(HKF_MIN_RATE) ", " HKF_TEXT(HKF_MAX_RATE) "] 1/s";
     case HKF_ERROR_SETTING_CALIBRATION:
         return "noise_time is not in [0, " HKF_TEXT(HKF_MAX_TIME) "] s or noise_rise not in [0, "
-               HKF_TEXT(HKF_MAX_NOISE_RISE) "] 1/s (the position's rate_damping_time not in [0, " HKF_TEXT(HKF_MAX_TIME)
-               "] s, motion_threshold or still_threshold not in [0, " HKF_TEXT(HKF_MAX_MOTION_THRESHOLD) "])";
+               HKF_TEXT(HKF_MAX_NOISE_RISE) "] 1/s";
     default: return "unknown hkf result code";
     }
 }

@@ -5,6 +5,7 @@
 #include "hkf/hkf.h"
 #include "hkf_internal.h"
 #include "hkf_math.h"
+#include "hkf_two_models.h"
 
 /* Paper Table I, amplitude form of Eq. 8, as {tau, lambda, mu, sigma}.
  * Roll: Table I gives tau and lambda as 3.29e5 (FSA-Net) and 9.35e4
@@ -85,12 +86,6 @@ hkf_model_noise_t hkf_model_noise_of(const hkf_settings_t *s)
     m.r_min = s->r_min;
     m.r_max = s->r_max;
     return m;
-}
-
-/* start_rate, stop_rate: 0 (off; a moving head never stops) or within [HKF_MIN_RATE, HKF_MAX_RATE] */
-static int rate_in_range(hkf_real_t rate)
-{
-    return rate == 0 || (rate >= HKF_REAL_FROM(HKF_MIN_RATE) && rate <= HKF_REAL_FROM(HKF_MAX_RATE));
 }
 
 static int all_finite(const hkf_real_t *v, int n)
@@ -215,11 +210,7 @@ static int check_track(const hkf_settings_t *s)
 /* The motion adaptation (not in the paper). */
 static int check_adaptation(const hkf_settings_t *s)
 {
-    if (!(s->still_wander >= 0 && s->still_wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE) && rate_in_range(s->start_rate) &&
-          rate_in_range(s->stop_rate))) {
-        return HKF_ERROR_SETTING_MOTION;
-    }
-    return HKF_OK;
+    return hkf_two_models_check(s->still_wander, s->start_rate, s->stop_rate);
 }
 
 /* The first bad setting's error, in the order of hkf_result_t, or HKF_OK. */

@@ -40,6 +40,20 @@
 
 #include "hkf_kalman.h"
 
+/* start_rate, stop_rate: 0 (off; a moving head never stops) or within [HKF_MIN_RATE, HKF_MAX_RATE] */
+static inline int hkf_two_models_rate_ok(hkf_real_t rate)
+{
+    return rate == 0 || (rate >= HKF_REAL_FROM(HKF_MIN_RATE) && rate <= HKF_REAL_FROM(HKF_MAX_RATE));
+}
+
+/* The adaptation's settings (the angles' and the position's): HKF_OK or HKF_ERROR_SETTING_MOTION. */
+static inline int hkf_two_models_check(hkf_real_t still_wander, hkf_real_t start_rate, hkf_real_t stop_rate)
+{
+    const int ok = still_wander >= 0 && still_wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE) &&
+                   hkf_two_models_rate_ok(start_rate) && hkf_two_models_rate_ok(stop_rate);
+    return ok ? HKF_OK : HKF_ERROR_SETTING_MOTION;
+}
+
 /* What one step of dt takes from the settings. */
 typedef struct {
     hkf_real_t dt;

@@ -217,20 +217,22 @@ static void test_print_reads_back(void **state)
     assert_int_equal(node_config_set(&c, "lc_xi=0.25", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "model.whenet.r_const=1 2 3", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "model.whenet.start_rate=100", error, sizeof error), 0);
-    assert_int_equal(node_config_set(&c, "position_measurement_noise = 0.01 0.02 0.5", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_r_const = 0.01 0.02 0.5", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_process_noise = 1 2 3", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_process_noise = 1 2", error, sizeof error), -1);
-    assert_int_equal(node_config_set(&c, "position_measurement_noise = 0 1 1", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "position_r_const = 0 1 1", error, sizeof error), -1);
     assert_int_equal(node_config_set(&c, "position_noise_time = 0.5", error, sizeof error), 0);
-    assert_int_equal(node_config_set(&c, "position_q_boost = 30", error, sizeof error), 0);
-    assert_int_equal(node_config_set(&c, "position_q_boost = -1", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "position_still_wander = 0.1 0.1 3", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "position_still_wander = -1 0 0", error, sizeof error), -1);
+    assert_int_equal(node_config_set(&c, "position_start_rate = 0.0000001", error, sizeof error), -1);
     assert_int_equal(node_config_set(&c, "position_noise_time = 1 2", error, sizeof error), -1);
     assert_int_equal(node_config_set(&c, "position_noise_time = 99", error, sizeof error), -1);
     assert_non_null(strstr(error, "0 to 10 s")); /* the range in numbers, not macro names */
     assert_int_equal(node_config_set(&c, "position_max_speed = 50", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_max_speed = 20000", error, sizeof error), -1);
     assert_non_null(strstr(error, "0 to 10000 cm/s"));
-    assert_true(c.position.noise_time == (hkf_real_t)0.5 && c.position.q_boost == (hkf_real_t)30);
+    assert_true(c.position_calibration.noise_time == (hkf_real_t)0.5 && c.position.still_wander[2] == (hkf_real_t)3);
+    assert_true(c.calibration.noise_time == hkf_default_calibration_settings.noise_time); /* the angles' is its own */
     assert_true(c.position.max_speed == (hkf_real_t)50);
     assert_int_equal(node_config_set(&c, "model.whenet.position_r_scale = 7", error, sizeof error), 0);
     assert_int_equal(node_config_set(&c, "position_r_scale = 30", error, sizeof error), 0);
@@ -243,8 +245,9 @@ static void test_print_reads_back(void **state)
     assert_int_equal(node_config_read_file(&back, path, error, sizeof error), 0);
     assert_true(same_settings(&c.settings, &back.settings));
     assert_true(back.position.process_noise[2] == c.position.process_noise[2] &&
-                back.position.measurement_noise[1] == c.position.measurement_noise[1] &&
-                back.position.noise_time == c.position.noise_time && back.position.q_boost == c.position.q_boost);
+                back.position.r_const[1] == c.position.r_const[1] &&
+                back.position_calibration.noise_time == c.position_calibration.noise_time &&
+                back.position.still_wander[2] == c.position.still_wander[2]);
     assert_int_equal(back.model_count, 4);
     assert_true(same_models(back.models, c.models, 4));
     assert_true(node_config_model_settings(&back, "whenet").position_r_scale == 7.0f &&

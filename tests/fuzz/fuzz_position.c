@@ -1,9 +1,11 @@
 /*
  * fuzz_position.c - libFuzzer target for libhkf's position filter
  * (hkf/hkf_position.h): arbitrary settings, then an arbitrary sequence of
- * update / predict / extrapolate / recenter / recenter_at / restart / reset
- * with arbitrary values (NaN, infinities, huge numbers included). After every
- * call it checks:
+ * update / predict / extrapolate / recenter / recenter_at / restart / reset /
+ * set_noise / set_center, with the noise calibration beside it
+ * (hkf_calibration_update_position after each update and predict), with
+ * arbitrary values (NaN, infinities, huge numbers included). After every call
+ * it checks:
  *   - a rejected call (negative result) left the filter bit-identical;
  *   - an accepted call wrote finite outputs, every position and centre within
  *     +-HKF_MAX_ABS_POSITION, rates within +-HKF_MAX_SPEED, variances >= 0, a
@@ -20,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hkf/hkf_calibration.h"
 #include "hkf/hkf_position.h"
 
 #if defined(HKF_REAL_FIXED)
@@ -35,20 +38,20 @@ static unsigned long long steps; /* accepted calls, for the run's summary */
 static void print_steps(void) { fprintf(stderr, FUZZ_NAME ": %llu position filter steps in total\n", steps); }
 
 /* One settings field by number, to an arbitrary value. */
-static void edit_setting(hkf_position_settings_t *s, uint8_t field, input_t *in)
+static void edit_setting(hkf_position_settings_t *s, hkf_calibration_settings_t *c, uint8_t field, input_t *in)
 {
     const hkf_real_t v = take_real(in);
     const int axis = field % 3;
-    switch ((field / 3) % 11) {
+    switch ((field / 3) % 10) {
     case 0: s->process_noise[axis] = v; break;
-    case 1: s->measurement_noise[axis] = v; break;
-    case 2: s->p0_rate = v; break;
+    case 1: s->r_const[axis] = v; break;
+    case 2: axis == 0 ? (void)(s->r_min = v) : axis == 1 ? (void)(s->r_max = v) : (void)(s->p0_rate = v); break;
     case 3: s->max_dt = v; break;
-    case 4: axis == 0 ? (void)(s->noise_time = v) : axis == 1 ? (void)(s->noise_rise = v) : (void)(s->noise_floor = v); break;
-    case 5: axis == 0 ? (void)(s->q_boost = v) : (void)(s->q_boost_time = v); break;
-    case 6: axis == 0 ? (void)(s->motion_threshold = v) : (void)(s->still_threshold = v); break;
-    case 7: s->rate_damping_time = v; break;
-    case 8: s->max_speed = v; break;
+    case 4: s->still_wander[axis] = v; break;
+    case 5: axis == 0 ? (void)(s->start_rate = v) : (void)(s->stop_rate = v); break;
+    case 6: s->max_speed = v; break;
+    case 7: c->noise_time = v; break;
+    case 8: c->noise_rise = v; break;
     default: s->max_gate_rejections = field % 7u; break;
     }
 }
@@ -75,7 +78,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static int registered;
     input_t in = {data, size};
     hkf_position_settings_t s;
+    hkf_calibration_settings_t cs;
     hkf_position_filter_t f, before;
+    hkf_calibration_t c;
     uint8_t edits = 0, op, field;
     if (!registered) {
         registered = atexit(print_steps) == 0;
@@ -83,27 +88,41 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(&s, 0, sizeof s); /* padding too: filters are compared byte for byte */
     memset(&f, 0, sizeof f);
     s = hkf_position_default_settings;
+    cs = hkf_default_calibration_settings;
     (void)take_byte(&in, &edits);
     while (edits-- > 0 && take_byte(&in, &field)) {
-        edit_setting(&s, field, &in);
+        edit_setting(&s, &cs, field, &in);
     }
     if (hkf_position_init(&f, &s) != HKF_OK) {
         s = hkf_position_default_settings;
         check(hkf_position_init(&f, &s) == HKF_OK, "the defaults refused");
     }
+    if (hkf_calibration_init_position(&c, &cs, &f) != HKF_OK) {
+        check(hkf_calibration_init_position(&c, &hkf_default_calibration_settings, &f) == HKF_OK,
+              "the calibration's defaults refused");
+    }
     while (take_byte(&in, &op)) {
         hkf_position_output_t out;
         int result = HKF_OK, wrote = 0;
         before = f;
-        switch (op % 7) {
-        case 0: { /* a measurement: z, its R scale, dt */
+        switch (op % 9) {
+        case 0: { /* a measurement: z, its R scale, dt; then the calibration, which hands n over */
             const hkf_real_t z[3] = {take_real(&in), take_real(&in), take_real(&in)};
             const hkf_real_t scale = take_real(&in), dt = take_real(&in);
             result = hkf_position_update(&f, z, scale, dt, &out);
             wrote = 1;
+            if (result == HKF_OK) {
+                check_output(&f, &out);
+                (void)hkf_calibration_update_position(&c, &f, (out.flags & HKF_FLAG_GATED) ? NULL : z, dt);
+            }
             break;
         }
-        case 1: result = hkf_position_predict(&f, take_real(&in), &out), wrote = 1; break;
+        case 1:
+            result = hkf_position_predict(&f, take_real(&in), &out), wrote = 1;
+            if (result == HKF_OK) {
+                check(hkf_calibration_update_position(&c, &f, NULL, 0) == HKF_OK, "the calibration refused a gap");
+            }
+            break;
         case 2: {
             const hkf_position_filter_t kept = f;
             result = hkf_position_extrapolate(&f, take_real(&in), &out), wrote = 1;
@@ -113,6 +132,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 3: result = hkf_position_recenter(&f); break;
         case 4: result = hkf_position_recenter_at(&f, take_real(&in)); break;
         case 5: hkf_position_restart(&f); break;
+        case 6: {
+            const hkf_real_t n[3] = {take_real(&in), take_real(&in), take_real(&in)};
+            result = hkf_position_set_noise(&f, n);
+            break;
+        }
+        case 7: {
+            const hkf_real_t center[3] = {take_real(&in), take_real(&in), take_real(&in)};
+            hkf_real_t got[3];
+            result = hkf_position_set_center(&f, center);
+            check(result != HKF_OK || hkf_position_get_center(&f, got) == HKF_OK, "a centre set but not there");
+            break;
+        }
         default: hkf_position_reset(&f); break;
         }
         if (result < 0) {

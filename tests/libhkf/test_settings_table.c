@@ -79,14 +79,18 @@ static void set_value(any_settings_t *s, const hkf_setting_t *d, int axis, doubl
     }
 }
 
-/* The partner a range shared with another setting needs for v to be accepted: r_min <= r_max, a gate
- * with at least one rejection. */
+/* The partner a range shared with another setting needs for v to be accepted: r_min <= r_max (the
+ * angles' and the position's), a gate with at least one rejection. */
 static void make_room(any_settings_t *s, const table_t *t, const hkf_setting_t *d, double v)
 {
     if (t->table == hkf_settings_table && strcmp(d->name, "r_min") == 0) {
         s->angles.r_max = R(HKF_MAX_VARIANCE);
     } else if (t->table == hkf_settings_table && strcmp(d->name, "r_max") == 0) {
         s->angles.r_min = R(HKF_MIN_VARIANCE);
+    } else if (t->table == hkf_position_settings_table && strcmp(d->name, "r_min") == 0) {
+        s->position.r_max = R(HKF_MAX_VARIANCE);
+    } else if (t->table == hkf_position_settings_table && strcmp(d->name, "r_max") == 0) {
+        s->position.r_min = R(HKF_MIN_VARIANCE);
     } else if (strcmp(d->name, "max_gate_rejections") == 0 && v == 0) {
         if (t->table == hkf_settings_table) {
             s->angles.gate_sigma = 0;

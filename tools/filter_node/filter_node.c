@@ -24,7 +24,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     node->published_utime = INT64_MIN;
     stream_admission_init(&node->admission);
     second_model_init(&node->second);
-    result = node_position_init(&node->position, &config->position);
+    result = node_position_init(&node->position, &config->position, &config->position_calibration);
     if (result == HKF_OK) {
         result = resolved_models_init(&node->models, config);
     }

@@ -42,6 +42,7 @@ void node_config_defaults(node_config_t *config)
     config->settings = hkf_default_settings;
     config->second_alone_from_yaw = (hkf_real_t)NODE_SECOND_ALONE_FROM_YAW;
     config->position = hkf_position_default_settings;
+    config->position_calibration = hkf_default_calibration_settings;
     config->calibration = hkf_default_calibration_settings;
     config->model_settings.position_r_scale = (hkf_real_t)NODE_BOX_POSITION_R_SCALE;
     for (i = 0; i < hkf_model_count; ++i) { /* libhkf's table of models: each one's curves and own values */
@@ -82,7 +83,7 @@ static int set_value(char *base, int k, const char *text, char *error, size_t er
         snprintf(error, error_size, "%s = %s: a value is NaN, infinite or beyond the range of a number here", name,
                  text);
     } else {
-        snprintf(error, error_size, "%s wants %s %s, not '%s'", name, setting_text_wants(d, group == NODE_KEY_POSITION),
+        snprintf(error, error_size, "%s wants %s %s, not '%s'", name, setting_text_wants(d, node_key_is_position(group)),
                  setting_text_range(d, range, sizeof range), text);
     }
     return -1;

@@ -28,7 +28,7 @@ extern "C" {
 /* What the node knows of a model beyond its angles' settings; a model's own, or the base's for a model that
  * does not set it. */
 typedef struct {
-    /* key "position_r_scale": the model's position R as a multiple of position_measurement_noise (the face
+    /* key "position_r_scale": the model's position R as a multiple of position_r_const (the face
      * mesh fit's): a position from the face box is 25 x (head_position.hpp: its z is within ~4 % of the
      * mesh's, median, against the mesh's ~0.5 %, so 5 x the standard deviation) */
     hkf_real_t position_r_scale;
@@ -59,8 +59,10 @@ typedef struct {
      * R. Key "pair_second_alone_from_yaw"; default NODE_SECOND_ALONE_FROM_YAW. */
     hkf_real_t second_alone_from_yaw;
     /* The head's position filter (hkf/hkf_position.h): keys "position_process_noise" (q per axis
-     * x y z, cm^2/s^3) and "position_measurement_noise" (R per axis, cm^2, of the face mesh's). */
+     * x y z, cm^2/s^3), "position_r_const" (R per axis, cm^2, of the face mesh's), ... */
     hkf_position_settings_t position;
+    /* The noise calibration beside the position filter: keys "position_noise_time", "position_noise_rise". */
+    hkf_calibration_settings_t position_calibration;
     /* The noise calibration beside the angle filter (hkf/hkf_calibration.h): keys "noise_time", "noise_rise". */
     hkf_calibration_settings_t calibration;
     char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* where each base key was set ("": the default) */
@@ -70,7 +72,7 @@ typedef struct {
 
 /* libhkf's defaults, and the models "fsanet" and "hopenet" with the paper's Table I curves (r_const =
  * each curve's minimum), "mesh_pnp" and "whenet" with theirs; mesh_pnp's position_r_scale is 1 (the
- * position filter's measurement_noise is its), the others' the base's NODE_BOX_POSITION_R_SCALE. */
+ * position filter's r_const is its), the others' the base's NODE_BOX_POSITION_R_SCALE. */
 void node_config_defaults(node_config_t *config);
 
 /* Reads a config file (a regular file: a named pipe is refused, not waited

@@ -39,8 +39,17 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
 {
     hkf_filter_t probe;
     hkf_position_filter_t position_probe;
+    hkf_calibration_t calibration_probe;
     int m, result = hkf_position_init(&position_probe, &config->position);
     char where[600] = "";
+    if (result == HKF_OK) {
+        result = hkf_calibration_init_position(&calibration_probe, &config->position_calibration, &position_probe);
+        if (result != HKF_OK) {
+            describe_origins(config, NULL, NODE_KEY_POSITION_CALIBRATION, result, where, sizeof where);
+            snprintf(error, error_size, "%sinvalid position settings (position_*): %s", where, hkf_result_string(result));
+            return -1;
+        }
+    }
     if (result != HKF_OK) {
         describe_origins(config, NULL, NODE_KEY_POSITION, result, where, sizeof where);
         snprintf(error, error_size, "%sinvalid position settings (position_*): %s", where,

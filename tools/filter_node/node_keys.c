@@ -6,8 +6,8 @@
 #include <string.h>
 
 /* Every key is a setting described as libhkf describes its own (hkf/hkf_settings_table.h): the angle
- * filter's, the noise calibration's, the node's own, then the position filter's (named "position_" + its
- * name). A key's index is its slot in the origin arrays; a model may own the angle filter's (own_keys has
+ * filter's, the noise calibration's, the node's own, then the position filter's and its calibration's
+ * (named "position_" + its name). A key's index is its slot in the origin arrays; a model may own the angle filter's (own_keys has
  * a bit per index). */
 static const hkf_setting_t node_settings[] = {
     {"pair_second_alone_from_yaw", offsetof(node_config_t, second_alone_from_yaw), HKF_SETTING_REAL, 1, "deg", 0, 180,
@@ -18,7 +18,7 @@ static const hkf_setting_t node_settings[] = {
 /* The node's keys that a [model NAME] section may set too (node_model_settings_t). */
 static const hkf_setting_t per_model_settings[] = {
     {"position_r_scale", offsetof(node_model_settings_t, position_r_scale), HKF_SETTING_REAL, 1, "", 1, 1e6, 0, 0,
-     NULL, "the model's position R as a multiple of position_measurement_noise (the face mesh fit's)"},
+     NULL, "the model's position R as a multiple of position_r_const (the face mesh fit's)"},
 };
 #define PER_MODEL_SETTING_COUNT ((int)(sizeof per_model_settings / sizeof per_model_settings[0]))
 #define POSITION_PREFIX "position_"
@@ -26,7 +26,7 @@ static const hkf_setting_t per_model_settings[] = {
 int node_key_count(void)
 {
     return hkf_settings_table_count + hkf_calibration_settings_table_count + NODE_SETTING_COUNT +
-           PER_MODEL_SETTING_COUNT + hkf_position_settings_table_count;
+           PER_MODEL_SETTING_COUNT + hkf_position_settings_table_count + hkf_calibration_settings_table_count;
 }
 
 const hkf_setting_t *node_key_setting(int k, node_key_group_t *group)
@@ -50,8 +50,18 @@ const hkf_setting_t *node_key_setting(int k, node_key_group_t *group)
         *group = NODE_KEY_PER_MODEL;
         return &per_model_settings[k];
     }
-    *group = NODE_KEY_POSITION;
-    return &hkf_position_settings_table[k - PER_MODEL_SETTING_COUNT];
+    k -= PER_MODEL_SETTING_COUNT;
+    if (k < hkf_position_settings_table_count) {
+        *group = NODE_KEY_POSITION;
+        return &hkf_position_settings_table[k];
+    }
+    *group = NODE_KEY_POSITION_CALIBRATION;
+    return &hkf_calibration_settings_table[k - hkf_position_settings_table_count];
+}
+
+int node_key_is_position(node_key_group_t group)
+{
+    return group == NODE_KEY_POSITION || group == NODE_KEY_POSITION_CALIBRATION;
 }
 
 /* The key's name as the config file writes it. */
@@ -59,7 +69,7 @@ const char *node_key_name(int k, char *text, size_t size)
 {
     node_key_group_t group;
     const hkf_setting_t *d = node_key_setting(k, &group);
-    snprintf(text, size, "%s%s", group == NODE_KEY_POSITION ? POSITION_PREFIX : "", d->name);
+    snprintf(text, size, "%s%s", node_key_is_position(group) ? POSITION_PREFIX : "", d->name);
     return text;
 }
 
@@ -76,7 +86,7 @@ int node_key_find(const char *name)
 }
 
 /* The struct a key's offset is in: the angle settings or per-model settings given, or the config's calibration,
- * own or position. */
+ * own, position or position calibration. */
 const char *node_key_base(const node_config_t *config, const hkf_settings_t *angles,
                             const node_model_settings_t *per_model, node_key_group_t group)
 {
@@ -85,6 +95,7 @@ const char *node_key_base(const node_config_t *config, const hkf_settings_t *ang
     case NODE_KEY_CALIBRATION: return (const char *)&config->calibration;
     case NODE_KEY_NODE: return (const char *)config;
     case NODE_KEY_PER_MODEL: return (const char *)per_model;
+    case NODE_KEY_POSITION_CALIBRATION: return (const char *)&config->position_calibration;
     case NODE_KEY_POSITION: break;
     }
     return (const char *)&config->position;

@@ -18,7 +18,14 @@ extern "C" {
 
 /* Which struct a key's offset is in: the angles' settings, the calibration's, the node config's own, a
  * model's per-model settings (node_model_settings_t) or the position filter's. */
-typedef enum { NODE_KEY_ANGLES, NODE_KEY_CALIBRATION, NODE_KEY_NODE, NODE_KEY_PER_MODEL, NODE_KEY_POSITION } node_key_group_t;
+typedef enum {
+    NODE_KEY_ANGLES,
+    NODE_KEY_CALIBRATION,
+    NODE_KEY_NODE,
+    NODE_KEY_PER_MODEL,
+    NODE_KEY_POSITION,
+    NODE_KEY_POSITION_CALIBRATION
+} node_key_group_t;
 
 /* How many keys there are; key k (0 <= k < count) is its slot in the origin arrays and its bit in own_keys. */
 int node_key_count(void);
@@ -28,6 +35,9 @@ const hkf_setting_t *node_key_setting(int k, node_key_group_t *group);
 
 /* Key k's name as the config file writes it, in text. */
 const char *node_key_name(int k, char *text, size_t size);
+
+/* 1 for the position filter's and its calibration's keys (named "position_" + the setting's name). */
+int node_key_is_position(node_key_group_t group);
 
 /* The index of the key `name`, or -1. */
 int node_key_find(const char *name);

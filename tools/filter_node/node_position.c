@@ -60,11 +60,15 @@ static node_position_result_t update_position(node_position_t *p, const float xy
     hkf_position_output_t out;
     /* the first position's dt is unused; a gap beyond max_dt restarts the track in hkf_position_update */
     const double dt = hkf_position_started(&p->filter) ? ((double)utime - (double)p->utime) * 1e-6 : 0.02;
-    if (dt > 0.0 && hkf_position_update(&p->filter, z, (hkf_real_t)r_scale, (hkf_real_t)dt, &out) == HKF_OK) {
-        p->utime = utime;
-        return (out.flags & HKF_FLAG_GATED) != 0 ? NODE_POSITION_GATED : NODE_POSITION_TAKEN;
+    int gated;
+    if (!(dt > 0.0) || hkf_position_update(&p->filter, z, (hkf_real_t)r_scale, (hkf_real_t)dt, &out) != HKF_OK) {
+        return NODE_POSITION_NONE;
     }
-    return NODE_POSITION_NONE;
+    p->utime = utime;
+    gated = (out.flags & HKF_FLAG_GATED) != 0;
+    /* n for the next position's R; a refused one breaks the second difference */
+    (void)hkf_calibration_update_position(&p->calibration, &p->filter, gated ? NULL : z, (hkf_real_t)dt);
+    return gated ? NODE_POSITION_GATED : NODE_POSITION_TAKEN;
 }
 
 node_position_result_t node_position_take_first(node_position_t *p, const hkf_head_pose_measurement_t *m,
@@ -73,6 +77,9 @@ node_position_result_t node_position_take_first(node_position_t *p, const hkf_he
     const float xyz[3] = {m->x, m->y, m->z};
     const int measured = position_of(m);
     second_position_note_first(&p->second, m->seq, m->utime, measured > 0, xyz);
+    if (measured == 0) {
+        (void)hkf_calibration_update_position(&p->calibration, &p->filter, NULL, 0); /* a frame without one */
+    }
     if (measured < 0) {
         return NODE_POSITION_BAD;
     }
@@ -94,16 +101,20 @@ node_position_result_t node_position_take_second(node_position_t *p, const hkf_h
     return NODE_POSITION_NONE;
 }
 
-int node_position_init(node_position_t *p, const hkf_position_settings_t *settings)
+int node_position_init(node_position_t *p, const hkf_position_settings_t *settings,
+                       const hkf_calibration_settings_t *calibration)
 {
+    int result;
     memset(p, 0, sizeof *p);
     second_position_init(&p->second);
-    return hkf_position_init(&p->filter, settings);
+    result = hkf_position_init(&p->filter, settings);
+    return result != HKF_OK ? result : hkf_calibration_init_position(&p->calibration, calibration, &p->filter);
 }
 
 void node_position_restart(node_position_t *p)
 {
     hkf_position_restart(&p->filter);
+    (void)hkf_calibration_update_position(&p->calibration, &p->filter, NULL, 0); /* the history breaks, n stays */
     second_position_forget_frames(&p->second);
 }
 
@@ -122,6 +133,8 @@ void node_position_recenter(node_position_t *p, int64_t utime)
 
 void node_position_reset(node_position_t *p)
 {
-    second_position_init(&p->second); /* the models' offset too: nothing of before stays */
-    hkf_position_reset(&p->filter);
+    const hkf_position_settings_t settings = p->filter.settings;
+    const hkf_calibration_settings_t calibration = p->calibration.settings;
+    (void)node_position_init(p, &settings, &calibration); /* nothing of before stays: the centre set, the noise,
+                                                           * the models' offset (the settings passed at start) */
 }

@@ -1,14 +1,16 @@
 /*
  * node_position.h - the head's position at the node (filter_node.h states the rules): the followed
  * model's positions through libhkf's position filter (hkf/hkf_position.h) with R scaled by the
- * model's position_r_scale, a second model's standing in where the first measured none
- * (second_position.h), and the filtered position at a pose's time.
+ * model's position_r_scale and the noise calibration beside it (hkf/hkf_calibration.h), a second
+ * model's standing in where the first measured none (second_position.h), and the filtered position at
+ * a pose's time.
  */
 #ifndef NODE_POSITION_H
 #define NODE_POSITION_H
 
 #include <stdint.h>
 
+#include "hkf/hkf_calibration.h"
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "hkf_head_pose_t.h"
@@ -22,6 +24,7 @@ extern "C" {
 
 typedef struct {
     hkf_position_filter_t filter; /* the followed model's measurements (z > 0) */
+    hkf_calibration_t calibration; /* its noise level n, measured from the positions it took */
     int64_t utime;                /* capture time of the last position taken */
     second_position_t second;     /* the first model's last positions, the second's offset (second_position.h) */
 } node_position_t;
@@ -34,8 +37,10 @@ typedef enum {
     NODE_POSITION_BAD = 3    /* non-finite, z < FILTER_NODE_MIN_Z (but not 0), beyond the range */
 } node_position_result_t;
 
-/* Empty, with the position filter's settings: HKF_OK or hkf_position_init's error. */
-int node_position_init(node_position_t *p, const hkf_position_settings_t *settings);
+/* Empty, with the position filter's and its calibration's settings: HKF_OK or hkf_position_init's or
+ * hkf_calibration_init_position's error. */
+int node_position_init(node_position_t *p, const hkf_position_settings_t *settings,
+                       const hkf_calibration_settings_t *calibration);
 
 /* The first model's frame m: its position (R times r_scale) into the filter, and noted for a second
  * model's measurement of the frame. */
@@ -52,7 +57,8 @@ node_position_result_t node_position_take_second(node_position_t *p, const hkf_h
  * variance grows; within the range the node accepts. Untouched (0) before the first. */
 void node_position_fill(const node_position_t *p, int64_t utime, hkf_head_pose_t *pose);
 
-/* The track starts again with the next position; the kept frames are forgotten, the offset stays. */
+/* The track starts again with the next position; the kept frames are forgotten, the offset and the
+ * measured noise stay. */
 void node_position_restart(node_position_t *p);
 
 /* RECENTER: the centre set on the position published at utime, so that it reads 0 after. */

@@ -57,11 +57,9 @@ typedef enum {
     HKF_ERROR_SETTING_MAX_DT = -32,      /* max_dt outside (0, HKF_MAX_TIME] */
     HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
     HKF_ERROR_SETTING_MOTION = -34,      /* still_wander outside [0, HKF_MAX_VARIANCE], start_rate or stop_rate
-                                            neither 0 nor in [HKF_MIN_RATE, HKF_MAX_RATE] (the position's q_boost and q_boost_time:
-                                            hkf_position.h) */
+                                            neither 0 nor in [HKF_MIN_RATE, HKF_MAX_RATE] (the position's too) */
     HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time outside [0, HKF_MAX_TIME] or noise_rise outside
-                                            [0, HKF_MAX_NOISE_RISE] (hkf_calibration.h; the position's detector:
-                                            hkf_position.h) */
+                                            [0, HKF_MAX_NOISE_RISE] (hkf_calibration.h) */
 } hkf_result_t;
 
 /* A short English description of a hkf_result_t, for logs. Never NULL. */

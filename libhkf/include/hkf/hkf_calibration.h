@@ -23,11 +23,13 @@
  *     each frame with a face:  hkf_update(&f, z, dt, &out);  hkf_calibration_update(&c, &f, z, dt);
  *     each frame without one:  hkf_predict(&f, dt, &out);    hkf_calibration_update(&c, &f, NULL, dt);
  *     after hkf_reset(&f):     hkf_calibration_reset(&c, &f);
+ * The position filter takes it the same way (hkf_calibration_init_position and the rest, below).
  */
 #ifndef HKF_CALIBRATION_H
 #define HKF_CALIBRATION_H
 
 #include "hkf/hkf.h"
+#include "hkf/hkf_position.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -67,7 +69,18 @@ int hkf_calibration_reset(hkf_calibration_t *c, hkf_filter_t *f);
  * next update's R. hkf_update_pair: z, or z2 where z was NULL. */
 int hkf_calibration_update(hkf_calibration_t *c, hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt);
 
-/* The noise level n per axis, deg^2. */
+/* The same for the position filter (hkf_position.h), per axis x, y, z in cm^2: n starts at its
+ * r_const (at least r_min, its floor) and is handed over by hkf_position_set_noise, for R = n x a
+ * measurement's scale. After each successful hkf_position_update (z, the position given; when the gate
+ * refused it, NULL: it broke the track's history) or hkf_position_predict (NULL); the reset after
+ * hkf_position_reset or a restart the caller wants to forget the noise over. One calibration object
+ * per filter. */
+int hkf_calibration_init_position(hkf_calibration_t *c, const hkf_calibration_settings_t *s, hkf_position_filter_t *f);
+int hkf_calibration_reset_position(hkf_calibration_t *c, hkf_position_filter_t *f);
+int hkf_calibration_update_position(hkf_calibration_t *c, hkf_position_filter_t *f, const hkf_real_t z[3],
+                                    hkf_real_t dt);
+
+/* The noise level n per axis, deg^2 (the position's: cm^2). */
 int hkf_calibration_get_noise(const hkf_calibration_t *c, hkf_real_t noise[3]);
 
 /* The same with what it follows, for references and diagnostics: n and the low-passed power of

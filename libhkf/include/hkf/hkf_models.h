@@ -22,8 +22,8 @@ typedef struct {
      * its own). WHENet's resting estimate wanders further than the face mesh's: 1 deg^2 brings its still
      * jitter level with the mesh's (docs/evaluation.md). */
     hkf_real_t still_wander;
-    /* its position R as a multiple of the position filter's measurement_noise (0: none of its own, the
-     * user's default; 1: the face mesh fit's own, which measurement_noise is). */
+    /* its position R as a multiple of the position filter's r_const (0: none of its own, the
+     * user's default; 1: the face mesh fit's own, which r_const is). */
     hkf_real_t position_r_scale;
 } hkf_model_info_t;
 
