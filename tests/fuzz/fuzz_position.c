@@ -71,81 +71,102 @@ static void check_output(const hkf_position_filter_t *f, const hkf_position_outp
     check(out->status >= HKF_STATUS_TRACKING && out->status <= HKF_STATUS_LOST, "unknown status");
 }
 
+/* The filter and its calibration under test, with settings edited by the input (the defaults where refused). */
+static void start(input_t *in, hkf_position_filter_t *f, hkf_calibration_t *c)
+{
+    hkf_position_settings_t s;
+    hkf_calibration_settings_t cs;
+    uint8_t edits = 0, field;
+    memset(&s, 0, sizeof s); /* padding too: filters are compared byte for byte */
+    memset(f, 0, sizeof *f);
+    s = hkf_position_default_settings;
+    cs = hkf_default_calibration_settings;
+    (void)take_byte(in, &edits);
+    while (edits-- > 0 && take_byte(in, &field)) {
+        edit_setting(&s, &cs, field, in);
+    }
+    if (hkf_position_init(f, &s) != HKF_OK) {
+        s = hkf_position_default_settings;
+        check(hkf_position_init(f, &s) == HKF_OK, "the defaults refused");
+    }
+    if (hkf_calibration_init_position(c, &cs, f) != HKF_OK) {
+        check(hkf_calibration_init_position(c, &hkf_default_calibration_settings, f) == HKF_OK,
+              "the calibration's defaults refused");
+    }
+}
+
+/* A measurement (z, its R scale, dt), then the calibration, which hands n over. */
+static int measurement(input_t *in, hkf_position_filter_t *f, hkf_calibration_t *c, hkf_position_output_t *out)
+{
+    const hkf_real_t z[3] = {take_real(in), take_real(in), take_real(in)};
+    const hkf_real_t scale = take_real(in), dt = take_real(in);
+    const int result = hkf_position_update(f, z, scale, dt, out);
+    if (result == HKF_OK) {
+        check_output(f, out);
+        (void)hkf_calibration_update_position(c, f, (out->flags & HKF_FLAG_GATED) ? NULL : z, dt);
+    }
+    return result;
+}
+
+/* The centre set from the input: there when accepted. */
+static int set_center(input_t *in, hkf_position_filter_t *f)
+{
+    const hkf_real_t center[3] = {take_real(in), take_real(in), take_real(in)};
+    hkf_real_t got[3];
+    const int result = hkf_position_set_center(f, center);
+    check(result != HKF_OK || hkf_position_get_center(f, got) == HKF_OK, "a centre set but not there");
+    return result;
+}
+
+/* One call chosen by op; *wrote: it wrote *out. */
+static int apply(uint8_t op, input_t *in, hkf_position_filter_t *f, hkf_calibration_t *c, hkf_position_output_t *out,
+                 int *wrote)
+{
+    int result = HKF_OK;
+    *wrote = op % 9 <= 2;
+    switch (op % 9) {
+    case 0: return measurement(in, f, c, out);
+    case 1:
+        result = hkf_position_predict(f, take_real(in), out);
+        check(result != HKF_OK || hkf_calibration_update_position(c, f, NULL, 0) == HKF_OK,
+              "the calibration refused a gap");
+        return result;
+    case 2: {
+        const hkf_position_filter_t kept = *f;
+        result = hkf_position_extrapolate(f, take_real(in), out);
+        check(memcmp(&kept, f, sizeof *f) == 0, "hkf_position_extrapolate changed the filter");
+        return result;
+    }
+    case 3: return hkf_position_recenter(f);
+    case 4: return hkf_position_recenter_at(f, take_real(in));
+    case 5: hkf_position_restart(f); return HKF_OK;
+    case 6: {
+        const hkf_real_t n[3] = {take_real(in), take_real(in), take_real(in)};
+        return hkf_position_set_noise(f, n);
+    }
+    case 7: return set_center(in, f);
+    default: hkf_position_reset(f); return HKF_OK;
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static int registered;
     input_t in = {data, size};
-    hkf_position_settings_t s;
-    hkf_calibration_settings_t cs;
     hkf_position_filter_t f, before;
     hkf_calibration_t c;
-    uint8_t edits = 0, op, field;
+    uint8_t op;
     if (!registered) {
         registered = atexit(print_steps) == 0;
     }
-    memset(&s, 0, sizeof s); /* padding too: filters are compared byte for byte */
-    memset(&f, 0, sizeof f);
-    s = hkf_position_default_settings;
-    cs = hkf_default_calibration_settings;
-    (void)take_byte(&in, &edits);
-    while (edits-- > 0 && take_byte(&in, &field)) {
-        edit_setting(&s, &cs, field, &in);
-    }
-    if (hkf_position_init(&f, &s) != HKF_OK) {
-        s = hkf_position_default_settings;
-        check(hkf_position_init(&f, &s) == HKF_OK, "the defaults refused");
-    }
-    if (hkf_calibration_init_position(&c, &cs, &f) != HKF_OK) {
-        check(hkf_calibration_init_position(&c, &hkf_default_calibration_settings, &f) == HKF_OK,
-              "the calibration's defaults refused");
-    }
+    start(&in, &f, &c);
     while (take_byte(&in, &op)) {
         hkf_position_output_t out;
-        int result = HKF_OK, wrote = 0;
+        int wrote, result;
         before = f;
-        switch (op % 9) {
-        case 0: { /* a measurement: z, its R scale, dt; then the calibration, which hands n over */
-            const hkf_real_t z[3] = {take_real(&in), take_real(&in), take_real(&in)};
-            const hkf_real_t scale = take_real(&in), dt = take_real(&in);
-            result = hkf_position_update(&f, z, scale, dt, &out);
-            wrote = 1;
-            if (result == HKF_OK) {
-                check_output(&f, &out);
-                (void)hkf_calibration_update_position(&c, &f, (out.flags & HKF_FLAG_GATED) ? NULL : z, dt);
-            }
-            break;
-        }
-        case 1:
-            result = hkf_position_predict(&f, take_real(&in), &out), wrote = 1;
-            if (result == HKF_OK) {
-                check(hkf_calibration_update_position(&c, &f, NULL, 0) == HKF_OK, "the calibration refused a gap");
-            }
-            break;
-        case 2: {
-            const hkf_position_filter_t kept = f;
-            result = hkf_position_extrapolate(&f, take_real(&in), &out), wrote = 1;
-            check(memcmp(&kept, &f, sizeof f) == 0, "hkf_position_extrapolate changed the filter");
-            break;
-        }
-        case 3: result = hkf_position_recenter(&f); break;
-        case 4: result = hkf_position_recenter_at(&f, take_real(&in)); break;
-        case 5: hkf_position_restart(&f); break;
-        case 6: {
-            const hkf_real_t n[3] = {take_real(&in), take_real(&in), take_real(&in)};
-            result = hkf_position_set_noise(&f, n);
-            break;
-        }
-        case 7: {
-            const hkf_real_t center[3] = {take_real(&in), take_real(&in), take_real(&in)};
-            hkf_real_t got[3];
-            result = hkf_position_set_center(&f, center);
-            check(result != HKF_OK || hkf_position_get_center(&f, got) == HKF_OK, "a centre set but not there");
-            break;
-        }
-        default: hkf_position_reset(&f); break;
-        }
+        result = apply(op, &in, &f, &c, &out, &wrote);
         if (result < 0) {
             check(memcmp(&before, &f, sizeof f) == 0, "a rejected call changed the filter");
             continue;
