@@ -85,6 +85,12 @@ def measurements(log, types):
     return first, second
 
 
+def shipped_config(source):
+    """A tree's hkf-filter.conf: filter_node/ (from the node's own room on), or tools/filter_node/ before."""
+    path = os.path.join(source, "filter_node", "hkf-filter.conf")
+    return path if os.path.exists(path) else os.path.join(source, "tools", "filter_node", "hkf-filter.conf")
+
+
 def largest_angle_difference(csv_a, csv_b):
     """The largest |pitch|, |yaw| or |roll| difference (deg) between two pose CSVs of the same frames, or None
     when their rows are not the same frames."""
@@ -112,8 +118,8 @@ def clip_row(clip, builds, work, types):
     outputs = []
     for name, build_dir, source in builds:  # both filters on BEFORE's raw log
         out, poses = os.path.join(work, f"{clip}.{name}.poses.lcmlog"), os.path.join(work, f"{clip}.{name}.poses.csv")
-        run([os.path.join(build_dir, "tools", "hkf-filter"), "--config",
-             os.path.join(source, "tools", "filter_node", "hkf-filter.conf"), "--offline", raw[0][0], out, "--csv", poses])
+        run([os.path.join(build_dir, "tools", "hkf-filter"), "--config", shipped_config(source), "--offline", raw[0][0],
+             out, "--csv", poses])
         outputs.append((out, poses))
     same_raw = raw[0][1] == raw[1][1]
     same_poses = all(filecmp.cmp(a, b, shallow=False) for a, b in zip(outputs[0], outputs[1]))

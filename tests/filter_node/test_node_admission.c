@@ -1,5 +1,5 @@
 /*
- * test_node_admission.c - hkf-filter's node (tools/filter_node/filter_node.c), admission at the node (stream_admission.h behind filter_node_receive): corrupt stamps, clock jumps, forged stamps, publishers, and what each rule counts.
+ * test_node_admission.c - hkf-filter's node (filter_node/filter_node.c), admission at the node (stream_admission.h behind filter_node_receive): corrupt stamps, clock jumps, forged stamps, publishers, and what each rule counts.
  */
 #include <math.h>
 #include <setjmp.h>

@@ -1,5 +1,5 @@
 /*
- * test_node_angles.c - hkf-filter's node (tools/filter_node/filter_node.c), the angles: what the node publishes for a measurement, a frame without a face, a gap, a model, a command, between measurements and in a silence.
+ * test_node_angles.c - hkf-filter's node (filter_node/filter_node.c), the angles: what the node publishes for a measurement, a frame without a face, a gap, a model, a command, between measurements and in a silence.
  */
 #include <math.h>
 #include <setjmp.h>

@@ -20,7 +20,7 @@
 #include "node_config.h"
 
 #ifndef SHIPPED_CONFIG
-#error "SHIPPED_CONFIG (tools/filter_node/hkf-filter.conf) must be defined by the build"
+#error "SHIPPED_CONFIG (filter_node/hkf-filter.conf) must be defined by the build"
 #endif
 
 static char error[600];

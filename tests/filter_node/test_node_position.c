@@ -1,5 +1,5 @@
 /*
- * test_node_position.c - hkf-filter's node (tools/filter_node/filter_node.c), the position: filtered, gated, bounded and coasting, a second model's standing in, through clock steps and commands.
+ * test_node_position.c - hkf-filter's node (filter_node/filter_node.c), the position: filtered, gated, bounded and coasting, a second model's standing in, through clock steps and commands.
  */
 #include <math.h>
 #include <setjmp.h>

@@ -1,6 +1,6 @@
 /*
  * test_node_schedule.c - what hkf-filter publishes between measurements, and when
- * (tools/filter_node/node_schedule.c): --rate ticks on the capture grid, due on the arrival clock;
+ * (filter_node/node_schedule.c): --rate ticks on the capture grid, due on the arrival clock;
  * the silence's LOST pose; and the same poses whether the schedule is asked at its wake times (live)
  * or only when the next event comes (a log).
  */

@@ -1,5 +1,5 @@
 /*
- * test_node_second_model.c - hkf-filter's node (tools/filter_node/filter_node.c), a second model on the channel: its measurement fused into its frame, late or repeated ones, alone, its offset, and another publisher's model.
+ * test_node_second_model.c - hkf-filter's node (filter_node/filter_node.c), a second model on the channel: its measurement fused into its frame, late or repeated ones, alone, its offset, and another publisher's model.
  */
 #include <math.h>
 #include <setjmp.h>

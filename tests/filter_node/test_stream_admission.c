@@ -1,5 +1,5 @@
 /*
- * test_stream_admission.c - which measurements the node takes (tools/filter_node/stream_admission.c),
+ * test_stream_admission.c - which measurements the node takes (filter_node/stream_admission.c),
  * by publisher, capture time and arrival time alone: rule by rule, with no filter behind it.
  */
 #include <setjmp.h>

@@ -11,7 +11,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$out" "$work/corpus"
 "$build/tools/hkf-simlog" --out "$work/drive.lcmlog" --seconds 10 --seed 7 >/dev/null 2>&1
-"$python" "$source/tests/fuzz/make_seeds.py" "$work/drive.lcmlog" "$source/tools/filter_node/hkf-filter.conf" \
+"$python" "$source/tests/fuzz/make_seeds.py" "$work/drive.lcmlog" "$source/filter_node/hkf-filter.conf" \
   "$work/seeds" >/dev/null
 [ -d "$work/seeds/$target" ] && cp "$work/seeds/$target"/* "$work/corpus/"
 [ -d "$out/corpus" ] && cp "$out/corpus"/* "$work/corpus/" 2>/dev/null || true   # what earlier runs found

@@ -21,6 +21,6 @@ check() { # check WHAT LENGTH PARAMETERS DIR...
     echo "function_sizes: $what: every function within $length lines and $parameters parameters"
   fi
 }
-check "the shipped programs" 60 6 tools estimator messages program_helpers sim
+check "the shipped programs" 60 6 filter_node tools estimator messages program_helpers sim
 check "libhkf" 40 6 libhkf
 exit $status

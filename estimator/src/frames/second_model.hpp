@@ -3,7 +3,7 @@
 // frames where the mesh is weak - at large turns, or where it finds no face -
 // as fast as it can, on the other core. Its measurement carries the frame's
 // seq and capture time and its own model id, so hkf-filter fuses it into that
-// frame (two models on one channel; see tools/filter_node/filter_node.h).
+// frame (two models on one channel; see filter_node/filter_node.h).
 #pragma once
 
 #include <condition_variable>

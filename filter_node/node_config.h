@@ -1,7 +1,7 @@
 /*
  * node_config.h - hkf-filter's settings: every hkf_settings_t field, plus a
  * table mapping an estimator model's id to its noise curves. Read from a
- * config file (format: tools/filter_node/hkf-filter.conf) and overridden by
+ * config file (format: filter_node/hkf-filter.conf) and overridden by
  * "key = value" strings from the command line.
  */
 #ifndef NODE_CONFIG_H
