@@ -11,7 +11,7 @@ const hkf_calibration_settings_t hkf_default_calibration_settings = {
     .noise_rise = HKF_REAL(0.2),
 };
 
-int hkf_calibration_check(const hkf_calibration_settings_t *s)
+int hkf_calibration_begin(hkf_calibration_t *c, const hkf_calibration_settings_t *s, hkf_real_t floor)
 {
     if (!hkf_is_finite(s->noise_time) || !hkf_is_finite(s->noise_rise)) {
         return HKF_ERROR_SETTING_NON_FINITE;
@@ -20,6 +20,8 @@ int hkf_calibration_check(const hkf_calibration_settings_t *s)
           s->noise_rise <= HKF_REAL_FROM(HKF_MAX_NOISE_RISE))) {
         return HKF_ERROR_SETTING_CALIBRATION;
     }
+    c->settings = *s;
+    c->floor = floor;
     return HKF_OK;
 }
 
@@ -41,12 +43,10 @@ int hkf_calibration_init(hkf_calibration_t *c, const hkf_calibration_settings_t 
     if (c == 0 || s == 0 || f == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    result = hkf_calibration_check(s);
+    result = hkf_calibration_begin(c, s, HKF_SETTINGS(f)->r_min);
     if (result != HKF_OK) {
         return result;
     }
-    c->settings = *s;
-    c->floor = HKF_SETTINGS(f)->r_min;
     for (a = 0; a < HKF_AXES; ++a) { /* e(mu): the estimator's error on a benchmark */
         c->start[a] = hkf_observation_noise(f, a, HKF_SETTINGS(f)->noise[a].mu);
     }
@@ -80,11 +80,7 @@ int hkf_calibration_update(hkf_calibration_t *c, hkf_filter_t *f, const hkf_real
     if (c == 0 || f == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    if (z == 0) {
-        c->history = 0u; /* a missing frame breaks the second difference */
-        return HKF_OK;
-    }
-    if (!(c->settings.noise_time > 0)) {
+    if (!hkf_calibration_wants(c, z)) {
         return HKF_OK; /* off: f keeps Eq. 8's own R */
     }
     estimate(c, z, dt);

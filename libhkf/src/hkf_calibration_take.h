@@ -13,6 +13,17 @@
 #include "hkf_math.h"
 #include "hkf_noise_estimate.h"
 
+/* 1 when z is to be taken: the calibration is on and z is a measurement. NULL (a frame without one, or
+ * one refused) breaks the second difference. */
+static HKF_ALWAYS_INLINE int hkf_calibration_wants(hkf_calibration_t *c, const hkf_real_t *z)
+{
+    if (z == 0) {
+        c->history = 0u;
+        return 0;
+    }
+    return c->settings.noise_time > 0;
+}
+
 static HKF_ALWAYS_INLINE void hkf_calibration_take(hkf_calibration_t *c, const hkf_real_t now[3], const hkf_real_t step[3],
                                                    hkf_real_t dt)
 {

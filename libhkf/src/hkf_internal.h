@@ -12,9 +12,9 @@ int hkf_settings_check(const hkf_settings_t *s);
 int hkf_curve_check(const hkf_noise_curve_t *c);
 
 /* The noise calibration's parts that the angles' and the position's hand-overs share
- * (hkf_calibration.c): the settings' check and n back to its start (one measurement's lanes:
- * hkf_calibration_take.h). */
-int hkf_calibration_check(const hkf_calibration_settings_t *s);
+ * (hkf_calibration.c): the settings checked and taken with the floor of n (HKF_OK or the error), and n
+ * back to its start (one measurement's lanes: hkf_calibration_take.h). */
+int hkf_calibration_begin(hkf_calibration_t *c, const hkf_calibration_settings_t *s, hkf_real_t floor);
 void hkf_calibration_restart(hkf_calibration_t *c);
 
 /* The axis loops run over all HKF_LANES where the compiler turns them into

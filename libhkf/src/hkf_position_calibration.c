@@ -12,12 +12,10 @@ int hkf_calibration_init_position(hkf_calibration_t *c, const hkf_calibration_se
     if (c == 0 || s == 0 || f == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    result = hkf_calibration_check(s);
+    result = hkf_calibration_begin(c, s, f->settings.r_min);
     if (result != HKF_OK) {
         return result;
     }
-    c->settings = *s;
-    c->floor = f->settings.r_min;
     for (a = 0; a < 3; ++a) { /* n starts at r_const: the followed model's noise */
         c->start[a] = f->settings.r_const[a] > c->floor ? f->settings.r_const[a] : c->floor;
     }
@@ -41,11 +39,7 @@ int hkf_calibration_update_position(hkf_calibration_t *c, hkf_position_filter_t 
     if (c == 0 || f == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    if (z == 0) {
-        c->history = 0u; /* a missing or refused position breaks the second difference */
-        return HKF_OK;
-    }
-    if (!(c->settings.noise_time > 0)) {
+    if (!hkf_calibration_wants(c, z)) {
         return HKF_OK; /* off: f keeps r_const */
     }
     for (a = 0; a < 3; ++a) {
