@@ -24,7 +24,7 @@
 const hkf_position_settings_t hkf_position_default_settings = {
     .process_noise = {HKF_REAL(3000.0), HKF_REAL(3000.0), HKF_REAL(3000.0)}, /* cm^2/s^3 */
     .r_const = {HKF_REAL(0.002), HKF_REAL(0.002), HKF_REAL(0.05)},          /* cm^2 */
-    .r_min = HKF_REAL_FROM(HKF_MIN_VARIANCE),
+    .r_min = HKF_REAL(0.002), /* cm^2: R and n at least the mesh's x and y noise (below, Q16.16 parts from double) */
     .r_max = HKF_REAL(100.0),
     .p0_rate = HKF_REAL(1000.0), /* (cm/s)^2 */
     .max_dt = HKF_REAL(0.5),

@@ -1,17 +1,20 @@
 #!/usr/bin/env python3
 """An LCM log of raw head poses (HEAD_POSE_RAW) as the CSV make_mcu_sequence
-reads: dt_s,valid,pitch,yaw,roll per frame (the first frame's dt is 1/30 s).
-usage: raw_log_to_csv.py RAW.lcmlog TYPES_DIR OUT.csv"""
+reads: dt_s,valid,pitch,yaw,roll per frame (the first frame's dt is 1/30 s);
+with --position, as position_replay reads it: dt_s,valid,x,y,z (valid: a
+position measured, z > 0).
+usage: raw_log_to_csv.py RAW.lcmlog TYPES_DIR OUT.csv [--position]"""
 import sys
 
 import lcm
 
 
 def main():
-    if len(sys.argv) != 4 or sys.argv[1] in ("-h", "--help"):
+    if len(sys.argv) not in (4, 5) or sys.argv[1] in ("-h", "--help") or sys.argv[4:] not in ([], ["--position"]):
         print(__doc__)
         sys.exit(0 if len(sys.argv) == 2 else 2)
     log, types, out = sys.argv[1:4]
+    position = sys.argv[4:] == ["--position"]
     sys.path.insert(0, types)
     from hkf import head_pose_measurement_t
     rows, previous = [], None
@@ -21,7 +24,10 @@ def main():
         m = head_pose_measurement_t.decode(e.data)
         dt = (m.utime - previous) / 1e6 if previous is not None else 1 / 30
         previous = m.utime
-        rows.append(f"{dt:.9g},{int(m.valid)},{m.pitch:.9g},{m.yaw:.9g},{m.roll:.9g}")
+        if position:
+            rows.append(f"{dt:.9g},{int(m.valid and m.z > 0)},{m.x:.9g},{m.y:.9g},{m.z:.9g}")
+        else:
+            rows.append(f"{dt:.9g},{int(m.valid)},{m.pitch:.9g},{m.yaw:.9g},{m.roll:.9g}")
     if not rows:
         sys.exit(f"raw_log_to_csv: no HEAD_POSE_RAW in {log}")
     with open(out, "w") as f:
