@@ -21,7 +21,6 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import evaluate  # noqa: E402
-import metrics  # noqa: E402
 import wander_scales  # noqa: E402
 
 
@@ -30,20 +29,9 @@ def main():
     parser.add_argument("--build", default=os.path.join(evaluate.ROOT, "build"))
     parser.add_argument("--out", default=os.path.join(evaluate.ROOT, "out", "eval"))
     args = parser.parse_args()
-    types = os.path.join(args.build, "lcmtypes", "python")
     print("| clip | still frames (runs) | frame dt | n pitch / yaw / roll, deg^2 | q pitch / yaw / roll, deg^2/s |")
     print("| --- | ---: | ---: | --- | --- |")
-    for path in evaluate.clips():
-        name = os.path.splitext(os.path.basename(path))[0]
-        raw = os.path.join(args.out, "raw", f"{name}.mesh_pnp.lcmlog")
-        if not os.path.exists(raw):
-            continue
-        _, t, valid, z = evaluate.read_raw(raw, types)
-        tv, zv = t[valid], metrics.unwrap_yaw(z[valid])
-        still, _ = metrics.masks(tv, metrics.reference(tv, zv))
-        runs = wander_scales.still_runs(still)
-        if not runs:
-            continue
+    for name, tv, zv, runs in wander_scales.still_clips(args.build, args.out):
         n, excess = wander_scales.wander(zv, runs)
         dt = float(np.median(np.diff(tv)))
         q = np.maximum(6.0 * excess[1] / dt, 0.0)  # excess_1 = E[d1^2] / 2 - E[d2^2] / 6 = q dt / 6

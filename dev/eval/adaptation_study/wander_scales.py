@@ -51,26 +51,32 @@ def wander(z, runs):
     return n, excess
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--build", default=os.path.join(evaluate.ROOT, "build"))
-    parser.add_argument("--out", default=os.path.join(evaluate.ROOT, "out", "eval"))
-    args = parser.parse_args()
-    types = os.path.join(args.build, "lcmtypes", "python")
-    print("| clip | still frames (runs) | n pitch / yaw / roll | " +
-          " | ".join(f"beyond n/{k}, k = {k}" for k in BLOCKS) + " |")
-    print("| --- | ---: | --- |" + " --- |" * len(BLOCKS))
+def still_clips(build, out):
+    """(name, frame times, measurements with yaw unwrapped, still runs) per clip with still runs, from the raw logs
+    leave_one_out.py caches in OUT/raw/ (the default model)."""
+    types = os.path.join(build, "lcmtypes", "python")
     for path in evaluate.clips():
         name = os.path.splitext(os.path.basename(path))[0]
-        raw = os.path.join(args.out, "raw", f"{name}.mesh_pnp.lcmlog")
+        raw = os.path.join(out, "raw", f"{name}.mesh_pnp.lcmlog")
         if not os.path.exists(raw):
             continue
         _, t, valid, z = evaluate.read_raw(raw, types)
         tv, zv = t[valid], metrics.unwrap_yaw(z[valid])
         still, _ = metrics.masks(tv, metrics.reference(tv, zv))
         runs = still_runs(still)
-        if not runs:
-            continue
+        if runs:
+            yield name, tv, zv, runs
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--build", default=os.path.join(evaluate.ROOT, "build"))
+    parser.add_argument("--out", default=os.path.join(evaluate.ROOT, "out", "eval"))
+    args = parser.parse_args()
+    print("| clip | still frames (runs) | n pitch / yaw / roll | " +
+          " | ".join(f"beyond n/{k}, k = {k}" for k in BLOCKS) + " |")
+    print("| --- | ---: | --- |" + " --- |" * len(BLOCKS))
+    for name, _, zv, runs in still_clips(args.build, args.out):
         n, excess = wander(zv, runs)
         fmt = lambda v: " / ".join(f"{x:.3f}" for x in v)  # noqa: E731
         print(f"| {name} | {sum(b - a for a, b in runs)} ({len(runs)}) | {fmt(n)} | " +
