@@ -69,7 +69,7 @@ Q_GRID = [30.0, 300.0, 1000.0, 3000.0, 16000.0]  # MOVE's process noise, cm^2/s^
 WANDER_GRID = [0.0, 0.1, 0.3, 1.0, 2.0, 3.0, 10.0]  # HOLD's still_wander, x r_const per axis
 P0_GRID = [1000.0]  # p0_rate, (cm/s)^2: a track's first rate, a move's from rest - not tuned: a lean's speed (sd 32 cm/s)
 # (swept 100-16000 it moved the moving z error by 0.01 cm, and the largest made a one-frame jump a 237 cm/s move)
-RATES_GRID = [(0.05, 16.0), (0.3, 16.0), (0.05, 4.0), (0.3, 1.0)]  # (start_rate, stop_rate), 1/s
+RATES_GRID = [(0.05, 16.0), (0.3, 16.0), (0.05, 4.0), (0.3, 1.0), (1.0, 1.0), (0.3, 0.25), (1.0, 0.25), (3.0, 1.0)]  # (start_rate, stop_rate), 1/s
 CONSTANT = ["position_noise_time = 0", "position_start_rate = 0", "position_process_noise = 10 10 10",
             "position_r_const = 0.002 0.002 0.05"]  # no calibration, MOVE alone: hkf 0.2-dev's first position filter
 
@@ -297,7 +297,114 @@ def check(build, clips, work, turns):
     return 1 if failed else 0
 
 
-def main():
+def on(table, which):
+    """The metrics of a table (clip name -> metrics) pooled over the clips `which`, or None for none."""
+    return pooled([table[n] for n in which]) if which else None
+
+
+def measure_grid(build, clips, work):
+    """Every grid setting's metrics per clip: {setting: {clip name: metrics}}."""
+    grid = [(q, w, p0, r) for q in Q_GRID for w in WANDER_GRID for p0 in P0_GRID for r in RATES_GRID]
+    rows = {}
+    for i, setting in enumerate(grid):
+        rows[setting] = {c.name: metrics(c, filtered(build, c, work, setting)) for c in clips}
+        if (i + 1) % (len(RATES_GRID) * len(P0_GRID) * len(WANDER_GRID)) == 0:
+            log(f"{i + 1}/{len(grid)} settings done")
+    return rows
+
+
+def choose(rows, tuning):
+    """(the chosen setting, the settings within the stillness rule with their pooled metrics, the grid's edges the
+    choice sits at): the least moving z error to the table's 0.01 cm (finer is the frames' noise) whose still z
+    jitter is at most the goal / JITTER_MARGIN on every tuning clip, then the least smoothing beyond that: a
+    stiller setting buys nothing the player sees and costs lag the RMSE, dominated by the mesh's own bias,
+    barely shows (the player's-lag issue)."""
+    candidates = [(k, on(v, tuning)) for k, v in rows.items()]
+    most = JITTER_GOAL_CM / JITTER_MARGIN
+    fit = [c for c in candidates if max(rows[c[0]][n]["z_jitter"] for n in tuning) <= most] or candidates
+    chosen = min(fit, key=lambda c: (round(c[1]["z_rmse"], 2), -c[1]["z_jitter"]))[0]
+    starts, stops = [r[0] for r in RATES_GRID], [r[1] for r in RATES_GRID]
+    edges = [name for name, value, values in (("q", chosen[0], Q_GRID), ("still_wander", chosen[1], WANDER_GRID),
+                                               ("p0_rate", chosen[2], P0_GRID), ("start_rate", chosen[3][0], starts),
+                                               ("stop_rate", chosen[3][1], stops))
+             if len(values) > 1 and value in (min(values), max(values))]
+    return chosen, fit, edges
+
+
+def summary_lines(tables, names, tuning, others):
+    """The pooled table: raw, the constant filter, the chosen setting and the defaults, per group of clips."""
+    lines = ["| clips | | z RMSE moving, cm | x RMSE moving, cm | z jitter still, cm/frame | x jitter still, cm/frame |",
+             "| --- | --- | ---: | ---: | ---: | ---: |"]
+    for label, which in (("tuning", tuning), ("held out", others), ("all", names)):
+        if not which:
+            continue
+        for what, table in tables:
+            m = on(table, which)
+            lines.append(f"| {label} ({len(which)}) | {what} | {m['z_rmse']:.2f} | {m['x_rmse']:.2f} | {m['z_jitter']:.3f} | "
+                         f"{m['x_jitter']:.3f} |")
+    return lines
+
+
+def per_clip_lines(raw, defaults, names):
+    lines = ["", "| clip | distance cm | faces | raw z error median % | raw z jitter | filtered z jitter | "
+             "filtered z RMSE moving |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for n in names:
+        r, f = raw[n], defaults[n]
+        lines.append(f"| {n}{'' if n in TUNING_CLIPS else ' (held out)'} | {r['distance']:.0f} | {100 * r['found']:.0f} % | "
+                     f"{r['z_err_pct']:.1f} | {r['z_jitter']:.3f} | {f['z_jitter']:.3f} | {f['z_rmse']:.2f} |")
+    return lines
+
+
+def grid_lines(rows, chosen, fit, tuning):
+    """Every q and still_wander at the chosen rates, per p0_rate; the best moving error per pair of rates."""
+    lines = []
+    for p0 in P0_GRID:
+        lines += ["", f"Every q and still_wander at p0_rate {p0:g} and the chosen rates (start_rate {chosen[3][0]:g}, "
+                  f"stop_rate {chosen[3][1]:g}), pooled on the tuning clips (z RMSE moving / z jitter still):", "",
+                  "| q \\ still_wander (x r_const) | " + " | ".join(f"{w:g}" for w in WANDER_GRID) + " |",
+                  "| --- |" + " ---: |" * len(WANDER_GRID)]
+        for q in Q_GRID:
+            cells = [on(rows[(q, w, p0, chosen[3])], tuning) for w in WANDER_GRID]
+            lines.append(f"| {q:g} | " + " | ".join(f"{c['z_rmse']:.2f} / {c['z_jitter']:.3f}" for c in cells) + " |")
+    least = {}
+    for r in RATES_GRID:
+        ok = [c for c in fit if c[0][3] == r]
+        least[r] = min(c[1]["z_rmse"] for c in ok) if ok else float("nan")
+    return lines + ["", "The least moving z RMSE within the rule, per (start_rate, stop_rate), tuning clips: " +
+                    ", ".join(f"({a:g}, {b:g}) {v:.3f} cm" for (a, b), v in least.items()) + "."]
+
+
+def turn_lines(turns):
+    lines = ["", "Cross-talk: a turn of +-30 deg about the line of sight through the pivot, no move, --pivot 10 "
+             "(the position's change from its reading at 0 deg, per 30 deg, on the frames turned >= 25 deg).", "",
+             "| clip | turned frames with a position | change per 30 deg, median | p90 |", "| --- | ---: | ---: | ---: |"]
+    for name, found, median, p90 in turns:
+        lines.append(f"| {name} | {100 * found:.0f} % | {median:.2f} cm | {p90:.2f} cm |")
+    return lines
+
+
+def draw(build, clip, work, chosen, path):
+    """The first clip's z: truth, raw, the constant filter and the chosen setting."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fz = filtered(build, clip, work, chosen)
+    fc = filtered(build, clip, work, CONSTANT)
+    t = (clip.utime - clip.utime[0]) / 1e6
+    fig, ax = plt.subplots(figsize=(10, 4))
+    ax.plot(t, clip.truth[:, 2], "k-", lw=2, label="truth")
+    ax.plot(t[clip.valid], clip.raw[clip.valid, 2], ".", ms=3, label="raw")
+    ax.plot(t, fc[:, 2], "-", label="filtered, constant q and R")
+    ax.plot(t, fz[:, 2], "-", label=f"filtered, chosen ({setting_text(chosen)})")
+    ax.set_xlabel("s")
+    ax.set_ylabel("z, cm")
+    ax.set_title(f"{clip.name}: a lean by zoom, the face's distance")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
+def parse_arguments():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
     p.add_argument("--out", default=os.path.join(ROOT, "out", "eval"))
@@ -305,7 +412,11 @@ def main():
     p.add_argument("--spec-dir", help="hkf-estimator's model descriptions (default: its own)")
     p.add_argument("--check", action="store_true",
                    help="the defaults only, no grid: print the figures and exit 1 unless the goals hold (a test)")
-    args = p.parse_args()
+    return p.parse_args()
+
+
+def main():
+    args = parse_arguments()
     if args.spec_dir:
         SPEC_DIR[:] = ["--spec-dir", args.spec_dir]
     out = os.path.join(args.out, "position")
@@ -320,94 +431,28 @@ def main():
     turns = turn_rows(args.build, out, names, types)
     if args.check:
         return check(args.build, clips, work, turns)
-    grid = [(q, w, p0, r) for q in Q_GRID for w in WANDER_GRID for p0 in P0_GRID for r in RATES_GRID]
-    rows = {}
-    for i, setting in enumerate(grid):
-        rows[setting] = {c.name: metrics(c, filtered(args.build, c, work, setting)) for c in clips}
-        if (i + 1) % (len(RATES_GRID) * len(P0_GRID) * len(WANDER_GRID)) == 0:
-            log(f"{i + 1}/{len(grid)} settings done")
+    rows = measure_grid(args.build, clips, work)
     constant = {c.name: metrics(c, filtered(args.build, c, work, CONSTANT)) for c in clips}
     defaults = {c.name: metrics(c, filtered(args.build, c, work)) for c in clips}
     raw = {c.name: metrics(c, c.raw) for c in clips}
     tuning = [n for n in names if n in TUNING_CLIPS]
     others = [n for n in names if n not in TUNING_CLIPS]
-
-    def on(table, which):
-        return pooled([table[n] for n in which]) if which else None
-
-    candidates = [(k, on(v, tuning)) for k, v in rows.items()]
+    chosen, fit, edges = choose(rows, tuning)
     most = JITTER_GOAL_CM / JITTER_MARGIN
-    fit = [c for c in candidates if max(rows[c[0]][n]["z_jitter"] for n in tuning) <= most] or candidates
-    # the moving error to the table's 0.01 cm (finer is the frames' noise), then the least smoothing beyond the
-    # stillness asked for: a stiller setting than that buys nothing the player sees and costs lag the RMSE,
-    # dominated by the mesh's own bias, barely shows (the player's-lag issue)
-    chosen = min(fit, key=lambda c: (round(c[1]["z_rmse"], 2), -c[1]["z_jitter"]))[0]
-    edges = [name for name, value, values in (("q", chosen[0], Q_GRID), ("still_wander", chosen[1], WANDER_GRID),
-                                               ("p0_rate", chosen[2], P0_GRID))
-             if value in (values[0], values[-1])]
     lines = [f"# Position against truth by construction ({len(clips)} clips, face at ~{BASE_CM:.0f} cm, --pivot 0)", "",
-             f"Chosen on {', '.join(tuning)} from {len(grid)} settings: {setting_text(chosen)} (calibrated): the "
+             f"Chosen on {', '.join(tuning)} from {len(rows)} settings: {setting_text(chosen)} (calibrated): the "
              f"smallest moving z error (to 0.01 cm; then the least still) whose still z jitter is at most {most:g} cm on every "
              f"tuning clip (the goal {JITTER_GOAL_CM:g} with a margin of {JITTER_MARGIN:g} for noisier cameras)"
              + (f"; at the grid's edge in {', '.join(edges)}" if edges else "; inside the grid") + ". Constant: no "
-             "calibration, MOVE alone, q 10 cm^2/s^3, R 0.002 0.002 0.05 cm^2. Defaults: hkf-filter's own settings.", "",
-             "| clips | | z RMSE moving, cm | x RMSE moving, cm | z jitter still, cm/frame | x jitter still, cm/frame |",
-             "| --- | --- | ---: | ---: | ---: | ---: |"]
-    for label, which in (("tuning", tuning), ("held out", others), ("all", names)):
-        if not which:
-            continue
-        for what, table in (("raw", raw), ("filtered, constant", constant), ("filtered, chosen", rows[chosen]),
-                            ("filtered, defaults", defaults)):
-            m = on(table, which)
-            lines.append(f"| {label} ({len(which)}) | {what} | {m['z_rmse']:.2f} | {m['x_rmse']:.2f} | {m['z_jitter']:.3f} | "
-                         f"{m['x_jitter']:.3f} |")
-    lines += ["", "| clip | distance cm | faces | raw z error median % | raw z jitter | filtered z jitter | "
-              "filtered z RMSE moving |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
-    for n in names:
-        r, f = raw[n], defaults[n]
-        lines.append(f"| {n}{'' if n in TUNING_CLIPS else ' (held out)'} | {r['distance']:.0f} | {100 * r['found']:.0f} % | "
-                     f"{r['z_err_pct']:.1f} | {r['z_jitter']:.3f} | {f['z_jitter']:.3f} | {f['z_rmse']:.2f} |")
-    for p0 in P0_GRID:
-        lines += ["", f"Every q and still_wander at p0_rate {p0:g} and the chosen rates (start_rate {chosen[3][0]:g}, "
-                  f"stop_rate {chosen[3][1]:g}), pooled on the tuning clips (z RMSE moving / z jitter still):", "",
-                  "| q \\ still_wander (x r_const) | " + " | ".join(f"{w:g}" for w in WANDER_GRID) + " |",
-                  "| --- |" + " ---: |" * len(WANDER_GRID)]
-        for q in Q_GRID:
-            cells = [on(rows[(q, w, p0, chosen[3])], tuning) for w in WANDER_GRID]
-            lines.append(f"| {q:g} | " + " | ".join(f"{c['z_rmse']:.2f} / {c['z_jitter']:.3f}" for c in cells) + " |")
-    stillest = {}
-    for r in RATES_GRID:
-        ok = [c for c in fit if c[0][3] == r]
-        stillest[r] = min(c[1]["z_rmse"] for c in ok) if ok else float("nan")
-    lines += ["", "The least moving z RMSE within the rule, per (start_rate, stop_rate), tuning clips: " +
-              ", ".join(f"({a:g}, {b:g}) {v:.3f} cm" for (a, b), v in stillest.items()) + "."]
-    lines += ["", "Cross-talk: a turn of +-30 deg about the line of sight through the pivot, no move, --pivot 10 "
-              "(the position's change from its reading at 0 deg, per 30 deg, on the frames turned >= 25 deg).", "",
-              "| clip | turned frames with a position | change per 30 deg, median | p90 |", "| --- | ---: | ---: | ---: |"]
-    for name, found, median, p90 in turns:
-        lines.append(f"| {name} | {100 * found:.0f} % | {median:.2f} cm | {p90:.2f} cm |")
+             "calibration, MOVE alone, q 10 cm^2/s^3, R 0.002 0.002 0.05 cm^2. Defaults: hkf-filter's own settings.", ""]
+    lines += summary_lines((("raw", raw), ("filtered, constant", constant), ("filtered, chosen", rows[chosen]),
+                            ("filtered, defaults", defaults)), names, tuning, others)
+    lines += per_clip_lines(raw, defaults, names) + grid_lines(rows, chosen, fit, tuning) + turn_lines(turns)
     report = "\n".join(lines) + "\n"
     with open(os.path.join(out, "position.md"), "w") as fh:
         fh.write(report)
     print(report)
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    clip = clips[0]
-    fz = filtered(args.build, clip, work, chosen)
-    fc = filtered(args.build, clip, work, CONSTANT)
-    t = (clip.utime - clip.utime[0]) / 1e6
-    fig, ax = plt.subplots(figsize=(10, 4))
-    ax.plot(t, clip.truth[:, 2], "k-", lw=2, label="truth")
-    ax.plot(t[clip.valid], clip.raw[clip.valid, 2], ".", ms=3, label="raw")
-    ax.plot(t, fc[:, 2], "-", label="filtered, constant q and R")
-    ax.plot(t, fz[:, 2], "-", label=f"filtered, chosen ({setting_text(chosen)})")
-    ax.set_xlabel("s")
-    ax.set_ylabel("z, cm")
-    ax.set_title(f"{clip.name}: a lean by zoom, the face's distance")
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "position_z.png"), dpi=100)
+    draw(args.build, clips[0], work, chosen, os.path.join(out, "position_z.png"))
     log(f"wrote {os.path.join(out, 'position.md')} and position_z.png")
     return 0
 

@@ -14,7 +14,7 @@
 #include "hkf_two_models.h"
 
 /* Chosen on truth by construction (dev/eval/position_truth.py; the clips and figures: docs/estimator.md
- * "Head position"): on 5 tuning clips, of 140 settings of q, still_wander and the two rates, the least
+ * "Head position"): on 5 tuning clips, of 280 settings of q, still_wander and the two rates, the least
  * moving z error (to 0.01 cm) whose still z jitter is at most half the goal's on every one, then the
  * least still of those (stiller buys nothing the player sees). still_wander is 0.3 x r_const per axis.
  * p0_rate is not tuned: a lean's starting speed, sd 32 cm/s. R starts at the face mesh's noise (n's
