@@ -706,14 +706,12 @@ static void test_extrapolate_coast_then_stale(void **state)
     assert_int_equal(hkf_position_recenter_at(&f, R(0.1)), HKF_ERROR_NOT_INITIALIZED);
 }
 
-/* Bad settings get their code; bad input its code, the filter untouched. */
-static void test_errors(void **state)
+/* Bad settings get their code. */
+static void test_setting_errors(void **state)
 {
     (void)state;
     hkf_position_settings_t s;
-    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0), before;
-    const hkf_real_t beyond[3] = {R(0.0), R(0.0), R(2000.0)};
-    const hkf_real_t fine[3] = {R(0.0), R(0.0), R(60.0)};
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0);
     s = hkf_position_default_settings;
     s.process_noise[1] = R(-1.0);
     assert_int_equal(hkf_position_init(&f, &s), HKF_ERROR_SETTING_PROCESS_NOISE);
@@ -750,8 +748,15 @@ static void test_errors(void **state)
     s.max_gate_rejections = 1u;
     assert_int_equal(hkf_position_init(&f, &s), HKF_OK);
     assert_int_equal(hkf_position_init(NULL, &s), HKF_ERROR_NULL_ARGUMENT);
+}
 
-    f = started_filter(0.0, 0.0, 60.0);
+/* Bad input gets its code, the filter untouched. */
+static void test_input_errors(void **state)
+{
+    (void)state;
+    hkf_position_filter_t f = started_filter(0.0, 0.0, 60.0), before;
+    const hkf_real_t beyond[3] = {R(0.0), R(0.0), R(2000.0)};
+    const hkf_real_t fine[3] = {R(0.0), R(0.0), R(60.0)};
     before = f;
     assert_int_equal(hkf_position_update(&f, beyond, R(1.0), R(frame_s), NULL), HKF_ERROR_POSITION_RANGE);
     assert_int_equal(hkf_position_update(&f, fine, R(0.5), R(frame_s), NULL), HKF_ERROR_SCALE_RANGE);
@@ -900,7 +905,8 @@ int main(void)
         cmocka_unit_test(test_gate_edge),
         cmocka_unit_test(test_range),
         cmocka_unit_test(test_extrapolate_coast_then_stale),
-        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_setting_errors),
+        cmocka_unit_test(test_input_errors),
         cmocka_unit_test(test_rate_settles_at_rest),
         cmocka_unit_test(test_set_noise),
         cmocka_unit_test(test_calibration_lifecycle),

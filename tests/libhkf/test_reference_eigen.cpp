@@ -29,6 +29,7 @@
 #include "hkf/hkf.h"
 #include "hkf/hkf_calibration.h"
 #include "head_motion_sim.h"
+#include "reference_reals.hpp"
 
 namespace {
 
@@ -36,15 +37,6 @@ using Vec3 = Eigen::Vector3d;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Mat36 = Eigen::Matrix<double, 3, 6>;
-
-/* hkf_real_t <-> double: the identity in float and double, Q16.16 in fixed point. */
-#if defined(HKF_REAL_FIXED)
-double D(hkf_real_t x) { return static_cast<double>(x) / 65536.0; }
-hkf_real_t R(double x) { return static_cast<hkf_real_t>(std::lround(x * 65536.0)); }
-#else
-double D(hkf_real_t x) { return static_cast<double>(x); }
-hkf_real_t R(double x) { return static_cast<hkf_real_t>(x); }
-#endif
 
 double wrap180(double x)
 {

@@ -23,19 +23,12 @@
 
 #include "hkf/hkf_position.h"
 #include "head_motion_sim.h"
+#include "reference_reals.hpp"
 
 namespace {
 
 using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
-
-#if defined(HKF_REAL_FIXED)
-double D(hkf_real_t x) { return static_cast<double>(x) / 65536.0; }
-hkf_real_t R(double x) { return static_cast<hkf_real_t>(std::lround(x * 65536.0)); }
-#else
-double D(hkf_real_t x) { return static_cast<double>(x); }
-hkf_real_t R(double x) { return static_cast<hkf_real_t>(x); }
-#endif
 
 /* The reference's posterior for one axis, or gated. */
 struct AxisResult {
