@@ -12,27 +12,40 @@
 #include <stdio.h>
 #include <string.h>
 
-/* A model of libhkf's table (hkf_models.h) in the node's from the start. */
-static void add_builtin_model(node_config_t *config, const char *name, const hkf_noise_curve_t noise[3])
+/* Model m's built-in value of key `name`, as a [model NAME] section would set it. */
+static void set_builtin(node_model_t *m, const char *name, const setting_value_t *value)
 {
-    node_model_t *m = &config->models[config->model_count++];
-    strcpy(m->name, name);
-    memcpy(m->noise, noise, sizeof m->noise);
-    m->r_const[0] = noise[0].tau - noise[0].lambda;
-    m->r_const[1] = noise[1].tau - noise[1].lambda;
-    m->r_const[2] = noise[2].tau - noise[2].lambda;
+    node_model_setting_t *set = &m->sets[m->set_count++];
+    set->key = node_key_find(name);
+    set->value = *value;
+    set->origin[0] = '\0'; /* built in */
 }
 
-/* A built-in model's own value of a real setting of the angles or the node's per-model ones (as a
- * `[model NAME]` section sets it). */
-static void own_builtin_real(node_model_t *m, const char *name, hkf_real_t value)
+/* A model of libhkf's table (hkf_models.h): its curves, r_const = each curve's minimum, and the values it
+ * has of its own. */
+static void add_builtin_model(node_config_t *config, const hkf_model_info_t *info)
 {
-    const int k = node_key_find(name);
-    node_key_group_t group;
-    const hkf_setting_t *d = node_key_setting(k, &group);
-    char *base = group == NODE_KEY_PER_MODEL ? (char *)&m->own_node : (char *)&m->own;
-    *(hkf_real_t *)(void *)(base + d->offset) = value;
-    m->own_keys |= 1ul << k;
+    static const char *const curves[3] = {"noise.pitch", "noise.yaw", "noise.roll"};
+    node_model_t *m = &config->models[config->model_count++];
+    setting_value_t v;
+    int a;
+    strcpy(m->name, info->name);
+    for (a = 0; a < 3; ++a) {
+        v.curve = info->noise[a];
+        set_builtin(m, curves[a], &v);
+    }
+    for (a = 0; a < 3; ++a) {
+        v.real[a] = info->noise[a].tau - info->noise[a].lambda;
+    }
+    set_builtin(m, "r_const", &v);
+    if (info->position_r_scale > 0) {
+        v.real[0] = info->position_r_scale;
+        set_builtin(m, "position_r_scale", &v);
+    }
+    if (info->still_wander > 0) {
+        v.real[0] = info->still_wander;
+        set_builtin(m, "still_wander", &v);
+    }
 }
 
 void node_config_defaults(node_config_t *config)
@@ -45,16 +58,8 @@ void node_config_defaults(node_config_t *config)
     config->position_calibration = hkf_default_calibration_settings;
     config->calibration = hkf_default_calibration_settings;
     config->model_settings.position_r_scale = (hkf_real_t)NODE_BOX_POSITION_R_SCALE;
-    for (i = 0; i < hkf_model_count; ++i) { /* libhkf's table of models: each one's curves and own values */
-        const hkf_model_info_t *info = &hkf_models[i];
-        node_model_t *m = &config->models[config->model_count];
-        add_builtin_model(config, info->name, info->noise);
-        if (info->position_r_scale > 0) {
-            own_builtin_real(m, "position_r_scale", info->position_r_scale);
-        }
-        if (info->still_wander > 0) {
-            own_builtin_real(m, "still_wander", info->still_wander);
-        }
+    for (i = 0; i < hkf_model_count; ++i) { /* libhkf's table of models */
+        add_builtin_model(config, &hkf_models[i]);
     }
 }
 
@@ -65,17 +70,14 @@ static char *config_base(node_config_t *config, node_key_group_t group)
     return (char *)config + (base - (const char *)config);
 }
 
-/* Key k := the text, into its field in the struct at base, once it parses and is within its range;
- * else -1 with what it should have been. */
-static int set_value(char *base, int k, const char *text, char *error, size_t error_size)
+/* The text of key k's value, parsed and within its range, into *v; else -1 with what it should have been. */
+static int parse_value(int k, const char *text, setting_value_t *v, char *error, size_t error_size)
 {
     node_key_group_t group;
     const hkf_setting_t *d = node_key_setting(k, &group);
-    setting_value_t v;
     char name[64], range[160];
-    const int parsed = setting_text_parse(d, text, &v);
-    if (parsed == 0 && hkf_setting_in_range(d, &v)) {
-        memcpy(base + d->offset, &v, node_key_value_size(d));
+    const int parsed = setting_text_parse(d, text, v);
+    if (parsed == 0 && hkf_setting_in_range(d, v)) {
         return 0;
     }
     node_key_name(k, name, sizeof name);
@@ -110,8 +112,6 @@ node_model_t *node_config_model_entry(node_config_t *config, const char *name, c
     m = &config->models[config->model_count++];
     memset(m, 0, sizeof *m);
     strcpy(m->name, name);
-    memcpy(m->noise, config->settings.noise, sizeof m->noise);
-    memcpy(m->r_const, config->settings.r_const, sizeof m->r_const);
     return m;
 }
 
@@ -120,94 +120,80 @@ static void set_origin(char *slot, const char *origin)
     snprintf(slot, NODE_ORIGIN_MAX, "%s", origin);
 }
 
-int node_config_model_owns(const node_model_t *m, int k)
+const node_model_setting_t *node_config_model_set(const node_model_t *m, int k)
 {
-    node_key_group_t group;
-    const hkf_setting_t *d = node_key_setting(k, &group);
-    return node_key_model_may_own(k) &&
-           ((group == NODE_KEY_ANGLES && node_key_model_always_owns(d)) || (m->own_keys >> k & 1ul) != 0);
-}
-
-/* The base's per-model settings with a model's own. */
-node_model_settings_t node_config_per_model_of(const node_config_t *config, const node_model_t *m)
-{
-    node_model_settings_t s = config->model_settings;
     int i;
-    for (i = 0; i < node_key_per_model_count(); ++i) { /* the few per-model keys alone */
-        const int k = node_key_of_per_model(i);
-        node_key_group_t group;
-        const hkf_setting_t *d = node_key_setting(k, &group);
-        if ((m->own_keys >> k & 1ul) != 0) {
-            memcpy((char *)&s + d->offset, (const char *)&m->own_node + d->offset, node_key_value_size(d));
+    for (i = 0; i < m->set_count; ++i) {
+        if (m->sets[i].key == k) {
+            return &m->sets[i];
         }
     }
-    return s;
+    return NULL;
 }
 
-/* The base settings with a model's curves, r_const and own keys. */
-hkf_settings_t node_config_settings_of(const node_config_t *config, const node_model_t *m)
+void node_config_replay(const node_config_t *config, const node_model_t *m, hkf_settings_t *angles,
+                        node_model_settings_t *per_model)
 {
-    hkf_settings_t s = config->settings;
-    int k;
-    memcpy(s.noise, m->noise, sizeof s.noise);
-    memcpy(s.r_const, m->r_const, sizeof s.r_const);
-    for (k = 0; k < node_key_count(); ++k) {
+    int i;
+    *angles = config->settings;
+    *per_model = config->model_settings;
+    for (i = 0; i < m->set_count; ++i) {
         node_key_group_t group;
-        const hkf_setting_t *d = node_key_setting(k, &group);
-        if (group == NODE_KEY_ANGLES && !node_key_model_always_owns(d) && (m->own_keys >> k & 1ul) != 0) {
-            memcpy((char *)&s + d->offset, (const char *)&m->own + d->offset, node_key_value_size(d));
-        }
+        const hkf_setting_t *d = node_key_setting(m->sets[i].key, &group);
+        char *base = group == NODE_KEY_PER_MODEL ? (char *)per_model : (char *)angles;
+        memcpy(base + d->offset, &m->sets[i].value, node_key_value_size(d));
     }
-    return s;
 }
 
+/* Model `model`'s value of a's key: a new assignment of its section, or the one it had replaced. */
 static int set_model_key(node_config_t *config, const char *model, const node_assignment_t *a, char *error,
                          size_t error_size)
 {
-    const char *name = a->key;
-    const int k = node_key_find(name);
+    const int k = node_key_find(a->key);
+    node_model_setting_t *set;
+    setting_value_t v;
+    node_model_t *m;
+    if (k < 0 || !node_key_model_may_own(k)) {
+        snprintf(error, error_size, "unknown key '%s' for a model (--print-config lists them)", a->key);
+        return -1;
+    }
+    m = node_config_model_entry(config, model, error, error_size);
+    if (m == NULL || parse_value(k, a->value, &v, error, error_size) != 0) {
+        return -1;
+    }
+    set = (node_model_setting_t *)node_config_model_set(m, k);
+    if (set == NULL) {
+        set = &m->sets[m->set_count++]; /* room: each key once, NODE_MODEL_MAX_SETS >= the keys */
+        set->key = k;
+    }
+    set->value = v;
+    set_origin(set->origin, a->origin);
+    return 0;
+}
+
+/* The base's value of a's key. */
+static int set_base_key(node_config_t *config, const node_assignment_t *a, char *error, size_t error_size)
+{
+    const int k = node_key_find(a->key);
     node_key_group_t group;
     const hkf_setting_t *d;
-    node_model_t *m;
-    hkf_settings_t scratch;
-    if (k < 0 || !node_key_model_may_own(k)) {
-        snprintf(error, error_size, "unknown key '%s' for a model (--print-config lists them)", name);
+    setting_value_t v;
+    if (k < 0) {
+        snprintf(error, error_size, "unknown key '%s' (--print-config lists them)", a->key);
         return -1;
     }
     d = node_key_setting(k, &group);
-    m = node_config_model_entry(config, model, error, error_size);
-    if (m == NULL) {
+    if (parse_value(k, a->value, &v, error, error_size) != 0) {
         return -1;
     }
-    if (group == NODE_KEY_PER_MODEL) {
-        node_model_settings_t own = node_config_per_model_of(config, m);
-        if (set_value((char *)&own, k, a->value, error, error_size) != 0) {
-            return -1;
-        }
-        m->own_node = own;
-        m->own_keys |= 1ul << k;
-        set_origin(m->origin[k], a->origin);
-        return 0;
-    }
-    scratch = node_config_settings_of(config, m);
-    if (set_value((char *)&scratch, k, a->value, error, error_size) != 0) {
-        return -1;
-    }
-    memcpy(m->noise, scratch.noise, sizeof m->noise);
-    memcpy(m->r_const, scratch.r_const, sizeof m->r_const);
-    if (!node_key_model_always_owns(d)) {
-        memcpy((char *)&m->own + d->offset, (const char *)&scratch + d->offset, node_key_value_size(d));
-        m->own_keys |= 1ul << k;
-    }
-    set_origin(m->origin[k], a->origin);
+    memcpy(config_base(config, group) + d->offset, &v, node_key_value_size(d));
+    set_origin(config->origin[k], a->origin);
     return 0;
 }
 
 /* a to the base settings, or to model's (a's key may name one: model.NAME.KEY): 0, or -1 with the error. */
 int node_config_apply(node_config_t *config, const char *model, node_assignment_t *a, char *error, size_t error_size)
 {
-    node_key_group_t group;
-    int k;
     if (strncmp(a->key, "model.", 6) == 0 && model == NULL) {
         char *name = a->key + 6, *dot = strchr(name, '.');
         if (dot == NULL) {
@@ -218,42 +204,41 @@ int node_config_apply(node_config_t *config, const char *model, node_assignment_
         a->key = dot + 1;
         return set_model_key(config, name, a, error, error_size);
     }
-    if (model != NULL) {
-        return set_model_key(config, model, a, error, error_size);
-    }
-    k = node_key_find(a->key);
-    if (k < 0) {
-        snprintf(error, error_size, "unknown key '%s' (--print-config lists them)", a->key);
-        return -1;
-    }
-    (void)node_key_setting(k, &group);
-    if (set_value(config_base(config, group), k, a->value, error, error_size) != 0) {
-        return -1;
-    }
-    set_origin(config->origin[k], a->origin);
-    return 0;
+    return model != NULL ? set_model_key(config, model, a, error, error_size)
+                         : set_base_key(config, a, error, error_size);
 }
 
-node_model_settings_t node_config_model_settings(const node_config_t *config, const char *model)
+/* The model named `model` in the table, or NULL. */
+static const node_model_t *model_named(const node_config_t *config, const char *model)
 {
     int i;
     for (i = 0; model != NULL && i < config->model_count; ++i) {
         if (strcmp(config->models[i].name, model) == 0) {
-            return node_config_per_model_of(config, &config->models[i]);
+            return &config->models[i];
         }
     }
-    return config->model_settings;
+    return NULL;
+}
+
+node_model_settings_t node_config_model_settings(const node_config_t *config, const char *model)
+{
+    const node_model_t *m = model_named(config, model);
+    hkf_settings_t angles;
+    node_model_settings_t per_model = config->model_settings;
+    if (m != NULL) {
+        node_config_replay(config, m, &angles, &per_model);
+    }
+    return per_model;
 }
 
 hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known)
 {
-    int i;
-    *known = 0;
-    for (i = 0; i < config->model_count; ++i) {
-        if (strcmp(config->models[i].name, model) == 0) {
-            *known = 1;
-            return node_config_settings_of(config, &config->models[i]);
-        }
+    const node_model_t *m = model_named(config, model);
+    hkf_settings_t angles = config->settings;
+    node_model_settings_t per_model;
+    *known = m != NULL;
+    if (m != NULL) {
+        node_config_replay(config, m, &angles, &per_model);
     }
-    return config->settings;
+    return angles;
 }

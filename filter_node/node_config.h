@@ -14,6 +14,7 @@
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "model_pairing.h"
+#include "setting_text.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -36,16 +37,23 @@ typedef struct {
 
 #define NODE_BOX_POSITION_R_SCALE 25.0 /* the base's position_r_scale: a position measured from the face box */
 
+#define NODE_MODEL_MAX_SETS NODE_KEY_SLOTS /* a model sets each key once at most */
+
+/* One value a model gives itself over the base: key `key` (node_keys.h) := value, given at origin
+ * ("FILE:LINE" or "--set"; "": built in, from libhkf's table of models). */
+typedef struct {
+    int key;
+    setting_value_t value;
+    char origin[NODE_ORIGIN_MAX];
+} node_model_setting_t;
+
+/* A model: the assignments its [model NAME] section makes (and, for a built-in model, libhkf's table of
+ * models: its Eq. 8 curves, r_const = each curve's minimum, ...), each key once (a later value replaces
+ * an earlier one), replayed in order over the base settings (node_config_for_model). */
 typedef struct {
     char name[NODE_MODEL_NAME_MAX];  /* the measurement's `model` field */
-    hkf_noise_curve_t noise[3];      /* its Eq. 8 curves: pitch, yaw, roll */
-    hkf_real_t r_const[3];           /* its constant R, deg^2 */
-    /* Any other setting may be the model's own (e.g. its process_noise): own_keys has bit k where
-     * key k of node_keys.h is, and own holds its value; the rest come from the base. */
-    hkf_settings_t own;
-    node_model_settings_t own_node;  /* the node's per-model keys it owns (position_r_scale) */
-    unsigned long own_keys;
-    char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* per key, where this model's value was set ("": built in) */
+    node_model_setting_t sets[NODE_MODEL_MAX_SETS];
+    int set_count;
 } node_model_t;
 
 typedef struct {
@@ -89,7 +97,7 @@ int node_config_set(node_config_t *config, const char *assignment, char *error, 
  * offending settings were given. */
 int node_config_check(const node_config_t *config, char *error, size_t error_size);
 
-/* The settings for a model id: its table entry's curves and own keys over the base settings. */
+/* The settings for a model id: its assignments (node_model_t) replayed over the base settings. */
 hkf_settings_t node_config_for_model(const node_config_t *config, const char *model, int *known);
 
 /* The node's per-model settings for a model id (NULL: none): its own keys over the base's. */

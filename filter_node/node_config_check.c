@@ -17,13 +17,17 @@
 static void describe_origins(const node_config_t *config, const node_model_t *model, node_key_group_t want, int result,
                              char *text, size_t size)
 {
-    hkf_settings_t s = model != NULL ? node_config_settings_of(config, model) : config->settings;
-    const node_model_settings_t per_model = model != NULL ? node_config_per_model_of(config, model) : config->model_settings;
+    hkf_settings_t s = config->settings;
+    node_model_settings_t per_model = config->model_settings;
     int k;
+    if (model != NULL) {
+        node_config_replay(config, model, &s, &per_model);
+    }
     for (k = 0; k < node_key_count(); ++k) {
         node_key_group_t group;
         const hkf_setting_t *d = node_key_setting(k, &group);
-        const char *origin = model != NULL && node_config_model_owns(model, k) ? model->origin[k] : config->origin[k];
+        const node_model_setting_t *set = model != NULL ? node_config_model_set(model, k) : NULL;
+        const char *origin = set != NULL ? set->origin : config->origin[k];
         const char *base = node_key_base(config, &s, &per_model, group);
         char name[64], value[160];
         const size_t used = strlen(text);

@@ -21,17 +21,15 @@ typedef struct {
 /* a to the base settings, or to model's (a's key may name one: model.NAME.KEY): 0, or -1 with the error. */
 int node_config_apply(node_config_t *config, const char *model, node_assignment_t *a, char *error, size_t error_size);
 
-/* The table's entry for the model `name`, added (with the base's curves) if it is not there; NULL with the
+/* The table's entry for the model `name`, added (with no assignments: the base's values) if it is not there; NULL with the
  * error for a bad name or a full table. */
 node_model_t *node_config_model_entry(node_config_t *config, const char *name, char *error, size_t error_size);
 
-/* The base settings with a model's curves, r_const and own keys. */
-hkf_settings_t node_config_settings_of(const node_config_t *config, const node_model_t *m);
+/* Model m's assignment of key k, or NULL: it takes the base's value. */
+const node_model_setting_t *node_config_model_set(const node_model_t *m, int k);
 
-/* The base's per-model settings with a model's own. */
-node_model_settings_t node_config_per_model_of(const node_config_t *config, const node_model_t *m);
-
-/* 1 when model m has its own value of key k (its curves and r_const always). */
-int node_config_model_owns(const node_model_t *m, int k);
+/* The base's angle settings and per-model settings with model m's assignments replayed over them. */
+void node_config_replay(const node_config_t *config, const node_model_t *m, hkf_settings_t *angles,
+                        node_model_settings_t *per_model);
 
 #endif /* NODE_CONFIG_PARTS_H */

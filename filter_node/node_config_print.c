@@ -42,15 +42,16 @@ static void print_all(const node_config_t *config, int origins, FILE *out)
     }
     for (m = 0; m < config->model_count; ++m) {
         const node_model_t *model = &config->models[m];
-        const hkf_settings_t s = node_config_settings_of(config, model);
-        const node_model_settings_t per_model = node_config_per_model_of(config, model);
+        hkf_settings_t s;
+        node_model_settings_t per_model;
+        node_config_replay(config, model, &s, &per_model);
         fprintf(out, "\n[model %s]\n", model->name);
         for (k = 0; k < node_key_count(); ++k) {
             node_key_group_t group;
             (void)node_key_setting(k, &group);
-            if (node_config_model_owns(model, k)) {
-                print_key(k, node_key_base(config, &s, &per_model, group), origins ? model->origin[k] : NULL, "built in",
-                          out);
+            const node_model_setting_t *set = node_config_model_set(model, k);
+            if (set != NULL) {
+                print_key(k, node_key_base(config, &s, &per_model, group), origins ? set->origin : NULL, "built in", out);
             }
         }
     }

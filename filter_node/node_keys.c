@@ -7,8 +7,7 @@
 
 /* Every key is a setting described as libhkf describes its own (hkf/hkf_settings_table.h): the angle
  * filter's, the noise calibration's, the node's own, then the position filter's and its calibration's
- * (named "position_" + its name). A key's index is its slot in the origin arrays; a model may own the angle filter's (own_keys has
- * a bit per index). */
+ * (named "position_" + its name). A key's index is its slot in the origin arrays. */
 static const hkf_setting_t node_settings[] = {
     {"pair_second_alone_from_yaw", offsetof(node_config_t, second_alone_from_yaw), HKF_SETTING_REAL, 1, "deg", 0, 180,
      0, 0, NULL, "two models on one channel: the second alone where the first's |yaw| >= this"},
@@ -113,26 +112,10 @@ size_t node_key_value_size(const hkf_setting_t *d)
     return (size_t)d->count * sizeof(hkf_real_t);
 }
 
-/* Every model entry has its curves and r_const; any other angle key it may set too. */
-int node_key_model_always_owns(const hkf_setting_t *d)
-{
-    return d->type == HKF_SETTING_CURVE || strcmp(d->name, "r_const") == 0;
-}
-
 /* 1 when a [model NAME] section may set key k: the angles' and the node's per-model keys. */
 int node_key_model_may_own(int k)
 {
     node_key_group_t group;
     (void)node_key_setting(k, &group);
     return group == NODE_KEY_ANGLES || group == NODE_KEY_PER_MODEL;
-}
-
-int node_key_of_per_model(int i)
-{
-    return hkf_settings_table_count + hkf_calibration_settings_table_count + NODE_SETTING_COUNT + i;
-}
-
-int node_key_per_model_count(void)
-{
-    return PER_MODEL_SETTING_COUNT;
 }

@@ -27,7 +27,7 @@ typedef enum {
     NODE_KEY_POSITION_CALIBRATION
 } node_key_group_t;
 
-/* How many keys there are; key k (0 <= k < count) is its slot in the origin arrays and its bit in own_keys. */
+/* How many keys there are; key k (0 <= k < count) is its slot in the base's origin array. */
 int node_key_count(void);
 
 /* Key k's description and its group. */
@@ -50,15 +50,8 @@ const char *node_key_base(const node_config_t *config, const hkf_settings_t *ang
 /* The bytes of one value of setting d. */
 size_t node_key_value_size(const hkf_setting_t *d);
 
-/* 1 for the keys every model entry has of its own: its curves and r_const. */
-int node_key_model_always_owns(const hkf_setting_t *d);
-
 /* 1 when a [model NAME] section may set key k: the angles' and the node's per-model keys. */
 int node_key_model_may_own(int k);
-
-/* The index of the i-th per-model key (0 <= i < node_key_per_model_count()). */
-int node_key_of_per_model(int i);
-int node_key_per_model_count(void);
 
 #ifdef __cplusplus
 }

@@ -59,13 +59,21 @@ static int same_settings(const hkf_settings_t *a, const hkf_settings_t *b)
     return memcmp(a, b, sizeof *a) == 0;
 }
 
+/* The angle settings of config's i-th model (its assignments replayed over the base). */
+static hkf_settings_t model_settings(const node_config_t *config, int i)
+{
+    int known;
+    return node_config_for_model(config, config->models[i].name, &known);
+}
+
 /* The first n models have the same names, curves and r_const (where they were set may differ). */
-static int same_models(const node_model_t *a, const node_model_t *b, int n)
+static int same_models(const node_config_t *a, const node_config_t *b, int n)
 {
     int i;
     for (i = 0; i < n; ++i) {
-        if (strcmp(a[i].name, b[i].name) != 0 || memcmp(a[i].noise, b[i].noise, sizeof a[i].noise) != 0 ||
-            memcmp(a[i].r_const, b[i].r_const, sizeof a[i].r_const) != 0) {
+        const hkf_settings_t sa = model_settings(a, i), sb = model_settings(b, i);
+        if (strcmp(a->models[i].name, b->models[i].name) != 0 || memcmp(sa.noise, sb.noise, sizeof sa.noise) != 0 ||
+            memcmp(sa.r_const, sb.r_const, sizeof sa.r_const) != 0) {
             return 0;
         }
     }
@@ -86,13 +94,13 @@ static void test_shipped_file_equals_defaults(void **state)
     assert_true(same_settings(&from_file.settings, &defaults.settings));
     assert_int_equal(from_file.model_count, 4);
     assert_string_equal(from_file.models[1].name, "hopenet");
-    assert_memory_equal(from_file.models[1].noise, hkf_noise_hopenet, sizeof from_file.models[1].noise);
+    assert_memory_equal(model_settings(&from_file, 1).noise, hkf_noise_hopenet, sizeof hkf_noise_hopenet);
     /* our estimators' fitted curves (dev/fit): the file and the built-in table agree */
     assert_string_equal(from_file.models[2].name, "mesh_pnp");
-    assert_memory_equal(from_file.models[2].noise, hkf_noise_mesh_pnp, sizeof from_file.models[2].noise);
+    assert_memory_equal(model_settings(&from_file, 2).noise, hkf_noise_mesh_pnp, sizeof hkf_noise_mesh_pnp);
     assert_string_equal(from_file.models[3].name, "whenet");
-    assert_memory_equal(from_file.models[3].noise, hkf_noise_whenet, sizeof from_file.models[3].noise);
-    assert_true(same_models(from_file.models, defaults.models, 4));
+    assert_memory_equal(model_settings(&from_file, 3).noise, hkf_noise_whenet, sizeof hkf_noise_whenet);
+    assert_true(same_models(&from_file, &defaults, 4));
     /* the position's quality per model: the file's and the built-in table's */
     assert_true(node_config_model_settings(&from_file, "mesh_pnp").position_r_scale == 1.0f);
     assert_true(node_config_model_settings(&from_file, "whenet").position_r_scale ==
@@ -176,6 +184,36 @@ static void test_overrides(void **state)
     assert_int_equal(s.loop_closure, HKF_LOOP_CLOSURE_PER_AXIS);
 }
 
+/* A [model] section is the assignments it makes, replayed over the base: a model's value stands whatever
+ * the base says before or after it, a later value of the same key replaces the earlier one, and what it
+ * does not set (a new model's curves too) is the base's as it is at the end; it prints what it sets alone. */
+static void test_model_is_its_assignments(void **state)
+{
+    static node_config_t c;
+    char printed[16384];
+    FILE *f;
+    hkf_settings_t s;
+    int known;
+    (void)state;
+    node_config_defaults(&c);
+    assert_int_equal(node_config_set(&c, "model.mine.lc_theta = 2", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "model.mine.lc_theta = 6", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "lc_theta = 4", error, sizeof error), 0);
+    assert_int_equal(node_config_set(&c, "noise.yaw = 9 5 1 25", error, sizeof error), 0);
+    assert_int_equal(c.models[c.model_count - 1].set_count, 1); /* one key, set twice */
+    s = node_config_for_model(&c, "mine", &known);
+    assert_true(known && s.lc_theta == 6.0f); /* its own, the later of the two, over the base's later 4 */
+    assert_true(s.noise[1].tau == 9.0f && s.noise[1].sigma == 25.0f); /* the base's curve, set after it */
+    assert_true(node_config_for_model(&c, "whenet", &known).lc_theta == 4.0f);
+    assert_true(node_config_for_model(&c, "whenet", &known).noise[1].tau == hkf_noise_whenet[1].tau);
+    f = fmemopen(printed, sizeof printed, "w");
+    assert_non_null(f);
+    node_config_print(&c, f);
+    assert_int_equal(fclose(f), 0);
+    assert_non_null(strstr(printed, "[model mine]\nlc_theta "));
+    assert_null(strstr(strstr(printed, "[model mine]"), "noise.yaw"));
+}
+
 /* Errors name the key, the value, and in files the line. */
 static void test_errors(void **state)
 {
@@ -249,7 +287,7 @@ static void test_print_reads_back(void **state)
                 back.position_calibration.noise_time == c.position_calibration.noise_time &&
                 back.position.still_wander[2] == c.position.still_wander[2]);
     assert_int_equal(back.model_count, 4);
-    assert_true(same_models(back.models, c.models, 4));
+    assert_true(same_models(&back, &c, 4));
     assert_true(node_config_model_settings(&back, "whenet").position_r_scale == 7.0f &&
                 node_config_model_settings(&back, "mesh_pnp").position_r_scale == 1.0f &&
                 node_config_model_settings(&back, "fsanet").position_r_scale == 30.0f);
@@ -293,7 +331,7 @@ static void test_model_names_one_rule(void **state)
     assert_int_equal(node_config_read_file(&back, path, error, sizeof error), 0);
     assert_int_equal(back.model_count, 5);
     assert_string_equal(back.models[4].name, good);
-    assert_true(same_models(back.models, c.models, 5));
+    assert_true(same_models(&back, &c, 5));
     remove(path);
     assert_int_equal(node_config_read_file(&back, write_temp("[model a#b]\n"), error, sizeof error), -1);
     assert_int_equal(node_config_read_file(&back, write_temp("[model abcdefghijabcdefghijabcdefghijab]\n"), error,
@@ -442,6 +480,7 @@ int main(void)
         cmocka_unit_test(test_shipped_file_equals_defaults),
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_position_quality_per_model),
+        cmocka_unit_test(test_model_is_its_assignments),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_print_reads_back),
         cmocka_unit_test(test_model_names_one_rule),
