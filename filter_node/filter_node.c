@@ -4,10 +4,9 @@
 #include <math.h>
 #include <string.h>
 
-static int setup_filter(filter_node_t *node, const char *model)
+/* The filter set up for the model `model` (its settings: resolved), the calibration beside it. */
+static int setup_filter(filter_node_t *node, const char *model, const resolved_model_t *resolved)
 {
-    int known;
-    const resolved_model_t *resolved = resolved_models_find(&node->models, model, &known);
     if (model != node->model) {
         strncpy(node->model, model, sizeof node->model - 1);
         node->model[sizeof node->model - 1] = '\0';
@@ -31,14 +30,7 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     if (result != HKF_OK) {
         return result; /* cannot happen: the config was checked */
     }
-    return setup_filter(node, "");
-}
-
-/* How much noisier m's model measures the position than the position filter's R says (its config). */
-static float position_r_scale(const filter_node_t *node, const hkf_head_pose_measurement_t *m)
-{
-    int known;
-    return resolved_models_find(&node->models, m->model, &known)->position_r_scale; /* resolved at start */
+    return setup_filter(node, "", resolved_models_find(&node->models, ""));
 }
 
 /* What a measurement's position became, counted. */
@@ -48,16 +40,19 @@ static void count_position(filter_node_t *node, node_position_result_t result)
     node->counts.positions_gated += result == NODE_POSITION_GATED;
 }
 
-/* The first model's frame m: its position into the position filter (node_position.h). */
-static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
+/* The first model's frame m (its model: model): its position into the position filter (node_position.h),
+ * with the model's position R scale. */
+static void take_position(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model)
 {
-    count_position(node, node_position_take_first(&node->position, m, position_r_scale(node, m)));
+    count_position(node, node_position_take_first(&node->position, m, model->position_r_scale));
 }
 
-/* A second model's measurement m: its position stands in where the first model measured none. */
-static void take_second_position(filter_node_t *node, const hkf_head_pose_measurement_t *m)
+/* A second model's measurement m of kept frame `frame` (NULL: no longer kept): its position stands in
+ * where the first model measured none. */
+static void take_second_position(filter_node_t *node, const hkf_head_pose_measurement_t *m,
+                                 const second_model_frame_t *frame, const resolved_model_t *model)
 {
-    count_position(node, node_position_take_second(&node->position, m, position_r_scale(node, m)));
+    count_position(node, node_position_take_second(&node->position, m, frame, model->position_r_scale));
 }
 
 /* A posterior at utime older than the pose published before it (--rate's ticks went past a late frame):
@@ -159,65 +154,76 @@ static int values_ok(const hkf_head_pose_measurement_t *m)
     return !m->valid || finite_angles(m);
 }
 
+/* What the angles made of a first model's measurement (update, coast). */
+typedef enum {
+    ANGLES_REFUSED, /* its step failed: nothing of it is taken */
+    ANGLES_NO_POSE, /* taken, no track to pose yet */
+    ANGLES_POSE     /* taken: *out is the pose's */
+} angles_step_t;
+
 /* A frame without a face: the filter coasts (hkf_predict). */
-static int coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t dt, hkf_head_pose_t *pose)
+static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
+                           hkf_real_t dt, hkf_output_t *out)
 {
-    hkf_output_t out;
     ++node->counts.without_face;
     if (hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
-        strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model) == HKF_OK) {
+        strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model, model) == HKF_OK) {
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
     second_model_keep_frame(&node->second, m, NULL, dt, &node->filter, &node->calibration);
-    take_position(node, m); /* noted: no position */
-    if (hkf_predict(&node->filter, dt, &out) != HKF_OK) { /* no track yet (or again, after a gap) */
-        return 0;
+    if (hkf_predict(&node->filter, dt, out) != HKF_OK) { /* no track yet (or again, after a gap) */
+        return ANGLES_NO_POSE;
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
-    fill_pose(node, &out, m->utime, pose);
-    return 1;
+    return ANGLES_POSE;
 }
 
 /* A measurement: the filter set up for its model (a change of model restarts
  * the track with the new curves), then hkf_update. */
-static int update(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t dt, hkf_head_pose_t *pose)
+static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
+                            hkf_real_t dt, hkf_output_t *out)
 {
     const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
-    hkf_output_t out;
     hkf_filter_t before;
     hkf_calibration_t calibration_before;
-    int known;
     if (strncmp(m->model ? m->model : "", node->model, sizeof node->model) != 0) {
         if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
             ++node->counts.restarts;
         }
-        if (setup_filter(node, m->model ? m->model : "") != HKF_OK) {
-            return 0; /* cannot happen: the config was validated at start */
+        if (setup_filter(node, m->model ? m->model : "", model) != HKF_OK) {
+            return ANGLES_REFUSED; /* cannot happen: the config was validated at start */
         }
         second_model_forget_frames(&node->second);
     }
-    (void)resolved_models_find(&node->models, node->model, &known);
-    node->counts.unknown_models += !known;
+    node->counts.unknown_models += !model->in_table;
     before = node->filter;
     calibration_before = node->calibration;
-    if (hkf_update(&node->filter, z, dt, &out) != HKF_OK) {
+    if (hkf_update(&node->filter, z, dt, out) != HKF_OK) {
         ++node->counts.bad_values;
-        second_model_note_frame(&node->second, m->seq, m->utime); /* noted, not kept: the step never happened */
-        return 0;
+        return ANGLES_REFUSED; /* not kept: the step never happened */
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, z, dt); /* for the next measurement's R */
     second_model_keep_frame(&node->second, m, z, dt, &before, &calibration_before);
     node->last_measurement_utime = m->utime;
-    take_position(node, m);
-    fill_pose(node, &out, m->utime, pose);
-    return 1;
+    return ANGLES_POSE;
 }
 
 /* A measurement taken, its step dt: the angles (a frame with a face updates them, one without coasts),
- * the position and the pose. Returns 1 when *pose is to be published. */
+ * the position, the pose. Returns 1 when *pose is to be published. */
 static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t dt, hkf_head_pose_t *pose)
 {
-    return m->valid ? update(node, m, dt, pose) : coast(node, m, dt, pose);
+    const resolved_model_t *model = resolved_models_find(&node->models, m->model); /* resolved at start */
+    hkf_output_t out;
+    const angles_step_t angles = m->valid ? update(node, m, model, dt, &out) : coast(node, m, model, dt, &out);
+    if (angles == ANGLES_REFUSED) {
+        return 0;
+    }
+    take_position(node, m, model);
+    if (angles == ANGLES_NO_POSE) {
+        return 0;
+    }
+    fill_pose(node, &out, m->utime, pose);
+    return 1;
 }
 
 int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
@@ -262,23 +268,28 @@ static int passed(filter_node_t *node, stream_verdict_t verdict)
     case STREAM_STALE:
         ++node->counts.out_of_order;
         break;
+    case STREAM_SECOND_MODEL: /* taken apart before (take_second) */
+        break;
     }
     return 0;
 }
 
-/* Fuses m, the second measurement of kept frame `index` (second_model_fuse), and counts it: 1 when fused. */
-static int fuse_second(filter_node_t *node, int index, const hkf_head_pose_measurement_t *m)
+/* A second model's measurement m: fused into its kept frame when its angles are good (*frame: that
+ * frame, NULL when no longer kept), and counted. Returns 1 when fused. */
+static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
+                       const second_model_frame_t **frame)
 {
-    int known;
-    if (!second_model_fuse(&node->second, &node->models, index, m, &node->filter, &node->calibration)) {
-        ++node->counts.unpaired;
+    const int bad = m->valid && !finite_angles(m);
+    if (!second_model_take(&node->second, &node->models, m, m->valid && !bad ? &node->filter : NULL,
+                           &node->calibration, frame)) {
+        ++*(bad ? &node->counts.bad_values : &node->counts.unpaired);
         return 0;
     }
-    (void)resolved_models_find(&node->models, node->second.frames[index].second_model, &known);
+
     if (m->utime > node->last_measurement_utime) {
         node->last_measurement_utime = m->utime;
     }
-    node->counts.unknown_models += !known;
+    node->counts.unknown_models += !model->in_table;
     ++node->counts.paired;
     return 1;
 }
@@ -296,40 +307,31 @@ static int pose_after_fusing(filter_node_t *node, hkf_head_pose_t *pose)
     return 1;
 }
 
-/* A second model's measurement m of a frame taken (the kept frame `index`, or SECOND_MODEL_TOO_LATE): its
- * angles fused into that frame, its position standing in where the first model measured none.
- * Returns 1 when *pose, the posterior with it, is to be published. */
-static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, int index, hkf_head_pose_t *pose)
+/* A second model's measurement m of one of the followed publisher's frames: its angles fused into that
+ * frame while it is kept (a frame no longer kept: too late), its position standing in where the first
+ * model measured none, the pose. Returns 1 when *pose, the posterior with it, is to be published. */
+static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
 {
-    int fused = 0;
-    if (m->valid && !finite_angles(m)) {
-        ++node->counts.bad_values;
-    } else if (!m->valid || index < 0) {
-        ++node->counts.unpaired;
-    } else {
-        fused = fuse_second(node, index, m);
-    }
-    take_second_position(node, m);
+    const resolved_model_t *model = resolved_models_find(&node->models, m->model); /* resolved at start */
+    const second_model_frame_t *frame;
+    const int fused = fuse_second(node, m, model, &frame);
+    take_second_position(node, m, frame, model);
     return fused && pose_after_fusing(node, pose);
 }
 
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose)
 {
-    const int route =
-        second_model_route(&node->second, m, node->model, stream_admission_following(&node->admission));
-    stream_admission_result_t r;
+    const stream_measurement_t described = {
+        m->seq, m->utime, arrival_utime, strncmp(m->model ? m->model : "", node->model, sizeof node->model) != 0,
+        values_ok(m)};
+    const stream_admission_result_t r = stream_admission_admit(&node->admission, &described);
     hkf_real_t dt;
     ++node->counts.received; /* every measurement that reaches the node, whatever becomes of it */
-    if (route != SECOND_MODEL_NOT_SECOND) {
-        return take_second(node, m, route, pose);
+    if (r.verdict == STREAM_SECOND_MODEL) {
+        return take_second(node, m, pose);
     }
-    r = stream_admission_admit(&node->admission, m->seq, m->utime, arrival_utime, values_ok(m));
-    if (!passed(node, r.verdict)) {
-        return 0;
-    }
-    if (!taken(node, &r, &dt)) {
-        second_model_note_frame(&node->second, m->seq, m->utime); /* a frame of the publisher, not stepped */
+    if (!passed(node, r.verdict) || !taken(node, &r, &dt)) {
         return 0;
     }
     node->lost_published = 0; /* the estimator speaks: no silence */
@@ -411,7 +413,7 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         ++node->counts.commands;
         second_model_forget_frames(&node->second);
         node_position_reset(&node->position); /* the models' offset too: nothing of before stays */
-        (void)setup_filter(node, node->model);
+        (void)setup_filter(node, node->model, resolved_models_find(&node->models, node->model));
         return 0;
     default:
         return -1;

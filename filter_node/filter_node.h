@@ -41,8 +41,8 @@
  *   a position from the face box). Where the first model measured no
  *   position in a frame (the mesh folds at a profile), a second model's
  *   position of that frame stands in, with its own model's scale, moved onto the first's
- *   by the running mean of their difference (second_position.h), if it comes
- *   before the first model's next. A position is taken within FILTER_NODE_MIN_Z <= z <=
+ *   by the running mean of their difference (model_offset.h), while the frame is kept
+ *   (FILTER_NODE_PAIR_FRAMES). A position is taken within FILTER_NODE_MIN_Z <= z <=
  *   HKF_MAX_ABS_POSITION and |x|, |y| <= HKF_MAX_ABS_POSITION (z = 0: none measured; others are
  *   counted as bad_positions), and passes the position filter's outlier gate. The pose carries
  *   the filtered position at its time (hkf_position_extrapolate: coasting at its rate for up to
@@ -124,9 +124,10 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
  * captured before that and arriving after it keeps its own stamp. */
 
 /* Handles one measurement that arrived at arrival_utime (the receive clock:
- * a monotonic clock live, the log's event timestamp offline): a second model's measurement of a
- * frame taken (second_model.h), or admission (stream_admission.h), then the angles, the position and
- * the pose. Returns 1 when *pose is to be published. */
+ * a monotonic clock live, the log's event timestamp offline), in one pass: admission (stream_admission.h;
+ * a second model's measurement of a frame is told apart first), the angles (a first model's step, or a
+ * second model's fused into its frame: second_model.h), the position (node_position.h), the pose.
+ * Returns 1 when *pose is to be published. */
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose);
 

@@ -38,17 +38,17 @@ void node_position_fill(const node_position_t *p, int64_t utime, hkf_head_pose_t
     }
 }
 
-/* A measurement's position: 1 when it carries one the node takes (FILTER_NODE_MIN_Z <= z and every
- * axis within HKF_MAX_ABS_POSITION), 0 when it carries none (no face, or z = 0: not measured), -1
- * when it carries a bad one (non-finite, z < 0 or too near, beyond the range). */
-static int position_of(const hkf_head_pose_measurement_t *m)
+/* A measurement's position xyz (valid: it found a face): 1 when it is one the node takes
+ * (FILTER_NODE_MIN_Z <= z and every axis within HKF_MAX_ABS_POSITION), 0 when there is none (no face,
+ * or z = 0: not measured), -1 when it is a bad one (non-finite, z < 0 or too near, beyond the range). */
+static int position_of(int valid, const float xyz[3])
 {
     const float most = (float)HKF_MAX_ABS_POSITION;
-    if (!m->valid || m->z == 0.f) {
+    if (!valid || xyz[2] == 0.f) {
         return 0;
     }
-    return isfinite(m->x) && isfinite(m->y) && isfinite(m->z) && fabsf(m->x) <= most && fabsf(m->y) <= most &&
-                   m->z >= FILTER_NODE_MIN_Z && m->z <= most
+    return isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2]) && fabsf(xyz[0]) <= most &&
+                   fabsf(xyz[1]) <= most && xyz[2] >= FILTER_NODE_MIN_Z && xyz[2] <= most
                ? 1
                : -1;
 }
@@ -75,8 +75,7 @@ node_position_result_t node_position_take_first(node_position_t *p, const hkf_he
                                                 float r_scale)
 {
     const float xyz[3] = {m->x, m->y, m->z};
-    const int measured = position_of(m);
-    second_position_note_first(&p->second, m->seq, m->utime, measured > 0, xyz);
+    const int measured = position_of(m->valid, xyz);
     if (measured == 0) {
         (void)hkf_calibration_update_position(&p->calibration, &p->filter, NULL, 0); /* a frame without one */
     }
@@ -87,18 +86,31 @@ node_position_result_t node_position_take_first(node_position_t *p, const hkf_he
 }
 
 node_position_result_t node_position_take_second(node_position_t *p, const hkf_head_pose_measurement_t *m,
-                                                 float r_scale)
+                                                 const second_model_frame_t *frame, float r_scale)
 {
     const float xyz[3] = {m->x, m->y, m->z};
-    const int measured = position_of(m);
+    const int measured = position_of(m->valid, xyz);
     float moved[3];
+    int first, a;
     if (measured < 0) {
         return NODE_POSITION_BAD;
     }
-    if (measured > 0 && second_position_take(&p->second, m->seq, m->utime, xyz, moved)) {
-        return update_position(p, moved, m->utime, r_scale);
+    if (measured == 0 || frame == NULL) {
+        return NODE_POSITION_NONE;
     }
-    return NODE_POSITION_NONE;
+    first = position_of(frame->valid, frame->xyz) > 0;
+    {
+        const double difference[3] = {(double)frame->xyz[0] - xyz[0], (double)frame->xyz[1] - xyz[1],
+                                      (double)frame->xyz[2] - xyz[2]};
+        model_offset_learn(&p->offset, m->model ? m->model : "", first ? difference : NULL, FILTER_NODE_POSITION_ALIGN);
+    }
+    if (first || p->offset.frames < FILTER_NODE_POSITION_MIN_ALIGN) {
+        return NODE_POSITION_NONE; /* both measured it: the offset learnt; or not aligned yet */
+    }
+    for (a = 0; a < 3; ++a) {
+        moved[a] = xyz[a] + (float)p->offset.offset[a];
+    }
+    return update_position(p, moved, m->utime, r_scale);
 }
 
 int node_position_init(node_position_t *p, const hkf_position_settings_t *settings,
@@ -106,7 +118,7 @@ int node_position_init(node_position_t *p, const hkf_position_settings_t *settin
 {
     int result;
     memset(p, 0, sizeof *p);
-    second_position_init(&p->second);
+    model_offset_init(&p->offset);
     result = hkf_position_init(&p->filter, settings);
     return result != HKF_OK ? result : hkf_calibration_init_position(&p->calibration, calibration, &p->filter);
 }
@@ -115,7 +127,6 @@ void node_position_restart(node_position_t *p)
 {
     hkf_position_restart(&p->filter);
     (void)hkf_calibration_update_position(&p->calibration, &p->filter, NULL, 0); /* the history breaks, n stays */
-    second_position_forget_frames(&p->second);
 }
 
 /* The centre: the position last published (at the angles' frame time), as the pose carried it - held

@@ -22,20 +22,19 @@ int resolved_models_init(resolved_models_t *r, const node_config_t *config)
         const hkf_settings_t s = node_config_for_model(config, config->models[i].name, &known);
         memcpy(r->names[i], config->models[i].name, sizeof r->names[i]);
         result = resolve(&r->models[i], &s, node_config_model_settings(config, config->models[i].name));
+        r->models[i].in_table = 1;
         r->count = i + 1;
     }
     return result;
 }
 
-const resolved_model_t *resolved_models_find(const resolved_models_t *r, const char *model, int *known)
+const resolved_model_t *resolved_models_find(const resolved_models_t *r, const char *model)
 {
     int i;
     for (i = 0; i < r->count; ++i) {
         if (strcmp(r->names[i], model != NULL ? model : "") == 0) {
-            *known = 1;
             return &r->models[i];
         }
     }
-    *known = 0;
     return &r->base;
 }

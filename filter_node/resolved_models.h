@@ -19,6 +19,7 @@ typedef struct {
     hkf_settings_t settings;      /* node_config_for_model's */
     hkf_model_prepared_t noise;   /* its R (mode, Eq. 8 curves, constant, clamp) as a second model */
     float position_r_scale;       /* its position R over the position filter's (node_config_model_settings') */
+    int in_table;                 /* 1: a model of the config's table; 0: the base, for any other id */
 } resolved_model_t;
 
 typedef struct {
@@ -33,8 +34,8 @@ typedef struct {
 /* 0, or the hkf_result_t of a settings set that hkf_model_noise_init refuses (not after node_config_check). */
 int resolved_models_init(resolved_models_t *r, const node_config_t *config);
 
-/* The model for an id (NULL: ""): its entry, or the base; *known 1 when the id is in the table. */
-const resolved_model_t *resolved_models_find(const resolved_models_t *r, const char *model, int *known);
+/* The model for an id (NULL: ""): its entry, or the base (in_table 0). */
+const resolved_model_t *resolved_models_find(const resolved_models_t *r, const char *model);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,7 @@ void second_model_init(second_model_t *s)
 {
     memset(s, 0, sizeof *s);
     s->align_frames = FILTER_NODE_ALIGN_FRAMES;
+    model_offset_init(&s->offset);
 }
 
 void second_model_forget_frames(second_model_t *s)
@@ -35,54 +36,24 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
         memcpy(frame->z, z, sizeof frame->z);
     }
     frame->dt = dt;
+    frame->xyz[0] = m->x;
+    frame->xyz[1] = m->y;
+    frame->xyz[2] = m->z;
     frame->before = *before;
     frame->calibration_before = *calibration_before;
-    second_model_note_frame(s, m->seq, m->utime);
 }
 
-static int frame_id_slot(int64_t seq)
-{
-    return (int)((uint64_t)seq % FILTER_NODE_FRAME_IDS);
-}
-
-void second_model_note_frame(second_model_t *s, int64_t seq, int64_t utime)
-{
-    const int slot = frame_id_slot(seq);
-    s->frame_ids[slot].seq = seq;
-    s->frame_ids[slot].utime = utime;
-}
-
-/* The index of the kept frame whose second measurement m is (same seq and utime, another model), or -1. */
-static int frame_of(const second_model_t *s, const hkf_head_pose_measurement_t *m)
+/* The kept frame that m, another model's measurement, is of (the same seq and utime), or NULL. */
+static second_model_frame_t *frame_of(second_model_t *s, const hkf_head_pose_measurement_t *m)
 {
     int i;
     for (i = 0; i < s->frame_count; ++i) {
-        const int index = (s->frame_newest + FILTER_NODE_PAIR_FRAMES - i) % FILTER_NODE_PAIR_FRAMES;
-        const second_model_frame_t *frame = &s->frames[index];
+        second_model_frame_t *frame = &s->frames[(s->frame_newest + FILTER_NODE_PAIR_FRAMES - i) % FILTER_NODE_PAIR_FRAMES];
         if (frame->seq == m->seq && frame->utime == m->utime) {
-            return strncmp(frame->model, m->model ? m->model : "", sizeof frame->model) != 0 ? index : -1;
+            return strncmp(frame->model, m->model ? m->model : "", sizeof frame->model) != 0 ? frame : NULL;
         }
     }
-    return -1;
-}
-
-/* Its seq and utime are those of one of the followed publisher's last frames,
- * its model another. (Another publisher's seq and utime are not.) */
-static int too_late(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model)
-{
-    const int slot = frame_id_slot(m->seq);
-    return s->frame_ids[slot].seq == m->seq && s->frame_ids[slot].utime == m->utime && m->utime != 0 &&
-           strncmp(first_model, m->model ? m->model : "", NODE_MODEL_NAME_MAX) != 0;
-}
-
-int second_model_route(const second_model_t *s, const hkf_head_pose_measurement_t *m, const char *first_model,
-                       int following)
-{
-    const int index = frame_of(s, m);
-    if (index >= 0) {
-        return index;
-    }
-    return following && too_late(s, m, first_model) ? SECOND_MODEL_TOO_LATE : SECOND_MODEL_NOT_SECOND;
+    return NULL;
 }
 
 /* Where the first model measures a large turn, the second's measurement is taken alone. */
@@ -98,8 +69,7 @@ static int redo_filter_step(const resolved_models_t *models, hkf_filter_t *f, co
 {
     *taken = frame->valid ? frame->z : NULL;
     if (frame->paired) {
-        int known;
-        const resolved_model_t *second = resolved_models_find(models, frame->second_model, &known);
+        const resolved_model_t *second = resolved_models_find(models, frame->second_model);
         const int first = frame->valid && !first_set_aside(models, frame);
         *taken = first ? frame->z : frame->z2;
         return hkf_update_pair_prepared(f, first ? frame->z : NULL, frame->z2, &second->noise, frame->dt, NULL);
@@ -122,33 +92,21 @@ static int redo_step(const resolved_models_t *models, hkf_filter_t *f, hkf_calib
     return result != HKF_OK ? result : hkf_calibration_update(c, f, taken, frame->dt);
 }
 
-/* The frame's second measurement (frame->z2) moved onto the first model's
- * frame: plus the running mean of (first - second) over the frames both
- * measured, updated with this frame's difference when the first measured it too. */
+/* The frame's second measurement (frame->z2) moved onto the first model's frame (model_offset.h),
+ * the offset learning from this frame's difference where the first is trusted (fused with it). */
 static void align_second(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame)
 {
+    /* at a large turn the mesh's own error is what the second model is there to avoid */
+    const int learn = frame->valid && !first_set_aside(models, frame);
+    double difference[3];
     int a;
-    if (strncmp(s->model, frame->second_model, sizeof s->model) != 0) {
-        /* another second model: start over */
-        strncpy(s->model, frame->second_model, sizeof s->model - 1);
-        s->offset_frames = 0;
-        memset(s->offset, 0, sizeof s->offset);
-    }
-    /* learnt only where the first model is trusted (where the two are fused): at a large turn the
-     * mesh's own error is what the second model is there to avoid */
-    if (frame->valid && s->align_frames > 0 && !first_set_aside(models, frame)) {
-        const long n = s->offset_frames < s->align_frames ? s->offset_frames + 1 : s->align_frames;
-        for (a = 0; a < 3; ++a) {
-            double difference = (double)frame->z[a] - (double)frame->z2[a];
-            if (a == HKF_AXIS_YAW) {
-                difference = pose_angle_wrap(difference);
-            }
-            s->offset[a] += (hkf_real_t)((difference - (double)s->offset[a]) / (double)n);
-        }
-        s->offset_frames = n;
-    }
     for (a = 0; a < 3; ++a) {
-        double v = (double)frame->z2[a] + (double)s->offset[a];
+        difference[a] = (double)frame->z[a] - (double)frame->z2[a];
+    }
+    difference[HKF_AXIS_YAW] = pose_angle_wrap(difference[HKF_AXIS_YAW]);
+    model_offset_learn(&s->offset, frame->second_model, learn ? difference : NULL, s->align_frames);
+    for (a = 0; a < 3; ++a) {
+        double v = (double)frame->z2[a] + (double)s->offset.offset[a];
         if (a == HKF_AXIS_YAW) {
             v = pose_angle_wrap(v);
         }
@@ -157,12 +115,13 @@ static void align_second(second_model_t *s, const resolved_models_t *models, sec
     }
 }
 
-int second_model_fuse(second_model_t *s, const resolved_models_t *models, int index, const hkf_head_pose_measurement_t *m,
-                      hkf_filter_t *filter, hkf_calibration_t *calibration)
+/* m fused into its kept frame `frame` (second_model_take). */
+static int fuse(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame,
+                const hkf_head_pose_measurement_t *m, hkf_filter_t *filter, hkf_calibration_t *calibration)
 {
     hkf_filter_t f, before[FILTER_NODE_PAIR_FRAMES];
     hkf_calibration_t c, calibration_before[FILTER_NODE_PAIR_FRAMES];
-    second_model_frame_t *frame = &s->frames[index];
+    const int index = (int)(frame - s->frames);
     const int count = (s->frame_newest - index + FILTER_NODE_PAIR_FRAMES) % FILTER_NODE_PAIR_FRAMES + 1;
     int i;
     if (frame->paired) { /* one second measurement per frame */
@@ -191,4 +150,12 @@ int second_model_fuse(second_model_t *s, const resolved_models_t *models, int in
     *filter = f;
     *calibration = c;
     return 1;
+}
+
+int second_model_take(second_model_t *s, const resolved_models_t *models, const hkf_head_pose_measurement_t *m,
+                      hkf_filter_t *filter, hkf_calibration_t *calibration, const second_model_frame_t **frame)
+{
+    second_model_frame_t *kept = frame_of(s, m);
+    *frame = kept;
+    return kept != NULL && filter != NULL && fuse(s, models, kept, m, filter, calibration);
 }

@@ -112,20 +112,36 @@ stream_admission_result_t stream_admission_admit_time(stream_admission_t *a, int
     return r;
 }
 
-stream_admission_result_t stream_admission_admit(stream_admission_t *a, int64_t seq, int64_t utime, int64_t arrival_utime,
-                                                 int values_ok)
+static int frame_slot(int64_t seq)
+{
+    return (int)((uint64_t)seq % STREAM_FRAME_IDS);
+}
+
+/* 1 when (seq, utime) is one of the followed publisher's last frames. */
+static int known_frame(const stream_admission_t *a, int64_t seq, int64_t utime)
+{
+    const int i = frame_slot(seq);
+    return a->frames[i].known && a->frames[i].seq == seq && a->frames[i].utime == utime;
+}
+
+stream_admission_result_t stream_admission_admit(stream_admission_t *a, const stream_measurement_t *m)
 {
     stream_admission_result_t r;
-    const stream_verdict_t verdict = stream_admission_check(a, seq, utime, arrival_utime);
+    const stream_verdict_t verdict = m->other_model && known_frame(a, m->seq, m->utime)
+                                         ? STREAM_SECOND_MODEL
+                                         : stream_admission_check(a, m->seq, m->utime, m->arrival_utime);
+    memset(&r, 0, sizeof r);
+    r.verdict = verdict;
     if (verdict != STREAM_GO_ON && verdict != STREAM_NEW_CLOCK) {
-        memset(&r, 0, sizeof r);
-        r.verdict = verdict;
         return r;
     }
-    r = stream_admission_admit_time(a, utime, values_ok);
+    a->frames[frame_slot(m->seq)].known = 1; /* a frame of the followed publisher, taken or not */
+    a->frames[frame_slot(m->seq)].seq = m->seq;
+    a->frames[frame_slot(m->seq)].utime = m->utime;
+    r = stream_admission_admit_time(a, m->utime, m->values_ok);
     r.verdict = verdict;
     if (r.taken) {
-        stream_admission_took_arrival(a, arrival_utime);
+        stream_admission_took_arrival(a, m->arrival_utime);
     }
     return r;
 }

@@ -4,6 +4,10 @@
  * (filter_node.h) asks it and acts on the answer.
  *
  * The rules, in the order they are asked:
+ * - a second model's measurement: one with the seq and capture time of one of the followed
+ *   publisher's last STREAM_FRAME_IDS frames (one that passed the rules below), but not of the model
+ *   the node follows, is that frame's measurement by a second model (filter_node.h): no other rule
+ *   is asked of it, and it changes nothing here;
  * - one publisher: the node follows one estimator's frame counter. A measurement whose seq does
  *   not continue it (1 to STREAM_MAX_SEQ_STEP frames on) is from another publisher on the same
  *   channel and is refused, unless the followed one has been silent for STREAM_TIMEOUT_US (it
@@ -40,6 +44,7 @@ extern "C" {
 #define STREAM_MAX_SEQ_STEP 300            /* frames: 10 s at 30 fps of dropped frames */
 #define STREAM_TIMEOUT_US 1000000LL        /* 1 s without the followed publisher */
 #define STREAM_LATEST_UTIME (INT64_MAX - 31557600000000LL) /* us: a Julian year before the clock's end */
+#define STREAM_FRAME_IDS 512               /* the followed publisher's last frames known by (seq, utime) */
 
 typedef struct {
     int have_time;                    /* a measurement has been taken: */
@@ -50,6 +55,10 @@ typedef struct {
     int64_t stream_arrival_utime;     /* when that arrived */
     int jump_count;                   /* clock and stale rules: consistent refused stamps in a row */
     int64_t jump_utime, jump_arrival_utime; /* the last of them */
+    struct {
+        int known;
+        int64_t seq, utime;
+    } frames[STREAM_FRAME_IDS];       /* the followed publisher's frames, by seq modulo STREAM_FRAME_IDS */
 } stream_admission_t;
 
 typedef enum {
@@ -57,7 +66,8 @@ typedef enum {
     STREAM_NEW_CLOCK,      /* passed on a new capture clock: no time reference now; the track restarts */
     STREAM_OTHER_PUBLISHER,
     STREAM_CLOCK_JUMP,
-    STREAM_STALE           /* older than the last one taken */
+    STREAM_STALE,          /* older than the last one taken */
+    STREAM_SECOND_MODEL    /* a second model's measurement of one of the followed publisher's frames */
 } stream_verdict_t;
 
 typedef enum { STREAM_IN_ORDER, STREAM_OUT_OF_ORDER, STREAM_DUPLICATE } stream_order_t;
@@ -72,11 +82,18 @@ typedef struct {
 
 void stream_admission_init(stream_admission_t *a);
 
-/* The node's one call per measurement (seq, capture time utime, arrival at arrival_utime; values_ok: its
- * angles are finite and in range, or it has none): the publisher, clock and stale rules, then, when they
- * pass, the order rule, and a measurement in order with good values taken with its arrival. */
-stream_admission_result_t stream_admission_admit(stream_admission_t *a, int64_t seq, int64_t utime, int64_t arrival_utime,
-                                                 int values_ok);
+/* One measurement as the node describes it to admission. */
+typedef struct {
+    int64_t seq, utime;    /* its publisher's frame counter, its capture time */
+    int64_t arrival_utime; /* when it arrived (the receive clock) */
+    int other_model;       /* 1: its model is not the one the node follows */
+    int values_ok;         /* its angles are finite and in range, or it has none */
+} stream_measurement_t;
+
+/* The node's one call per measurement: the second model's rule, the publisher, clock and stale rules,
+ * then, when they pass, the order rule, and a measurement in order with good values taken with its
+ * arrival. */
+stream_admission_result_t stream_admission_admit(stream_admission_t *a, const stream_measurement_t *m);
 
 /* The same by capture time alone (no publisher, no arrival): the order rule, then taken when in order
  * with good values. */

@@ -91,19 +91,21 @@ def shipped_config(source):
     return path if os.path.exists(path) else os.path.join(source, "tools", "filter_node", "hkf-filter.conf")
 
 
-def largest_angle_difference(csv_a, csv_b):
-    """The largest |pitch|, |yaw| or |roll| difference (deg) between two pose CSVs of the same frames, or None
-    when their rows are not the same frames."""
+def largest_differences(csv_a, csv_b):
+    """The largest |pitch|, |yaw| or |roll| difference (deg) and the largest |x|, |y| or |z| difference (cm)
+    between two pose CSVs of the same frames, or None when their rows are not the same frames."""
     with open(csv_a) as a, open(csv_b) as b:
         rows_a, rows_b = list(csv.DictReader(a)), list(csv.DictReader(b))
     if [r["utime"] for r in rows_a] != [r["utime"] for r in rows_b]:
         return None
-    worst = 0.0
+    angle = position = 0.0
     for ra, rb in zip(rows_a, rows_b):
         for axis in ("pitch", "yaw", "roll"):
             d = abs(float(ra[axis]) - float(rb[axis]))
-            worst = max(worst, min(d, 360.0 - d) if axis == "yaw" else d)
-    return worst
+            angle = max(angle, min(d, 360.0 - d) if axis == "yaw" else d)
+        for axis in ("x", "y", "z"):
+            position = max(position, abs(float(ra[axis]) - float(rb[axis])))
+    return angle, position
 
 
 def clip_row(clip, builds, work, types):
@@ -125,7 +127,7 @@ def clip_row(clip, builds, work, types):
     same_poses = all(filecmp.cmp(a, b, shallow=False) for a, b in zip(outputs[0], outputs[1]))
     lines = sum(1 for _ in open(outputs[0][1])) - 1
     return (clip, len(raw[0][1]), same_raw, (raw[0][2], raw[1][2]), lines, same_poses,
-            largest_angle_difference(outputs[0][1], outputs[1][1]))
+            largest_differences(outputs[0][1], outputs[1][1]))
 
 
 def main():
@@ -145,8 +147,8 @@ def main():
         builds.append((label, build(source, os.path.join(folder, "build")), source))
     types = os.path.join(builds[0][1], "lcmtypes", "python")
     print("| clip | first model's measurements | identical | second model's (before / after) | poses | identical (log, CSV) "
-          "| largest angle difference |")
-    print("| --- | ---: | --- | ---: | ---: | --- | ---: |")
+          "| largest angle difference | largest position difference |")
+    print("| --- | ---: | --- | ---: | ---: | --- | ---: | ---: |")
     differs = 0
     for clip in args.clips.split(","):
         if not os.path.exists(os.path.join(VIDEOS, clip + ".mp4")):
@@ -154,7 +156,8 @@ def main():
         name, count, same_raw, seconds, poses, same_poses, largest = clip_row(clip, builds, args.work, types)
         differs += (not same_raw) + (not same_poses)
         print(f"| {name} | {count} | {'yes' if same_raw else 'NO'} | {seconds[0]} / {seconds[1]} | {poses} | "
-              f"{'yes' if same_poses else 'NO'} | {'other frames' if largest is None else f'{largest:.2g} deg'} |",
+              f"{'yes' if same_poses else 'NO'} | "
+              f"{'other frames | ' if largest is None else f'{largest[0]:.2g} deg | {largest[1]:.2g} cm'} |",
               flush=True)
     print("same_outputs: " + ("every output identical" if not differs else f"{differs} outputs differ"))
     return 1 if differs else 0

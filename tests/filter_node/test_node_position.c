@@ -149,6 +149,30 @@ static void test_second_model_position(void **state)
     assert_true(fabsf(pose.z - 50.0f) < 1.0f);
 }
 
+/* A second model's position stands in only once the offset has averaged FILTER_NODE_POSITION_MIN_ALIGN
+ * frames both measured: before, a frame the mesh missed keeps the position where the mesh left it. */
+static void test_second_position_waits_for_the_offset(void **state)
+{
+    hkf_head_pose_t pose;
+    int64_t utime = T0;
+    int i;
+    (void)state;
+    for (i = 0; i < FILTER_NODE_POSITION_MIN_ALIGN; ++i) {
+        int64_t taken;
+        utime += FRAME_US;
+        feed_two_models(utime, utime, 1.0f, 60.0f, i != FILTER_NODE_POSITION_MIN_ALIGN - 1, 3.0f, &pose);
+        taken = node.position.utime;
+        assert_true(node.position.offset.frames == (i < FILTER_NODE_POSITION_MIN_ALIGN - 1 ? i + 1 : i));
+        assert_true(taken == (i < FILTER_NODE_POSITION_MIN_ALIGN - 1 ? utime : utime - FRAME_US)); /* not aligned yet */
+    }
+    utime += FRAME_US;
+    feed_two_models(utime, utime, 1.0f, 60.0f, 1, 3.0f, &pose); /* the fifth frame both measured */
+    utime += FRAME_US;
+    feed_two_models(utime, utime, 1.0f, 60.0f, 0, 3.0f, &pose);
+    assert_true(node.position.utime == utime); /* the second's stands in, moved onto the mesh's */
+    assert_true(filter_node_extrapolate(&node, utime, &pose) == 1 && fabsf(pose.z - 60.0f) < 0.1f);
+}
+
 /* Hardening round 3, item 1: the mesh misses a frame, the clock steps back 1 h, and the second
  * model's measurement of the missed frame arrives after the node has followed the new clock.
  * Before, the position track took that old (1 h later) stamp and then froze for the hour; now
@@ -193,7 +217,9 @@ static void test_position_follows_after_clock_step_back(void **state)
  * a frame without a face, then a second model's measurement of it with NaN angles but a valid
  * position), and then the clock stepped back 1 h. The resync restarted only a started angle track,
  * so the position kept its stamp on the old clock and refused every later one: x stayed at 30 cm
- * while the mesh measured 0 -> 32 cm (here 0 -> -29 cm). Now the position restarts with the clock and follows. */
+ * while the mesh measured 0 -> 32 cm (here 0 -> -29 cm). Now the position restarts with the clock and follows,
+ * and the resync forgets the kept frames: the old frame's second measurement, sent again after it, is
+ * not taken on its old stamp. */
 static void test_position_alone_follows_a_clock_step(void **state)
 {
     hkf_head_pose_measurement_t m, second;
@@ -221,6 +247,11 @@ static void test_position_alone_follows_a_clock_step(void **state)
         m.model = "mesh_pnp";
         m.x = x, m.y = 0.0f, m.z = 60.0f;
         (void)filter_node_receive(&node, &m, T0 + i * FRAME_US + gap, &pose);
+        if (i == 21 + STREAM_RESYNC_MESSAGES) { /* the new clock followed: the old frame's second again, late */
+            hkf_head_pose_t ignored;
+            assert_int_equal(node.counts.clock_resyncs, 1);
+            (void)filter_node_receive(&node, &second, T0 + i * FRAME_US + gap + 1000, &ignored);
+        }
     }
     assert_int_equal(node.counts.clock_resyncs, 1);
     print_message("the clock stepped back with the position alone started: x %.2f cm (the head at %.1f cm)\n",
@@ -431,6 +462,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_position_filtered, setup),
         cmocka_unit_test_setup(test_second_model_position, setup),
+        cmocka_unit_test_setup(test_second_position_waits_for_the_offset, setup),
         cmocka_unit_test_setup(test_position_follows_after_clock_step_back, setup),
         cmocka_unit_test_setup(test_position_alone_follows_a_clock_step, setup),
         cmocka_unit_test_setup(test_position_gated_and_bounded, setup),

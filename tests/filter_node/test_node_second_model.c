@@ -206,8 +206,8 @@ static void test_second_model_offset_aligned(void **state)
     /* unaligned, the second model pulls the track by its weight, R1 / (R1 + R2) of its offset: in pitch it is
      * visible (0.23 deg of 4 with the defaults); in yaw hopenet's curve leaves it next to none */
     assert_true(bias_unaligned[0] > 0.15 && bias_unaligned[0] > 5.0 * fabs(bias_aligned[0]));
-    assert_float_equal(node.second.offset[0], -4.0, 0.05);
-    assert_float_equal(node.second.offset[1], 3.0, 0.05);
+    assert_float_equal(node.second.offset.offset[0], -4.0, 0.05);
+    assert_float_equal(node.second.offset.offset[1], 3.0, 0.05);
 }
 
 /* The offset is a running mean from the first frame on: after 10 frames
@@ -228,9 +228,9 @@ static void test_second_model_offset_from_the_first_frames(void **state)
         (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
         assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 1);
     }
-    assert_int_equal(node.second.offset_frames, 10);
-    assert_float_equal(node.second.offset[0], 4.0, 1e-4);
-    assert_float_equal(node.second.offset[1], -3.0, 1e-4);
+    assert_int_equal(node.second.offset.frames, 10);
+    assert_float_equal(node.second.offset.offset[0], 4.0, 1e-4);
+    assert_float_equal(node.second.offset.offset[1], -3.0, 1e-4);
     /* at a large turn (the first model's |yaw| >= 25 deg) the first is not trusted: nothing is learnt there */
     for (i = 10; i < 20; ++i) {
         m = measurement(T0 + i * FRAME_US, 1, 2.0, 40.0, 0.0);
@@ -240,8 +240,17 @@ static void test_second_model_offset_from_the_first_frames(void **state)
         (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
         assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 1);
     }
-    assert_int_equal(node.second.offset_frames, 10);
-    assert_float_equal(node.second.offset[0], 4.0, 1e-4);
+    assert_int_equal(node.second.offset.frames, 10);
+    assert_float_equal(node.second.offset.offset[0], 4.0, 1e-4);
+    /* another second model: its own offset, from its first frame on */
+    m = measurement(T0 + 20 * FRAME_US, 1, 2.0, 5.0, 0.0);
+    second = m;
+    second.model = "whenet";
+    second.pitch = m.pitch + 1.0f;
+    (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
+    assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), 1);
+    assert_int_equal(node.second.offset.frames, 1);
+    assert_float_equal(node.second.offset.offset[0], -1.0, 1e-4);
 }
 
 /* Both models near the yaw seam (WHENet reports up to +-180): the head sways
@@ -274,7 +283,7 @@ static void test_second_model_offset_across_the_seam(void **state)
             worst = d > worst ? d : worst;
         }
     }
-    assert_float_equal(node.second.offset[1], -2.0, 1e-3);
+    assert_float_equal(node.second.offset.offset[1], -2.0, 1e-3);
     print_message("largest distance from the first model's track: %.3f deg\n", worst);
     /* the fused track stays with the first model's: a seam error would put it 2 deg (the offset) or a turn
      * away; what remains is the dynamics of a halved R (0.59 deg on this noise-free turn) */

@@ -14,11 +14,19 @@
 #define T0 1700000000000000LL
 #define FRAME_US 33333LL
 
+/* One measurement as the node describes it: of the followed model unless other_model. */
+static stream_admission_result_t admit(stream_admission_t *a, int64_t seq, int64_t utime, int64_t arrival,
+                                       int other_model, int values_ok)
+{
+    const stream_measurement_t m = {seq, utime, arrival, other_model, values_ok};
+    return stream_admission_admit(a, &m);
+}
+
 /* A measurement with good values as the node offers it (stream_admission_admit). Returns the verdict;
  * *dt the step taken (-1 when not taken). */
 static stream_verdict_t offer(stream_admission_t *a, int64_t seq, int64_t utime, int64_t arrival, double *dt)
 {
-    const stream_admission_result_t r = stream_admission_admit(a, seq, utime, arrival, 1);
+    const stream_admission_result_t r = admit(a, seq, utime, arrival, 0, 1);
     *dt = r.taken ? r.dt : -1.0;
     return r.verdict;
 }
@@ -31,16 +39,16 @@ static void test_admit_in_one_call(void **state)
     stream_admission_result_t r;
     (void)state;
     stream_admission_init(&a);
-    r = stream_admission_admit(&a, 1, T0, 1000, 1);
+    r = admit(&a, 1, T0, 1000, 0, 1);
     assert_true(r.verdict == STREAM_GO_ON && r.order == STREAM_IN_ORDER && r.taken && r.dt == 0.0);
-    r = stream_admission_admit(&a, 2, T0 + FRAME_US, 1000 + FRAME_US, 0); /* bad values */
+    r = admit(&a, 2, T0 + FRAME_US, 1000 + FRAME_US, 0, 0); /* bad values */
     assert_true(r.verdict == STREAM_GO_ON && r.order == STREAM_IN_ORDER && !r.taken);
     assert_true(a.last_utime == T0 && a.last_arrival_utime == 1000);
-    r = stream_admission_admit(&a, 3, T0 + 2 * FRAME_US, 1000 + 2 * FRAME_US, 1);
+    r = admit(&a, 3, T0 + 2 * FRAME_US, 1000 + 2 * FRAME_US, 0, 1);
     assert_true(r.taken && r.dt > 0.0666 && r.dt < 0.0667);
-    r = stream_admission_admit(&a, 4, T0 + 2 * FRAME_US, 1000 + 3 * FRAME_US, 1);
+    r = admit(&a, 4, T0 + 2 * FRAME_US, 1000 + 3 * FRAME_US, 0, 1);
     assert_true(r.verdict == STREAM_GO_ON && r.order == STREAM_DUPLICATE && !r.taken);
-    r = stream_admission_admit(&a, 5000, T0 + 3 * FRAME_US, 1000 + 3 * FRAME_US, 1); /* another publisher */
+    r = admit(&a, 5000, T0 + 3 * FRAME_US, 1000 + 3 * FRAME_US, 0, 1); /* another publisher */
     assert_true(r.verdict == STREAM_OTHER_PUBLISHER && !r.taken);
     assert_true(a.last_utime == T0 + 2 * FRAME_US);
     stream_admission_init(&a);
@@ -50,6 +58,33 @@ static void test_admit_in_one_call(void **state)
     assert_true(r.order == STREAM_OUT_OF_ORDER && !r.taken);
     r = stream_admission_admit_time(&a, T0 + FRAME_US, 0);
     assert_true(r.order == STREAM_IN_ORDER && !r.taken && a.last_utime == T0);
+}
+
+/* A second model's measurement is one of another model with the seq and capture time of a frame of the
+ * followed publisher that passed the rules (taken or not): told apart before any other rule, it changes
+ * nothing; the same frame of the followed model is a duplicate, a frame refused is not the publisher's. */
+static void test_second_model_told_apart(void **state)
+{
+    stream_admission_t a;
+    stream_admission_result_t r;
+    (void)state;
+    stream_admission_init(&a);
+    assert_true(admit(&a, 0, 0, 1000, 1, 1).verdict == STREAM_GO_ON); /* nothing known, not even seq 0 at 0 */
+    stream_admission_init(&a);
+    assert_true(admit(&a, 1, T0, 1000, 1, 1).taken); /* nothing known: any model's first measurement */
+    assert_true(admit(&a, 2, T0 + FRAME_US, 1000 + FRAME_US, 0, 1).taken);
+    assert_true(admit(&a, 3, T0 + 2 * FRAME_US, 1000 + 2 * FRAME_US, 0, 0).verdict == STREAM_GO_ON); /* bad values */
+    r = admit(&a, 2, T0 + FRAME_US, 1000 + 3 * FRAME_US, 1, 1);
+    assert_true(r.verdict == STREAM_SECOND_MODEL && !r.taken);
+    assert_true(admit(&a, 3, T0 + 2 * FRAME_US, 1000 + 3 * FRAME_US, 1, 1).verdict == STREAM_SECOND_MODEL);
+    assert_true(a.stream_seq == 3 && a.last_utime == T0 + FRAME_US && a.last_arrival_utime == 1000 + FRAME_US);
+    assert_true(admit(&a, 2, T0 + FRAME_US, 1000 + 3 * FRAME_US, 0, 1).verdict == STREAM_OTHER_PUBLISHER); /* seq again */
+    assert_true(admit(&a, 2, T0 + 1, 1000 + 3 * FRAME_US, 1, 1).verdict == STREAM_OTHER_PUBLISHER); /* another stamp */
+    assert_true(admit(&a, 5000, T0 + 3 * FRAME_US, 1000 + 3 * FRAME_US, 0, 1).verdict == STREAM_OTHER_PUBLISHER);
+    assert_true(admit(&a, 5000, T0 + 3 * FRAME_US, 1000 + 3 * FRAME_US, 1, 1).verdict == STREAM_OTHER_PUBLISHER);
+    assert_true(admit(&a, 4, T0 + 3 * FRAME_US, 1000 + 3 * FRAME_US, 0, 1).taken);
+    assert_true(admit(&a, 4 + STREAM_FRAME_IDS, T0 + 3 * FRAME_US, 1000 + 3 * FRAME_US, 1, 1).verdict !=
+                STREAM_SECOND_MODEL); /* its slot holds frame 4 */
 }
 
 /* A steady stream is taken frame by frame, its steps in seconds; the first step is 0. */
@@ -212,6 +247,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_admit_in_one_call),
+        cmocka_unit_test(test_second_model_told_apart),
         cmocka_unit_test(test_steady_stream_taken),
         cmocka_unit_test(test_order_rule),
         cmocka_unit_test(test_one_publisher),
