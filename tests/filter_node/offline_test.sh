@@ -4,6 +4,7 @@
 # bad-input paths (undecodable message, missing file, bad setting).
 # usage: offline_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
+ulimit -f 1048576 # KiB: a filter that loops writing poses fails here at 1 GiB instead of filling the disk
 build=$1 source=$2
 simlog=$build/tools/hkf-simlog filter=$build/tools/hkf-filter
 python=$source/.venv/bin/python  # with PyPI lcm (scripts/setup.sh)

@@ -32,6 +32,7 @@ otherwise, or on a broken list.
 import argparse
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -176,9 +177,18 @@ def selection(build_dir, chosen):
     return sorted(names), baseline, errors
 
 
+MAX_FILE_BYTES = 1 << 30  # no test writes a file near 1 GiB: a mutant that loops writing fails, not fills the disk
+
+
+def limit_file_size():
+    """In the tests' process (and so their children): files larger than MAX_FILE_BYTES are refused (SIGXFSZ)."""
+    resource.setrlimit(resource.RLIMIT_FSIZE, (MAX_FILE_BYTES, MAX_FILE_BYTES))
+
+
 def run_tests(build_dir, tests, timeout):
     result = subprocess.run(["ctest", "-R", tests, "-j", str(os.cpu_count() or 2), "--timeout", str(timeout),
-                             "--stop-on-failure"], cwd=build_dir, capture_output=True, text=True)
+                             "--stop-on-failure"], cwd=build_dir, capture_output=True, text=True,
+                            preexec_fn=limit_file_size)
     ran = re.search(r"tests passed, (\d+) tests failed out of (\d+)", result.stdout)
     count = int(ran.group(2)) if ran else 0
     return result.returncode == 0, count, result.stdout
