@@ -22,40 +22,40 @@ static const hkf_setting_t per_model_settings[] = {
 #define PER_MODEL_SETTING_COUNT ((int)(sizeof per_model_settings / sizeof per_model_settings[0]))
 #define POSITION_PREFIX "position_"
 
+static const int node_setting_count = NODE_SETTING_COUNT, per_model_setting_count = PER_MODEL_SETTING_COUNT;
+
+/* The keys' groups in key order, each a settings table and its length: key k is the k-th row of them all. */
+static const struct {
+    node_key_group_t group;
+    const hkf_setting_t *table;
+    const int *count;
+} key_groups[] = {
+    {NODE_KEY_ANGLES, hkf_settings_table, &hkf_settings_table_count},
+    {NODE_KEY_CALIBRATION, hkf_calibration_settings_table, &hkf_calibration_settings_table_count},
+    {NODE_KEY_NODE, node_settings, &node_setting_count},
+    {NODE_KEY_PER_MODEL, per_model_settings, &per_model_setting_count},
+    {NODE_KEY_POSITION, hkf_position_settings_table, &hkf_position_settings_table_count},
+    {NODE_KEY_POSITION_CALIBRATION, hkf_calibration_settings_table, &hkf_calibration_settings_table_count},
+};
+#define KEY_GROUP_COUNT ((int)(sizeof key_groups / sizeof key_groups[0]))
+
 int node_key_count(void)
 {
-    return hkf_settings_table_count + hkf_calibration_settings_table_count + NODE_SETTING_COUNT +
-           PER_MODEL_SETTING_COUNT + hkf_position_settings_table_count + hkf_calibration_settings_table_count;
+    int g, count = 0;
+    for (g = 0; g < KEY_GROUP_COUNT; ++g) {
+        count += *key_groups[g].count;
+    }
+    return count;
 }
 
 const hkf_setting_t *node_key_setting(int k, node_key_group_t *group)
 {
-    if (k < hkf_settings_table_count) {
-        *group = NODE_KEY_ANGLES;
-        return &hkf_settings_table[k];
+    int g;
+    for (g = 0; g < KEY_GROUP_COUNT - 1 && k >= *key_groups[g].count; ++g) {
+        k -= *key_groups[g].count;
     }
-    k -= hkf_settings_table_count;
-    if (k < hkf_calibration_settings_table_count) {
-        *group = NODE_KEY_CALIBRATION;
-        return &hkf_calibration_settings_table[k];
-    }
-    k -= hkf_calibration_settings_table_count;
-    if (k < NODE_SETTING_COUNT) {
-        *group = NODE_KEY_NODE;
-        return &node_settings[k];
-    }
-    k -= NODE_SETTING_COUNT;
-    if (k < PER_MODEL_SETTING_COUNT) {
-        *group = NODE_KEY_PER_MODEL;
-        return &per_model_settings[k];
-    }
-    k -= PER_MODEL_SETTING_COUNT;
-    if (k < hkf_position_settings_table_count) {
-        *group = NODE_KEY_POSITION;
-        return &hkf_position_settings_table[k];
-    }
-    *group = NODE_KEY_POSITION_CALIBRATION;
-    return &hkf_calibration_settings_table[k - hkf_position_settings_table_count];
+    *group = key_groups[g].group;
+    return &key_groups[g].table[k];
 }
 
 int node_key_is_position(node_key_group_t group)

@@ -124,6 +124,14 @@ static int known_frame(const stream_admission_t *a, int64_t seq, int64_t utime)
     return a->frames[i].known && a->frames[i].seq == seq && a->frames[i].utime == utime;
 }
 
+static void note_frame(stream_admission_t *a, int64_t seq, int64_t utime)
+{
+    const int i = frame_slot(seq);
+    a->frames[i].known = 1;
+    a->frames[i].seq = seq;
+    a->frames[i].utime = utime;
+}
+
 stream_admission_result_t stream_admission_admit(stream_admission_t *a, const stream_measurement_t *m)
 {
     stream_admission_result_t r;
@@ -135,9 +143,7 @@ stream_admission_result_t stream_admission_admit(stream_admission_t *a, const st
     if (verdict != STREAM_GO_ON && verdict != STREAM_NEW_CLOCK) {
         return r;
     }
-    a->frames[frame_slot(m->seq)].known = 1; /* a frame of the followed publisher, taken or not */
-    a->frames[frame_slot(m->seq)].seq = m->seq;
-    a->frames[frame_slot(m->seq)].utime = m->utime;
+    note_frame(a, m->seq, m->utime); /* a frame of the followed publisher, taken or not */
     r = stream_admission_admit_time(a, m->utime, m->values_ok);
     r.verdict = verdict;
     if (r.taken) {
