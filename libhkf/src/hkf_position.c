@@ -365,11 +365,9 @@ static int agrees_with_refused(const hkf_position_filter_t *f, const hkf_real_t 
                                hkf_real_t dt)
 {
     const hkf_real_t reach = hkf_mul(f->settings.max_speed, dt);
-    const hkf_real_t sigmas2 = HKF_REAL_FROM(HKF_POSITION_GATE_SIGMAS * HKF_POSITION_GATE_SIGMAS);
     int a;
     for (a = 0; a < 3; ++a) {
-        const hkf_real_t beyond = hkf_sub(hkf_abs(hkf_sub(z[a], f->refused_z[a])), reach);
-        if (beyond > 0 && hkf_mul(beyond, beyond) > hkf_mul(sigmas2, hkf_add(r[a], r[a]))) {
+        if (beyond_reach(hkf_sub(z[a], f->refused_z[a]), hkf_add(r[a], r[a]), reach)) {
             return 0;
         }
     }
