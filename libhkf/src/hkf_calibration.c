@@ -28,9 +28,9 @@ int hkf_calibration_begin(hkf_calibration_t *c, const hkf_calibration_settings_t
 void hkf_calibration_restart(hkf_calibration_t *c)
 {
     int a;
-    for (a = 0; a < HKF_AXES; ++a) {
-        c->noise[a] = c->start[a];
-        c->power[a] = c->start[a];
+    for (a = 0; a < HKF_LANES; ++a) {
+        c->noise[a] = a < HKF_AXES ? c->start[a] : c->floor;
+        c->power[a] = c->noise[a];
         c->last_z[a] = 0;
         c->last_step[a] = 0;
     }
@@ -62,17 +62,19 @@ int hkf_calibration_reset(hkf_calibration_t *c, hkf_filter_t *f)
     return hkf_set_noise(f, c->settings.noise_time > 0 ? c->noise : 0);
 }
 
-/* The angles' steps, yaw's on the circle. */
+/* The angles' steps, yaw's on the circle (the shorter way round, whether z's yaw is wrapped or not). */
 static void estimate(hkf_calibration_t *c, const hkf_real_t z[3], hkf_real_t dt)
 {
-    const hkf_real_t now[3] = {z[HKF_AXIS_PITCH], hkf_wrap180(z[HKF_AXIS_YAW]), z[HKF_AXIS_ROLL]}; /* yaw on the circle */
-    hkf_real_t step[3];
+    hkf_real_t step[HKF_LANES];
     int a;
     for (a = 0; a < HKF_AXES; ++a) {
-        step[a] = hkf_sub(now[a], c->last_z[a]);
+        step[a] = hkf_sub(z[a], c->last_z[a]);
     }
+#if HKF_LANES > 3 /* (HKF_AXES is an enum, unseen by the preprocessor) */
+    step[3] = 0; /* the idle lane */
+#endif
     step[HKF_AXIS_YAW] = hkf_wrap180(step[HKF_AXIS_YAW]);
-    hkf_calibration_take(c, now, step, dt);
+    hkf_calibration_take(c, z, step, dt);
 }
 
 int hkf_calibration_update(hkf_calibration_t *c, hkf_filter_t *f, const hkf_real_t z[3], hkf_real_t dt)

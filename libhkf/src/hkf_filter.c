@@ -612,7 +612,7 @@ int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3])
     if (f == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    for (a = 0; noise != 0 && a < HKF_AXES; ++a) {
+    for (a = 0; noise != 0 && !hkf_noise_levels_ok(noise) && a < HKF_AXES; ++a) {
         if (!hkf_is_finite(noise[a])) {
             return HKF_ERROR_NON_FINITE;
         }

@@ -90,21 +90,12 @@ static inline hkf_real_t hkf_exp_neg(hkf_real_t u)
     return p.two_n + p.two_n * p.q;
 }
 
-/* sqrt(x) for x >= 0 without libm: x / sqrt(x), the reciprocal root from
- * its exponent bits (within 3.5 %) and three Newton steps r (3 - x r^2) / 2
- * (each squares the relative error: float's rounding after the third). */
+/* sqrt(x) for x >= 0: one instruction where the core has one (x86, Cortex-M4F, M7; the library is
+ * built with -fno-math-errno, so sqrtf never sets errno and vectorizes), newlib's routine on a core
+ * without an FPU. */
 static inline hkf_real_t hkf_sqrt(hkf_real_t x)
 {
-    union { float x; int32_t i; } bits;
-    float r;
-    int k;
-    bits.x = x;
-    bits.i = 0x5f3759df - (bits.i >> 1);
-    r = bits.x;
-    for (k = 0; k < 3; ++k) {
-        r = r * (1.5f - 0.5f * x * r * r);
-    }
-    return x > 0 ? x * r : 0.0f;
+    return x > 0 ? sqrtf(x) : 0.0f;
 }
 
 static inline hkf_real_t hkf_abs(hkf_real_t x) { return fabsf(x); }
@@ -138,12 +129,12 @@ static inline hkf_real_t hkf_curve_rise(const hkf_filter_t *restrict f, int lane
 
 /* Wraps an angle to [-180, 180). Callers keep |x| below a few times
  * HKF_MAX_ABS_ANGLE, so an int holds the number of turns. Most angles are
- * in range already: that costs two comparisons. */
+ * in range already: that costs one comparison (-180 itself takes the long way to itself). */
 static inline hkf_real_t hkf_wrap180(hkf_real_t x)
 {
     int turns;
     hkf_real_t w;
-    if (x >= HKF_REAL(-180.0) && x < HKF_REAL(180.0)) {
+    if (hkf_abs(x) < HKF_REAL(180.0)) {
         return x;
     }
     turns = (int)((x + HKF_REAL(180.0)) * HKF_REAL(0.0027777777777777778) /* 1/360 */);
@@ -214,23 +205,8 @@ hkf_real_t hkf_divide(hkf_real_t a, hkf_divisor_t d);
  * (hkf_math_fixed.c). */
 void hkf_keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11);
 
-/* Wraps an angle to [-180, 180): the number of turns from a multiply by
- * 2^40 / (360 * 2^16) (off by at most one), then one correction. */
-static inline hkf_real_t hkf_wrap180(hkf_real_t x)
-{
-    const int64_t half = (int64_t)180 << 16, full = (int64_t)360 << 16;
-    int64_t w;
-    if (x >= -half && x < half) {
-        return x;
-    }
-    w = x - full * ((((int64_t)x + half) * 46603) >> 40);
-    if (w < -half) {
-        w += full;
-    } else if (w >= half) {
-        w -= full;
-    }
-    return (hkf_real_t)w;
-}
+/* Wraps an angle to [-180, 180) (hkf_math_fixed.c: one copy, out of line, for the flash). */
+hkf_real_t hkf_wrap180(hkf_real_t x);
 
 /* Eq. 8's pieces, out of line in hkf_math_fixed.c: what hkf_init derives
  * from a curve, and the rise above its floor, lambda (1 - e^-v) with
@@ -245,5 +221,16 @@ hkf_real_t hkf_sqrt(hkf_real_t x);
 hkf_real_t hkf_two_models_posterior_q16(hkf_real_t pi, hkf_real_t d, hkf_real_t r);
 hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u);
 #endif /* HKF_REAL_FIXED */
+
+/* 1 when the three noise levels are all > 0 and finite, in one test (NaN fails it; a sum of positive
+ * levels is finite only when each is); 0 does not name the bad one, so the caller then looks. */
+static inline int hkf_noise_levels_ok(const hkf_real_t n[3])
+{
+#if defined(HKF_REAL_FIXED)
+    return (int)(n[0] > 0) & (int)(n[1] > 0) & (int)(n[2] > 0);
+#else
+    return (int)(n[0] > 0) & (int)(n[1] > 0) & (int)(n[2] > 0) & hkf_is_finite(n[0] + n[1] + n[2]);
+#endif
+}
 
 #endif /* HKF_MATH_H */

@@ -85,33 +85,22 @@ void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c)
     f->inv_width[lane] = udiv_round(99516432383215u, (uint32_t)c->sigma);
 }
 
-/* Eq. 8 above its floor, u = x - mu: lambda (1 - e^-v), v = u^2 / (2 sigma^2). */
-hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
+/* Wraps an angle to [-180, 180): the number of turns from a multiply by
+ * 2^40 / (360 * 2^16) (off by at most one), then one correction. */
+hkf_real_t hkf_wrap180(hkf_real_t x)
 {
-    const uint64_t au = (uint64_t)hkf_abs(u);
-    const uint64_t w = (au * f->inv_width[lane]) >> 17; /* |u| / (sqrt(2) sigma), Q.30 */
-    if (w < ((uint64_t)1 << 30)) { /* v < 1: curvature u^2 g(v) */
-        const int64_t cu = hkf_saturate(((int64_t)f->settings.noise[lane].curvature_q24 * (int64_t)au + (1 << 23)) >> 24);
-        const int64_t cu2 = hkf_saturate((cu * (int64_t)au) >> 16);
-        return hkf_saturate((cu2 * hkf_g30((uint32_t)((w * w) >> 30))) >> 30);
-    } else {
-        const uint64_t w16 = w >> 14;
-        uint32_t e30 = 0; /* e^-v, Q2.30 */
-        if (w16 < ((uint64_t)5 << 16)) { /* v < 25; beyond, e^-v < 2^-36 */
-            /* e^-v = (e^-(v/32))^32: v/32 < 0.79 through the same series, then five squarings
-             * (its 4e-8 relative error grows to 1.3e-6: below 0.02 deg^2 on the largest lambda) */
-            const uint32_t v = (uint32_t)((w16 * w16) >> 16);
-            const uint32_t v32 = v << 9; /* v / 32 in Q2.30 */
-            uint64_t e = (1u << 30) - (((uint64_t)v32 * hkf_g30(v32)) >> 30);
-            int k;
-            for (k = 0; k < 5; ++k) {
-                e = (e * e) >> 30;
-            }
-            e30 = (uint32_t)e;
-        }
-        return hkf_saturate(((int64_t)curve_lambda(&f->settings.noise[lane]) * (int64_t)(((1u << 30) - e30 + 8192u) >> 14) +
-                             32768) >> 16);
+    const int64_t half = (int64_t)180 << 16, full = (int64_t)360 << 16;
+    int64_t w;
+    if (x >= -half && x < half) {
+        return x;
     }
+    w = x - full * ((((int64_t)x + half) * 46603) >> 40);
+    if (w < -half) {
+        w += full;
+    } else if (w >= half) {
+        w -= full;
+    }
+    return (hkf_real_t)w;
 }
 
 /* exp(-u) = (e^-(u/16))^16 in Q2.30: u/16 < 1 through g (e^-v = 1 - v g(v)), then four squarings; 0 from
@@ -130,6 +119,24 @@ static uint32_t exp_neg_q30(hkf_real_t u)
         e = (e * e) >> 30;
     }
     return (uint32_t)e;
+}
+
+/* Eq. 8 above its floor, u = x - mu: lambda (1 - e^-v), v = u^2 / (2 sigma^2). */
+hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
+{
+    const uint64_t au = (uint64_t)hkf_abs(u);
+    const uint64_t w = (au * f->inv_width[lane]) >> 17; /* |u| / (sqrt(2) sigma), Q.30 */
+    if (w < ((uint64_t)1 << 30)) { /* v < 1: curvature u^2 g(v) */
+        const int64_t cu = hkf_saturate(((int64_t)f->settings.noise[lane].curvature_q24 * (int64_t)au + (1 << 23)) >> 24);
+        const int64_t cu2 = hkf_saturate((cu * (int64_t)au) >> 16);
+        return hkf_saturate((cu2 * hkf_g30((uint32_t)((w * w) >> 30))) >> 30);
+    } else {
+        /* v = (w / 2^30)^2 in Q16.16, >= 1; from 16 on, e^-v (< 1.2e-7) is 0 (exp_neg_q30) */
+        const uint64_t w16 = w >> 14;
+        const uint32_t e30 = w16 < ((uint64_t)4 << 16) ? exp_neg_q30((hkf_real_t)((w16 * w16) >> 16)) : 0u;
+        return hkf_saturate(((int64_t)curve_lambda(&f->settings.noise[lane]) * (int64_t)(((1u << 30) - e30 + 8192u) >> 14) +
+                             32768) >> 16);
+    }
 }
 
 /* exp(-u) in Q16.16 (e^-12 is below half a unit). */

@@ -521,7 +521,7 @@ int hkf_position_set_noise(hkf_position_filter_t *f, const hkf_real_t noise[3])
     if (f == NULL) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    for (a = 0; noise != NULL && a < 3; ++a) {
+    for (a = 0; noise != NULL && !hkf_noise_levels_ok(noise) && a < 3; ++a) {
         if (!hkf_is_finite(noise[a])) {
             return HKF_ERROR_NON_FINITE;
         }

@@ -34,7 +34,7 @@ int hkf_calibration_reset_position(hkf_calibration_t *c, hkf_position_filter_t *
 int hkf_calibration_update_position(hkf_calibration_t *c, hkf_position_filter_t *f, const hkf_real_t z[3],
                                     hkf_real_t dt)
 {
-    hkf_real_t step[3];
+    hkf_real_t step[HKF_LANES];
     int a;
     if (c == 0 || f == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
@@ -45,6 +45,9 @@ int hkf_calibration_update_position(hkf_calibration_t *c, hkf_position_filter_t 
     for (a = 0; a < 3; ++a) {
         step[a] = hkf_sub(z[a], c->last_z[a]);
     }
+#if HKF_LANES > 3
+    step[3] = 0; /* the idle lane */
+#endif
     hkf_calibration_take(c, z, step, dt);
     return hkf_position_set_noise(f, c->noise);
 }

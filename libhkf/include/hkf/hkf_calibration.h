@@ -48,10 +48,11 @@ typedef struct {
     hkf_calibration_settings_t settings;
     hkf_real_t floor;         /* deg^2: n at least this (the filter's r_min) */
     hkf_real_t start[3];      /* deg^2: n's start, e(mu) of the filter's curves */
-    hkf_real_t noise[3];      /* n, deg^2 */
-    hkf_real_t power[3];      /* d^2 / 6 low-passed, deg^2 */
-    hkf_real_t last_z[3];     /* the last measurement, deg */
-    hkf_real_t last_step[3];  /* its step from the one before, deg */
+    /* per lane: the axes, and the filter's idle fourth lane where it has one (so the step vectorizes) */
+    hkf_real_t noise[HKF_LANES];      /* n, deg^2 */
+    hkf_real_t power[HKF_LANES];      /* d^2 / 6 low-passed, deg^2 */
+    hkf_real_t last_z[HKF_LANES];     /* the last measurement, deg */
+    hkf_real_t last_step[HKF_LANES];  /* its step from the one before, deg */
     unsigned history;         /* measurements in a row behind last_z and last_step (0..2) */
 } hkf_calibration_t;
 
