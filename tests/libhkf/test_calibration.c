@@ -253,6 +253,7 @@ static void test_set_noise(void **state)
     hkf_filter_t f, before;
     hkf_output_t out;
     hkf_real_t z[3], n[3], bad[3];
+    int a;
     (void)state;
     s.loop_closure = HKF_LOOP_CLOSURE_OFF;
     assert_int_equal(hkf_init(&f, &s), HKF_OK);
@@ -274,12 +275,19 @@ static void test_set_noise(void **state)
     assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
     assert_true(D(out.r[1]) < 0.5 * D(hkf_observation_noise(&f, 1, R(60)))); /* kept */
     before = f;
-    set3(bad, 0.5, 0, 1);
-    assert_int_equal(hkf_set_noise(&f, bad), HKF_ERROR_NOISE_RANGE);
+    for (a = 0; a < 3; ++a) { /* each axis alone bad, the others good */
+        set3(bad, 0.5, 0.25, 2.0);
+        bad[a] = 0;
+        assert_int_equal(hkf_set_noise(&f, bad), HKF_ERROR_NOISE_RANGE);
+        bad[a] = R(-0.5);
+        assert_int_equal(hkf_set_noise(&f, bad), HKF_ERROR_NOISE_RANGE);
 #if TEST_HAS_NON_FINITE
-    set3(bad, 0.5, NAN, 1);
-    assert_int_equal(hkf_set_noise(&f, bad), HKF_ERROR_NON_FINITE);
+        bad[a] = NAN;
+        assert_int_equal(hkf_set_noise(&f, bad), HKF_ERROR_NON_FINITE);
+        bad[a] = INFINITY;
+        assert_int_equal(hkf_set_noise(&f, bad), HKF_ERROR_NON_FINITE);
 #endif
+    }
     assert_memory_equal(&f, &before, sizeof f);
     assert_int_equal(hkf_set_noise(NULL, n), HKF_ERROR_NULL_ARGUMENT);
 
@@ -335,30 +343,38 @@ static void test_history_and_reset(void **state)
 }
 
 /* Yaw's frame-to-frame step is taken the short way round: a still head at the +-180 seam (its measurements
- * cross it) reads the same noise as one facing the camera. */
+ * cross it) reads the same noise as one facing the camera, whether they are given past 180 (179.8 ..
+ * 180.2) or wrapped, as an estimator publishes them (179.8 .. 180 and -180 .. -179.8). */
 static void test_noise_at_the_yaw_seam(void **state)
 {
     const hkf_settings_t s = calibrated_settings();
-    calibrated_t seam, front;
+    calibrated_t seam, wrapped, front;
     hkf_output_t out;
-    hkf_real_t z[3], n_seam[3], n_front[3];
+    hkf_real_t z[3], n_seam[3], n_wrapped[3], n_front[3];
     sim_rng_t rng;
     int i;
     (void)state;
     calibrated_init(&seam, &s);
+    calibrated_init(&wrapped, &s);
     calibrated_init(&front, &s);
     sim_rng_seed(&rng, 8u);
     for (i = 0; i < 300; ++i) {
         const double noise = 0.2 * sim_rng_gaussian(&rng);
-        set3(z, 0, 180.0 + noise, 0); /* 179.8 .. 180.2: the measurements wrap to -180 .. -179.8 and back */
+        set3(z, 0, 180.0 + noise, 0);
         calibrated_update(&seam, z, R(frame_s), &out);
+        set3(z, 0, noise > 0 ? noise - 180.0 : 180.0 + noise, 0);
+        calibrated_update(&wrapped, z, R(frame_s), &out);
         set3(z, 0, noise, 0);
         calibrated_update(&front, z, R(frame_s), &out);
     }
     assert_int_equal(hkf_calibration_get_noise(&seam.c, n_seam), HKF_OK);
+    assert_int_equal(hkf_calibration_get_noise(&wrapped.c, n_wrapped), HKF_OK);
     assert_int_equal(hkf_calibration_get_noise(&front.c, n_front), HKF_OK);
-    print_message("yaw noise at the seam %.4f, facing the camera %.4f deg^2\n", D(n_seam[1]), D(n_front[1]));
+    print_message("yaw noise at the seam %.4f (wrapped %.4f), facing the camera %.4f deg^2\n", D(n_seam[1]),
+                  D(n_wrapped[1]), D(n_front[1]));
     assert_near_at(D(n_seam[1]), D(n_front[1]), 0.2 * D(n_front[1]) + 1e-3, "n at the seam", __FILE__, __LINE__);
+    assert_near_at(D(n_wrapped[1]), D(n_front[1]), 0.2 * D(n_front[1]) + 1e-3, "n at the seam, wrapped", __FILE__,
+                   __LINE__);
 }
 
 /* Out-of-range calibration and motion settings are refused by name. */

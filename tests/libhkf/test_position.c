@@ -836,6 +836,19 @@ static void test_set_noise(void **state)
     assert_true(fabs(D(state_of(&f).noise[2]) - 0.5) < TEST_TOL);
     before = f;
     assert_int_equal(hkf_position_set_noise(&f, zero), HKF_ERROR_NOISE_RANGE);
+    for (a = 0; a < 3; ++a) { /* each axis alone bad, the others good */
+        hkf_real_t bad[3] = {R(0.01), R(0.02), R(0.5)};
+        bad[a] = 0;
+        assert_int_equal(hkf_position_set_noise(&f, bad), HKF_ERROR_NOISE_RANGE);
+        bad[a] = R(-0.5);
+        assert_int_equal(hkf_position_set_noise(&f, bad), HKF_ERROR_NOISE_RANGE);
+#if TEST_HAS_NON_FINITE
+        bad[a] = NAN;
+        assert_int_equal(hkf_position_set_noise(&f, bad), HKF_ERROR_NON_FINITE);
+        bad[a] = INFINITY;
+        assert_int_equal(hkf_position_set_noise(&f, bad), HKF_ERROR_NON_FINITE);
+#endif
+    }
     assert_int_equal(hkf_position_set_noise(NULL, level), HKF_ERROR_NULL_ARGUMENT);
     assert_memory_equal(&f, &before, sizeof f);
     assert_int_equal(hkf_position_set_noise(&f, NULL), HKF_OK); /* back to r_const */
