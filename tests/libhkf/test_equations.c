@@ -4,8 +4,6 @@
  */
 #include "test_support.h"
 
-#include "hkf/hkf_models.h"
-
 /* The track's start: the first measurement starts it: angle = z, rate = 0,
  * P = diag(p0), centre = z. dt of the first call is ignored. */
 static void test_first_measurement_starts_track(void **state)
@@ -115,36 +113,6 @@ static void test_shipped_curves_in_every_build(void **state)
             }
         }
     }
-}
-
-/* Every row of the table of models in this numeric build: hkf_init takes its curves (a row written without
- * HKF_NOISE_CURVE would be refused in Q16.16), R at its curves' centre is their floor (clamped), and the
- * curve rises away from it; its still_wander is a valid setting. Adding a row adds it here. */
-static void test_every_model_row_in_this_build(void **state)
-{
-    int i, a;
-    (void)state;
-    assert_true(hkf_model_count >= 4);
-    for (i = 0; i < hkf_model_count; ++i) {
-        const hkf_model_info_t *m = &hkf_models[i];
-        hkf_settings_t s = hkf_default_settings;
-        hkf_filter_t f;
-        assert_ptr_equal(hkf_find_model(m->name), m);
-        for (a = 0; a < 3; ++a) {
-            s.noise[a] = m->noise[a];
-        }
-        if (m->still_wander > 0) {
-            s.still_wander = m->still_wander;
-        }
-        assert_int_equal(hkf_init(&f, &s), HKF_OK);
-        for (a = 0; a < 3; ++a) {
-            const double centre = D(hkf_observation_noise(&f, a, m->noise[a].mu));
-            const double out = D(hkf_observation_noise(&f, a, R(D(m->noise[a].mu) + 60.0)));
-            assert_true(centre >= D(s.r_min) && centre <= D(s.r_max));
-            assert_true(out > centre || centre == D(s.r_max)); /* Eq. 8 rises away from mu */
-        }
-    }
-    assert_null(hkf_find_model("no such model"));
 }
 
 /* Eq. 8, amplitude form, with the FSA-Net curves of Table I (values worked
@@ -520,7 +488,6 @@ int main(void)
         cmocka_unit_test(test_predict_with_cross_terms),
         cmocka_unit_test(test_yaw_at_exactly_180),
         cmocka_unit_test(test_shipped_curves_in_every_build),
-        cmocka_unit_test(test_every_model_row_in_this_build),
         cmocka_unit_test(test_every_step_wraps_yaw),
         cmocka_unit_test(test_loop_closure_then_r_across_the_seam),
         cmocka_unit_test(test_loop_closure_per_axis_at_exactly_theta),

@@ -189,6 +189,12 @@ static void test_models_table(void **state)
         }
         assert_int_equal(hkf_init(&f, &s), HKF_OK);
         assert_true(m->still_wander >= 0 && m->position_r_scale >= 0);
+        for (j = 0; j < 3; ++j) { /* Eq. 8 at its centre within the clamp, and rising away from it */
+            const double centre = D(hkf_observation_noise(&f, j, m->noise[j].mu));
+            const double away = D(hkf_observation_noise(&f, j, R(D(m->noise[j].mu) + 60.0)));
+            assert_true(centre >= D(s.r_min) && centre <= D(s.r_max));
+            assert_true(away > centre || centre == D(s.r_max));
+        }
     }
     assert_ptr_equal(hkf_find_model("mesh_pnp")->noise, hkf_noise_mesh_pnp);
     assert_ptr_equal(hkf_find_model("whenet")->noise, hkf_noise_whenet);
