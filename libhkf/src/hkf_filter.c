@@ -410,16 +410,19 @@ static HKF_ALWAYS_INLINE void two_models_axes(hkf_filter_t *restrict f, const hk
                                               const hkf_real_t r[restrict HKF_LANES], hkf_real_t dt)
 {
     const hkf_settings_t *s = HKF_SETTINGS(f);
-    const hkf_two_model_step_t c = hkf_two_models_prepare(dt, s->start_rate, s->stop_rate, s->still_wander, s->p0_rate);
-    hkf_hold_prior_t hold[HKF_LANES];
+    const hkf_two_model_step_t c = hkf_two_models_prepare(dt, s->start_rate, s->stop_rate, s->p0_rate);
+    hkf_real_t y_h[HKF_LANES]; /* HOLD's innovations (lanes, so the loops stay vectors) */
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        hold[a].p00 = held_p00[a];
-        hold[a].y = hkf_add(y[a], hkf_mul(f->rate[a], dt));
+        y_h[a] = hkf_add(y[a], hkf_mul(f->rate[a], dt));
     }
-    hold[HKF_AXIS_YAW].y = hkf_wrap180(hold[HKF_AXIS_YAW].y);
+    y_h[HKF_AXIS_YAW] = hkf_wrap180(y_h[HKF_AXIS_YAW]);
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        set_lane(f, a, hkf_two_models_update(&c, lane_axis(f, a), hold[a], y[a], r[a], &f->moving[a]));
+        hkf_hold_prior_t hold;
+        hold.p00 = held_p00[a];
+        hold.y = y_h[a];
+        hold.wander = s->still_wander;
+        set_lane(f, a, hkf_two_models_update(&c, lane_axis(f, a), hold, y[a], r[a], &f->moving[a]));
     }
     accepted(f, r);
 }

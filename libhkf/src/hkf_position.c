@@ -404,13 +404,13 @@ static void correct_axes(hkf_position_filter_t *f, const hkf_real_t z[3], const 
     const hkf_position_settings_t *s = &f->settings;
     int a;
     if (two_models(f)) {
-        hkf_two_model_step_t c = hkf_two_models_prepare(dt, s->start_rate, s->stop_rate, 0, s->p0_rate);
+        const hkf_two_model_step_t c = hkf_two_models_prepare(dt, s->start_rate, s->stop_rate, s->p0_rate);
         for (a = 0; a < 3; ++a) {
             hkf_hold_prior_t hold;
             const hkf_real_t y = hkf_sub(z[a], f->x[a]); /* Eq. 4 */
-            c.wander = s->still_wander[a];
             hold.p00 = held_p00[a];
             hold.y = hkf_add(y, hkf_mul(f->v[a], dt)); /* HOLD's innovation: z against the value before the travel */
+            hold.wander = s->still_wander[a];
             set_axis(f, a, hkf_two_models_update(&c, axis_of(f, a), hold, y, r[a], &f->moving[a]));
         }
         return;

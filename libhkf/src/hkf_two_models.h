@@ -54,23 +54,21 @@ static inline int hkf_two_models_check(hkf_real_t still_wander, hkf_real_t start
     return ok ? HKF_OK : HKF_ERROR_SETTING_MOTION;
 }
 
-/* What one step of dt takes from the settings. */
+/* What one step of dt takes from the settings, the same for every axis. */
 typedef struct {
     hkf_real_t dt;
     hkf_real_t share, decay; /* m = a / (a + b) and exp(-(a + b) dt) */
-    hkf_real_t wander;       /* w: HOLD's measurement variance beyond R */
     hkf_real_t start_var;    /* V: the rate's variance when a move starts from rest */
 } hkf_two_model_step_t;
 
 static inline hkf_two_model_step_t hkf_two_models_prepare(hkf_real_t dt, hkf_real_t start_rate, hkf_real_t stop_rate,
-                                                          hkf_real_t still_wander, hkf_real_t start_var)
+                                                          hkf_real_t start_var)
 {
     const hkf_real_t rates = hkf_add(start_rate, stop_rate); /* > 0: start_rate > 0 turns the adaptation on */
     hkf_two_model_step_t c;
     c.dt = dt;
     c.share = hkf_divide(start_rate, hkf_divisor(rates));
     c.decay = hkf_exp_neg(hkf_mul(rates, dt));
-    c.wander = still_wander;
     c.start_var = start_var;
     return c;
 }
@@ -91,9 +89,11 @@ static HKF_ALWAYS_INLINE hkf_real_t hkf_two_models_posterior(hkf_real_t pi, hkf_
 }
 
 /* HOLD's prior for one axis: the value's variance before MOVE's prediction,
- * and HOLD's innovation z - x (MOVE's plus the travel v dt; yaw wrapped). */
+ * HOLD's innovation z - x (MOVE's plus the travel v dt; yaw wrapped), and w,
+ * its measurement's variance beyond R (still_wander: the angles' one for all
+ * three, the position's per axis). */
 typedef struct {
-    hkf_real_t p00, y;
+    hkf_real_t p00, y, wander;
 } hkf_hold_prior_t;
 
 /* One axis's measurement update by both models: `move` is the state after
@@ -110,7 +110,7 @@ static HKF_ALWAYS_INLINE hkf_axis_t hkf_two_models_update(const hkf_two_model_st
     const hkf_real_t travel = hkf_mul(move.v, c->dt);                     /* x_m - x_h before the update */
     const hkf_real_t y_h = hold.y;
     const hkf_real_t p_h = hold.p00;
-    const hkf_real_t r_h = hkf_add(r, c->wander);
+    const hkf_real_t r_h = hkf_add(r, hold.wander);
     const hkf_real_t s_h = hkf_add(p_h, r_h);
     const hkf_divisor_t inv_h = hkf_divisor(s_h);                         /* Eq. 5 per model */
     const hkf_divisor_t inv_m = hkf_divisor(hkf_add(move.p00, r));
