@@ -171,18 +171,6 @@ static HKF_ALWAYS_INLINE int loop_closure(const hkf_filter_t *restrict f, const 
     return closed;
 }
 
-/* Noise calibration, R = n e(z) / e(mu): the mode's R at the measured angles
- * (Eq. 8, clamped: the pose-dependent factor) scaled by the measured noise n
- * over the same R at the curve's center, clamped again. */
-static HKF_ALWAYS_INLINE void calibrated_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t r[restrict HKF_LANES])
-{
-    const hkf_real_t low = HKF_SETTINGS(f)->r_min, high = HKF_SETTINGS(f)->r_max;
-    int a;
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        r[a] = clamp(hkf_divide(hkf_mul(r[a], f->noise[a]), f->r_center[a]), low, high);
-    }
-}
-
 /* Paper Eq. 8, amplitude form:  e(x) = tau - lambda exp(-(x - mu)^2 / (2 sigma^2)).
  * The paper prints Eq. 8 with the normalising factor 1/(sqrt(2 pi) sigma),
  * but its Table I only makes sense without it (FSA-Net yaw: 7.64 - 4.11 =
@@ -230,6 +218,40 @@ static hkf_real_t observation_noise(const hkf_filter_t *restrict f, int lane, hk
     }
     observation_noise_lanes(f, lanes, r);
     return r[lane];
+}
+
+/* e(mu) per lane, R at the curves' centres, as hkf_math.h's divisor (R = n e(z) / e(mu)). The float and
+ * double builds keep it from hkf_init; the fixed-point build forms it each calibrated step, saving its RAM
+ * (Eq. 8 at its centre is the floor: no exponential). */
+static void center_noise_lanes(const hkf_filter_t *restrict f, hkf_divisor_t center[restrict HKF_LANES])
+{
+    hkf_real_t mu[HKF_LANES], e[HKF_LANES];
+    int a;
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        mu[a] = HKF_MU(f, a);
+    }
+    observation_noise_lanes(f, mu, e);
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        center[a] = hkf_divisor(e[a]);
+    }
+}
+
+/* Noise calibration, R = n e(z) / e(mu): the mode's R at the measured angles
+ * (Eq. 8, clamped: the pose-dependent factor) scaled by the measured noise n
+ * over the same R at the curve's center, clamped again. */
+static HKF_ALWAYS_INLINE void calibrated_noise_lanes(const hkf_filter_t *restrict f, hkf_real_t r[restrict HKF_LANES])
+{
+    const hkf_real_t low = HKF_SETTINGS(f)->r_min, high = HKF_SETTINGS(f)->r_max;
+#if defined(HKF_REAL_FIXED)
+    hkf_divisor_t center[HKF_LANES];
+    center_noise_lanes(f, center);
+#else
+    const hkf_real_t *center = f->r_center;
+#endif
+    int a;
+    for (a = 0; a < HKF_LOOP_LANES; ++a) {
+        r[a] = clamp(hkf_divide(hkf_mul(r[a], f->noise[a]), center[a]), low, high);
+    }
 }
 
 hkf_real_t hkf_observation_noise(const hkf_filter_t *f, int axis, hkf_real_t x)
@@ -295,11 +317,9 @@ static int prepare_settings(hkf_filter_t *f, const hkf_settings_t *s)
     }
     HKF_KEEP_SETTINGS(f, s);
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        if (a < HKF_AXES) {
-            hkf_curve_prepare(f, a, &s->noise[a]);
-        }
 #if !defined(HKF_REAL_FIXED)
         if (a < HKF_AXES) {
+            hkf_curve_prepare(f, a, &s->noise[a]);
             f->q[a] = s->process_noise[a];
             f->r_const[a] = s->r_const[a];
         } else { /* the idle lane: a still, perfectly observed axis */
@@ -325,8 +345,10 @@ int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         f->center[a] = 0;
         f->noise[a] = 0; /* no noise level given: Eq. 8's own R */
-        f->r_center[a] = hkf_divisor(observation_noise(f, a, HKF_MU(f, a))); /* e(mu), R = n e(z) / e(mu)'s divisor */
     }
+#if !defined(HKF_REAL_FIXED)
+    center_noise_lanes(f, f->r_center); /* e(mu), R = n e(z) / e(mu)'s divisor, kept */
+#endif
     f->center_source = CENTER_NONE;
     hkf_reset(f);
     return HKF_OK;

@@ -208,10 +208,9 @@ void hkf_keep_covariance(hkf_real_t *p00, hkf_real_t *p01, hkf_real_t *p11);
 /* Wraps an angle to [-180, 180) (hkf_math_fixed.c: one copy, out of line, for the flash). */
 hkf_real_t hkf_wrap180(hkf_real_t x);
 
-/* Eq. 8's pieces, out of line in hkf_math_fixed.c: what hkf_init derives
- * from a curve, and the rise above its floor, lambda (1 - e^-v) with
- * v = u^2 / (2 sigma^2), u = x - mu. */
-void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c);
+/* Eq. 8's pieces, out of line in hkf_math_fixed.c: the rise above its floor,
+ * lambda (1 - e^-v) with v = u^2 / (2 sigma^2), u = x - mu, read from the
+ * filter's settings (nothing is prepared: RAM before time). */
 uint32_t hkf_g30(uint32_t v); /* (1 - e^-v) / v for 0 <= v <= 1, Q2.30 */
 
 /* exp(-u) for u >= 0 and sqrt(x) for x >= 0, in Q16.16 (hkf_math_fixed.c). */

@@ -77,12 +77,12 @@ static hkf_real_t curve_lambda(const hkf_noise_curve_t *c)
     return hkf_saturate(((c24 * (s2 >> 20)) >> 3) + ((c24 * (s2 & 0xFFFFF)) >> 23));
 }
 
-/* What Eq. 8 derives from a curve once (floor, curvature, mu and sigma are
- * read from the settings): 1 / (sqrt(2) sigma) in unsigned Q1.31 (sigma >= 1). */
-void hkf_curve_prepare(hkf_filter_t *f, int lane, const hkf_noise_curve_t *c)
+/* 1 / (sqrt(2) sigma) in unsigned Q1.31 (sigma >= 1): round(2^47 / sqrt(2)) / sigma (Q16.16, >= 1), within the
+ * division's domain (quotient < 2^31). Formed where Eq. 8 is read, not kept: 12 B of a filter's RAM for a
+ * division per axis and step. */
+static uint32_t inverse_width(const hkf_noise_curve_t *c)
 {
-    /* round(2^47 / sqrt(2)) / sigma (Q16.16, >= 1): the division's domain (quotient < 2^31) */
-    f->inv_width[lane] = udiv_round(99516432383215u, (uint32_t)c->sigma);
+    return udiv_round(99516432383215u, (uint32_t)c->sigma);
 }
 
 /* Wraps an angle to [-180, 180): the number of turns from a multiply by
@@ -125,7 +125,11 @@ static uint32_t exp_neg_q30(hkf_real_t u)
 hkf_real_t hkf_curve_rise(const hkf_filter_t *f, int lane, hkf_real_t u)
 {
     const uint64_t au = (uint64_t)hkf_abs(u);
-    const uint64_t w = (au * f->inv_width[lane]) >> 17; /* |u| / (sqrt(2) sigma), Q.30 */
+    uint64_t w;
+    if (u == 0) {
+        return 0; /* the centre (each step's e(mu), hkf_filter.c): no division */
+    }
+    w = (au * inverse_width(&f->settings.noise[lane])) >> 17; /* |u| / (sqrt(2) sigma), Q.30 */
     if (w < ((uint64_t)1 << 30)) { /* v < 1: curvature u^2 g(v) */
         const int64_t cu = hkf_saturate(((int64_t)f->settings.noise[lane].curvature_q24 * (int64_t)au + (1 << 23)) >> 24);
         const int64_t cu2 = hkf_saturate((cu * (int64_t)au) >> 16);

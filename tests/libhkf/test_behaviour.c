@@ -182,6 +182,16 @@ static void test_recenter_and_reset(void **state)
     assert_near(c[0], -2, TEST_TOL);
 }
 
+#if defined(HKF_REAL_FIXED)
+/* The fixed-point filter's state within the Cortex-M0 budget (libhkf 1.1's goal: hkf_filter_t <= 256 B; the
+ * firmware table of ./run mcu prints it per target). */
+static void test_state_within_the_m0_budget(void **state)
+{
+    (void)state;
+    assert_true(sizeof(hkf_filter_t) <= 256u);
+}
+#endif
+
 /* hkf_init copies the settings in every numeric build: a settings struct
  * scribbled over after hkf_init (a temporary gone out of scope) changes
  * nothing; the run matches one from settings left alone. */
@@ -804,6 +814,9 @@ int main(void)
         cmocka_unit_test(test_coast_boundary_exact),
         cmocka_unit_test(test_two_models_by_hand),
         cmocka_unit_test(test_settings_copied),
+#if defined(HKF_REAL_FIXED)
+        cmocka_unit_test(test_state_within_the_m0_budget),
+#endif
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -225,10 +225,7 @@ typedef struct {
 #endif
 typedef struct {
     hkf_settings_t settings;            /* hkf_init's copy */
-#if defined(HKF_REAL_FIXED)
-    /* what Eq. 8 derives from the curves */
-    uint32_t inv_width[HKF_LANES];      /* 1 / (sqrt(2) sigma), Q1.31 */
-#else
+#if !defined(HKF_REAL_FIXED) /* (the fixed-point build reads its curves from the copy: RAM before time) */
     /* per-lane copies of the settings the axis loops read */
     hkf_real_t q[HKF_LANES], r_const[HKF_LANES];
     hkf_real_t mu[HKF_LANES], lambda[HKF_LANES];
@@ -241,7 +238,9 @@ typedef struct {
     hkf_real_t center[HKF_LANES];
     hkf_real_t moving[HKF_LANES];       /* the motion adaptation's probability of MOVE */
     hkf_real_t noise[HKF_LANES];        /* n from hkf_set_noise, deg^2; 0: none (Eq. 8's own R) */
-    hkf_real_t r_center[HKF_LANES];     /* e(mu), R at the curves' center, as hkf_math.h's divisor */
+#if !defined(HKF_REAL_FIXED)
+    hkf_real_t r_center[HKF_LANES];     /* e(mu), R at the curves' center, as hkf_math.h's divisor (fixed point: each step's) */
+#endif
     hkf_real_t time_since_measurement;
     unsigned gate_rejections;
     int center_source;           /* none, from the first measurement, or explicit */
