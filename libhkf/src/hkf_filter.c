@@ -246,7 +246,7 @@ static HKF_ALWAYS_INLINE void calibrated_noise_lanes(const hkf_filter_t *restric
     hkf_divisor_t center[HKF_LANES];
     center_noise_lanes(f, center);
 #else
-    const hkf_real_t *center = f->r_center;
+    const hkf_divisor_t *center = f->r_center;
 #endif
     int a;
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
