@@ -25,6 +25,7 @@
 #include "face_detector.hpp"
 #include "frame_source.hpp"
 #include "model_spec.hpp"
+#include "simd_level.hpp"
 #include "pipeline.hpp"
 #include "head_pose_estimator.hpp"
 #include "hkf/head_pose_measurement_t.hpp"
@@ -324,6 +325,24 @@ int parse(int argc, char **argv, Options &o)
     return check_options(o);
 }
 
+// The instruction-set level the estimator's own layers run at (HKF_SIMD, or the best this CPU runs),
+// said at start-up: false (said) for an HKF_SIMD that is not a level or that this CPU cannot run.
+bool announce_layer_level()
+{
+    try {
+        const hkf_estimator::LayerKernels &in_use = hkf_estimator::layer_kernels_in_use();
+        std::string supported;
+        for (hkf_estimator::SimdLevel level : hkf_estimator::simd_levels_supported())
+            supported += std::string(supported.empty() ? "" : " ") + hkf_estimator::layer_kernels_of(level).name;
+        std::fprintf(stderr, "hkf-estimator: the estimator's own layers at %s (this CPU runs %s; HKF_SIMD chooses)\n",
+                     in_use.name, supported.c_str());
+        return true;
+    } catch (const hkf_estimator::EstimatorError &e) {
+        std::cerr << "hkf-estimator: " << e.what() << "\n";
+        return false;
+    }
+}
+
 // What a dataset run measured: the totals, then faces found and MAE per labelled |yaw| bin.
 void print_dataset_result(const hkf_estimator::EvalResult &r, const Options &o)
 {
@@ -398,6 +417,7 @@ int main(int argc, char **argv)
     case 2: return 2;
     default: break;
     }
+    if (!announce_layer_level()) return 2;
     try {
         const std::unique_ptr<HeadPoseEstimator> model = make_estimator(load_model_spec(o.spec_dir, o.model, o.models_dir));
         model->set_position_settings(o.position);

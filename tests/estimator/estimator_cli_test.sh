@@ -71,5 +71,22 @@ expect_error "crop is live or labels" "$est" --dataset "$data" --predictions "$w
 expect_error "either --source SRC or --dataset DIR" "$est" --limit 3
 expect_error "detector is short, full or retina" "$est" --source x --detector medium
 expect_error "region wants" "$est" --source x --region 1,2,3
+# the layers' instruction-set level: HKF_SIMD names one this CPU runs (OpenCV's OPENCV_CPU_DISABLE plays a CPU
+# without AVX-512 or AVX2), anything else is refused before a model is read
+expect_error "HKF_SIMD='bogus' is not a level (.*sse2 or default)" env HKF_SIMD=bogus "$est" --dataset "$data" --predictions "$work/simd.csv"
+expect_error "HKF_SIMD=avx2: this CPU cannot run it (it runs sse2 and below)" \
+  env HKF_SIMD=avx2 OPENCV_CPU_DISABLE=AVX512F,AVX2 "$est" --dataset "$data" --predictions "$work/simd.csv"
+[ ! -e "$work/simd.csv" ] || fail "a refused run wrote its predictions"
+HKF_SIMD=sse2 "$est" --dataset "$data" --crop labels --predictions "$work/sse2.csv" --limit 20 --model whenet --second-model none \
+  2>"$work/sse2.err" >/dev/null
+grep -q "own layers at sse2" "$work/sse2.err" || fail "the start-up line does not name the level forced"
+# the same angles at the baseline as at the CPU's best level (the first run above), to a thousandth of a degree
+paste -d, <(head -21 "$work/p.csv") "$work/sse2.csv" | awk -F, 'NR > 1 {
+  if ($1 != $5) bad = 1
+  for (i = 2; i <= 4; ++i) { d = $i - $(i + 4); if (d < 0) d = -d; if (d > worst) worst = d }
+} END { printf "sse2 against the best level: largest difference %.5f deg\n", worst; exit bad || worst > 0.001 }' ||
+  fail "the sse2 layers' angles differ from the best level's"
+grep -q "own layers at $(OPENCV_CPU_DISABLE=AVX512F,AVX2 "$est" --dataset "$data" --predictions "$work/y.csv" --limit 1 2>&1 >/dev/null |
+  sed -n 's/.*own layers at \([a-z0-9]*\) .*/\1/p')" <<<"own layers at sse2" || fail "a CPU without AVX2 does not take sse2"
 grep -q "usage: hkf-estimator" <<<"$("$est" --help)" || fail "--help"
 echo "estimator_cli_test: all checks passed"

@@ -5,7 +5,8 @@
 // planes' means; the pointwise convolution on planes that end in part of a tile, with output
 // channels that end in part of one, gated (the weights scaled, or the input), without a bias;
 // the swish alone, fused by OpenCV into a convolution before it, and over its whole range; bad
-// attributes and weights refused when the layer is made.
+// attributes and weights refused when the layer is made. All of it once per instruction-set level this
+// CPU runs (simd_level.hpp), each level's layers against the same loops; and HKF_SIMD's values read.
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -18,6 +19,8 @@
 #include <opencv2/dnn.hpp>
 
 #include "fast_layers.hpp"
+#include "model_spec.hpp"
+#include "simd_level.hpp"
 
 extern "C" {  // last: cmocka's fail() macro would break the C++ headers
 #include <cmocka.h>
@@ -325,6 +328,24 @@ void test_bad_layers_refused(void **)
     assert_true(pointwise_refused);
 }
 
+// The levels this CPU runs, best first, down to the baseline, which can always be chosen.
+void test_simd_levels_ordered(void **)
+{
+    using hkf_estimator::SimdLevel;
+    const std::vector<SimdLevel> levels = hkf_estimator::simd_levels_supported();
+    assert_true(!levels.empty());
+    assert_true(levels.back() == SimdLevel::baseline);  // every CPU runs the baseline
+    for (size_t i = 1; i < levels.size(); ++i) assert_true(levels[i - 1] > levels[i]);  // best first
+    bool refused = false;
+    try {
+        hkf_estimator::use_simd_level(SimdLevel::baseline);
+    } catch (const hkf_estimator::EstimatorError &) {
+        refused = true;
+    }
+    assert_false(refused);
+    assert_string_equal(hkf_estimator::layer_kernels_in_use().name, hkf_estimator::layer_kernels_of(SimdLevel::baseline).name);
+}
+
 }  // namespace
 
 int main()
@@ -340,5 +361,13 @@ int main()
         cmocka_unit_test(test_swish_as_a_layer),
         cmocka_unit_test(test_bad_layers_refused),
     };
-    return cmocka_run_group_tests(tests, nullptr, nullptr);
+    int failed = 0;
+    for (hkf_estimator::SimdLevel level : hkf_estimator::simd_levels_supported()) {
+        hkf_estimator::use_simd_level(level);  // the layers made from now on
+        const char *name = hkf_estimator::layer_kernels_in_use().name;
+        print_message("== the layers at %s\n", name);
+        failed += _cmocka_run_group_tests(name, tests, sizeof tests / sizeof tests[0], nullptr, nullptr);
+    }
+    const struct CMUnitTest levels[] = {cmocka_unit_test(test_simd_levels_ordered)};
+    return failed + cmocka_run_group_tests(levels, nullptr, nullptr);
 }

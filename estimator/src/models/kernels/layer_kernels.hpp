@@ -1,0 +1,46 @@
+// layer_kernels.hpp - the inner loops of the estimator's own layers (fast_layers.cpp), one table per
+// instruction-set level. Each level's table is the same source (layer_kernels_impl.hpp) built by its own
+// file with that level's compiler flags and a tile shaped for its registers; the layers take the table
+// that simd_level.hpp chose. Nothing here depends on OpenCV.
+#pragma once
+
+#include <cstddef>
+
+namespace hkf_estimator {
+
+enum class SimdLevel { baseline, avx2, avx512 };  // baseline: SSE2 on x86-64, NEON on aarch64
+
+// One tile of a 1x1 convolution: tile_rows output channels x tile_pixels pixels, summed over cin input
+// channels.
+struct PointwiseTile {
+    const float *weights;  // packed [cin][tile_rows]
+    int cin;
+    const float *in;       // cin rows of in_pitch floats from the tile's first pixel
+    long in_pitch;
+    const float *bias;     // tile_rows
+    float *out;            // tile_rows rows of out_pitch floats
+    long out_pitch;
+};
+
+// A depthwise convolution's "extended" outputs sum[j], j < count: bias plus every K x K tap at
+// padded[STRIDE j + ky pitch + kx] (fast_layers.cpp, convolve_plane).
+typedef void DepthwiseTaps(const float *padded, int pitch, const float *weights, float bias, float *sum,
+                           std::size_t count);
+
+struct LayerKernels {
+    SimdLevel level;
+    const char *name;            // as HKF_SIMD spells it: avx512, avx2, sse2 or neon
+    int tile_rows, tile_pixels;  // the pointwise tile: output channels x pixels
+    void (*pointwise_tile)(const PointwiseTile &tile);
+    DepthwiseTaps *taps_3x3_stride1, *taps_3x3_stride2, *taps_5x5_stride1, *taps_5x5_stride2;
+    void (*swish)(const float *src, float *dst, long n);  // x / (1 + exp(-x)); dst may be src
+    float (*plane_mean)(const float *plane, long n);      // n > 0
+};
+
+extern const LayerKernels kBaselineKernels;
+#if defined(__x86_64__)
+extern const LayerKernels kAvx2Kernels;    // AVX2 with FMA
+extern const LayerKernels kAvx512Kernels;  // AVX-512F
+#endif
+
+}  // namespace hkf_estimator

@@ -1,0 +1,136 @@
+// layer_kernels_impl.hpp - the layers' inner loops, included once by each level's file
+// (layer_kernels_LEVEL.cpp), which defines first:
+//   HKF_KERNELS_NAMESPACE   a namespace of the level's own, so that no function is shared between levels
+//                           (a function built with AVX-512 must never be the one a baseline caller links)
+//   HKF_KERNELS_TABLE       the table's name (layer_kernels.hpp)
+//   HKF_KERNELS_LEVEL, HKF_KERNELS_NAME
+//   HKF_LANES               floats in one of the level's vector registers (16, 8 or 4)
+//   HKF_TILE_ROWS, HKF_TILE_VECTORS
+//                           the pointwise tile: rows x vectors of running sums, chosen to fill the level's
+//                           register file without spilling: AVX-512 8 x 2 (16 of 32 zmm), AVX2 6 x 2 (12 of
+//                           16 ymm, beside 2 inputs and a broadcast weight), SSE2 and NEON 6 x 2 (12 of 16 xmm,
+//                           or of 32 NEON registers)
+// Only this file's own functions and compiler built-ins are used here: no inline function of a shared
+// header, which the linker might take from another level's file.
+#include <cstdint>
+#include <cstring>
+
+#include "layer_kernels.hpp"
+
+namespace hkf_estimator {
+namespace HKF_KERNELS_NAMESPACE {
+namespace {
+
+typedef float Vector __attribute__((vector_size(HKF_LANES * sizeof(float))));
+constexpr int kRows = HKF_TILE_ROWS, kVectors = HKF_TILE_VECTORS, kPixels = HKF_TILE_VECTORS * HKF_LANES;
+
+// exp(t) for t in [-87, 88] (clamped outside), written so that a compiler vectorises a loop of it: the
+// clamp as t + relu(-87 - t) and t - relu(t - 88), relu(d) = (d + |d|) / 2, which leave a t inside
+// exactly as it is (a comparison would be a branch GCC does not if-convert); t = k ln2 + r with
+// |r| <= ln2 / 2 (Cody-Waite), exp(r) by its Taylor series to r^6 (relative error below 2e-7 there),
+// 2^k by the float's exponent bits; k from the round-to-nearest trick (adding 1.5 * 2^23 leaves k in
+// the low mantissa bits), so no float-to-int conversion is made.
+inline float exp_approx(float t)
+{
+    const float below = -87.0f - t;
+    t += 0.5f * (below + __builtin_fabsf(below));  // max(t, -87)
+    const float above = t - 88.0f;
+    t -= 0.5f * (above + __builtin_fabsf(above));  // min(t, 88)
+    const float magic = 12582912.0f;  // 1.5 * 2^23
+    const float shifted = t * 1.44269504088896341f + magic;
+    const float k = shifted - magic;
+    const float r = (t - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
+    const float p =
+        1.0f + r * (1.0f + r * (0.5f + r * (1.0f / 6 + r * (1.0f / 24 + r * (1.0f / 120 + r * (1.0f / 720))))));
+    std::uint32_t shifted_bits, p_bits;
+    __builtin_memcpy(&shifted_bits, &shifted, sizeof shifted_bits);
+    __builtin_memcpy(&p_bits, &p, sizeof p_bits);
+    p_bits += (shifted_bits - 0x4B400000u) << 23;  // times 2^k: k added to the exponent
+    float out;
+    __builtin_memcpy(&out, &p_bits, sizeof out);
+    return out;
+}
+
+// The tile: kRows x kVectors vector registers of running sums, one broadcast weight per row and input
+// channel (a fused multiply-add where the level has one).
+void pointwise_tile(const PointwiseTile &t)
+{
+    // Every loop over rows and vectors unrolled, so that the sums stay in registers (GCC keeps an array it
+    // indexes in a loop in memory).
+    Vector sum[kRows][kVectors];
+#pragma GCC unroll 16
+    for (int r = 0; r < kRows; ++r)
+#pragma GCC unroll 4
+        for (int v = 0; v < kVectors; ++v) sum[r][v] = Vector{} + t.bias[r];
+    for (int c = 0; c < t.cin; ++c) {
+        Vector x[kVectors];
+#pragma GCC unroll 4
+        for (int v = 0; v < kVectors; ++v) __builtin_memcpy(&x[v], t.in + c * t.in_pitch + v * HKF_LANES, sizeof x[v]);
+        const float *w = t.weights + static_cast<long>(c) * kRows;
+#pragma GCC unroll 16
+        for (int r = 0; r < kRows; ++r)
+#pragma GCC unroll 4
+            for (int v = 0; v < kVectors; ++v) sum[r][v] += x[v] * w[r];  // w[r] broadcast
+    }
+#pragma GCC unroll 16
+    for (int r = 0; r < kRows; ++r)
+#pragma GCC unroll 4
+        for (int v = 0; v < kVectors; ++v)
+            __builtin_memcpy(t.out + r * t.out_pitch + v * HKF_LANES, &sum[r][v], sizeof sum[r][v]);
+}
+
+// All K^2 taps of one output summed in registers (one store per output), the loop over j vectorised.
+template <int K, int STRIDE>
+void taps(const float *padded, int pitch, const float *weights, float bias, float *__restrict sum, std::size_t count)
+{
+    float w[K * K];
+    __builtin_memcpy(w, weights, sizeof w);
+    for (std::size_t j = 0; j < count; ++j) {
+        const float *at = padded + j * STRIDE;
+        float acc = bias;
+        for (int ky = 0; ky < K; ++ky)
+            for (int kx = 0; kx < K; ++kx) acc += w[ky * K + kx] * at[ky * pitch + kx];
+        sum[j] = acc;
+    }
+}
+
+void swish(const float *src, float *dst, long n)
+{
+    for (long i = 0; i < n; ++i) {
+        const float x = src[i];
+        dst[i] = x / (1.0f + exp_approx(-x));
+    }
+}
+
+// 16 running sums (a loop the compiler vectorises; one sum would be a chain of dependent additions),
+// added in double at the end.
+float plane_mean(const float *plane, long n)
+{
+    float partial[16] = {};
+    long i = 0;
+    for (; i + 16 <= n; i += 16)
+        for (int k = 0; k < 16; ++k) partial[k] += plane[i + k];
+    double sum = 0.0;
+    for (; i < n; ++i) sum += plane[i];
+    for (int k = 0; k < 16; ++k) sum += partial[k];
+    return static_cast<float>(sum / static_cast<double>(n));
+}
+
+}  // namespace
+}  // namespace HKF_KERNELS_NAMESPACE
+
+extern const LayerKernels HKF_KERNELS_TABLE = {
+    HKF_KERNELS_LEVEL,
+    HKF_KERNELS_NAME,
+    HKF_KERNELS_NAMESPACE::kRows,
+    HKF_KERNELS_NAMESPACE::kPixels,
+    HKF_KERNELS_NAMESPACE::pointwise_tile,
+    HKF_KERNELS_NAMESPACE::taps<3, 1>,
+    HKF_KERNELS_NAMESPACE::taps<3, 2>,
+    HKF_KERNELS_NAMESPACE::taps<5, 1>,
+    HKF_KERNELS_NAMESPACE::taps<5, 2>,
+    HKF_KERNELS_NAMESPACE::swish,
+    HKF_KERNELS_NAMESPACE::plane_mean,
+};
+
+}  // namespace hkf_estimator
