@@ -5,6 +5,7 @@
 // The network is loaded as the estimator loads it (load_onnx_network: those layers registered). Then the same network quantized to int8 by OpenCV itself
 // (cv::dnn::Net::quantize, calibrated on the same input), its whole pass: the shipped runtime's int8 path.
 // usage: hkf-bench-layers MODEL.onnx [WIDTH HEIGHT [RUNS [THREADS]]]   (defaults 224 224 40 1)
+// HKF_SIMD chooses the level of hkf's layers, OPENCV_CPU_DISABLE OpenCV's (layer_levels.sh runs every level).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +19,7 @@
 #include <opencv2/dnn.hpp>
 
 #include "onnx_network.hpp"
+#include "simd_level.hpp"
 
 namespace {
 
@@ -182,7 +184,9 @@ int main(int argc, char **argv)
     const int status = parse(argc, argv, &o);
     if (status != 0) return status < 0 ? 0 : status;
     cv::dnn::Net net;
+    const char *level = nullptr;
     try {
+        level = hkf_estimator::layer_kernels_in_use().name;  // HKF_SIMD, or the best this CPU runs
         net = hkf_estimator::load_onnx_network(o.model, {});
     } catch (const hkf_estimator::EstimatorError &e) {
         std::fprintf(stderr, "hkf-bench-layers: %s\n", e.what());
@@ -193,8 +197,8 @@ int main(int argc, char **argv)
     net.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
     const Profile p = profile(net, o);
     const double total = median(p.total_ms);
-    std::printf("%s, %ldx%ld, OpenCV %s, %ld thread%s, %ld runs: forward pass %.1f ms (median)\n\n", o.model, o.width,
-                o.height, CV_VERSION, o.threads, o.threads == 1 ? "" : "s", o.runs, total);
+    std::printf("%s, %ldx%ld, OpenCV %s, hkf's layers at %s, %ld thread%s, %ld runs: forward pass %.2f ms (median)\n\n",
+                o.model, o.width, o.height, CV_VERSION, level, o.threads, o.threads == 1 ? "" : "s", o.runs, total);
     print_by_type(p, total);
     print_slowest(p);
     const double int8_ms = int8_forward_ms(net, o);

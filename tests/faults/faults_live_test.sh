@@ -4,7 +4,9 @@
 # stalls, hangs or is unplugged; the estimator killed and restarted under a
 # running node; the node killed and restarted under a running estimator; two
 # estimators on one channel. lcm-logger records every stage; nothing may
-# publish a non-finite value. Expected outcomes: the fault catalogue (docs/reliability.md).
+# publish a non-finite value. Expected outcomes: the fault catalogue (docs/reliability.md). Each step
+# waits for the state it needs (a line printed, poses in the log) with a deadline, never for a time that
+# assumes the machine's speed; the sleeps left are the faults' own durations (a silence of 2.5 s).
 # usage: faults_live_test.sh BUILD_DIR SOURCE_DIR   (exit 77: no network namespace here)
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)
@@ -21,10 +23,23 @@ pids=()
 cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm -rf "$work"; }
 trap cleanup EXIT
 fail() { echo "FAIL: $*" >&2; tail -n 5 "$work"/*.txt >&2 2>/dev/null || true; exit 1; }
+# shellcheck source=../lib/wait_until.sh
+. "$source/tests/lib/wait_until.sh"
 check() { "$python" "$source/tests/faults/check_poses.py" --types "$types" "$@"; }
-start_logger() { lcm-logger -q -f --lcm-url "$url" "$work/$1.lcmlog" & logger=$!; pids+=("$logger"); }
-stop_logger() { sleep 0.3; kill -INT "$logger"; wait "$logger" || true; }
-start_filter() { "$filter" --lcm-url "$url" 2>"$work/$1.txt" & node=$!; pids+=("$node"); sleep 0.3; }
+# wait_log NAME ARGS...: until the log NAME.lcmlog holds what wait_for_log.py ARGS ask (60 s at most)
+wait_log() { local name=$1; shift; "$python" "$source/tests/faults/wait_for_log.py" --types "$types" "$work/$name.lcmlog" --timeout 60 "$@"; }
+now_us() { date +%s%6N; }
+start_logger() {
+  lcm-logger -q -f --flush-interval=50 --lcm-url "$url" "$work/$1.lcmlog" & logger=$!
+  pids+=("$logger")
+  wait_until 30 "log file from lcm-logger" test -e "$work/$1.lcmlog" || fail "lcm-logger did not start"
+}
+stop_logger() { sleep 0.3; kill -INT "$logger"; wait "$logger" || true; }  # 0.3 s: the logger's last flush
+start_filter() {
+  "$filter" --lcm-url "$url" 2>"$work/$1.txt" & node=$!
+  pids+=("$node")
+  wait_until 30 "start-up line from hkf-filter" has_line "$work/$1.txt" "^hkf-filter: .* -> .* on " || fail "hkf-filter did not start"
+}
 stop_filter() { kill -TERM "$node"; wait "$node" || fail "hkf-filter did not stop cleanly"; grep -q "poses published" "$work/$1.txt" || fail "no summary from hkf-filter"; }
 # The estimator runs the face mesh alone here: a second model finishes the frame in hand when
 # the estimator stops (up to ~0.5 s under the sanitizers), which the node would rightly count
@@ -45,7 +60,9 @@ pids+=("$camera")
 start_logger stall
 start_filter stall_filter
 estimate stall "$work/camera" --annotate "$work/stall.mp4"
-sleep 12   # 2 s of frames, 3 s stall, 3 s of frames, then the hang
+# 2 s of frames, 3 s stall, 3 s of frames, then the hang: SIGTERM once the hang is noticed (a second silence)
+wait_until 120 "second silence reported" eval '[ "$(grep -c "no frame from stream" "$work/stall.txt")" -ge 2 ]' ||
+  fail "the estimator did not report the stall and the hang"
 kill -TERM "$est"
 status=0
 wait "$est" || status=$?
@@ -84,11 +101,13 @@ echo "== 3. the estimator killed (SIGKILL) and restarted while the node runs"
 start_logger restart
 start_filter restart_filter
 estimate first "$videos/d3.mp4" --realtime
-sleep 4
+wait_log restart --channel HEAD_POSE --status TRACKING --count 15 || fail "kill/restart: the first estimator was never tracked"
 kill -9 "$est"
-sleep 2.5
+sleep 2.5  # the silence under test: LOST at 0.25 s, then once a second
+restarted=$(now_us)
 estimate second "$videos/d3.mp4" --realtime
-sleep 4
+wait_log restart --channel HEAD_POSE --status TRACKING --count 15 --after-us "$restarted" ||
+  fail "kill/restart: the restarted estimator was never tracked"
 kill -TERM "$est"
 wait "$est" || fail "the restarted estimator: exit $? after SIGTERM"
 stop_filter restart_filter
@@ -113,15 +132,15 @@ PY
 echo "== 4. the node killed (SIGKILL) and restarted while the estimator runs"
 start_logger node_restart
 estimate steady "$videos/d3.mp4" --realtime
-sleep 0.5
+wait_log node_restart --channel HEAD_POSE_RAW --count 5 || fail "the estimator did not publish"
 start_filter node1
-sleep 3
+wait_log node_restart --channel HEAD_POSE --status TRACKING --count 30 || fail "the first node did not track"
 kill -9 "$node"
-sleep 1
+sleep 1  # the node's absence under test
 start_filter node2
-restarted=$(date +%s%6N)
-sleep 4
-stopped=$(date +%s%6N)
+restarted=$(now_us)
+wait_log node_restart --channel HEAD_POSE --count 30 --after-us "$restarted" || fail "the restarted node published nothing"
+stopped=$(now_us)
 stop_filter node2
 wait "$est" || fail "the estimator stopped when the node died: exit $?"
 stop_logger
@@ -152,11 +171,15 @@ check "$work/node_restart.lcmlog" finite >/dev/null || fail "non-finite values a
 echo "== 5. two estimators on one channel: the node follows the first, never mixes"
 start_logger two
 start_filter two_filter
-estimate a "$videos/d3.mp4" --realtime --max-frames 150
-sleep 1
+estimate a "$videos/d3.mp4" --realtime
+first=$est
+wait_log two --channel HEAD_POSE --status TRACKING --count 5 || fail "the first estimator was not tracked"
 estimate b "$videos/d9.mp4" --realtime --max-frames 90 --model whenet
-sleep 4.5
+# the second runs its 90 frames through while the first still publishes (354 frames, about 12 s)
+wait "$est" || fail "the second estimator: exit $?"
 stop_filter two_filter
+kill -TERM "$first"
+wait "$first" || fail "the first estimator: exit $? after SIGTERM"
 stop_logger
 cat "$work/two_filter.txt"
 grep -q " [1-9][0-9]* from another publisher" "$work/two_filter.txt" || fail "the second estimator was not rejected"
