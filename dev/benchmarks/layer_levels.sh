@@ -13,15 +13,8 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 models=$root/.models
 bench=$build/dev/benchmarks/hkf-bench-layers
 
-avx512="AVX512F,AVX512-COMMON,AVX512-SKX,AVX512-CLX,AVX512-CNL,AVX512-ICL,AVX512BW,AVX512CD,AVX512DQ,AVX512VL"
-avx512+=",AVX512IFMA,AVX512VBMI,AVX512VBMI2,AVX512VNNI,AVX512BITALG,AVX512VPOPCNTDQ"
-above_sse2="SSE3,SSSE3,SSE4.1,POPCNT,SSE4.2,FP16,FMA3,AVX,AVX2,$avx512"
-opencv_disable() { # the OpenCV features a CPU of this level lacks
-  case $1 in
-    avx512) echo "" ;;
-    avx2) echo "$avx512" ;;
-    *) echo "$above_sse2" ;;
-  esac
+opencv_disable() { # the OpenCV features a CPU of this level lacks (opencv_cpu_levels.txt)
+  awk -v level="$1" '$1 == level { print $2 }' "$root/dev/benchmarks/opencv_cpu_levels.txt"
 }
 forward_ms() { # forward_ms LEVEL GRAPH THREADS: the median pass, or nothing when this CPU cannot run LEVEL
   HKF_SIMD=$1 OPENCV_CPU_DISABLE=$(opencv_disable "$1") "$bench" "$models/$2.onnx" 224 224 "$runs" "$3" 2>/dev/null |

@@ -20,7 +20,11 @@ Every frame of the clip has |yaw| >= 60 deg, so every figure is "while the head 
                     pose the node published after the measurement reached it
   dropped           frames the estimator dropped (its own count)
 
-usage: big_turns.py [--build DIR] [--out DIR] [--faces N]
+--simd LEVEL plays a CPU of that level (avx2, sse2): hkf's layers forced to it (HKF_SIMD) and OpenCV's own
+held to it (OPENCV_CPU_DISABLE, dev/benchmarks/opencv_cpu_levels.txt), so an AVX-512 machine measures what
+an AVX2 one gives.
+
+usage: big_turns.py [--build DIR] [--out DIR] [--faces N] [--simd LEVEL]
 Needs root (a private network namespace: nothing leaves the machine); exit 77 otherwise.
 """
 import argparse
@@ -148,7 +152,14 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "e2e"))
     parser.add_argument("--faces", type=int, default=FACES)
+    parser.add_argument("--simd", help="the instruction-set level to play (avx512, avx2, sse2); default: this CPU's")
     args = parser.parse_args()
+    if args.simd:
+        levels = dict((line.split() + [""])[:2] for line in open(os.path.join(ROOT, "dev", "benchmarks", "opencv_cpu_levels.txt"))
+                      if line.strip() and not line.startswith("#"))
+        if args.simd not in levels:
+            evaluate.fail(f"--simd is one of {', '.join(levels)}, not '{args.simd}'")
+        os.environ["HKF_SIMD"], os.environ["OPENCV_CPU_DISABLE"] = args.simd, levels[args.simd]
     if os.environ.get("HKF_IN_NETNS") != "1":
         os.environ["HKF_IN_NETNS"] = "1"
         netns = os.path.join(ROOT, "tools", "lcm-netns")
@@ -159,7 +170,8 @@ def main():
     os.makedirs(out, exist_ok=True)
     faces = turned_faces(args.faces)
     lines = [f"Big turns: {len(faces)} AFLW2000 dev-split faces at |yaw| >= {MIN_YAW:g} deg, each held "
-             f"{HOLD_S:g} s, played as a camera through the live chain (big_turns.py).\n",
+             f"{HOLD_S:g} s, played as a camera through the live chain (big_turns.py); hkf's layers at "
+             f"{os.environ.get('HKF_SIMD') or 'the best this CPU runs'}.\n",
              "| estimator | fps | frames | dropped | WHENet /s | measured (yaw within 20 deg) | capture->publish p50 / p99 "
              "| capture->datagram p50 / p99 |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     verdicts = []

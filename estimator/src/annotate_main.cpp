@@ -22,6 +22,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "image_size_cap.hpp"
 #include "pose_drawing.hpp"
 #include "written_video.hpp"
 
@@ -195,6 +196,11 @@ int main(int argc, char **argv)
     case 1: return 0;
     case 2: return 2;
     default: break;
+    }
+    if (*hkf_estimator::image_size_cap_problem() != '\0')  // settled before OpenCV loaded (image_size_cap.hpp)
+    {
+        std::fprintf(stderr, "hkf-annotate: %s\n", hkf_estimator::image_size_cap_problem());
+        return 2;
     }
     for (const std::string *input : {&o.video, &o.raw_log, &o.filtered_log})
         if (safe_same_file(o.out.c_str(), input->c_str()) || (!o.still_path.empty() && safe_same_file(o.still_path.c_str(), input->c_str())))

@@ -24,6 +24,7 @@
 #include "dataset_eval.hpp"
 #include "face_detector.hpp"
 #include "frame_source.hpp"
+#include "image_size_cap.hpp"
 #include "model_spec.hpp"
 #include "simd_level.hpp"
 #include "pipeline.hpp"
@@ -404,18 +405,26 @@ int main(int argc, char **argv)
     using namespace hkf_estimator;
     Options o;
     // OpenCV reads its image size cap as it loads, before main: without one in the environment, run again
-    // with ours (frame_source.hpp), so that a larger image is refused from its header, not decoded first
-    // (a 9000 x 9000 image took 360 MB). Should the exec fail, the cap is checked after decoding. With the
-    // variable already set (by a user, or under valgrind, whose /proc/self/exe is its own), nothing is re-run.
+    // with ours (image_size_cap.hpp), so that a larger image is refused from its header, not decoded first
+    // (a 9000 x 9000 image took 360 MB). The program's own path is executed, not /proc/self/exe, so that the
+    // process keeps its name (pgrep -x hkf-estimator). Should the exec fail, the cap is checked after
+    // decoding. With the variable already set (by a user, or under valgrind, whose /proc/self/exe is its
+    // own), nothing is re-run.
     if (std::getenv("OPENCV_IO_MAX_IMAGE_PIXELS") == nullptr) {
+        std::error_code error;
+        const std::string self = std::filesystem::read_symlink("/proc/self/exe", error).string();
         setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
-        execv("/proc/self/exe", argv);
+        if (!error) execv(self.c_str(), argv);
     }
     safe_files_fail_writes_past_size_limit();  // a file-size limit: a reported write error, not SIGXFSZ
     switch (parse(argc, argv, o)) {
     case 1: return 0;
     case 2: return 2;
     default: break;
+    }
+    if (*image_size_cap_problem() != '\0') {  // settled before OpenCV loaded (image_size_cap.hpp)
+        std::cerr << "hkf-estimator: " << image_size_cap_problem() << "\n";
+        return 2;
     }
     if (!announce_layer_level()) return 2;
     try {
