@@ -69,7 +69,7 @@ static int empty_or_log(const char *path)
     char error[PATH_MAX + 64];
     unsigned char word[4];
     size_t got;
-    FILE *f = safe_open_input(path, error, sizeof error);
+    FILE *f = safe_open_to_inspect(path, error, sizeof error);
     if (f == NULL) {
         return 0;
     }
@@ -86,7 +86,7 @@ static int count_events(const char *path, unsigned long *events, long *cut)
     static unsigned char data[1];
     lcm_log_reader_t reader;
     lcm_log_event_t event;
-    FILE *f = safe_open_input(path, error, sizeof error);
+    FILE *f = safe_open_to_inspect(path, error, sizeof error);
     if (f == NULL || lcm_log_reader_open(&reader, f) != 0) {
         if (f != NULL) {
             fclose(f);
@@ -136,7 +136,15 @@ int lcm_file_url_check(const char *url, const char *role, const char *const *kee
             fprintf(stderr, "%s: cannot read '%s' (the %s URL): %s\n", program, u->path, role, strerror(errno));
             return -1;
         }
+        safe_note_read(u->path); /* no output of this run may be it, under any name */
         return 0;
+    }
+    {
+        char reason[2 * PATH_MAX + 200];
+        if (safe_output_problem(u->path, reason, sizeof reason) != 0) {
+            fprintf(stderr, "%s: the %s URL '%s': %s\n", program, role, url, reason);
+            return -1;
+        }
     }
     for (i = 0; i < count; ++i) {
         if (keep[i] != NULL && safe_writes_over(u->path, keep[i])) {

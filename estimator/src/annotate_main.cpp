@@ -9,6 +9,7 @@
 // (head_pose_t.utime == head_pose_measurement_t.utime, not extrapolated).
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <csignal>
 #include <cmath>
 #include <cstdio>
@@ -205,6 +206,11 @@ int main(int argc, char **argv)
     for (const std::string *input : {&o.video, &o.raw_log, &o.filtered_log})
         if (safe_same_file(o.out.c_str(), input->c_str()) || (!o.still_path.empty() && safe_same_file(o.still_path.c_str(), input->c_str())))
             return fail("an output is also the input " + *input + "; refusing to write over it");
+    for (const std::string *input : {&o.video, &o.raw_log, &o.filtered_log}) safe_note_read(input->c_str());
+    for (const std::string *output : {&o.out, &o.still_path}) {  // by identity too: a hard link to an input
+        char reason[2 * PATH_MAX + 200];
+        if (!output->empty() && safe_output_problem(output->c_str(), reason, sizeof reason) != 0) return fail(reason);
+    }
     // SIGINT / SIGTERM / SIGHUP: stop between frames with the video closed (playable) and exit 1
     std::signal(SIGINT, on_stop_signal);
     std::signal(SIGTERM, on_stop_signal);

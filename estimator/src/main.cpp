@@ -4,6 +4,7 @@
 // labelled image set.
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -93,7 +94,23 @@ std::string annotate_path_problem(const std::string &path, const std::string &so
     if (access(folder.c_str(), W_OK) != 0) return "the folder " + folder.string() + " cannot be written";
     if (fs::exists(path, error) && !fs::is_regular_file(path, error)) return "it exists and is not a regular file";
     if (!source.empty() && safe_same_file(path.c_str(), source.c_str())) return "it is the source; refusing to write over it";
+    if (!source.empty() && safe_writes_over(path.c_str(), source.c_str()))
+        return "it is inside the source folder " + source + "; refusing to write there";
+    char reason[2 * PATH_MAX + 200];
+    if (safe_output_problem(path.c_str(), reason, sizeof reason) != 0) return reason;  // a file this run reads, by identity
     return "";
+}
+
+// Every file this run will read, noted by device and inode before any output is opened (safe_files.h), so
+// that no output is one of them under another name (a hard link): the source (a video, or a folder's
+// images), the dataset's labels and images, the models and their descriptions.
+void note_inputs(const Options &o)
+{
+    for (const std::string *input : {&o.pipeline.source, &o.dataset, &o.models_dir, &o.spec_dir}) {
+        if (input->empty()) continue;
+        safe_note_read(input->c_str());
+        safe_note_folder(input->c_str());
+    }
 }
 
 void usage(std::ostream &out)
@@ -284,12 +301,6 @@ int check_options(Options &o)
                   << o.pipeline.channel << "'\n";
         return 2;
     }
-    const std::string problem =
-        o.pipeline.annotate_path.empty() ? "" : annotate_path_problem(o.pipeline.annotate_path, o.pipeline.source);
-    if (!problem.empty()) {
-        std::cerr << "hkf-estimator: --annotate " << o.pipeline.annotate_path << ": " << problem << "\n";
-        return 2;
-    }
     if (!o.dataset.empty() && o.predictions.empty()) {
         std::cerr << "hkf-estimator: --dataset DIR needs --predictions OUT.csv (see --help)\n";
         return 2;
@@ -427,6 +438,14 @@ int main(int argc, char **argv)
         return 2;
     }
     if (!announce_layer_level()) return 2;
+    note_inputs(o);
+    if (!o.pipeline.annotate_path.empty()) {  // checked once the inputs are noted
+        const std::string problem = annotate_path_problem(o.pipeline.annotate_path, o.pipeline.source);
+        if (!problem.empty()) {
+            std::cerr << "hkf-estimator: --annotate " << o.pipeline.annotate_path << ": " << problem << "\n";
+            return 2;
+        }
+    }
     try {
         const std::unique_ptr<HeadPoseEstimator> model = make_estimator(load_model_spec(o.spec_dir, o.model, o.models_dir));
         model->set_position_settings(o.position);

@@ -14,9 +14,15 @@ mkdir -p "$out" "$work/corpus"
 "$python" "$source/tests/fuzz/make_seeds.py" "$work/drive.lcmlog" "$source/filter_node/hkf-filter.conf" \
   "$work/seeds" >/dev/null
 [ -d "$work/seeds/$target" ] && cp "$work/seeds/$target"/* "$work/corpus/"
+options=()
+if [ "$target" = fuzz_onnx_model ]; then  # the shipped models (all but the plain WHENet graph) and small graphs
+  for model in "$source/.models"/*.onnx; do [ "$(basename "$model")" = whenet.onnx ] || cp "$model" "$work/corpus/"; done
+  "$python" "$source/tests/fuzz/make_onnx_seeds.py" "$work/corpus" >/dev/null
+  options=(-max_len=2500000 -timeout=30)  # the face models whole; WHENet's 17 MB taken by their first 2.5 MB
+fi
 [ -d "$out/corpus" ] && cp "$out/corpus"/* "$work/corpus/" 2>/dev/null || true   # what earlier runs found
 status=0
-(cd "$work" && "$build/tests/fuzz/$target" corpus -max_total_time="$seconds" -print_final_stats=1 \
+(cd "$work" && "$build/tests/fuzz/$target" corpus "${options[@]}" -max_total_time="$seconds" -print_final_stats=1 \
   -artifact_prefix="$out/" -rss_limit_mb=2048) >"$work/log.txt" 2>&1 || status=$?
 mkdir -p "$out/corpus" && cp "$work/corpus"/* "$out/corpus/" 2>/dev/null || true
 executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/log.txt")
