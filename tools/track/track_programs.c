@@ -3,6 +3,8 @@
 
 #include "track_programs.h"
 
+#include "safe_files.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -175,12 +177,16 @@ static void print_command(char *const *argv)
 }
 
 /* In the child: its own process group (Ctrl-C reaches hkf-track only, which stops the programs in order),
- * SIGTERM should hkf-track die without stopping it, the signals' defaults, its output in the log. */
-static void run_child(const track_program_t *program, int log)
+ * SIGTERM should hkf-track die without stopping it, the signals' defaults, its output in the log. The
+ * parent-death signal is asked for first, then the parent checked: hkf-track may have died between the
+ * fork and the request, which the signal would never tell (the child is then an orphan: it goes). */
+static void run_child(const track_program_t *program, int log, pid_t parent)
 {
-    int devnull = open("/dev/null", O_RDONLY);
-    setpgid(0, 0);
+    int devnull;
     prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(1);
+    devnull = open("/dev/null", O_RDONLY);
+    setpgid(0, 0);
     signal(SIGXFSZ, SIG_DFL);
     signal(SIGPIPE, SIG_DFL);
     if (devnull < 0 || dup2(devnull, 0) < 0 || dup2(log, 1) < 0 || dup2(log, 2) < 0) _exit(127);
@@ -191,7 +197,13 @@ static void run_child(const track_program_t *program, int log)
 
 static int start_one(track_program_t *program, const char *logs)
 {
+    char reason[2 * TRACK_PATH_SIZE + 200];
+    const pid_t parent = getpid();
     snprintf(program->log, sizeof program->log, "%s/%s.log", logs, program->name);
+    if (safe_output_problem(program->log, reason, sizeof reason) != 0) { /* an input under another name, /proc ... */
+        fprintf(stderr, "hkf-track: %s\n", reason);
+        return 1;
+    }
     int log = open(program->log, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (log < 0) {
         fprintf(stderr, "hkf-track: cannot write %s: %s\n", program->log, strerror(errno));
@@ -199,7 +211,7 @@ static int start_one(track_program_t *program, const char *logs)
     }
     fflush(stdout);
     program->pid = fork();
-    if (program->pid == 0) run_child(program, log);
+    if (program->pid == 0) run_child(program, log, parent);
     close(log);
     if (program->pid < 0) {
         fprintf(stderr, "hkf-track: cannot start %s: %s\n", program->name, strerror(errno));
