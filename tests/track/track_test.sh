@@ -104,5 +104,22 @@ sleep 2  # a status line a second
 kill -INT "$first_pid"
 wait "$first_pid" || fail "the first tracker did not stop cleanly"
 grep -q "poses/s" "$work/first.txt" || fail "the first tracker showed no status line"
+# hkf-track killed between a child's fork and its request for the parent-death signal (a shim makes the
+# request 0.5 s late): the child sees its parent gone and ends, never running on as an orphan
+cp "$videos/d3.mp4" "$work/orphan_clip.mp4"
+LD_PRELOAD="$build/tests/libhkf_test_slow_pdeathsig.so" "${track[@]}" --source "$work/orphan_clip.mp4" --realtime \
+  --logs "$work/logs_orphan" >"$work/orphan.txt" 2>&1 &
+orphan_track=$!
+for _ in $(seq 100); do grep -q "started hkf-estimator" "$work/orphan.txt" && break; sleep 0.05; done
+kill -9 "$orphan_track"
+wait "$orphan_track" 2>/dev/null || true
+# the child (hkf-track's own command line until it runs a program) is gone once it has checked; an orphan
+# would run the clip for 12 s
+for _ in $(seq 80); do pgrep -f "$work/orphan_clip.mp4" >/dev/null || break; sleep 0.1; done
+if pgrep -f "$work/orphan_clip.mp4" >/dev/null; then
+  pkill -f "$work/orphan_clip.mp4" || true
+  fail "a child of hkf-track ran on after hkf-track was killed before its parent-death signal was set"
+fi
+echo "hkf-track killed before its child asked for the parent-death signal: no orphan"
 "${track[@]}" --help | grep -q "^usage: hkf-track" || fail "--help"
 echo "track_test: passed ($received poses reached the UDP receiver; programs stopped on Ctrl-C)"
