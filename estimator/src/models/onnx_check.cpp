@@ -1,6 +1,9 @@
 // onnx_check.cpp - see onnx_check.hpp. The field numbers are onnx.proto's (ONNX IR version 8).
 #include "onnx_check.hpp"
 
+#include <cstdint>
+#include <cstring>
+
 namespace hkf_estimator {
 
 namespace {
@@ -9,6 +12,16 @@ constexpr int kMaxDepth = 16;                  // graphs inside attributes insid
 constexpr int kMaxDims = 16;                   // a tensor's rank
 constexpr std::uint64_t kMaxDim = 1ULL << 31;  // one dimension
 constexpr std::uint64_t kMaxElements = 1ULL << 34;
+// An integer tensor's values are sizes, axes, shapes and indices to OpenCV's importer, which allocates by
+// them (a Slice's axis of 10^17 asked for 8 GB): each must be within +-2^24, or one of the extremes
+// exporters write for "to the end" (INT32_MIN/MAX, INT64_MIN/MAX).
+constexpr std::int64_t kMaxIntegerValue = 1LL << 24;
+
+bool integer_value_ok(std::int64_t v)
+{
+    return (v >= -kMaxIntegerValue && v <= kMaxIntegerValue) || v == INT64_MAX || v == INT64_MIN ||
+           v == INT32_MAX || v == INT32_MIN || v == INT64_MAX - 1 || v == INT64_MIN + 1;
+}
 
 enum Wire { kVarint = 0, kFixed64 = 1, kBytes = 2, kFixed32 = 5 };
 
@@ -130,6 +143,38 @@ bool count_values(const Field &f, std::uint64_t &count)
     return true;
 }
 
+// The values of an int32_data or int64_data field (varints; a negative int32 is sign-extended to 64 bits).
+bool typed_integers_ok(const Field &f)
+{
+    if (f.wire == kVarint) return integer_value_ok(static_cast<std::int64_t>(f.value));
+    Message packed(f.bytes, f.length);
+    std::uint64_t v;
+    while (packed.at != packed.end)
+        if (!packed.varint(v) || !integer_value_ok(static_cast<std::int64_t>(v))) return false;
+    return true;
+}
+
+// The little-endian INT32 (size 4) or INT64 (size 8) values of raw data.
+bool raw_integers_ok(const std::uint8_t *raw, std::size_t length, int size)
+{
+    for (std::size_t i = 0; raw != nullptr && i + static_cast<std::size_t>(size) <= length; i += static_cast<std::size_t>(size)) {
+        std::int64_t v;
+        if (size == 8) {
+            std::uint64_t u = 0;
+            for (int b = 7; b >= 0; --b) u = (u << 8) | raw[i + static_cast<std::size_t>(b)];
+            std::memcpy(&v, &u, sizeof v);
+        } else {
+            std::uint32_t u = 0;
+            for (int b = 3; b >= 0; --b) u = (u << 8) | raw[i + static_cast<std::size_t>(b)];
+            std::int32_t w;
+            std::memcpy(&w, &u, sizeof w);
+            v = w;
+        }
+        if (!integer_value_ok(v)) return false;
+    }
+    return true;
+}
+
 std::string tensor_problem(const std::uint8_t *data, std::size_t size);
 std::string graph_problem(const std::uint8_t *data, std::size_t size, int depth);
 
@@ -140,8 +185,9 @@ std::string tensor_problem(const std::uint8_t *data, std::size_t size)
     std::string name;
     std::uint64_t dims = 0, elements = 1, type = 0, typed_values = 0, typed_field_seen = 0, strings = 0;
     std::uint64_t values[12] = {};
-    bool has_raw = false, external = false;
+    bool has_raw = false, external = false, values_ok = true;
     std::size_t raw_length = 0;
+    const std::uint8_t *raw = nullptr;
     bool bad_dim = false;
     while (m.next(f)) {
         switch (f.number) {
@@ -176,6 +222,7 @@ std::string tensor_problem(const std::uint8_t *data, std::size_t size)
         case 9:
             if (f.wire != kBytes) return "raw data of the wrong wire type";
             has_raw = true;
+            raw = f.bytes;
             raw_length += f.length;
             break;
         case 6:  // string_data
@@ -184,6 +231,7 @@ std::string tensor_problem(const std::uint8_t *data, std::size_t size)
             break;
         case 4: case 5: case 7: case 10: case 11:
             if (!count_values(f, values[f.number])) return "typed data that is no protobuf";
+            if ((f.number == 5 || f.number == 7) && !typed_integers_ok(f)) values_ok = false;
             break;
         case 3: return "tensor '" + name + "' is split into segments (not taken)";
         case 13: external = true; break;
@@ -214,8 +262,11 @@ std::string tensor_problem(const std::uint8_t *data, std::size_t size)
             return which + " declares " + std::to_string(elements) + " elements (" +
                    std::to_string(elements * static_cast<std::uint64_t>(t.raw_size)) + " bytes) but holds " +
                    std::to_string(raw_length) + " bytes";
+        if ((type == 6 || type == 7) && !raw_integers_ok(raw, raw_length, t.raw_size))
+            return which + " holds an integer beyond +-2^24 (a size or an axis OpenCV would allocate by)";
         return "";
     }
+    if (!values_ok) return which + " holds an integer beyond +-2^24 (a size or an axis OpenCV would allocate by)";
     const std::uint64_t expected = elements * static_cast<std::uint64_t>(t.values_per_element);
     if (typed_values != expected)
         return which + " declares " + std::to_string(elements) + " elements but holds " + std::to_string(typed_values) + " values";
