@@ -19,6 +19,7 @@ packages=(
   clang libclang-rt-14-dev                      # the fuzz targets (libFuzzer, tests/fuzz)
   gcc-arm-none-eabi libnewlib-arm-none-eabi     # libhkf for Cortex-M (cmake/arm-none-eabi.cmake)
   qemu-system-arm                               # ... and its target tests in an emulator (tests/mcu)
+  g++-aarch64-linux-gnu qemu-user               # the estimator's layers built for aarch64 (NEON), run under qemu
   help2man                                      # the programs' man pages, from their --help
 )
 if [ "${1:-}" = --release ]; then

@@ -157,7 +157,12 @@ void usage(std::ostream &out)
            "  --models-dir DIR   converted models (default "
         << default_models_dir() << ", or $HKF_MODELS_DIR)\n"
            "  --spec-dir DIR     model descriptions (default " << default_spec_dir() << ")\n"
-           "  --help, --version  this text; the version\n";
+           "  --help, --version  this text; the version\n"
+           "Environment:\n"
+           "  HKF_SIMD           the instruction-set level of the estimator's own layers (WHENet's):\n"
+           "                     avx512, avx2 (with FMA), sse2 (x86-64; neon on aarch64) or default, the\n"
+           "                     best this CPU runs; the start-up line names the level in use\n"
+           "  OPENCV_IO_MAX_IMAGE_PIXELS  the largest image decoded, 1 to 33177600 pixels (the default)\n";
 }
 
 // --region X,Y,W,H: a region within the largest frame; false when the text is not one.

@@ -1,0 +1,139 @@
+// test_layer_kernels.cpp - each instruction-set level's loops (estimator/src/models/kernels/) against plain
+// loops in double, without OpenCV, so that the same file is built for another architecture (aarch64's
+// NEON, run under qemu-user: tests/estimator/kernels_aarch64_test.sh) as well as for this one. The tile on
+// every shape a layer gives it (whole and cut at either edge: the layer pads those to a whole tile), the
+// depthwise taps of WHENet's kernels and strides, the swish over +-200 and beyond, a plane's mean.
+// usage: test_layer_kernels [LEVEL...]   (default: every level built in; a level this CPU lacks: skip it)
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "kernels/layer_kernels.hpp"
+
+namespace {
+
+using hkf_estimator::LayerKernels;
+
+int failures = 0;
+
+void expect(bool ok, const char *level, const char *what, double error)
+{
+    std::printf("%-7s %-58s %s (error %.2e)\n", level, what, ok ? "ok" : "FAILED", error);
+    if (!ok) ++failures;
+}
+
+std::vector<float> noise(size_t n, unsigned seed, float spread)
+{
+    std::mt19937 random(seed);
+    std::normal_distribution<float> normal(0.0f, spread);
+    std::vector<float> v(n);
+    for (float &x : v) x = normal(random);
+    return v;
+}
+
+// One tile: cin input channels; the packed weights [cin][rows], the bias, an input of `pitch` floats a row.
+void check_tile(const LayerKernels &k, int cin)
+{
+    const int rows = k.tile_rows, pixels = k.tile_pixels;
+    const long pitch = pixels + 7;  // a plane wider than the tile: the tile reads its own pixels only
+    const std::vector<float> weights = noise(static_cast<size_t>(cin) * rows, 1, 0.3f), bias = noise(rows, 2, 0.5f);
+    const std::vector<float> in = noise(static_cast<size_t>(cin) * pitch, 3, 1.0f);
+    std::vector<float> out(static_cast<size_t>(rows) * (pixels + 3), -7.0f);
+    k.pointwise_tile(hkf_estimator::PointwiseTile{weights.data(), cin, in.data(), pitch, bias.data(), out.data(), pixels + 3});
+    double worst = 0.0, scale = 1e-6;
+    bool outside = true;
+    for (int r = 0; r < rows; ++r) {
+        for (int p = 0; p < pixels; ++p) {
+            double sum = bias[r];
+            for (int c = 0; c < cin; ++c) sum += static_cast<double>(weights[static_cast<size_t>(c) * rows + r]) * in[c * pitch + p];
+            worst = std::fmax(worst, std::fabs(out[static_cast<size_t>(r) * (pixels + 3) + p] - sum));
+            scale = std::fmax(scale, std::fabs(sum));
+        }
+        for (int p = pixels; p < pixels + 3; ++p) outside = outside && out[static_cast<size_t>(r) * (pixels + 3) + p] == -7.0f;
+    }
+    char what[80];
+    std::snprintf(what, sizeof what, "pointwise tile %d x %d, %d input channels", rows, pixels, cin);
+    expect(worst / scale < 1e-5 && outside, k.name, what, worst / scale);
+}
+
+void check_taps(const LayerKernels &k, int kernel, int stride, hkf_estimator::DepthwiseTaps *taps)
+{
+    const int pitch = 23, count = 5 * pitch;
+    const std::vector<float> padded = noise(static_cast<size_t>(stride) * count + kernel * (pitch + 1), 4, 1.0f);
+    const std::vector<float> weights = noise(static_cast<size_t>(kernel) * kernel, 5, 0.3f);
+    std::vector<float> sum(count);
+    taps(padded.data(), pitch, weights.data(), 0.25f, sum.data(), count);
+    double worst = 0.0;
+    for (int j = 0; j < count; ++j) {
+        double expected = 0.25;
+        for (int ky = 0; ky < kernel; ++ky)
+            for (int kx = 0; kx < kernel; ++kx)
+                expected += static_cast<double>(weights[ky * kernel + kx]) * padded[static_cast<size_t>(stride) * j + ky * pitch + kx];
+        worst = std::fmax(worst, std::fabs(sum[j] - expected));
+    }
+    char what[80];
+    std::snprintf(what, sizeof what, "depthwise taps %dx%d, stride %d", kernel, kernel, stride);
+    expect(worst < 1e-5, k.name, what, worst);
+}
+
+void check_swish_and_mean(const LayerKernels &k)
+{
+    std::vector<float> x;
+    for (int i = -20000; i <= 20000; ++i) x.push_back(static_cast<float>(i) * 0.01f);
+    x.push_back(-1e5f);
+    x.push_back(1e5f);
+    std::vector<float> y(x.size());
+    k.swish(x.data(), y.data(), static_cast<long>(x.size()));
+    double worst = 0.0;
+    for (size_t i = 0; i < x.size(); ++i) {
+        const double expected = x[i] / (1.0 + std::exp(-static_cast<double>(x[i])));
+        worst = std::fmax(worst, std::fabs(y[i] - expected) / std::fmax(1.0, std::fabs(expected)));
+    }
+    expect(worst < 5e-7, k.name, "swish on [-200, 200] and +-1e5", worst);
+    const std::vector<float> plane = noise(49 * 3 + 5, 6, 2.0f);
+    double sum = 0.0;
+    for (float v : plane) sum += v;
+    const double mean_error = std::fabs(k.plane_mean(plane.data(), static_cast<long>(plane.size())) - sum / plane.size());
+    expect(mean_error < 1e-6, k.name, "a plane's mean (152 floats)", mean_error);
+}
+
+bool cpu_runs(const LayerKernels &k)
+{
+#if defined(__x86_64__)
+    __builtin_cpu_init();
+    if (k.level == hkf_estimator::SimdLevel::avx512) return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma");
+    if (k.level == hkf_estimator::SimdLevel::avx2) return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#endif
+    return k.level == hkf_estimator::SimdLevel::baseline;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    std::vector<const LayerKernels *> levels = {&hkf_estimator::kBaselineKernels};
+#if defined(__x86_64__)
+    levels.insert(levels.begin(), {&hkf_estimator::kAvx512Kernels, &hkf_estimator::kAvx2Kernels});
+#endif
+    int tested = 0;
+    for (const LayerKernels *k : levels) {
+        bool asked = argc < 2;
+        for (int i = 1; i < argc; ++i) asked = asked || std::strcmp(argv[i], k->name) == 0;
+        if (!asked) continue;
+        if (!cpu_runs(*k)) {
+            std::printf("%-7s skipped: this CPU cannot run it\n", k->name);
+            continue;
+        }
+        for (int cin : {1, 3, 16, 240}) check_tile(*k, cin);
+        check_taps(*k, 3, 1, k->taps_3x3_stride1);
+        check_taps(*k, 3, 2, k->taps_3x3_stride2);
+        check_taps(*k, 5, 1, k->taps_5x5_stride1);
+        check_taps(*k, 5, 2, k->taps_5x5_stride2);
+        check_swish_and_mean(*k);
+        ++tested;
+    }
+    std::printf("test_layer_kernels: %d levels tested, %d failures\n", tested, failures);
+    return failures == 0 && tested > 0 ? 0 : 1;
+}
