@@ -30,7 +30,11 @@ filter_pid=$!
 "$work/venv/bin/python" "$source/tools/examples/head_pose_subscriber.py" --lcm-url "$url" --count 300 --timeout 10 \
   >"$work/printed.txt" 2>"$work/subscriber.txt" &
 subscriber_pid=$!
-sleep 0.7
+# both listening before the log is played (their start-up lines), however long Python takes to start
+. "$source/tests/lib/wait_until.sh"
+wait_until 60 "start-up line from hkf-filter" has_line "$work/filter.txt" "^hkf-filter: .* -> .* on " || fail "hkf-filter did not start"
+wait_until 60 "start-up line from the subscriber" has_line "$work/subscriber.txt" "listening on HEAD_POSE" ||
+  fail "the subscriber did not start"
 lcm-logplayer -s 2 --lcm-url "$url" "$work/raw.lcmlog"
 wait "$subscriber_pid" || { cat "$work/subscriber.txt" >&2; kill "$filter_pid"; fail "the subscriber did not get 300 poses"; }
 kill -INT "$filter_pid"

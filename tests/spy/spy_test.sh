@@ -19,12 +19,15 @@ echo "spy_test: class path checked"
 # network namespace, must find the five hkf types (hkf 0.1's two too, for its logs).
 if [ "$(id -u)" = 0 ] && command -v Xvfb >/dev/null && unshare --net true 2>/dev/null; then
   out=$(mktemp)
+  # each step waits for what it needs (the display's socket, lcm-spy's line), 60 s at most
   "$(dirname "$0")/../../tools/lcm-netns" bash -c '
+    . "$3"
+    rm -f /tmp/.X11-unix/X97
     Xvfb :97 -screen 0 1024x768x24 >/dev/null 2>&1 & xvfb=$!
-    sleep 1
+    wait_until 60 "Xvfb display :97" test -S /tmp/.X11-unix/X97
     DISPLAY=:97 "$1" --lcm-url "udpm://239.255.76.67:7667?ttl=0" >"$2" 2>&1 & spy=$!
-    sleep 5
-    kill $spy $xvfb 2>/dev/null; wait 2>/dev/null' _ "$spy" "$out" || true
+    wait_until 60 "the types found by lcm-spy" has_line "$2" "Found [0-9]+ LCM types"
+    kill $spy $xvfb 2>/dev/null; wait 2>/dev/null' _ "$spy" "$out" "$(dirname "$0")/../lib/wait_until.sh" || true
   cat "$out"
   grep -q "Found 6 LCM types" "$out" || { echo "FAIL: lcm-spy did not find the 6 hkf types (3, hkf 0.1's two and 0.2's pose)" >&2; rm -f "$out"; exit 1; }
   rm -f "$out"

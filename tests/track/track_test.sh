@@ -24,14 +24,17 @@ fail() { echo "FAIL: $*" >&2; cat "$work/track.txt" >&2 2>/dev/null || true; exi
 
 "$python" "$source/tests/opentrack/udp_receiver.py" "$work/udp.hex" --port 4242 2>"$work/receiver.txt" &
 pids+=($!)
-for _ in $(seq 50); do [ -e "$work/udp.hex.ready" ] && break; sleep 0.1; done
+. "$source/tests/lib/wait_until.sh"
+wait_until 60 "the UDP receiver" test -e "$work/udp.hex.ready" || fail "the UDP receiver did not start"
 lcm-logger -q -f -c HEAD_POSE --lcm-url "$url" "$work/poses.lcmlog" &
 logger_pid=$!
 pids+=("$logger_pid")
 
 "${track[@]}" --source "$videos/d3.mp4" --realtime --opentrack --logs "$work/logs" >"$work/track.txt" 2>&1 &
 track_pid=$!
-sleep 6
+# Ctrl-C once 150 poses have reached the receiver and 5 status lines are shown (90 s at most)
+enough() { [ "$(wc -l <"$work/udp.hex")" -ge 150 ] && [ "$(grep -c "poses/s" "$work/track.txt")" -ge 5 ]; }
+wait_until 90 "150 datagrams and 5 status lines" enough || fail "hkf-track did not deliver poses"
 kill -INT "$track_pid"                           # Ctrl-C
 wait "$track_pid" || fail "hkf-track did not exit cleanly on Ctrl-C"
 cat "$work/track.txt"
@@ -96,11 +99,11 @@ status=0
 "${track[@]}" --source "$videos/d3.mp4" --realtime --logs "$work/logs_first" >"$work/first.txt" 2>&1 &
 first_pid=$!
 pids+=("$first_pid")
-for _ in $(seq 50); do grep -q "Ctrl-C stops" "$work/first.txt" && break; sleep 0.1; done
+wait_until 60 "the first tracker's start" has_line "$work/first.txt" "Ctrl-C stops" || fail "the first tracker did not start"
 bad_args "another hkf-track runs on this LCM URL" --source "$clip" --logs "$work/logs_second"
 bad_args "another hkf-track writes its logs in this folder" --source "$clip" --logs "$work/logs_first" \
   --lcm-url "udpm://239.255.76.67:7668?ttl=0"
-sleep 2  # a status line a second
+wait_until 60 "a status line from the first tracker" has_line "$work/first.txt" "poses/s" || fail "no status line"
 kill -INT "$first_pid"
 wait "$first_pid" || fail "the first tracker did not stop cleanly"
 grep -q "poses/s" "$work/first.txt" || fail "the first tracker showed no status line"

@@ -46,6 +46,7 @@ def main():
 
     lc = lcm.LCM(args.lcm_url)
     lc.subscribe(args.channel, on_pose)
+    print(f"head_pose_subscriber: listening on {args.channel} at {args.lcm_url}", file=sys.stderr, flush=True)
     try:
         while args.count <= 0 or received < args.count:
             if lc.handle_timeout(int(args.timeout * 1000) if args.timeout > 0 else 1000) == 0 and args.timeout > 0:
