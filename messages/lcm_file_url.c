@@ -101,12 +101,44 @@ static int count_events(const char *path, unsigned long *events, long *cut)
     return 0;
 }
 
+/* The checks of an output file:// URL (lcm_file_url_check): 0, or -1 with why not on stderr. */
+static int output_url_problem(const char *url, const char *role, const char *const *keep, int count,
+                              const char *program, lcm_file_url_t *u)
+{
+    struct stat st;
+    char reason[2 * PATH_MAX + 200];
+    int i;
+    for (i = 0; i < count; ++i) {
+        if (keep[i] != NULL && safe_writes_over(u->path, keep[i])) {
+            fprintf(stderr, "%s: the %s URL '%s' names %s'%s', which this run reads or writes; refusing to write over it\n",
+                    program, role, url, safe_same_file(u->path, keep[i]) ? "" : "a file inside ", keep[i]);
+            return -1;
+        }
+    }
+    if (safe_output_problem(u->path, reason, sizeof reason) != 0) { /* an input by identity, /proc, a device */
+        fprintf(stderr, "%s: the %s URL '%s': %s\n", program, role, url, reason);
+        return -1;
+    }
+    if (stat(u->path, &st) == 0 && !empty_or_log(u->path)) { /* a video, an image, a config: never a log's place */
+        fprintf(stderr, "%s: the %s URL '%s' names '%s', which is not an LCM log; refusing to write over it\n",
+                program, role, url, u->path);
+        return -1;
+    }
+    if (u->appends && stat(u->path, &st) == 0) {
+        long cut = 0;
+        if (count_events(u->path, &u->events_before, &cut) != 0) {
+            fprintf(stderr, "%s: cannot read the log '%s' to append to it\n", program, u->path);
+            return -1;
+        }
+    }
+    return 0;
+}
+
 int lcm_file_url_check(const char *url, const char *role, const char *const *keep, int count, const char *program,
                        lcm_file_url_t *u)
 {
     const int output = strcmp(role, "output") == 0;
     struct stat st;
-    int i;
     url = lcm_url_resolve(url);
     if (lcm_file_url_parse(url, u) != 0) {
         fprintf(stderr, "%s: the %s URL '%s' names a path longer than %d bytes\n", program, role, url, PATH_MAX - 1);
@@ -139,33 +171,7 @@ int lcm_file_url_check(const char *url, const char *role, const char *const *kee
         safe_note_read(u->path); /* no output of this run may be it, under any name */
         return 0;
     }
-    {
-        char reason[2 * PATH_MAX + 200];
-        if (safe_output_problem(u->path, reason, sizeof reason) != 0) {
-            fprintf(stderr, "%s: the %s URL '%s': %s\n", program, role, url, reason);
-            return -1;
-        }
-    }
-    for (i = 0; i < count; ++i) {
-        if (keep[i] != NULL && safe_writes_over(u->path, keep[i])) {
-            fprintf(stderr, "%s: the %s URL '%s' names %s'%s', which this run reads or writes; refusing to write over it\n",
-                    program, role, url, safe_same_file(u->path, keep[i]) ? "" : "a file inside ", keep[i]);
-            return -1;
-        }
-    }
-    if (stat(u->path, &st) == 0 && !empty_or_log(u->path)) { /* a video, an image, a config: never a log's place */
-        fprintf(stderr, "%s: the %s URL '%s' names '%s', which is not an LCM log; refusing to write over it\n",
-                program, role, url, u->path);
-        return -1;
-    }
-    if (u->appends && stat(u->path, &st) == 0) {
-        long cut = 0;
-        if (count_events(u->path, &u->events_before, &cut) != 0) {
-            fprintf(stderr, "%s: cannot read the log '%s' to append to it\n", program, u->path);
-            return -1;
-        }
-    }
-    return 0;
+    return output_url_problem(url, role, keep, count, program, u);
 }
 
 int lcm_file_url_verify(const lcm_file_url_t *u, unsigned long published, const char *program)

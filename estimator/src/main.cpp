@@ -414,43 +414,51 @@ int run_dataset(const hkf_estimator::DatasetRun &run, const Options &o)
     return r.evaluated > 0 ? 0 : 1;
 }
 
+// OpenCV reads its image size cap as it loads, before main: without one in the environment, run again
+// with ours (image_size_cap.hpp), so that a larger image is refused from its header, not decoded first
+// (a 9000 x 9000 image took 360 MB). The program's own path is executed, not /proc/self/exe, so that the
+// process keeps its name (pgrep -x hkf-estimator). Should the exec fail, the cap is checked after
+// decoding. With the variable already set (by a user, or under valgrind, whose /proc/self/exe is its
+// own), nothing is re-run.
+void run_again_with_the_image_cap(char **argv)
+{
+    if (std::getenv("OPENCV_IO_MAX_IMAGE_PIXELS") != nullptr) return;
+    std::error_code error;
+    const std::string self = std::filesystem::read_symlink("/proc/self/exe", error).string();
+    setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
+    if (!error) execv(self.c_str(), argv);
+}
+
+// What is checked once the options are read, before any model loads: the image cap's variable, the
+// layers' level, then the inputs noted and the --annotate output checked against them. false (said): exit 2.
+bool start_checks(const Options &o)
+{
+    if (*hkf_estimator::image_size_cap_problem() != '\0') {  // settled before OpenCV loaded (image_size_cap.hpp)
+        std::cerr << "hkf-estimator: " << hkf_estimator::image_size_cap_problem() << "\n";
+        return false;
+    }
+    if (!announce_layer_level()) return false;
+    note_inputs(o);
+    if (o.pipeline.annotate_path.empty()) return true;
+    const std::string problem = annotate_path_problem(o.pipeline.annotate_path, o.pipeline.source);
+    if (!problem.empty()) std::cerr << "hkf-estimator: --annotate " << o.pipeline.annotate_path << ": " << problem << "\n";
+    return problem.empty();
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
 {
     using namespace hkf_estimator;
     Options o;
-    // OpenCV reads its image size cap as it loads, before main: without one in the environment, run again
-    // with ours (image_size_cap.hpp), so that a larger image is refused from its header, not decoded first
-    // (a 9000 x 9000 image took 360 MB). The program's own path is executed, not /proc/self/exe, so that the
-    // process keeps its name (pgrep -x hkf-estimator). Should the exec fail, the cap is checked after
-    // decoding. With the variable already set (by a user, or under valgrind, whose /proc/self/exe is its
-    // own), nothing is re-run.
-    if (std::getenv("OPENCV_IO_MAX_IMAGE_PIXELS") == nullptr) {
-        std::error_code error;
-        const std::string self = std::filesystem::read_symlink("/proc/self/exe", error).string();
-        setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
-        if (!error) execv(self.c_str(), argv);
-    }
+    run_again_with_the_image_cap(argv);
     safe_files_fail_writes_past_size_limit();  // a file-size limit: a reported write error, not SIGXFSZ
     switch (parse(argc, argv, o)) {
     case 1: return 0;
     case 2: return 2;
     default: break;
     }
-    if (*image_size_cap_problem() != '\0') {  // settled before OpenCV loaded (image_size_cap.hpp)
-        std::cerr << "hkf-estimator: " << image_size_cap_problem() << "\n";
-        return 2;
-    }
-    if (!announce_layer_level()) return 2;
-    note_inputs(o);
-    if (!o.pipeline.annotate_path.empty()) {  // checked once the inputs are noted
-        const std::string problem = annotate_path_problem(o.pipeline.annotate_path, o.pipeline.source);
-        if (!problem.empty()) {
-            std::cerr << "hkf-estimator: --annotate " << o.pipeline.annotate_path << ": " << problem << "\n";
-            return 2;
-        }
-    }
+    if (!start_checks(o)) return 2;
     try {
         const std::unique_ptr<HeadPoseEstimator> model = make_estimator(load_model_spec(o.spec_dir, o.model, o.models_dir));
         model->set_position_settings(o.position);

@@ -9,6 +9,7 @@
 
 #include "model_spec.hpp"
 #include "angle_bins_model.hpp"
+#include "simd_level.hpp"
 
 int main(int argc, char **argv)
 {
@@ -21,6 +22,12 @@ int main(int argc, char **argv)
     int header[4];
     if (!in.read(reinterpret_cast<char *>(header), sizeof header)) {
         std::fprintf(stderr, "cannot read %s\n", argv[1]);
+        return 2;
+    }
+    try {
+        std::printf("the estimator's layers at %s\n", layer_kernels_in_use().name);  // HKF_SIMD, or the best
+    } catch (const EstimatorError &e) {
+        std::fprintf(stderr, "%s\n", e.what());
         return 2;
     }
     AngleBinsModel model(load_model_spec(argv[3], "whenet", argv[2]));

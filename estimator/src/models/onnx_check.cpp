@@ -178,99 +178,119 @@ bool raw_integers_ok(const std::uint8_t *raw, std::size_t length, int size)
 std::string tensor_problem(const std::uint8_t *data, std::size_t size);
 std::string graph_problem(const std::uint8_t *data, std::size_t size, int depth);
 
+// What a TensorProto declares and holds, as its fields were read.
+struct TensorFields {
+    std::string name;
+    std::uint64_t dims = 0, elements = 1, type = 0;
+    std::uint64_t values[12] = {};  // per typed field number (4, 5, 6, 7, 10, 11): values held
+    bool bad_dim = false, has_raw = false, external = false, integers_ok = true;
+    const std::uint8_t *raw = nullptr;  // raw_data: a scalar field, so its last occurrence is the one read
+    std::size_t raw_length = 0;
+};
+
+// The dims field (int64, packed or not) added to t: "" or why the field is malformed.
+std::string add_dimensions(const Field &f, TensorFields &t)
+{
+    const auto dimension = [&t](std::uint64_t d) {
+        ++t.dims;
+        if (static_cast<std::int64_t>(d) < 0 || d > kMaxDim) t.bad_dim = true;
+        else if (!t.bad_dim && d != 0 && t.elements > kMaxElements / d) t.bad_dim = true;
+        else t.elements *= d;
+    };
+    if (f.wire == kVarint) {
+        dimension(f.value);
+        return "";
+    }
+    if (f.wire != kBytes) return "dimensions of the wrong wire type";
+    Message packed(f.bytes, f.length);
+    std::uint64_t d;
+    while (packed.at != packed.end) {
+        if (!packed.varint(d)) return "a dimension list that is no protobuf";
+        dimension(d);
+    }
+    return "";
+}
+
+// One field of a TensorProto into t: "" or why it is malformed or not taken.
+std::string read_tensor_field(const Field &f, TensorFields &t)
+{
+    switch (f.number) {
+    case 1: return add_dimensions(f, t);
+    case 2:
+        if (f.wire != kVarint) return "a data type of the wrong wire type";
+        t.type = f.value;
+        return "";
+    case 3: return "tensor '" + t.name + "' is split into segments (not taken)";
+    case 8:
+        if (f.wire == kBytes) t.name.assign(reinterpret_cast<const char *>(f.bytes), f.length < 80 ? f.length : 80);
+        return "";
+    case 9:
+        if (f.wire != kBytes) return "raw data of the wrong wire type";
+        t.has_raw = true;
+        t.raw = f.bytes;
+        t.raw_length = f.length;
+        return "";
+    case 6:  // string_data
+        if (f.wire != kBytes) return "string data of the wrong wire type";
+        ++t.values[6];
+        return "";
+    case 4: case 5: case 7: case 10: case 11:
+        if (!count_values(f, t.values[f.number])) return "typed data that is no protobuf";
+        if ((f.number == 5 || f.number == 7) && !typed_integers_ok(f)) t.integers_ok = false;
+        return "";
+    case 13: t.external = true; return "";
+    case 14:
+        if (f.wire == kVarint && f.value == 1) t.external = true;
+        return "";
+    default: return "";
+    }
+}
+
+// Whether what t holds is what it declares: "" or why not.
+std::string tensor_data_problem(const TensorFields &t)
+{
+    const std::string which = "tensor '" + t.name + "'", beyond = " holds an integer beyond +-2^24 (a size or an axis "
+                                                                  "OpenCV would allocate by)";
+    if (t.external) return which + " keeps its data in another file (not taken)";
+    if (t.dims > kMaxDims) return which + " has " + std::to_string(t.dims) + " dimensions (at most " + std::to_string(kMaxDims) + ")";
+    if (t.bad_dim) return which + " declares a negative or too large shape";
+    ElementType e;
+    if (!element_type(t.type, e)) return which + " has an unknown data type " + std::to_string(t.type);
+    std::uint64_t typed_values = 0;
+    bool typed = false;
+    for (std::uint32_t field : {4u, 5u, 6u, 7u, 10u, 11u}) {
+        if (t.values[field] == 0) continue;
+        if (field != e.typed_field) return which + " holds values in a field its type does not use";
+        typed = true;
+        typed_values = t.values[field];
+    }
+    if (t.has_raw && typed) return which + " holds both raw and typed data";
+    if (t.has_raw) {
+        const std::uint64_t bytes = t.elements * static_cast<std::uint64_t>(e.raw_size);
+        if (e.raw_size == 0) return which + " holds strings as raw data";
+        if (t.raw_length != bytes)
+            return which + " declares " + std::to_string(t.elements) + " elements (" + std::to_string(bytes) +
+                   " bytes) but holds " + std::to_string(t.raw_length) + " bytes";
+        if ((t.type == 6 || t.type == 7) && !raw_integers_ok(t.raw, t.raw_length, e.raw_size)) return which + beyond;
+        return "";
+    }
+    if (!t.integers_ok) return which + beyond;
+    if (typed_values != t.elements * static_cast<std::uint64_t>(e.values_per_element))
+        return which + " declares " + std::to_string(t.elements) + " elements but holds " + std::to_string(typed_values) + " values";
+    return "";
+}
+
 std::string tensor_problem(const std::uint8_t *data, std::size_t size)
 {
     Message m(data, size);
     Field f;
-    std::string name;
-    std::uint64_t dims = 0, elements = 1, type = 0, typed_values = 0, typed_field_seen = 0, strings = 0;
-    std::uint64_t values[12] = {};
-    bool has_raw = false, external = false, values_ok = true;
-    std::size_t raw_length = 0;
-    const std::uint8_t *raw = nullptr;
-    bool bad_dim = false;
+    TensorFields t;
     while (m.next(f)) {
-        switch (f.number) {
-        case 1: {  // dims: int64, packed or not
-            auto dimension = [&](std::uint64_t d) {
-                ++dims;
-                if (static_cast<std::int64_t>(d) < 0 || d > kMaxDim) bad_dim = true;
-                else if (!bad_dim && d != 0 && elements > kMaxElements / d) bad_dim = true;
-                else elements *= d;
-            };
-            if (f.wire == kVarint) {
-                dimension(f.value);
-            } else if (f.wire == kBytes) {
-                Message packed(f.bytes, f.length);
-                std::uint64_t d;
-                while (packed.at != packed.end) {
-                    if (!packed.varint(d)) return "a dimension list that is no protobuf";
-                    dimension(d);
-                }
-            } else {
-                return "dimensions of the wrong wire type";
-            }
-            break;
-        }
-        case 2:
-            if (f.wire != kVarint) return "a data type of the wrong wire type";
-            type = f.value;
-            break;
-        case 8:
-            if (f.wire == kBytes) name.assign(reinterpret_cast<const char *>(f.bytes), f.length < 80 ? f.length : 80);
-            break;
-        case 9:
-            if (f.wire != kBytes) return "raw data of the wrong wire type";
-            has_raw = true;
-            raw = f.bytes;
-            raw_length += f.length;
-            break;
-        case 6:  // string_data
-            if (f.wire != kBytes) return "string data of the wrong wire type";
-            ++strings;
-            break;
-        case 4: case 5: case 7: case 10: case 11:
-            if (!count_values(f, values[f.number])) return "typed data that is no protobuf";
-            if ((f.number == 5 || f.number == 7) && !typed_integers_ok(f)) values_ok = false;
-            break;
-        case 3: return "tensor '" + name + "' is split into segments (not taken)";
-        case 13: external = true; break;
-        case 14:
-            if (f.wire == kVarint && f.value == 1) external = true;
-            break;
-        default: break;
-        }
+        const std::string problem = read_tensor_field(f, t);
+        if (!problem.empty()) return problem;
     }
     if (!m.ok) return "a tensor that is no protobuf";
-    const std::string which = "tensor '" + name + "'";
-    if (external) return which + " keeps its data in another file (not taken)";
-    if (dims > kMaxDims) return which + " has " + std::to_string(dims) + " dimensions (at most " + std::to_string(kMaxDims) + ")";
-    if (bad_dim) return which + " declares a negative or too large shape";
-    ElementType t;
-    if (!element_type(type, t)) return which + " has an unknown data type " + std::to_string(type);
-    values[6] = strings;
-    for (std::uint32_t field : {4u, 5u, 6u, 7u, 10u, 11u}) {
-        if (values[field] == 0) continue;
-        if (field != t.typed_field) return which + " holds values in a field its type does not use";
-        typed_field_seen = 1;
-        typed_values = values[field];
-    }
-    if (has_raw && typed_field_seen) return which + " holds both raw and typed data";
-    if (has_raw) {
-        if (t.raw_size == 0) return which + " holds strings as raw data";
-        if (raw_length != elements * static_cast<std::uint64_t>(t.raw_size))
-            return which + " declares " + std::to_string(elements) + " elements (" +
-                   std::to_string(elements * static_cast<std::uint64_t>(t.raw_size)) + " bytes) but holds " +
-                   std::to_string(raw_length) + " bytes";
-        if ((type == 6 || type == 7) && !raw_integers_ok(raw, raw_length, t.raw_size))
-            return which + " holds an integer beyond +-2^24 (a size or an axis OpenCV would allocate by)";
-        return "";
-    }
-    if (!values_ok) return which + " holds an integer beyond +-2^24 (a size or an axis OpenCV would allocate by)";
-    const std::uint64_t expected = elements * static_cast<std::uint64_t>(t.values_per_element);
-    if (typed_values != expected)
-        return which + " declares " + std::to_string(elements) + " elements but holds " + std::to_string(typed_values) + " values";
-    return "";
+    return tensor_data_problem(t);
 }
 
 // An AttributeProto: its tensors (t 5, tensors 10, sparse 22 / 23) and graphs (g 6, graphs 11).
@@ -343,13 +363,13 @@ std::string onnx_model_problem(const std::uint8_t *data, std::size_t size)
     bool graph = false;
     while (m.next(f)) {  // ModelProto: graph 7, functions 25
         if (f.number != 7 && f.number != 25) continue;
-        if (f.wire != kBytes) return "not an ONNX model (its graph field has the wrong wire type)";
+        if (f.wire != kBytes) return "not a readable ONNX model (its graph field has the wrong wire type)";
         if (f.number == 7) graph = true;
         const std::string problem = f.number == 7 ? graph_problem(f.bytes, f.length, 0) : function_problem(f.bytes, f.length);
         if (!problem.empty()) return problem;
     }
-    if (!m.ok) return "not an ONNX model (no protobuf)";
-    if (!graph) return "not an ONNX model (no graph)";
+    if (!m.ok) return "not a readable ONNX model (no protobuf)";
+    if (!graph) return "not a readable ONNX model (no graph)";
     return "";
 }
 
