@@ -55,7 +55,9 @@ def main():
             return 1
         for a, b in silences:
             lost = [p for p in poses if p.status == head_pose_t.LOST and a < p.utime < b]
-            after = [p for p in poses if p.utime >= b]
+            # the pose that answers the first measurement back (a LOST pose stamped later than that
+            # measurement's capture may be published while it is still on its way: a loaded machine)
+            after = [p for p in poses if p.measurement_utime == b]
             if not lost or lost[0].utime != a + 250000 or lost[0].measurement_utime != a:
                 print(f"check_poses: no LOST pose 0.25 s into the silence after {a}", file=sys.stderr)
                 return 1
