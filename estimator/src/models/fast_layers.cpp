@@ -1,8 +1,6 @@
 // fast_layers.cpp - see fast_layers.hpp.
 #include "fast_layers.hpp"
 
-#include "simd_level.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +12,8 @@
 #include <opencv2/dnn.hpp>
 #include <opencv2/dnn/all_layers.hpp>
 #include <opencv2/dnn/shape_utils.hpp>
+
+#include "simd_level.hpp"
 
 namespace hkf_estimator {
 
