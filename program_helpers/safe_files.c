@@ -32,16 +32,10 @@ static struct read_file *read_files;
 static size_t read_count, read_capacity;
 static pthread_mutex_t read_lock = PTHREAD_MUTEX_INITIALIZER;
 
+/* A file noted twice is listed twice: harmless for the lookup, and noting stays O(1) (a folder of N files). */
 static void note_identity(const struct stat *st, const char *path)
 {
-    size_t i;
     pthread_mutex_lock(&read_lock);
-    for (i = 0; i < read_count; ++i) {
-        if (read_files[i].dev == st->st_dev && read_files[i].ino == st->st_ino) {
-            pthread_mutex_unlock(&read_lock);
-            return;
-        }
-    }
     if (read_count == read_capacity) {
         const size_t capacity = read_capacity == 0 ? 64 : 2 * read_capacity;
         struct read_file *grown = realloc(read_files, capacity * sizeof *grown);
@@ -179,7 +173,6 @@ int safe_output_problem(const char *path, char *reason, size_t reason_size)
     const int exists = stat(path, &st) == 0;
     return output_problem_of(path, &st, exists, reason, reason_size);
 }
-
 
 FILE *safe_open_to_inspect(const char *path, char *error, size_t error_size)
 {

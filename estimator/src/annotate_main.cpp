@@ -198,16 +198,12 @@ int main(int argc, char **argv)
     case 2: return 2;
     default: break;
     }
-    if (*hkf_estimator::image_size_cap_problem() != '\0')  // settled before OpenCV loaded (image_size_cap.hpp)
-    {
+    if (*hkf_estimator::image_size_cap_problem() != '\0') {  // settled before OpenCV loaded (image_size_cap.hpp)
         std::fprintf(stderr, "hkf-annotate: %s\n", hkf_estimator::image_size_cap_problem());
         return 2;
     }
-    for (const std::string *input : {&o.video, &o.raw_log, &o.filtered_log})
-        if (safe_same_file(o.out.c_str(), input->c_str()) || (!o.still_path.empty() && safe_same_file(o.still_path.c_str(), input->c_str())))
-            return fail("an output is also the input " + *input + "; refusing to write over it");
     for (const std::string *input : {&o.video, &o.raw_log, &o.filtered_log}) safe_note_read(input->c_str());
-    for (const std::string *output : {&o.out, &o.still_path}) {  // by identity too: a hard link to an input
+    for (const std::string *output : {&o.out, &o.still_path}) {  // never an input, under any name
         char reason[2 * PATH_MAX + 200];
         if (!output->empty() && safe_output_problem(output->c_str(), reason, sizeof reason) != 0) return fail(reason);
     }

@@ -3,8 +3,6 @@
 
 #include "track_programs.h"
 
-#include "safe_files.h"
-
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -17,6 +15,8 @@
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+
+#include "safe_files.h"
 
 static void sleep_ms(long ms)
 {

@@ -175,7 +175,6 @@ bool raw_integers_ok(const std::uint8_t *raw, std::size_t length, int size)
     return true;
 }
 
-std::string tensor_problem(const std::uint8_t *data, std::size_t size);
 std::string graph_problem(const std::uint8_t *data, std::size_t size, int depth);
 
 // What a TensorProto declares and holds, as its fields were read.

@@ -14,6 +14,13 @@ namespace hkf_estimator {
 
 namespace {
 
+// The levels this build has, best first.
+#if defined(__x86_64__)
+constexpr SimdLevel kLevels[] = {SimdLevel::avx512, SimdLevel::avx2, SimdLevel::baseline};
+#else
+constexpr SimdLevel kLevels[] = {SimdLevel::baseline};
+#endif
+
 bool cpu_runs(SimdLevel level)
 {
     switch (level) {
@@ -33,12 +40,7 @@ bool cpu_runs(SimdLevel level)
 std::string level_names()
 {
     std::string names;
-    for (SimdLevel level : {SimdLevel::avx512, SimdLevel::avx2, SimdLevel::baseline}) {
-#if !defined(__x86_64__)
-        if (level != SimdLevel::baseline) continue;
-#endif
-        names += std::string(names.empty() ? "" : ", ") + layer_kernels_of(level).name;
-    }
+    for (SimdLevel level : kLevels) names += std::string(names.empty() ? "" : ", ") + layer_kernels_of(level).name;
     return names + " or default";
 }
 
@@ -46,10 +48,7 @@ SimdLevel level_from_environment()
 {
     const char *text = std::getenv("HKF_SIMD");
     if (text == nullptr || *text == '\0' || std::strcmp(text, "default") == 0) return simd_levels_supported().front();
-    for (SimdLevel level : {SimdLevel::avx512, SimdLevel::avx2, SimdLevel::baseline}) {
-#if !defined(__x86_64__)
-        if (level != SimdLevel::baseline) continue;
-#endif
+    for (SimdLevel level : kLevels) {
         if (std::strcmp(text, layer_kernels_of(level).name) == 0) {
             if (!cpu_runs(level))
                 throw EstimatorError(std::string("HKF_SIMD=") + text + ": this CPU cannot run it (it runs " +
@@ -67,7 +66,7 @@ std::atomic<const LayerKernels *> in_use{nullptr};
 std::vector<SimdLevel> simd_levels_supported()
 {
     std::vector<SimdLevel> levels;
-    for (SimdLevel level : {SimdLevel::avx512, SimdLevel::avx2, SimdLevel::baseline})
+    for (SimdLevel level : kLevels)
         if (cpu_runs(level)) levels.push_back(level);
     return levels;
 }
