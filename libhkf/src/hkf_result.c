@@ -1,5 +1,6 @@
 /* hkf_result.c - descriptions of the hkf_result_t codes. */
 #include "hkf/hkf.h"
+#include "hkf/hkf_rest.h"
 #include "hkf/hkf_position.h"
 
 /* A limit's value as this build defines it (float, double and Q16.16 differ), in the text. */
@@ -40,6 +41,9 @@ const char *hkf_result_string(int result)
     case HKF_ERROR_SETTING_CALIBRATION:
         return "noise_time is not in [0, " HKF_TEXT(HKF_MAX_TIME) "] s or noise_rise not in [0, "
                HKF_TEXT(HKF_MAX_NOISE_RISE) "] 1/s";
+    case HKF_ERROR_SETTING_REST:
+        return "rest_time is not in (0, " HKF_TEXT(HKF_MAX_TIME) "] s, reach not in (0, " HKF_TEXT(HKF_MAX_LC_THETA)
+               "] deg or stillness not in [0, " HKF_TEXT(HKF_MAX_STILLNESS) "]";
     default: return "unknown hkf result code";
     }
 }

@@ -58,8 +58,10 @@ typedef enum {
     HKF_ERROR_SETTING_CURVE = -33,       /* a noise curve's |tau| or |lambda| > HKF_MAX_VARIANCE, or |mu| > HKF_MAX_ABS_ANGLE */
     HKF_ERROR_SETTING_MOTION = -34,      /* still_wander outside [0, HKF_MAX_VARIANCE], start_rate or stop_rate
                                             neither 0 nor in [HKF_MIN_RATE, HKF_MAX_RATE] (the position's too) */
-    HKF_ERROR_SETTING_CALIBRATION = -35  /* noise_time outside [0, HKF_MAX_TIME] or noise_rise outside
+    HKF_ERROR_SETTING_CALIBRATION = -35, /* noise_time outside [0, HKF_MAX_TIME] or noise_rise outside
                                             [0, HKF_MAX_NOISE_RISE] (hkf_calibration.h) */
+    HKF_ERROR_SETTING_REST = -36         /* rest_time outside (0, HKF_MAX_TIME], reach outside (0, HKF_MAX_LC_THETA]
+                                            or stillness outside [0, HKF_MAX_STILLNESS] (hkf_rest.h) */
 } hkf_result_t;
 
 /* A short English description of a hkf_result_t, for logs. Never NULL. */
@@ -161,7 +163,8 @@ typedef struct {
      * wanders about the rest by still_wander beyond R, and a move that starts
      * from rest has a rate of variance p0_rate), and MOVE, the paper's
      * constant velocity with process_noise. A still head starts to move at
-     * start_rate per s, a moving one stops at stop_rate per s. */
+     * start_rate per s, a moving one stops at stop_rate per s. still_wander is
+     * the wander before one is measured (hkf_set_wander; hkf_rest.h). */
     hkf_real_t still_wander;       /* deg^2: how far a resting head's estimate wanders, beyond R */
     hkf_real_t start_rate;         /* 1/s: how often a still head starts to move; 0 = off */
     hkf_real_t stop_rate;          /* 1/s: how often a moving head stops */
@@ -238,6 +241,7 @@ typedef struct {
     hkf_real_t center[HKF_LANES];
     hkf_real_t moving[HKF_LANES];       /* the motion adaptation's probability of MOVE */
     hkf_real_t noise[HKF_LANES];        /* n from hkf_set_noise, deg^2; 0: none (Eq. 8's own R) */
+    hkf_real_t wander[HKF_LANES];       /* HOLD's wander w per axis, deg^2: still_wander, or hkf_set_wander's */
 #if !defined(HKF_REAL_FIXED)
     hkf_real_t r_center[HKF_LANES];     /* e(mu), R at the curves' center, as hkf_math.h's divisor (fixed point: each step's) */
 #endif
@@ -322,6 +326,15 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
  * [r_min, r_max]. NULL: back to Eq. 8's own R (hkf_init's). hkf_reset keeps
  * it. HKF_ERROR_NON_FINITE or HKF_ERROR_NOISE_RANGE (n <= 0) change nothing. */
 int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3]);
+
+/* HOLD's wander w per axis (deg^2; hkf_rest.h measures it on the player's rest): from the next
+ * update on, HOLD's measurement variance is R + w[a] on axis a, in place of R + still_wander. NULL:
+ * back to still_wander on every axis (hkf_init's). hkf_reset keeps it. HKF_ERROR_NON_FINITE, or
+ * HKF_ERROR_SETTING_MOTION (w outside [0, HKF_MAX_VARIANCE]), change nothing. (libhkf 1.2) */
+int hkf_set_wander(hkf_filter_t *f, const hkf_real_t wander[3]);
+
+/* The wander HOLD takes per axis, deg^2 (still_wander until hkf_set_wander gave one). */
+int hkf_get_wander(const hkf_filter_t *f, hkf_real_t wander[3]);
 
 /* The track's status (HKF_STATUS_UNINITIALIZED for a NULL filter). */
 hkf_status_t hkf_get_status(const hkf_filter_t *f);

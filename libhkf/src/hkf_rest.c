@@ -1,0 +1,267 @@
+/* hkf_rest.c - see hkf/hkf_rest.h: the player's rest, measured (the variogram of a local-level process). */
+#include "hkf/hkf_rest.h"
+
+#include "hkf_internal.h"
+#include "hkf_math.h"
+
+const hkf_rest_settings_t hkf_default_rest_settings = {
+    .rest_time = HKF_REAL(2.0),
+    .reach = HKF_REAL(3.0),
+    .stillness = HKF_REAL(1.0),
+};
+
+/* The least-squares slope of gamma(L) over L = 1..6 is sum_L (L - 3.5) gamma(L) / 17.5: these weights. */
+#if HKF_REST_LAGS != 6
+#error "hkf_rest.c's least-squares weights are written for HKF_REST_LAGS 6"
+#endif
+static const hkf_real_t slope_weight[HKF_REST_LAGS] = {
+    HKF_REAL_FROM(-2.5 / 17.5), HKF_REAL_FROM(-1.5 / 17.5), HKF_REAL_FROM(-0.5 / 17.5),
+    HKF_REAL_FROM(0.5 / 17.5),  HKF_REAL_FROM(1.5 / 17.5),  HKF_REAL_FROM(2.5 / 17.5),
+};
+
+/* n as a hkf_real_t, without floating point in the fixed-point build (n <= 32767). */
+static hkf_real_t from_count(unsigned n)
+{
+#if defined(HKF_REAL_FIXED)
+    return (hkf_real_t)((int32_t)(n < 32767u ? n : 32767u) * 65536);
+#else
+    return (hkf_real_t)n;
+#endif
+}
+
+/* mean += (x - mean) / count: a running mean that cannot overflow Q16.16 as a sum would. */
+static hkf_real_t running_mean(hkf_real_t mean, hkf_real_t x, unsigned count)
+{
+    return hkf_add(mean, hkf_divide(hkf_sub(x, mean), hkf_divisor(from_count(count))));
+}
+
+int hkf_rest_init(hkf_rest_t *r, const hkf_rest_settings_t *s)
+{
+    if (r == 0 || s == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (!hkf_is_finite(s->rest_time) || !hkf_is_finite(s->reach) || !hkf_is_finite(s->stillness)) {
+        return HKF_ERROR_SETTING_NON_FINITE;
+    }
+    if (!(s->rest_time > 0 && s->rest_time <= HKF_REAL_FROM(HKF_MAX_TIME) && s->reach > 0 &&
+          s->reach <= HKF_REAL_FROM(HKF_MAX_LC_THETA) && s->stillness >= 0 &&
+          s->stillness <= HKF_REAL_FROM(HKF_MAX_STILLNESS))) {
+        return HKF_ERROR_SETTING_REST;
+    }
+    r->settings = *s;
+    r->measured = 0;
+    r->measuring = 0;
+    r->spoiled = 0u;
+    return HKF_OK;
+}
+
+/* The rest starts over: nothing taken yet. */
+static void begin(hkf_rest_t *r)
+{
+    int l, a;
+    r->frames = 0u;
+    r->history = 0u;
+    r->elapsed = 0;
+    r->period = 0;
+    for (l = 0; l < HKF_REST_LAGS; ++l) {
+        r->pairs[l] = 0u;
+        for (a = 0; a < HKF_AXES; ++a) {
+            r->gamma[l][a] = 0;
+            r->recent[l][a] = 0;
+        }
+    }
+    for (a = 0; a < HKF_AXES; ++a) {
+        r->origin[a] = 0;
+        r->mean[a] = 0;
+    }
+}
+
+int hkf_rest_start(hkf_rest_t *r)
+{
+    if (r == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    begin(r);
+    r->measuring = 1;
+    r->spoiled = 0u;
+    return HKF_OK;
+}
+
+int hkf_rest_stop(hkf_rest_t *r)
+{
+    if (r == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    r->measuring = 0;
+    return HKF_OK;
+}
+
+static int check_frame(const hkf_real_t z[3], hkf_real_t dt)
+{
+    int a;
+    if (!hkf_is_finite(dt)) {
+        return HKF_ERROR_NON_FINITE;
+    }
+    if (!(dt > 0 && dt <= HKF_REAL_FROM(HKF_MAX_TIME))) {
+        return HKF_ERROR_DT_RANGE;
+    }
+    for (a = 0; z != 0 && a < HKF_AXES; ++a) {
+        if (!hkf_is_finite(z[a])) {
+            return HKF_ERROR_NON_FINITE;
+        }
+        if (hkf_abs(z[a]) > HKF_REAL_FROM(HKF_MAX_ABS_ANGLE)) {
+            return HKF_ERROR_ANGLE_RANGE;
+        }
+    }
+    return HKF_OK;
+}
+
+/* z from the rest's origin (yaw the shorter way round). */
+static void from_origin(const hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t x[3])
+{
+    int a;
+    for (a = 0; a < HKF_AXES; ++a) {
+        x[a] = hkf_sub(z[a], r->origin[a]);
+    }
+    x[HKF_AXIS_YAW] = hkf_wrap180(x[HKF_AXIS_YAW]);
+}
+
+/* A move: x further than reach from the rest's mean so far, on any axis. */
+static int is_move(const hkf_rest_t *r, const hkf_real_t x[3])
+{
+    int a, move = 0;
+    for (a = 0; a < HKF_AXES; ++a) {
+        move |= hkf_abs(hkf_sub(x[a], r->mean[a])) > r->settings.reach;
+    }
+    return move;
+}
+
+/* x (from the origin) into the variogram, the mean and the recent measurements; dt since the last. */
+static void take(hkf_rest_t *r, const hkf_real_t x[3], hkf_real_t dt)
+{
+    int l, a;
+    for (l = 0; l < (int)r->history; ++l) {
+        r->pairs[l] += 1u;
+        for (a = 0; a < HKF_AXES; ++a) {
+            const hkf_real_t d = hkf_sub(x[a], r->recent[l][a]);
+            r->gamma[l][a] = running_mean(r->gamma[l][a], hkf_mul(d, d), r->pairs[l]);
+        }
+    }
+    if (r->history > 0u) {
+        r->period = running_mean(r->period, dt, r->pairs[0]);
+    }
+    for (l = HKF_REST_LAGS - 1; l > 0; --l) {
+        for (a = 0; a < HKF_AXES; ++a) {
+            r->recent[l][a] = r->recent[l - 1][a];
+        }
+    }
+    r->frames += 1u;
+    for (a = 0; a < HKF_AXES; ++a) {
+        r->recent[0][a] = x[a];
+        r->mean[a] = running_mean(r->mean[a], x[a], r->frames);
+    }
+    r->history += r->history < HKF_REST_LAGS ? 1u : 0u;
+}
+
+/* The line gamma(L) = 2 n + q dt L through the rest's variogram (least squares), and w from it. */
+static void fit(hkf_rest_t *r)
+{
+    hkf_rest_result_t *out = &r->result;
+    int l, a;
+    out->period = r->period;
+    for (a = 0; a < HKF_AXES; ++a) {
+        hkf_real_t slope = 0, level = 0, n, step, root;
+        for (l = 0; l < HKF_REST_LAGS; ++l) {
+            slope = hkf_add(slope, hkf_mul(slope_weight[l], r->gamma[l][a]));
+            level = hkf_add(level, r->gamma[l][a]);
+        }
+        level = hkf_sub(hkf_mul(level, HKF_REAL_FROM(1.0 / HKF_REST_LAGS)), hkf_mul(slope, HKF_REAL(3.5))); /* gamma(0) */
+        n = hkf_mul(level, HKF_REAL(0.5));
+        n = n > 0 ? n : 0;
+        step = slope > 0 ? slope : 0; /* q dt */
+        root = hkf_sqrt(hkf_add(hkf_mul(step, step), hkf_mul(HKF_REAL(4.0), hkf_mul(step, n))));
+        out->noise[a] = n;
+        out->drift[a] = hkf_divide(step, hkf_divisor(r->period));
+        out->wander[a] = hkf_mul(r->settings.stillness, hkf_mul(hkf_add(step, root), HKF_REAL(0.5)));
+        out->center[a] = hkf_add(r->origin[a], r->mean[a]);
+    }
+    out->center[HKF_AXIS_YAW] = hkf_wrap180(out->center[HKF_AXIS_YAW]);
+}
+
+int hkf_rest_update(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
+{
+    hkf_real_t x[3];
+    int a, result;
+    if (r == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (!r->measuring) {
+        return HKF_REST_IDLE;
+    }
+    result = check_frame(z, dt);
+    if (result != HKF_OK) {
+        return result;
+    }
+    if (z == 0) {
+        r->history = 0u; /* a frame without a measurement breaks the differences */
+        return HKF_REST_MEASURING;
+    }
+    from_origin(r, z, x);
+    result = HKF_REST_MEASURING;
+    if (r->frames > 0u && is_move(r, x)) {
+        begin(r); /* a move: not taken; the rest is measured again from this frame */
+        r->spoiled += 1u;
+        result = HKF_REST_SPOILED;
+    }
+    if (r->frames == 0u) {
+        for (a = 0; a < HKF_AXES; ++a) {
+            r->origin[a] = z[a];
+        }
+        from_origin(r, z, x);
+    } else {
+        r->elapsed = hkf_add(r->elapsed, dt);
+    }
+    take(r, x, dt);
+    /* done at rest_time, to the nearest frame (a sum of float periods falls short of it) */
+    if (hkf_add(r->elapsed, hkf_mul(r->period, HKF_REAL(0.5))) >= r->settings.rest_time &&
+        r->pairs[HKF_REST_LAGS - 1] >= HKF_REST_LAGS) {
+        fit(r);
+        r->measuring = 0;
+        r->measured = 1;
+        return HKF_REST_MEASURED;
+    }
+    return result;
+}
+
+int hkf_rest_get_progress(const hkf_rest_t *r, int *measuring, hkf_real_t *progress, unsigned *spoiled, int *measured)
+{
+    if (r == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (measuring != 0) {
+        *measuring = r->measuring;
+    }
+    if (progress != 0) {
+        const hkf_real_t share = hkf_divide(r->elapsed, hkf_divisor(r->settings.rest_time));
+        *progress = r->measuring ? (share < HKF_REAL(1.0) ? share : HKF_REAL(1.0)) : (r->measured ? HKF_REAL(1.0) : 0);
+    }
+    if (spoiled != 0) {
+        *spoiled = r->spoiled;
+    }
+    if (measured != 0) {
+        *measured = r->measured;
+    }
+    return HKF_OK;
+}
+
+int hkf_rest_get_result(const hkf_rest_t *r, hkf_rest_result_t *result)
+{
+    if (r == 0 || result == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (!r->measured) {
+        return HKF_ERROR_NOT_INITIALIZED;
+    }
+    *result = r->result;
+    return HKF_OK;
+}

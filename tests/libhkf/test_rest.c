@@ -1,0 +1,325 @@
+/*
+ * test_rest.c - the player's rest, measured (hkf_rest.h): the wander's rate and the frame noise from
+ * synthetic rests of a known random walk and a known white noise, 2 s at 30 fps; pure white noise
+ * keeps raw's onset; a move spoils a rest and the rest is measured again; the rest's centre (also at
+ * the yaw seam); HOLD's wander per axis (hkf_set_wander); errors.
+ */
+#include "test_support.h"
+
+#include <stdlib.h>
+
+#include "head_motion_sim.h"
+#include "hkf/hkf_rest.h"
+
+static const double frame_s = 1.0 / 30.0;
+
+#define HKF_TEXT_FOR_TEST(x) TEXT_OF_FOR_TEST(x)
+#define TEXT_OF_FOR_TEST(x) #x
+
+enum { SEEDS = 41, REST_FRAMES = 61 }; /* 2 s at 30 fps: 61 frames, 60 steps */
+
+static int by_value(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int count)
+{
+    qsort(v, (size_t)count, sizeof v[0], by_value);
+    return v[count / 2];
+}
+
+/* One synthetic rest on every axis: a rest angle at `base` drifting as a random walk of q deg^2/s, plus
+ * white noise of n deg^2; measured until hkf_rest_update says it is done (a walk that strays beyond the
+ * reach spoils it, and it is measured again). The result, and the frames the last rest took. */
+static int measure_rest(double n, double q, const double base[3], unsigned seed, hkf_rest_result_t *found)
+{
+    hkf_rest_t rest;
+    sim_rng_t rng;
+    double level[3];
+    int frame, a, first = 0;
+    assert_int_equal(hkf_rest_init(&rest, &hkf_default_rest_settings), HKF_OK);
+    assert_int_equal(hkf_rest_start(&rest), HKF_OK);
+    sim_rng_seed(&rng, seed);
+    memcpy(level, base, sizeof level);
+    for (frame = 0; frame < 10 * REST_FRAMES; ++frame) {
+        hkf_real_t z[3];
+        int event;
+        for (a = 0; a < 3; ++a) {
+            level[a] += sqrt(q * frame_s) * sim_rng_gaussian(&rng);
+            z[a] = R(level[a] + sqrt(n) * sim_rng_gaussian(&rng));
+        }
+        if (fabs(D(z[1])) > 180.0) {
+            z[1] = R(D(z[1]) - copysign(360.0, D(z[1]))); /* yaw as an estimator gives it, in [-180, 180) */
+        }
+        event = hkf_rest_update(&rest, z, R(frame_s));
+        assert_true(event == HKF_REST_MEASURING || event == HKF_REST_MEASURED || event == HKF_REST_SPOILED);
+        first = event == HKF_REST_SPOILED ? frame : first;
+        if (event == HKF_REST_MEASURED) {
+            assert_int_equal(hkf_rest_get_result(&rest, found), HKF_OK);
+            return frame + 1 - first;
+        }
+    }
+    fail_msg("a rest of white noise and a small random walk was never measured");
+    return 0;
+}
+
+/* The issue's goal: 2 s at 30 fps give the wander's rate q within 30 % (median over seeds), on rests of
+ * a known white noise n and a known random walk q, noisier and quieter cameras alike; n too. */
+static void test_drift_rate_measured(void **state)
+{
+    static const double cases[][2] = {{0.02, 0.5}, {0.05, 1.0}, {0.1, 1.5}, {0.3, 0.3}}; /* n deg^2, q deg^2/s */
+    const double base[3] = {0.0, 0.0, 0.0};
+    size_t c;
+    (void)state;
+    for (c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        double q[3 * SEEDS], n[3 * SEEDS];
+        int s, a, frames = 0;
+        for (s = 0; s < SEEDS; ++s) {
+            hkf_rest_result_t found;
+            frames = measure_rest(cases[c][0], cases[c][1], base, 100u + (unsigned)s, &found);
+            for (a = 0; a < 3; ++a) {
+                q[3 * s + a] = D(found.drift[a]);
+                n[3 * s + a] = D(found.noise[a]);
+            }
+        }
+        const double q_med = median(q, 3 * SEEDS), n_med = median(n, 3 * SEEDS);
+        print_message("n %.2f deg^2, q %.1f deg^2/s: measured in %d frames, median q %.3f (%.0f %%), n %.4f (%.0f %%)\n",
+                      cases[c][0], cases[c][1], frames, q_med, 100.0 * q_med / cases[c][1], n_med,
+                      100.0 * n_med / cases[c][0]);
+        assert_true(frames == REST_FRAMES);
+        assert_true(fabs(q_med / cases[c][1] - 1.0) <= 0.30);
+        assert_true(fabs(n_med / cases[c][0] - 1.0) <= 0.30);
+    }
+}
+
+/* The frame at which the filtered yaw first shows 1 deg of a glance (30 deg/s from frame `start`)
+ * with HOLD's wander w, after the rest, on the noise of `seed`. */
+static int onset_frame(const hkf_real_t wander[3], double n, unsigned seed, int start)
+{
+    hkf_filter_t f;
+    hkf_output_t out;
+    sim_rng_t rng;
+    int k;
+    const hkf_real_t noise[3] = {R(n), R(n), R(n)}; /* the level the calibration (or the rest) measures */
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    assert_int_equal(hkf_set_noise(&f, noise), HKF_OK);
+    assert_int_equal(hkf_set_wander(&f, wander), HKF_OK);
+    sim_rng_seed(&rng, seed);
+    for (k = 0; k < start + 30; ++k) {
+        const double truth = k < start ? 0.0 : 30.0 * frame_s * (k - start + 1); /* 1 deg at `start` */
+        hkf_real_t z[3];
+        set3(z, sqrt(n) * sim_rng_gaussian(&rng), truth + sqrt(n) * sim_rng_gaussian(&rng),
+             sqrt(n) * sim_rng_gaussian(&rng));
+        assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+        if (k >= start && D(out.angle[1]) >= 1.0) {
+            return k;
+        }
+    }
+    return k;
+}
+
+/* Pure white noise (no wander): the measured w is small (the rest's q reads about 0), and the glance
+ * after it is shown at the frame it is with w = 0, raw's onset, and earlier than with the
+ * constant 0.3 deg^2 of release 0.3. */
+static void test_white_noise_keeps_onset(void **state)
+{
+    const double n = 0.05, base[3] = {0.0, 0.0, 0.0};
+    double w[SEEDS], measured[SEEDS], none[SEEDS], old[SEEDS];
+    int s;
+    (void)state;
+    for (s = 0; s < SEEDS; ++s) {
+        hkf_rest_result_t found;
+        const hkf_real_t zero[3] = {R(0), R(0), R(0)}, constant[3] = {R(0.3), R(0.3), R(0.3)};
+        measure_rest(n, 0.0, base, 200u + (unsigned)s, &found);
+        w[s] = D(found.wander[1]);
+        measured[s] = onset_frame(found.wander, n, 300u + (unsigned)s, 60);
+        none[s] = onset_frame(zero, n, 300u + (unsigned)s, 60);
+        old[s] = onset_frame(constant, n, 300u + (unsigned)s, 60);
+    }
+    const double w_med = median(w, SEEDS), on_measured = median(measured, SEEDS), on_none = median(none, SEEDS),
+                 on_old = median(old, SEEDS);
+    print_message("white noise n %.2f: median w %.4f deg^2; onset frame (glance at 60) measured %.0f, w 0 %.0f, "
+                  "w 0.3 %.0f\n", n, w_med, on_measured, on_none, on_old);
+    assert_true(w_med <= 0.03);
+    assert_true(on_measured <= on_none);
+    assert_true(on_measured < on_old);
+}
+
+/* A glance in the middle of a rest spoils it: the rest so far is dropped, the count of spoiled rests
+ * says so, and the rest is measured again from that frame: done 2 s after it, centred on the new rest. */
+static void test_move_spoils_the_rest(void **state)
+{
+    hkf_rest_t rest;
+    hkf_rest_result_t found;
+    hkf_real_t progress;
+    unsigned spoiled;
+    int measuring, measured, k, done = -1, spoiled_at = -1;
+    (void)state;
+    assert_int_equal(hkf_rest_init(&rest, &hkf_default_rest_settings), HKF_OK);
+    assert_int_equal(hkf_rest_update(&rest, NULL, R(frame_s)), HKF_REST_IDLE); /* not asked for yet */
+    assert_int_equal(hkf_rest_get_result(&rest, &found), HKF_ERROR_NOT_INITIALIZED);
+    assert_int_equal(hkf_rest_start(&rest), HKF_OK);
+    for (k = 0; k < 200 && done < 0; ++k) {
+        const double yaw = k < 30 ? 0.0 : 10.0 + 0.1 * ((k % 3) - 1); /* a 10 deg glance at frame 30, then still */
+        hkf_real_t z[3];
+        int event;
+        set3(z, 0.1 * ((k % 2) - 0.5), yaw, 0.0);
+        event = hkf_rest_update(&rest, z, R(frame_s));
+        if (event == HKF_REST_SPOILED) {
+            assert_int_equal(spoiled_at, -1);
+            spoiled_at = k;
+        } else if (event == HKF_REST_MEASURED) {
+            done = k;
+        } else {
+            assert_int_equal(event, HKF_REST_MEASURING);
+        }
+        if (k == 45) {
+            assert_int_equal(hkf_rest_get_progress(&rest, &measuring, &progress, &spoiled, &measured), HKF_OK);
+            assert_true(measuring && !measured);
+            assert_int_equal(spoiled, 1u);
+            assert_near_at(D(progress), 15 * frame_s / 2.0, 0.01, "progress", __FILE__, __LINE__);
+        }
+    }
+    assert_int_equal(spoiled_at, 30);
+    assert_int_equal(done, 30 + REST_FRAMES - 1);
+    assert_int_equal(hkf_rest_get_result(&rest, &found), HKF_OK);
+    assert_near_at(D(found.center[1]), 10.0, 0.05, "the new rest's centre", __FILE__, __LINE__);
+    assert_int_equal(hkf_rest_get_progress(&rest, &measuring, &progress, &spoiled, &measured), HKF_OK);
+    assert_true(!measuring && measured);
+    assert_near_at(D(progress), 1.0, 1e-4, "progress when done", __FILE__, __LINE__);
+    assert_int_equal(hkf_rest_update(&rest, NULL, R(frame_s)), HKF_REST_IDLE); /* it runs only during a rest */
+}
+
+/* A rest at the yaw seam (the head turned 179.9 deg, the estimate wrapping to -180): its centre is at the
+ * seam, not at 0, and its noise is the noise's, not a jump of 360. */
+static void test_rest_at_the_yaw_seam(void **state)
+{
+    const double base[3] = {5.0, 179.9, -3.0};
+    hkf_rest_result_t found;
+    double yaw;
+    (void)state;
+    measure_rest(0.05, 0.0, base, 7u, &found);
+    yaw = D(found.center[1]);
+    print_message("centre %.2f %.2f %.2f, n %.4f %.4f %.4f\n", D(found.center[0]), yaw, D(found.center[2]),
+                  D(found.noise[0]), D(found.noise[1]), D(found.noise[2]));
+    assert_true(180.0 - fabs(yaw) < 0.3);
+    assert_near_at(D(found.center[0]), 5.0, 0.3, "pitch centre", __FILE__, __LINE__);
+    assert_true(D(found.noise[1]) < 0.1);
+}
+
+/* RMS frame-to-frame change of the output's yaw over a still head of white noise n plus a slow wander. */
+static double still_jitter(const hkf_real_t *wander, unsigned seed)
+{
+    const hkf_real_t noise[3] = {R(0.04), R(0.04), R(0.04)};
+    hkf_filter_t f;
+    hkf_output_t out;
+    sim_rng_t rng;
+    double level = 0.0, prev = 0.0, sum = 0.0;
+    int k;
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    assert_int_equal(hkf_set_noise(&f, noise), HKF_OK);
+    assert_int_equal(hkf_set_wander(&f, wander), HKF_OK);
+    sim_rng_seed(&rng, seed);
+    for (k = 0; k < 600; ++k) {
+        hkf_real_t z[3];
+        level += sqrt(0.3 * frame_s) * sim_rng_gaussian(&rng);
+        set3(z, 0.0, level + 0.2 * sim_rng_gaussian(&rng), 0.0);
+        assert_int_equal(hkf_update(&f, z, R(frame_s), &out), HKF_OK);
+        if (k > 100) {
+            sum += (D(out.angle[1]) - prev) * (D(out.angle[1]) - prev);
+        }
+        prev = D(out.angle[1]);
+    }
+    return sqrt(sum / 499.0);
+}
+
+/* hkf_set_wander: per axis, checked, NULL back to still_wander, kept by hkf_reset; HOLD takes it: a
+ * wandering rest is held stiller with ten times the wander measured on it (stillness 10) than with none. */
+static void test_set_wander(void **state)
+{
+    hkf_filter_t f;
+    hkf_rest_result_t found;
+    hkf_real_t got[3];
+    const hkf_real_t w[3] = {R(0.1), R(0.2), R(0.4)}, zero[3] = {R(0), R(0), R(0)};
+    hkf_real_t bad[3] = {R(0.1), R(-0.1), R(0.1)};
+    const double base[3] = {0.0, 0.0, 0.0};
+    double with, without;
+    int k;
+    (void)state;
+    assert_int_equal(hkf_init(&f, &hkf_default_settings), HKF_OK);
+    assert_int_equal(hkf_get_wander(&f, got), HKF_OK);
+    assert_near_at(D(got[2]), D(hkf_default_settings.still_wander), 1e-6, "still_wander", __FILE__, __LINE__);
+    assert_int_equal(hkf_set_wander(&f, w), HKF_OK);
+    hkf_reset(&f);
+    assert_int_equal(hkf_get_wander(&f, got), HKF_OK);
+    assert_near_at(D(got[1]), 0.2, 1e-4, "kept by hkf_reset", __FILE__, __LINE__);
+    assert_int_equal(hkf_set_wander(&f, bad), HKF_ERROR_SETTING_MOTION);
+    assert_int_equal(hkf_get_wander(&f, got), HKF_OK);
+    assert_near_at(D(got[1]), 0.2, 1e-4, "unchanged by a bad wander", __FILE__, __LINE__);
+#if TEST_HAS_NON_FINITE
+    bad[1] = R(NAN);
+    assert_int_equal(hkf_set_wander(&f, bad), HKF_ERROR_NON_FINITE);
+#endif
+    assert_int_equal(hkf_set_wander(NULL, w), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_set_wander(&f, NULL), HKF_OK);
+    assert_int_equal(hkf_get_wander(&f, got), HKF_OK);
+    assert_near_at(D(got[0]), D(hkf_default_settings.still_wander), 1e-6, "NULL: still_wander", __FILE__, __LINE__);
+    measure_rest(0.04, 0.3, base, 11u, &found);
+    for (k = 0; k < 3; ++k) {
+        found.wander[k] = R(10.0 * D(found.wander[k]));
+    }
+    with = still_jitter(found.wander, 12u);
+    without = still_jitter(zero, 12u);
+    print_message("wandering rest (q 0.3 deg^2/s): w x 10 %.3f deg^2, still jitter %.4f against %.4f with w 0\n",
+                  D(found.wander[1]), with, without);
+    assert_true(with < 0.8 * without);
+}
+
+/* Settings and frames outside their ranges are refused and change nothing. */
+static void test_rest_errors(void **state)
+{
+    hkf_rest_t rest;
+    hkf_rest_settings_t s = hkf_default_rest_settings;
+    const hkf_real_t far[3] = {R(0), R(4000), R(0)}, fine[3] = {R(0), R(1), R(0)};
+    (void)state;
+    assert_int_equal(hkf_rest_init(NULL, &s), HKF_ERROR_NULL_ARGUMENT);
+    s.rest_time = R(0);
+    assert_int_equal(hkf_rest_init(&rest, &s), HKF_ERROR_SETTING_REST);
+    s = hkf_default_rest_settings;
+    s.reach = R(-1);
+    assert_int_equal(hkf_rest_init(&rest, &s), HKF_ERROR_SETTING_REST);
+    s = hkf_default_rest_settings;
+    s.stillness = R(HKF_MAX_STILLNESS + 1);
+    assert_int_equal(hkf_rest_init(&rest, &s), HKF_ERROR_SETTING_REST);
+#if TEST_HAS_NON_FINITE
+    s = hkf_default_rest_settings;
+    s.stillness = R(NAN);
+    assert_int_equal(hkf_rest_init(&rest, &s), HKF_ERROR_SETTING_NON_FINITE);
+#endif
+    assert_int_equal(hkf_rest_init(&rest, &hkf_default_rest_settings), HKF_OK);
+    assert_int_equal(hkf_rest_start(&rest), HKF_OK);
+    assert_int_equal(hkf_rest_update(&rest, far, R(frame_s)), HKF_ERROR_ANGLE_RANGE);
+    assert_int_equal(hkf_rest_update(&rest, fine, R(0)), HKF_ERROR_DT_RANGE);
+    assert_int_equal(hkf_rest_update(&rest, fine, R(frame_s)), HKF_REST_MEASURING);
+    assert_int_equal(hkf_rest_stop(&rest), HKF_OK);
+    assert_int_equal(hkf_rest_update(&rest, fine, R(frame_s)), HKF_REST_IDLE);
+    assert_string_equal(hkf_result_string(HKF_ERROR_SETTING_REST),
+                        "rest_time is not in (0, " HKF_TEXT_FOR_TEST(HKF_MAX_TIME) "] s, reach not in (0, "
+                        HKF_TEXT_FOR_TEST(HKF_MAX_LC_THETA) "] deg or stillness not in [0, "
+                        HKF_TEXT_FOR_TEST(HKF_MAX_STILLNESS) "]");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_drift_rate_measured),
+        cmocka_unit_test(test_white_noise_keeps_onset),
+        cmocka_unit_test(test_move_spoils_the_rest),
+        cmocka_unit_test(test_rest_at_the_yaw_seam),
+        cmocka_unit_test(test_set_wander),
+        cmocka_unit_test(test_rest_errors),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
