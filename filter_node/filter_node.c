@@ -11,8 +11,10 @@ static int setup_filter(filter_node_t *node, const char *model, const resolved_m
         strncpy(node->model, model, sizeof node->model - 1);
         node->model[sizeof node->model - 1] = '\0';
     }
-    const int result = hkf_init(&node->filter, &resolved->settings);
-    return result != HKF_OK ? result : hkf_calibration_init(&node->calibration, &node->config->calibration, &node->filter);
+    int result = hkf_init(&node->filter, &resolved->settings);
+    result = result != HKF_OK ? result : hkf_calibration_init(&node->calibration, &node->config->calibration, &node->filter);
+    node_rest_keep(&node->rest, &node->filter); /* a rest measured is this camera's and player's, whatever the model */
+    return result;
 }
 
 int filter_node_init(filter_node_t *node, const node_config_t *config)
@@ -24,6 +26,9 @@ int filter_node_init(filter_node_t *node, const node_config_t *config)
     stream_admission_init(&node->admission);
     second_model_init(&node->second);
     result = node_position_init(&node->position, &config->position, &config->position_calibration);
+    if (result == HKF_OK) {
+        result = node_rest_init(&node->rest, &config->rest); /* tracking starts: a rest is asked for */
+    }
     if (result == HKF_OK) {
         result = resolved_models_init(&node->models, config);
     }
@@ -175,6 +180,7 @@ static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_
         return ANGLES_NO_POSE;
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
+    node_rest_take(&node->rest, &node->filter, NULL, dt);
     return ANGLES_POSE;
 }
 
@@ -204,6 +210,7 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, z, dt); /* for the next measurement's R */
     second_model_keep_frame(&node->second, m, z, dt, &before, &calibration_before);
+    node_rest_take(&node->rest, &node->filter, z, dt); /* after the frame is kept: a redo keeps the rest (fuse_second) */
     node->last_measurement_utime = m->utime;
     return ANGLES_POSE;
 }
@@ -285,6 +292,7 @@ static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
         ++*(bad ? &node->counts.bad_values : &node->counts.unpaired);
         return 0;
     }
+    node_rest_keep(&node->rest, &node->filter); /* the frames redone from before a rest was measured */
 
     if (m->utime > node->last_measurement_utime) {
         node->last_measurement_utime = m->utime;
@@ -399,6 +407,11 @@ int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pos
     return 1;
 }
 
+void filter_node_status(const filter_node_t *node, const hkf_head_pose_t *pose, hkf_tracker_status_t *status)
+{
+    node_rest_status(&node->rest, &node->filter, pose->utime, pose->seq, status);
+}
+
 int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command)
 {
     switch (command->command) {
@@ -406,6 +419,7 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         ++node->counts.commands;
         second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
+        node_rest_ask(&node->rest);        /* and on the rest's mean once it is measured */
         /* the position's centre: the position last published (at the angles' frame time), so that it reads 0 after */
         node_position_recenter(&node->position, node->admission.last_utime);
         return 0;
@@ -413,6 +427,7 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         ++node->counts.commands;
         second_model_forget_frames(&node->second);
         node_position_reset(&node->position); /* the models' offset too: nothing of before stays */
+        node_rest_forget(&node->rest); /* before the set-up, which would keep it */
         (void)setup_filter(node, node->model, resolved_models_find(&node->models, node->model));
         return 0;
     default:

@@ -60,6 +60,7 @@
 #include "hkf/hkf_position.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "node_position.h"
+#include "node_rest.h"
 #include "hkf_head_pose_t.h"
 #include "hkf_tracker_command_t.h"
 #include "node_config.h"
@@ -98,6 +99,7 @@ typedef struct {
     resolved_models_t models;         /* the config's models, resolved once (resolved_models.h) */
     hkf_filter_t filter;
     hkf_calibration_t calibration;    /* beside the filter: its noise level (hkf/hkf_calibration.h) */
+    node_rest_t rest;                 /* the player's rest: HOLD's wander and the centre (node_rest.h) */
     char model[NODE_MODEL_NAME_MAX];  /* the model the filter is set up for */
     /* Read by the scheduling (node_schedule.h): admission (the time reference) and lost_published;
      * by the runners: counts (the summary). The runners write one field only: counts.decode_errors,
@@ -155,7 +157,10 @@ int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pos
  * measurement's capture time, so the live node and --offline agree. */
 int64_t filter_node_silence_due(const filter_node_t *node);
 
-/* RECENTER or RESET; returns 0, or -1 for an unknown command. */
+/* The status that goes with the last pose (tracker_status_t): the player's rest (node_rest.h). */
+void filter_node_status(const filter_node_t *node, const hkf_head_pose_t *pose, hkf_tracker_status_t *status);
+
+/* RECENTER or RESET (each asks for a rest: node_rest.h); returns 0, or -1 for an unknown command. */
 int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command);
 
 #ifdef __cplusplus

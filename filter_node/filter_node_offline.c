@@ -18,20 +18,31 @@ typedef struct {
     filter_node_offline_report_t *report;
 } output_t;
 
-static void write_pose(output_t *output, int64_t timestamp, const hkf_head_pose_t *pose)
+/* One message into the output log (when there is one). */
+static void write_event(output_t *output, int64_t timestamp, const char *channel, const void *data, int size)
+{
+    if (output->out != NULL && (size < 0 || lcm_log_writer_write(output->out, timestamp, channel, data, size) != 0)) {
+        output->report->write_failed = 1;
+    }
+}
+
+/* A pose, and after a pose that is not extrapolated the status that goes with it (the CSV has both). */
+static void write_pose(output_t *output, const filter_node_t *node, int64_t timestamp, const hkf_head_pose_t *pose)
 {
     unsigned char buffer[512];
+    hkf_tracker_status_t status;
     const int size = hkf_head_pose_t_encoded_size(pose);
-    if (output->options->csv != NULL && pose_csv_write(output->options->csv, pose) != 0) {
+    filter_node_status(node, pose, &status);
+    const int status_size = hkf_tracker_status_t_encoded_size(&status);
+    if (output->options->csv != NULL && pose_csv_write(output->options->csv, pose, &status) != 0) {
         output->report->csv_failed = 1;
     }
     ++output->report->poses_written;
-    if (output->out == NULL) {
-        return;
-    }
-    if (size > (int)sizeof buffer || hkf_head_pose_t_encode(buffer, 0, size, pose) < 0 ||
-        lcm_log_writer_write(output->out, timestamp, output->options->output_channel, buffer, size) != 0) {
-        output->report->write_failed = 1;
+    write_event(output, timestamp, output->options->output_channel, buffer,
+                size <= (int)sizeof buffer ? hkf_head_pose_t_encode(buffer, 0, size, pose) : -1);
+    if (!pose->extrapolated) {
+        write_event(output, timestamp, output->options->status_channel, buffer,
+                    status_size <= (int)sizeof buffer ? hkf_tracker_status_t_encode(buffer, 0, status_size, &status) : -1);
     }
 }
 
@@ -52,7 +63,7 @@ static void publish_due(filter_node_t *node, node_schedule_t *schedule, output_t
     hkf_head_pose_t pose;
     int64_t due;
     while (node_schedule_next(schedule, node, now, &pose, &due)) {
-        write_pose(output, due, &pose);
+        write_pose(output, node, due, &pose);
     }
 }
 
@@ -66,7 +77,7 @@ static void handle_measurement(filter_node_t *node, output_t *output, const void
         return;
     }
     if (filter_node_receive(node, &m, timestamp, &pose)) {
-        write_pose(output, timestamp, &pose);
+        write_pose(output, node, timestamp, &pose);
     }
     hkf_head_pose_measurement_t_decode_cleanup(&m);
 }

@@ -20,6 +20,7 @@ extern "C" {
 
 typedef struct {
     const char *input_channel, *output_channel, *command_channel;
+    const char *status_channel; /* each pose that is not extrapolated is followed by its tracker_status_t */
     int64_t tick_us; /* > 0: also poses extrapolated every tick_us of capture time (--rate) */
     FILE *csv;       /* NULL, or every pose written as CSV too */
     int (*stop_requested)(void); /* NULL, or polled between events: nonzero stops (a signal) */

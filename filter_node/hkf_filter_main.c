@@ -33,6 +33,8 @@ static void usage(FILE *to)
             "  --input-channel C    raw poses (default HEAD_POSE_RAW)\n"
             "  --output-channel C   filtered poses (default HEAD_POSE)\n"
             "  --command-channel C  commands (default HEAD_TRACKER_CMD)\n"
+            "  --status-channel C   hkf.tracker_status_t after each pose: the player's rest (default: the\n"
+            "                       output channel's name + _STATUS, HEAD_POSE_STATUS)\n"
             "  --rate HZ            also publish poses extrapolated to this rate between measurements\n"
             "  --config FILE        settings file (repeatable); without it: " CONFIG_FILES_SYSTEM_DIR "/" CONFIG_FILES_NAME "\n"
             "                       (or $HKF_SYSTEM_CONFIG_DIR's), then ~/.config/hkf/" CONFIG_FILES_NAME "\n"
@@ -51,8 +53,8 @@ static void usage(FILE *to)
 /* Every channel name is one LCM accepts: 0, or 2 (said). */
 static int check_channels(const node_options_t *o)
 {
-    const char *const channels[] = {o->input_channel, o->output_channel, o->command_channel};
-    for (int i = 0; i < 3; ++i) {
+    const char *const channels[] = {o->input_channel, o->output_channel, o->command_channel, o->status_channel};
+    for (int i = 0; i < 4; ++i) {
         if (channels[i][0] == '\0' || strlen(channels[i]) > LCM_MAX_CHANNEL_NAME_LENGTH) {
             fprintf(stderr, "hkf-filter: a channel name has 1 to %d characters, not '%.80s%s'\n",
                     LCM_MAX_CHANNEL_NAME_LENGTH, channels[i], strlen(channels[i]) > 80 ? "..." : "");
@@ -71,7 +73,8 @@ static const char **string_option(node_options_t *o, const char *arg, const char
     } strings[] = {
         {"--input-url", offsetof(node_options_t, input_url)},           {"--output-url", offsetof(node_options_t, output_url)},
         {"--input-channel", offsetof(node_options_t, input_channel)},   {"--output-channel", offsetof(node_options_t, output_channel)},
-        {"--command-channel", offsetof(node_options_t, command_channel)}, {"--csv", offsetof(node_options_t, csv_path)},
+        {"--command-channel", offsetof(node_options_t, command_channel)},
+        {"--status-channel", offsetof(node_options_t, status_channel)}, {"--csv", offsetof(node_options_t, csv_path)},
     };
     if (strcmp(arg, "--lcm-url") == 0) {
         return lcm_url;
@@ -184,6 +187,11 @@ static int parse_options(int argc, char **argv, node_options_t *o)
     }
     o->input_url = lcm_url_resolve(o->input_url ? o->input_url : lcm_url); /* '': $LCM_DEFAULT_URL, as LCM reads it */
     o->output_url = lcm_url_resolve(o->output_url ? o->output_url : lcm_url);
+    if (o->status_channel == NULL) { /* beside the poses: HEAD_POSE_STATUS */
+        snprintf(o->status_channel_text, sizeof o->status_channel_text, "%.*s_STATUS", LCM_MAX_CHANNEL_NAME_LENGTH,
+                 o->output_channel);
+        o->status_channel = o->status_channel_text;
+    }
     return check_channels(o);
 }
 
@@ -212,6 +220,7 @@ static void print_summary(const filter_node_t *node, FILE *to)
             c->bad_values, c->decode_errors, c->clock_jumps, c->clock_resyncs, c->other_publisher, c->restarts,
             c->unknown_models, c->commands, c->silences, c->paired, c->unpaired, c->bad_positions,
             c->positions_gated);
+    node_run_say_rest_summary(node, to);
 }
 
 int main(int argc, char **argv)

@@ -57,6 +57,7 @@ void node_config_defaults(node_config_t *config)
     config->position = hkf_position_default_settings;
     config->position_calibration = hkf_default_calibration_settings;
     config->calibration = hkf_default_calibration_settings;
+    config->rest = hkf_default_rest_settings;
     config->model_settings.position_r_scale = (hkf_real_t)NODE_BOX_POSITION_R_SCALE;
     for (i = 0; i < hkf_model_count; ++i) { /* libhkf's table of models */
         add_builtin_model(config, &hkf_models[i]);

@@ -12,6 +12,7 @@
 #include "hkf/hkf.h"
 #include "hkf/hkf_calibration.h"
 #include "hkf/hkf_position.h"
+#include "hkf/hkf_rest.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "model_pairing.h"
 #include "setting_text.h"
@@ -73,6 +74,8 @@ typedef struct {
     hkf_calibration_settings_t position_calibration;
     /* The noise calibration beside the angle filter (hkf/hkf_calibration.h): keys "noise_time", "noise_rise". */
     hkf_calibration_settings_t calibration;
+    /* The player's rest (hkf/hkf_rest.h; node_rest.h): keys "rest_time", "rest_reach", "stillness". */
+    hkf_rest_settings_t rest;
     char origin[NODE_KEY_SLOTS][NODE_ORIGIN_MAX]; /* where each base key was set ("": the default) */
 } node_config_t;
 

@@ -44,6 +44,7 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
     hkf_filter_t probe;
     hkf_position_filter_t position_probe;
     hkf_calibration_t calibration_probe;
+    hkf_rest_t rest_probe;
     int m, result = hkf_position_init(&position_probe, &config->position);
     char where[600] = "";
     if (result == HKF_OK) {
@@ -61,6 +62,12 @@ int node_config_check(const node_config_t *config, char *error, size_t error_siz
                      ? "position_max_speed is not in [0, " STRING_OF_VALUE(HKF_MAX_SPEED) "] cm/s, or the gate is on "
                        "(position_max_speed > 0) with position_max_gate_rejections 0"
                      : hkf_result_string(result));
+        return -1;
+    }
+    result = hkf_rest_init(&rest_probe, &config->rest);
+    if (result != HKF_OK) {
+        describe_origins(config, NULL, NODE_KEY_REST, result, where, sizeof where);
+        snprintf(error, error_size, "%sinvalid rest settings: %s", where, hkf_result_string(result));
         return -1;
     }
     result = hkf_init(&probe, &config->settings);

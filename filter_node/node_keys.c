@@ -6,7 +6,7 @@
 #include <string.h>
 
 /* Every key is a setting described as libhkf describes its own (hkf/hkf_settings_table.h): the angle
- * filter's, the noise calibration's, the node's own, then the position filter's and its calibration's
+ * filter's, the noise calibration's, the player's rest's, the node's own, then the position filter's and its calibration's
  * (named "position_" + its name). A key's index is its slot in the origin arrays. */
 static const hkf_setting_t node_settings[] = {
     {"pair_second_alone_from_yaw", offsetof(node_config_t, second_alone_from_yaw), HKF_SETTING_REAL, 1, "deg", 0, 180,
@@ -32,6 +32,7 @@ static const struct {
 } key_groups[] = {
     {NODE_KEY_ANGLES, hkf_settings_table, &hkf_settings_table_count},
     {NODE_KEY_CALIBRATION, hkf_calibration_settings_table, &hkf_calibration_settings_table_count},
+    {NODE_KEY_REST, hkf_rest_settings_table, &hkf_rest_settings_table_count},
     {NODE_KEY_NODE, node_settings, &node_setting_count},
     {NODE_KEY_PER_MODEL, per_model_settings, &per_model_setting_count},
     {NODE_KEY_POSITION, hkf_position_settings_table, &hkf_position_settings_table_count},
@@ -92,6 +93,7 @@ const char *node_key_base(const node_config_t *config, const hkf_settings_t *ang
     switch (group) {
     case NODE_KEY_ANGLES: return (const char *)angles;
     case NODE_KEY_CALIBRATION: return (const char *)&config->calibration;
+    case NODE_KEY_REST: return (const char *)&config->rest;
     case NODE_KEY_NODE: return (const char *)config;
     case NODE_KEY_PER_MODEL: return (const char *)per_model;
     case NODE_KEY_POSITION_CALIBRATION: return (const char *)&config->position_calibration;

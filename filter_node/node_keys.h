@@ -16,11 +16,12 @@
 extern "C" {
 #endif
 
-/* Which struct a key's offset is in: the angles' settings, the calibration's, the node config's own, a
+/* Which struct a key's offset is in: the angles' settings, the calibration's, the rest's, the node config's own, a
  * model's per-model settings (node_model_settings_t) or the position filter's. */
 typedef enum {
     NODE_KEY_ANGLES,
     NODE_KEY_CALIBRATION,
+    NODE_KEY_REST,
     NODE_KEY_NODE,
     NODE_KEY_PER_MODEL,
     NODE_KEY_POSITION,

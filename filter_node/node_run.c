@@ -17,6 +17,38 @@ void node_run_report_decode_error(node_run_t *run, const char *channel, const ch
     }
 }
 
+void node_run_say_rest(node_run_t *run)
+{
+    const node_rest_t *r = &run->node.rest;
+    char text[400];
+    if (r->spoiled_count > run->said_spoiled && run->said_spoiled < NODE_RUN_SPOILED_SAID) {
+        node_rest_describe_spoiled(r, text, sizeof text);
+        fprintf(stderr, "hkf-filter: %s\n", text);
+    }
+    if (r->measured_count > run->said_measured) {
+        node_rest_describe_measured(r, text, sizeof text);
+        fprintf(stderr, "hkf-filter: %s\n", text);
+    }
+    run->said_spoiled = r->spoiled_count;
+    run->said_measured = r->measured_count;
+}
+
+void node_run_say_rest_summary(const filter_node_t *node, FILE *to)
+{
+    const node_rest_t *r = &node->rest;
+    char text[400];
+    hkf_real_t wander = 0;
+    if (r->measured) {
+        node_rest_describe_measured(r, text, sizeof text);
+        fprintf(to, "hkf-filter: the player's rest: %lu measured, %lu spoiled; the last %s\n", r->measured_count,
+                r->spoiled_count, text);
+    } else {
+        (void)hkf_get_wander(&node->filter, &wander);
+        fprintf(to, "hkf-filter: the player's rest: none measured (%lu spoiled); the built-in wander %.3f deg^2 held\n",
+                r->spoiled_count, (double)wander);
+    }
+}
+
 /* The paths this run reads or writes, other than `except`: a file it opens
  * for writing must be none of them. Returns how many are in keep. */
 int node_run_paths_to_keep(const node_options_t *o, const char *except, const char **keep)

@@ -19,6 +19,8 @@
 typedef struct {
     const char *input_url, *output_url;
     const char *input_channel, *output_channel, *command_channel;
+    const char *status_channel; /* --status-channel, or the output channel's + "_STATUS" (status_channel_text) */
+    char status_channel_text[LCM_MAX_CHANNEL_NAME_LENGTH + 8];
     const char *offline_in, *offline_out;
     const char *csv_path;
     const char *config_paths[8]; /* inputs too: never written over */
@@ -36,7 +38,8 @@ typedef struct {
     FILE *csv;
     int reported_decode_errors, reported_unknown_commands;
     unsigned long unknown_commands, publish_errors, csv_errors;
-    unsigned long published_ok;  /* poses LCM took: a file:// output must hold them all (lcm_file_url.h) */
+    unsigned long said_measured, said_spoiled; /* the node's rests said so far (node_run_say_rest) */
+    unsigned long published_ok;  /* poses and statuses LCM took: a file:// output must hold them all (lcm_file_url.h) */
 } node_run_t;
 
 #define STRING_OF(x) #x
@@ -58,6 +61,15 @@ int node_run_open_csv(node_run_t *run, const char *const *keep, int count);
 
 /* A message on `channel` did not decode: counted, and said the first five times (hint: why, or ""). */
 void node_run_report_decode_error(node_run_t *run, const char *channel, const char *hint);
+
+/* The player's rest (node_rest.h): what happened to it since the last call, said (a rest measured; a
+ * spoiled one, the first NODE_RUN_SPOILED_SAID times). */
+#define NODE_RUN_SPOILED_SAID 10
+void node_run_say_rest(node_run_t *run);
+
+/* The rest at the end of a run: how many were measured and spoiled, and the last one measured, or the
+ * built-in wander held. */
+void node_run_say_rest_summary(const filter_node_t *node, FILE *to);
 
 /* The live run (node_run_live.c): subscribes, filters, publishes until a signal. Exit status 0 or 1. */
 int node_run_live(node_run_t *run);

@@ -30,17 +30,30 @@ static int64_t arrival_utime(void)
     return clock_monotonic_us();
 }
 
-static void publish(node_run_t *run, hkf_head_pose_t *pose)
+/* One publish's outcome counted (0: LCM took it), and its failure said the first five times. */
+static void count_publish(node_run_t *run, int result, const char *channel)
 {
-    pose->latency_us = wall_utime() - pose->measurement_utime;
-    if (hkf_head_pose_t_publish(run->out_lcm, run->options->output_channel, pose) != 0) {
+    if (result != 0) {
         if (run->publish_errors++ < 5) {
-            fprintf(stderr, "hkf-filter: publishing on %s failed\n", run->options->output_channel);
+            fprintf(stderr, "hkf-filter: publishing on %s failed\n", channel);
         }
     } else {
         ++run->published_ok;
     }
-    if (run->csv != NULL && pose_csv_write(run->csv, pose) != 0 && run->csv_errors++ == 0) {
+}
+
+/* A pose, and after a pose that is not extrapolated the status that goes with it (the CSV has both). */
+static void publish(node_run_t *run, hkf_head_pose_t *pose)
+{
+    hkf_tracker_status_t status;
+    const node_options_t *o = run->options;
+    pose->latency_us = wall_utime() - pose->measurement_utime;
+    filter_node_status(&run->node, pose, &status);
+    count_publish(run, hkf_head_pose_t_publish(run->out_lcm, o->output_channel, pose), o->output_channel);
+    if (!pose->extrapolated) {
+        count_publish(run, hkf_tracker_status_t_publish(run->out_lcm, o->status_channel, &status), o->status_channel);
+    }
+    if (run->csv != NULL && pose_csv_write(run->csv, pose, &status) != 0 && run->csv_errors++ == 0) {
         fprintf(stderr, "hkf-filter: writing '%s' failed (a full disk?)\n", run->options->csv_path);
     }
 }
@@ -58,6 +71,7 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void
     if (filter_node_receive(&run->node, &m, arrival_utime(), &pose)) {
         publish(run, &pose);
     }
+    node_run_say_rest(run);
     hkf_head_pose_measurement_t_decode_cleanup(&m);
 }
 

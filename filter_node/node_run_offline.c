@@ -81,6 +81,7 @@ int node_run_offline(node_run_t *run)
     offline.input_channel = o->input_channel;
     offline.output_channel = o->output_channel;
     offline.command_channel = o->command_channel;
+    offline.status_channel = o->status_channel;
     offline.tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     offline.csv = run->csv;
     offline.stop_requested = lcm_wait_stop_requested;

@@ -345,7 +345,6 @@ int hkf_init(hkf_filter_t *f, const hkf_settings_t *s)
     for (a = 0; a < HKF_LOOP_LANES; ++a) {
         f->center[a] = 0;
         f->noise[a] = 0; /* no noise level given: Eq. 8's own R */
-        f->wander[a] = s->still_wander; /* no wander measured: the setting's */
     }
 #if !defined(HKF_REAL_FIXED)
     center_noise_lanes(f, f->r_center); /* e(mu), R = n e(z) / e(mu)'s divisor, kept */
@@ -444,7 +443,7 @@ static HKF_ALWAYS_INLINE void two_models_axes(hkf_filter_t *restrict f, const hk
         hkf_hold_prior_t hold;
         hold.p00 = held_p00[a];
         hold.y = y_h[a];
-        hold.wander = f->wander[a];
+        hold.wander = s->still_wander;
         set_lane(f, a, hkf_two_models_update(&c, lane_axis(f, a), hold, y[a], r[a], &f->moving[a]));
     }
     accepted(f, r);
@@ -652,35 +651,27 @@ int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3])
     return HKF_OK;
 }
 
-int hkf_set_wander(hkf_filter_t *f, const hkf_real_t wander[3])
+int hkf_set_wander(hkf_filter_t *f, hkf_real_t wander)
 {
-    int a;
     if (f == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    for (a = 0; wander != 0 && a < HKF_AXES; ++a) {
-        if (!hkf_is_finite(wander[a])) {
-            return HKF_ERROR_NON_FINITE;
-        }
-        if (!(wander[a] >= 0 && wander[a] <= HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
-            return HKF_ERROR_SETTING_MOTION;
-        }
+    if (!hkf_is_finite(wander)) {
+        return HKF_ERROR_NON_FINITE;
     }
-    for (a = 0; a < HKF_LOOP_LANES; ++a) {
-        f->wander[a] = wander != 0 && a < HKF_AXES ? wander[a] : HKF_SETTINGS(f)->still_wander;
+    if (!(wander >= 0 && wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE))) {
+        return HKF_ERROR_SETTING_MOTION;
     }
+    f->settings.still_wander = wander; /* HOLD reads it there (two_models_axes) */
     return HKF_OK;
 }
 
-int hkf_get_wander(const hkf_filter_t *f, hkf_real_t wander[3])
+int hkf_get_wander(const hkf_filter_t *f, hkf_real_t *wander)
 {
-    int a;
     if (f == 0 || wander == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    for (a = 0; a < HKF_AXES; ++a) {
-        wander[a] = f->wander[a];
-    }
+    *wander = f->settings.still_wander;
     return HKF_OK;
 }
 

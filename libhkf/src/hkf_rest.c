@@ -6,7 +6,7 @@
 
 const hkf_rest_settings_t hkf_default_rest_settings = {
     .rest_time = HKF_REAL(2.0),
-    .reach = HKF_REAL(3.0),
+    .rest_reach = HKF_REAL(3.0),
     .stillness = HKF_REAL(1.0),
 };
 
@@ -40,11 +40,11 @@ int hkf_rest_init(hkf_rest_t *r, const hkf_rest_settings_t *s)
     if (r == 0 || s == 0) {
         return HKF_ERROR_NULL_ARGUMENT;
     }
-    if (!hkf_is_finite(s->rest_time) || !hkf_is_finite(s->reach) || !hkf_is_finite(s->stillness)) {
+    if (!hkf_is_finite(s->rest_time) || !hkf_is_finite(s->rest_reach) || !hkf_is_finite(s->stillness)) {
         return HKF_ERROR_SETTING_NON_FINITE;
     }
-    if (!(s->rest_time > 0 && s->rest_time <= HKF_REAL_FROM(HKF_MAX_TIME) && s->reach > 0 &&
-          s->reach <= HKF_REAL_FROM(HKF_MAX_LC_THETA) && s->stillness >= 0 &&
+    if (!(s->rest_time >= 0 && s->rest_time <= HKF_REAL_FROM(HKF_MAX_TIME) && s->rest_reach > 0 &&
+          s->rest_reach <= HKF_REAL_FROM(HKF_MAX_LC_THETA) && s->stillness >= 0 &&
           s->stillness <= HKF_REAL_FROM(HKF_MAX_STILLNESS))) {
         return HKF_ERROR_SETTING_REST;
     }
@@ -73,6 +73,7 @@ static void begin(hkf_rest_t *r)
     for (a = 0; a < HKF_AXES; ++a) {
         r->origin[a] = 0;
         r->mean[a] = 0;
+        r->square[a] = 0;
     }
 }
 
@@ -82,7 +83,7 @@ int hkf_rest_start(hkf_rest_t *r)
         return HKF_ERROR_NULL_ARGUMENT;
     }
     begin(r);
-    r->measuring = 1;
+    r->measuring = r->settings.rest_time > 0;
     r->spoiled = 0u;
     return HKF_OK;
 }
@@ -131,7 +132,7 @@ static int is_move(const hkf_rest_t *r, const hkf_real_t x[3])
 {
     int a, move = 0;
     for (a = 0; a < HKF_AXES; ++a) {
-        move |= hkf_abs(hkf_sub(x[a], r->mean[a])) > r->settings.reach;
+        move |= hkf_abs(hkf_sub(x[a], r->mean[a])) > r->settings.rest_reach;
     }
     return move;
 }
@@ -159,55 +160,46 @@ static void take(hkf_rest_t *r, const hkf_real_t x[3], hkf_real_t dt)
     for (a = 0; a < HKF_AXES; ++a) {
         r->recent[0][a] = x[a];
         r->mean[a] = running_mean(r->mean[a], x[a], r->frames);
+        r->square[a] = running_mean(r->square[a], hkf_mul(x[a], x[a]), r->frames);
     }
     r->history += r->history < HKF_REST_LAGS ? 1u : 0u;
 }
 
-/* The line gamma(L) = 2 n + q dt L through the rest's variogram (least squares), and w from it. */
+/* The line gamma(L) = 2 n + q dt L through the rest's variogram (least squares): n and q per axis; the
+ * rest's spread V about its mean; and HOLD's wander, w = stillness max over the axes of (V - n). */
 static void fit(hkf_rest_t *r)
 {
     hkf_rest_result_t *out = &r->result;
+    hkf_real_t excess = 0;
     int l, a;
     out->period = r->period;
     for (a = 0; a < HKF_AXES; ++a) {
-        hkf_real_t slope = 0, level = 0, n, step, root;
+        hkf_real_t slope = 0, level = 0, n, beyond;
         for (l = 0; l < HKF_REST_LAGS; ++l) {
             slope = hkf_add(slope, hkf_mul(slope_weight[l], r->gamma[l][a]));
             level = hkf_add(level, r->gamma[l][a]);
         }
         level = hkf_sub(hkf_mul(level, HKF_REAL_FROM(1.0 / HKF_REST_LAGS)), hkf_mul(slope, HKF_REAL(3.5))); /* gamma(0) */
         n = hkf_mul(level, HKF_REAL(0.5));
-        n = n > 0 ? n : 0;
-        step = slope > 0 ? slope : 0; /* q dt */
-        root = hkf_sqrt(hkf_add(hkf_mul(step, step), hkf_mul(HKF_REAL(4.0), hkf_mul(step, n))));
-        out->noise[a] = n;
-        out->drift[a] = hkf_divide(step, hkf_divisor(r->period));
-        out->wander[a] = hkf_mul(r->settings.stillness, hkf_mul(hkf_add(step, root), HKF_REAL(0.5)));
+        out->noise[a] = n > 0 ? n : 0;
+        out->drift[a] = hkf_divide(slope > 0 ? slope : 0, hkf_divisor(r->period)); /* q = (q dt) / dt */
+        out->spread[a] = hkf_sub(r->square[a], hkf_mul(r->mean[a], r->mean[a]));
+        out->spread[a] = out->spread[a] > 0 ? out->spread[a] : 0;
+        beyond = hkf_sub(out->spread[a], out->noise[a]);
+        excess = beyond > excess ? beyond : excess;
         out->center[a] = hkf_add(r->origin[a], r->mean[a]);
     }
     out->center[HKF_AXIS_YAW] = hkf_wrap180(out->center[HKF_AXIS_YAW]);
+    out->wander = hkf_mul(r->settings.stillness, excess);
 }
 
-int hkf_rest_update(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
+/* A measurement z of a rest: a move spoils the rest so far (HKF_REST_SPOILED), and z starts it again;
+ * otherwise it is taken (HKF_REST_MEASURING). */
+static int take_measurement(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
 {
     hkf_real_t x[3];
-    int a, result;
-    if (r == 0) {
-        return HKF_ERROR_NULL_ARGUMENT;
-    }
-    if (!r->measuring) {
-        return HKF_REST_IDLE;
-    }
-    result = check_frame(z, dt);
-    if (result != HKF_OK) {
-        return result;
-    }
-    if (z == 0) {
-        r->history = 0u; /* a frame without a measurement breaks the differences */
-        return HKF_REST_MEASURING;
-    }
+    int a, result = HKF_REST_MEASURING;
     from_origin(r, z, x);
-    result = HKF_REST_MEASURING;
     if (r->frames > 0u && is_move(r, x)) {
         begin(r); /* a move: not taken; the rest is measured again from this frame */
         r->spoiled += 1u;
@@ -222,6 +214,27 @@ int hkf_rest_update(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
         r->elapsed = hkf_add(r->elapsed, dt);
     }
     take(r, x, dt);
+    return result;
+}
+
+int hkf_rest_update(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
+{
+    int result;
+    if (r == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (!r->measuring) {
+        return HKF_REST_IDLE;
+    }
+    result = check_frame(z, r->frames > 0u ? dt : HKF_REAL(1.0) /* a rest's first: dt ignored */);
+    if (result != HKF_OK) {
+        return result;
+    }
+    if (z == 0) {
+        r->history = 0u; /* a frame without a measurement breaks the differences */
+        return HKF_REST_MEASURING;
+    }
+    result = take_measurement(r, z, dt);
     /* done at rest_time, to the nearest frame (a sum of float periods falls short of it) */
     if (hkf_add(r->elapsed, hkf_mul(r->period, HKF_REAL(0.5))) >= r->settings.rest_time &&
         r->pairs[HKF_REST_LAGS - 1] >= HKF_REST_LAGS) {

@@ -42,7 +42,7 @@ const char *hkf_result_string(int result)
         return "noise_time is not in [0, " HKF_TEXT(HKF_MAX_TIME) "] s or noise_rise not in [0, "
                HKF_TEXT(HKF_MAX_NOISE_RISE) "] 1/s";
     case HKF_ERROR_SETTING_REST:
-        return "rest_time is not in (0, " HKF_TEXT(HKF_MAX_TIME) "] s, reach not in (0, " HKF_TEXT(HKF_MAX_LC_THETA)
+        return "rest_time is not in [0, " HKF_TEXT(HKF_MAX_TIME) "] s, rest_reach not in (0, " HKF_TEXT(HKF_MAX_LC_THETA)
                "] deg or stillness not in [0, " HKF_TEXT(HKF_MAX_STILLNESS) "]";
     default: return "unknown hkf result code";
     }

@@ -5,6 +5,7 @@
 #include <limits.h>
 #include <string.h>
 
+#include "hkf/hkf_rest.h"
 #include "hkf_internal.h"
 #include "hkf_math.h"
 
@@ -50,7 +51,7 @@ const hkf_setting_t hkf_settings_table[] = {
     ANGLES("max_dt", max_dt, HKF_SETTING_REAL, 1, "s", 0, HKF_MAX_TIME, 1, HKF_ERROR_SETTING_MAX_DT,
            "the longest step; a longer gap restarts the track"),
     ANGLES("still_wander", still_wander, HKF_SETTING_REAL, 1, "deg^2", 0, HKF_MAX_VARIANCE, 0,
-           HKF_ERROR_SETTING_MOTION, "motion adaptation: how far a resting head's estimate wanders, beyond R"),
+           HKF_ERROR_SETTING_MOTION, "motion adaptation: how far a resting head's estimate wanders, beyond R, until a rest is measured"),
     ANGLES("start_rate", start_rate, HKF_SETTING_RATE, 1, "1/s", HKF_MIN_RATE, HKF_MAX_RATE, 0,
            HKF_ERROR_SETTING_MOTION, "motion adaptation: how often a still head starts to move, 0 = off (the paper)"),
     ANGLES("stop_rate", stop_rate, HKF_SETTING_RATE, 1, "1/s", HKF_MIN_RATE, HKF_MAX_RATE, 0,
@@ -66,6 +67,16 @@ const hkf_setting_t hkf_calibration_settings_table[] = {
 };
 const int hkf_calibration_settings_table_count =
     (int)(sizeof hkf_calibration_settings_table / sizeof hkf_calibration_settings_table[0]);
+
+const hkf_setting_t hkf_rest_settings_table[] = {
+    {"rest_time", offsetof(hkf_rest_settings_t, rest_time), HKF_SETTING_REAL, 1, "s", 0, HKF_MAX_TIME, 0,
+     HKF_ERROR_SETTING_REST, NULL, "the player's rest: how long it is measured, 0 = off (still_wander stays)"},
+    {"rest_reach", offsetof(hkf_rest_settings_t, rest_reach), HKF_SETTING_REAL, 1, "deg", 0, HKF_MAX_LC_THETA, 1,
+     HKF_ERROR_SETTING_REST, NULL, "the player's rest: further from its mean than this is a move, which spoils it"},
+    {"stillness", offsetof(hkf_rest_settings_t, stillness), HKF_SETTING_REAL, 1, "", 0, HKF_MAX_STILLNESS, 0,
+     HKF_ERROR_SETTING_REST, NULL, "how still a resting view is held: a multiple of the wander measured on the rest"},
+};
+const int hkf_rest_settings_table_count = (int)(sizeof hkf_rest_settings_table / sizeof hkf_rest_settings_table[0]);
 
 #define POSITION(name, type, count, unit, min, max, above, error, what) \
     {#name, offsetof(hkf_position_settings_t, name), type, count, unit, min, max, above, error, NULL, what}

@@ -65,6 +65,8 @@ work = sys.argv[1]
 def poses(name):
     out = {}
     for e in lcm.EventLog(work + "/" + name, "r"):
+        if e.channel != "HEAD_POSE":
+            continue  # the status beside each pose (HEAD_POSE_STATUS)
         p = head_pose_t.decode(e.data)
         if p.status == head_pose_t.TRACKING:
             out[p.utime] = p

@@ -97,7 +97,7 @@ import sys
 import lcm
 sys.path.insert(0, sys.argv[3])
 from hkf import head_pose_measurement_t, head_pose_t
-poses = [(e.timestamp, head_pose_t.decode(e.data)) for e in lcm.EventLog(sys.argv[1], "r")]
+poses = [(e.timestamp, head_pose_t.decode(e.data)) for e in lcm.EventLog(sys.argv[1], "r") if e.channel == "HEAD_POSE"]
 poses = [(t, p) for t, p in poses if not p.extrapolated]
 raw = [head_pose_measurement_t.decode(e.data) for e in lcm.EventLog(sys.argv[2], "r")]
 real = {m.utime for m in raw if m.valid and m.yaw != 170.0 and len(m.model) < 32}

@@ -85,7 +85,7 @@ import lcm
 sys.path.insert(0, sys.argv[3])
 from hkf import head_pose_measurement_t, head_pose_t
 raw = [head_pose_measurement_t.decode(e.data) for e in lcm.EventLog(sys.argv[1], "r")]
-poses = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[2], "r") if not head_pose_t.decode(e.data).extrapolated]
+poses = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[2], "r") if e.channel == "HEAD_POSE" and not head_pose_t.decode(e.data).extrapolated]
 by_seq = {m.utime: m.seq for m in raw}
 answered = sorted(by_seq[p.utime] for p in poses)
 missing = sorted(set(m.seq for m in raw) - set(answered))

@@ -107,8 +107,8 @@ import sys
 import lcm
 sys.path.insert(0, sys.argv[3])
 from hkf import head_pose_t
-full = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[1], "r")]
-cut = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[2], "r")]
+full = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[1], "r") if e.channel == "HEAD_POSE"]
+cut = [head_pose_t.decode(e.data) for e in lcm.EventLog(sys.argv[2], "r") if e.channel == "HEAD_POSE"]
 assert 0 < len(cut) < len(full), (len(cut), len(full))
 # the cut is a silence: the cut log's last pose is LOST, the ones before are the whole log's
 assert cut[-1].status == head_pose_t.LOST and cut[-1].extrapolated, "no LOST pose at the cut"

@@ -3,7 +3,7 @@
  * as the input LCM log, read by lcm_log_reader and filtered by
  * filter_node_offline (the code the program runs), into a log in memory.
  * Checks that the run ends, that every pose written reads back (so the output
- * log is whole) and is finite, and that the reader's account adds up: whole
+ * log is whole) and is finite, and every status beside it, and that the reader's account adds up: whole
  * events + skipped + cut bytes never exceed the input. hkf-track's status line (track_monitor.h)
  * takes every pose written, as the launcher would, and counts each.
  *
@@ -31,7 +31,24 @@ static void print_totals(void)
     fprintf(stderr, "fuzz_node_log: %llu logs, %llu events in total\n", logs, events);
 }
 
-/* Reads the output log back: every pose whole and finite; returns how many. */
+/* A status written beside a pose: whole, its rest's values finite and in range. */
+static void check_status(const unsigned char *data, int size)
+{
+    hkf_tracker_status_t status;
+    int a;
+    CHECK(hkf_tracker_status_t_decode(data, 0, size, &status) == size, "an output status does not decode");
+    CHECK(status.rest >= HKF_TRACKER_STATUS_T_NO_REST && status.rest <= HKF_TRACKER_STATUS_T_MEASURED,
+          "a rest's state unknown");
+    CHECK(status.rest_progress >= 0.0f && status.rest_progress <= 1.0f, "a rest's progress outside 0..1");
+    CHECK(isfinite(status.wander) && status.wander >= 0.0f, "a wander not finite or negative");
+    for (a = 0; a < 3; ++a) {
+        CHECK(isfinite(status.rest_spread[a]) && isfinite(status.rest_noise[a]) && isfinite(status.rest_drift[a]) &&
+                  isfinite(status.rest_center[a]), "a rest's measurement not finite");
+    }
+    hkf_tracker_status_t_decode_cleanup(&status);
+}
+
+/* Reads the output log back: every pose whole and finite (and every status); returns how many poses. */
 static unsigned long read_back(const char *bytes, size_t size)
 {
     static unsigned char data[512];
@@ -49,6 +66,10 @@ static unsigned long read_back(const char *bytes, size_t size)
     CHECK(f != NULL && lcm_log_reader_open(&reader, f) == 0, "cannot read the output back");
     while (lcm_log_reader_next(&reader, &event, data, (int)sizeof data)) {
         hkf_head_pose_t pose;
+        if (event.data_read && strcmp(event.channel, "HEAD_POSE_STATUS") == 0) {
+            check_status(data, event.datalen);
+            continue;
+        }
         CHECK(event.data_read && strcmp(event.channel, "HEAD_POSE") == 0, "a stray event in the output");
         CHECK(hkf_head_pose_t_decode(data, 0, event.datalen, &pose) == event.datalen, "an output pose does not decode");
         fuzz_check_pose(&pose, "fuzz_node_log");
@@ -89,6 +110,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     options.input_channel = "HEAD_POSE_RAW";
     options.output_channel = "HEAD_POSE";
     options.command_channel = "HEAD_TRACKER_CMD";
+    options.status_channel = "HEAD_POSE_STATUS";
     options.tick_us = (data[0] & 1) ? 1000 + 1000 * (int64_t)(data[0] >> 1) : 0;
     options.csv = NULL;
     options.stop_requested = NULL;

@@ -1,6 +1,6 @@
 /*
- * test_settings_table.c - libhkf's settings table says what hkf_init and
- * hkf_position_init do: every setting is in it once, each end of its range
+ * test_settings_table.c - libhkf's settings tables say what hkf_init,
+ * hkf_position_init and hkf_rest_init do: every setting is in it once, each end of its range
  * is accepted, a value just outside is refused with the descriptor's error,
  * and hkf_setting_in_range agrees with the init on both sides. The table of
  * models: each one found by its name, once, its curves and its own still_wander
@@ -10,6 +10,7 @@
 
 #include "hkf/hkf_models.h"
 #include "hkf/hkf_position.h"
+#include "hkf/hkf_rest.h"
 #include "hkf/hkf_settings_table.h"
 
 #include <string.h>
@@ -22,13 +23,16 @@ typedef struct {
 
 static const table_t *tables(void)
 {
-    static table_t both[2];
+    static table_t both[3];
     both[0].table = hkf_settings_table;
     both[0].count = hkf_settings_table_count;
     both[0].size = sizeof(hkf_settings_t);
     both[1].table = hkf_position_settings_table;
     both[1].count = hkf_position_settings_table_count;
     both[1].size = sizeof(hkf_position_settings_t);
+    both[2].table = hkf_rest_settings_table;
+    both[2].count = hkf_rest_settings_table_count;
+    both[2].size = sizeof(hkf_rest_settings_t);
     return both;
 }
 
@@ -36,6 +40,7 @@ static const table_t *tables(void)
 typedef union {
     hkf_settings_t angles;
     hkf_position_settings_t position;
+    hkf_rest_settings_t rest;
 } any_settings_t;
 
 static any_settings_t defaults_of(const table_t *t)
@@ -44,6 +49,8 @@ static any_settings_t defaults_of(const table_t *t)
     memset(&s, 0, sizeof s);
     if (t->table == hkf_settings_table) {
         s.angles = hkf_default_settings;
+    } else if (t->table == hkf_rest_settings_table) {
+        s.rest = hkf_default_rest_settings;
     } else {
         s.position = hkf_position_default_settings;
     }
@@ -54,6 +61,10 @@ static int init_of(const table_t *t, const any_settings_t *s)
 {
     hkf_filter_t f;
     hkf_position_filter_t p;
+    hkf_rest_t r;
+    if (t->table == hkf_rest_settings_table) {
+        return hkf_rest_init(&r, &s->rest);
+    }
     return t->table == hkf_settings_table ? hkf_init(&f, &s->angles) : hkf_position_init(&p, &s->position);
 }
 
@@ -121,7 +132,7 @@ static void test_ranges_are_what_init_applies(void **state)
 {
     int k, i, axis;
     (void)state;
-    for (k = 0; k < 2; ++k) {
+    for (k = 0; k < 3; ++k) {
         const table_t *t = &tables()[k];
         for (i = 0; i < t->count; ++i) {
             const hkf_setting_t *d = &t->table[i];
@@ -147,7 +158,7 @@ static void test_every_setting_once(void **state)
 {
     int k, i, j;
     (void)state;
-    for (k = 0; k < 2; ++k) {
+    for (k = 0; k < 3; ++k) {
         const table_t *t = &tables()[k];
         size_t covered = 0;
         for (i = 0; i < t->count; ++i) {

@@ -56,6 +56,8 @@ from hkf import head_pose_t
 names = {1: "TRACKING", 2: "COASTING", 3: "LOST"}
 expected = {}
 for e in lcm.EventLog(sys.argv[1], "r"):
+    if e.channel != "HEAD_POSE":
+        continue  # the status beside each pose (HEAD_POSE_STATUS)
     p = head_pose_t.decode(e.data)
     yaw = math.fmod(p.yaw - p.center[1] + 540.0, 360.0) - 180.0
     expected[p.seq] = (names[p.status], p.pitch - p.center[0], yaw, p.roll - p.center[2])

@@ -60,7 +60,7 @@ typedef enum {
                                             neither 0 nor in [HKF_MIN_RATE, HKF_MAX_RATE] (the position's too) */
     HKF_ERROR_SETTING_CALIBRATION = -35, /* noise_time outside [0, HKF_MAX_TIME] or noise_rise outside
                                             [0, HKF_MAX_NOISE_RISE] (hkf_calibration.h) */
-    HKF_ERROR_SETTING_REST = -36         /* rest_time outside (0, HKF_MAX_TIME], reach outside (0, HKF_MAX_LC_THETA]
+    HKF_ERROR_SETTING_REST = -36         /* rest_time outside [0, HKF_MAX_TIME], rest_reach outside (0, HKF_MAX_LC_THETA]
                                             or stillness outside [0, HKF_MAX_STILLNESS] (hkf_rest.h) */
 } hkf_result_t;
 
@@ -172,7 +172,7 @@ typedef struct {
 
 /* The defaults: the paper's adaptive R (Eq. 8, FSA-Net curves of Table I),
  * the motion adaptation (process_noise 16000 deg^2/s^3 while moving,
- * still_wander 0.3 deg^2, start_rate 0.05 per s, stop_rate 16 per s), loop
+ * still_wander 0.03 deg^2 until a rest is measured (hkf_rest.h), start_rate 0.05 per s, stop_rate 16 per s), loop
  * closure off, gate off; chosen on truth by construction and on real clips
  * (docs/evaluation.md) together with the noise calibration
  * (hkf_calibration.h, hkf_default_calibration_settings), which hkf-filter runs
@@ -241,7 +241,6 @@ typedef struct {
     hkf_real_t center[HKF_LANES];
     hkf_real_t moving[HKF_LANES];       /* the motion adaptation's probability of MOVE */
     hkf_real_t noise[HKF_LANES];        /* n from hkf_set_noise, deg^2; 0: none (Eq. 8's own R) */
-    hkf_real_t wander[HKF_LANES];       /* HOLD's wander w per axis, deg^2: still_wander, or hkf_set_wander's */
 #if !defined(HKF_REAL_FIXED)
     hkf_real_t r_center[HKF_LANES];     /* e(mu), R at the curves' center, as hkf_math.h's divisor (fixed point: each step's) */
 #endif
@@ -327,14 +326,14 @@ int hkf_extrapolate(const hkf_filter_t *f, hkf_real_t dt_ahead, hkf_output_t *ou
  * it. HKF_ERROR_NON_FINITE or HKF_ERROR_NOISE_RANGE (n <= 0) change nothing. */
 int hkf_set_noise(hkf_filter_t *f, const hkf_real_t noise[3]);
 
-/* HOLD's wander w per axis (deg^2; hkf_rest.h measures it on the player's rest): from the next
- * update on, HOLD's measurement variance is R + w[a] on axis a, in place of R + still_wander. NULL:
- * back to still_wander on every axis (hkf_init's). hkf_reset keeps it. HKF_ERROR_NON_FINITE, or
+/* HOLD's wander w (deg^2; hkf_rest.h measures it on the player's rest): from the next update on, HOLD's
+ * measurement variance is R + w, in place of R + the still_wander hkf_init was given (the filter's copy
+ * of the settings takes it: hkf_reset keeps it, hkf_init forgets it). HKF_ERROR_NON_FINITE, or
  * HKF_ERROR_SETTING_MOTION (w outside [0, HKF_MAX_VARIANCE]), change nothing. (libhkf 1.2) */
-int hkf_set_wander(hkf_filter_t *f, const hkf_real_t wander[3]);
+int hkf_set_wander(hkf_filter_t *f, hkf_real_t wander);
 
-/* The wander HOLD takes per axis, deg^2 (still_wander until hkf_set_wander gave one). */
-int hkf_get_wander(const hkf_filter_t *f, hkf_real_t wander[3]);
+/* The wander HOLD takes, deg^2 (still_wander until hkf_set_wander gave another). */
+int hkf_get_wander(const hkf_filter_t *f, hkf_real_t *wander);
 
 /* The track's status (HKF_STATUS_UNINITIALIZED for a NULL filter). */
 hkf_status_t hkf_get_status(const hkf_filter_t *f);

@@ -9,13 +9,17 @@
  * plus white frame noise e_k ~ N(0, n). Measurements L frames apart then differ by
  *     gamma(L) = E[(z_k+L - z_k)^2] = 2 n + q dt L            (the variogram of a local-level process),
  * a line in L: its intercept gives n, its slope q. The rest's gamma(L) for L = 1..HKF_REST_LAGS (the
- * few-frame scales where a resting estimate wanders) is fitted by least squares. w is the one-step
- * prior variance of the rest level that a Kalman filter of this model would carry in its steady state,
- *     w = stillness (q dt + sqrt((q dt)^2 + 4 q dt n)) / 2,
- * times the player's stillness (1: the measured wander). White noise alone (q = 0) gives w = 0: a
- * camera whose rest does not wander keeps raw's onset. docs/libhkf.md derives it.
+ * few-frame scales where a resting estimate wanders) is fitted by least squares.
  *
- * A measurement further than `reach` from the rest's mean so far (a move) spoils the rest: it is not
+ * HOLD (hkf.h, the motion adaptation) takes a resting measurement as the held angle plus R plus its
+ * wander w. Over the rest, measurements spread about their mean by V; R is the frame noise n; so
+ *     w = stillness max over the axes of (V - n),
+ * the spread the rest shows beyond its frame noise (for a random walk over a rest of T s, q T / 6), times
+ * the player's stillness (1: the measured wander). One w for the three axes, as still_wander is: 2 s
+ * under-samples an axis that wandered little in them (docs/libhkf.md gives the figures per axis). White
+ * noise alone gives w near 0, and a camera whose rest does not wander keeps raw's onset.
+ *
+ * A measurement further than `rest_reach` from the rest's mean so far (a move) spoils the rest: it is not
  * taken, and the measurement starts again from that frame (HKF_REST_SPOILED).
  *
  *     hkf_rest_t rest;  hkf_rest_result_t found;
@@ -43,12 +47,12 @@ extern "C" {
 #define HKF_MAX_STILLNESS 100 /* the largest multiple of the measured wander */
 
 typedef struct {
-    hkf_real_t rest_time; /* s: how long a rest is measured, within (0, HKF_MAX_TIME] */
-    hkf_real_t reach;     /* deg: further from the rest's mean than this is a move, within (0, HKF_MAX_LC_THETA] */
+    hkf_real_t rest_time; /* s: how long a rest is measured, within [0, HKF_MAX_TIME]; 0 = off (none is asked for) */
+    hkf_real_t rest_reach;     /* deg: further from the rest's mean than this is a move, within (0, HKF_MAX_LC_THETA] */
     hkf_real_t stillness; /* HOLD's wander as a multiple of the measured one, within [0, HKF_MAX_STILLNESS] */
 } hkf_rest_settings_t;
 
-/* rest_time 2 s, reach 3 deg, stillness 1. */
+/* rest_time 2 s, rest_reach 3 deg, stillness 1. */
 extern const hkf_rest_settings_t hkf_default_rest_settings;
 
 /* What one hkf_rest_update did. */
@@ -64,7 +68,8 @@ typedef struct {
     hkf_real_t center[3]; /* deg: the rest's mean pose (yaw in [-180, 180)) */
     hkf_real_t noise[3];  /* deg^2: the frame noise n */
     hkf_real_t drift[3];  /* deg^2/s: the wander's rate q */
-    hkf_real_t wander[3]; /* deg^2: HOLD's wander w, stillness x the measured one (for hkf_set_wander) */
+    hkf_real_t spread[3]; /* deg^2: the rest's variance about its mean */
+    hkf_real_t wander;    /* deg^2: HOLD's wander w, stillness x the measured one (for hkf_set_wander) */
     hkf_real_t period;    /* s: the rest's mean frame period dt */
 } hkf_rest_result_t;
 
@@ -81,6 +86,7 @@ typedef struct {
     hkf_real_t period;             /* s: the mean time between consecutive measurements */
     hkf_real_t origin[3];          /* deg: the rest's first measurement; the values below are from it */
     hkf_real_t mean[3];            /* deg: the rest's mean */
+    hkf_real_t square[3];          /* deg^2: the rest's mean square */
     hkf_real_t recent[HKF_REST_LAGS][3];   /* deg: the last measurements, recent[0] the newest */
     hkf_real_t gamma[HKF_REST_LAGS][3];    /* deg^2: the mean squared difference L + 1 frames apart */
     hkf_rest_result_t result;
@@ -90,7 +96,7 @@ typedef struct {
  * and starts idle, with no result. */
 int hkf_rest_init(hkf_rest_t *r, const hkf_rest_settings_t *s);
 
-/* A rest begins: the player is asked to keep still. Forgets any rest in progress and the count of
+/* A rest begins (none with rest_time 0): the player is asked to keep still. Forgets any rest in progress and the count of
  * spoiled ones; keeps the last result until a new one completes. */
 int hkf_rest_start(hkf_rest_t *r);
 

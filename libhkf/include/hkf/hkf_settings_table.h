@@ -59,6 +59,10 @@ extern const int hkf_settings_table_count;
 extern const hkf_setting_t hkf_calibration_settings_table[];
 extern const int hkf_calibration_settings_table_count;
 
+/* The player's rest's settings (hkf_rest_settings_t, hkf_rest.h). */
+extern const hkf_setting_t hkf_rest_settings_table[];
+extern const int hkf_rest_settings_table_count;
+
 /* The position filter's settings (hkf_position_settings_t), in the order of hkf_position.h. */
 extern const hkf_setting_t hkf_position_settings_table[];
 extern const int hkf_position_settings_table_count;
