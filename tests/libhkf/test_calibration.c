@@ -436,6 +436,42 @@ static void test_power_low_pass(void **state)
     assert_true(D(after.power[0]) < 0.5 * D(hkf_observation_noise(&t.f, 0, R(0.0)))); /* it came down toward d^2 / 6 */
 }
 
+/* How fast n may rise (hkf_calibration.h): by at most the factor 1 + noise_rise dt a step, so that a
+ * head's motion, whose second differences are large, does not pass for noise. A settled n, then a
+ * head shaking (a second difference of 4 deg every frame for 1 s): n rises by that factor a frame and
+ * no faster, while the power it follows jumps at once. Beside it, the rest's measurement
+ * (test_rest.c) reads n from a rest alone. */
+static void test_noise_rises_at_most_by_noise_rise(void **state)
+{
+    calibrated_t t;
+    hkf_output_t out;
+    hkf_calibration_state_t before, after;
+    const hkf_settings_t s = calibrated_settings();
+    const double dt = frame_s, rise = 1.0 + D(hkf_default_calibration_settings.noise_rise) * dt;
+    double settled;
+    int k;
+    (void)state;
+    calibrated_init(&t, &s);
+    for (k = 0; k < 300; ++k) { /* a still head with a little alternating noise: n settles low */
+        const hkf_real_t z[3] = {R(0.0), R(0.05 * ((k % 2) * 2 - 1)), R(0.0)};
+        calibrated_update(&t, z, R(dt), &out);
+    }
+    assert_int_equal(hkf_calibration_get_state(&t.c, &before), HKF_OK);
+    settled = D(before.noise[1]);
+    for (k = 0; k < 30; ++k) { /* shaking: the yaw's second difference alternates +-4 deg */
+        const hkf_real_t z[3] = {R(0.0), R(2.0 * ((k % 2) * 2 - 1)), R(0.0)};
+        assert_int_equal(hkf_calibration_get_state(&t.c, &before), HKF_OK);
+        calibrated_update(&t, z, R(dt), &out);
+        assert_int_equal(hkf_calibration_get_state(&t.c, &after), HKF_OK);
+        assert_true(D(after.noise[1]) <= D(before.noise[1]) * rise + 2e-4); /* no faster than noise_rise */
+        assert_true(D(after.noise[1]) >= D(before.noise[1]) - 2e-4);        /* and it does rise toward the power */
+    }
+    print_message("n %.4f settled, %.4f after 1 s of shaking (the power %.2f): at most x%.4f a frame\n", settled,
+                  D(after.noise[1]), D(after.power[1]), rise);
+    assert_true(D(after.power[1]) > 100.0 * D(after.noise[1])); /* the power followed the shaking at once */
+    assert_true(D(after.noise[1]) > settled);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -450,6 +486,7 @@ int main(void)
         cmocka_unit_test(test_noise_at_the_yaw_seam),
         cmocka_unit_test(test_calibration_settings_checked),
         cmocka_unit_test(test_power_low_pass),
+        cmocka_unit_test(test_noise_rises_at_most_by_noise_rise),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

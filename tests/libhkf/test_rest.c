@@ -43,13 +43,14 @@ static double mean_of(const double *v, int count)
 /* One synthetic rest on every axis: a rest angle at `base` drifting as a random walk of q deg^2/s, plus
  * white noise of n deg^2; measured until hkf_rest_update says it is done (a walk that strays beyond the
  * reach spoils it, and it is measured again). The result, and the frames the last rest took. */
-static int measure_rest(double n, double q, const double base[3], unsigned seed, hkf_rest_result_t *found)
+static int measure_rest_with(const hkf_rest_settings_t *settings, double n, double q, const double base[3],
+                             unsigned seed, hkf_rest_result_t *found)
 {
     hkf_rest_t rest;
     sim_rng_t rng;
     double level[3];
     int frame, a, first = 0;
-    assert_int_equal(hkf_rest_init(&rest, &hkf_default_rest_settings), HKF_OK);
+    assert_int_equal(hkf_rest_init(&rest, settings), HKF_OK);
     assert_int_equal(hkf_rest_start(&rest), HKF_OK);
     sim_rng_seed(&rng, seed);
     memcpy(level, base, sizeof level);
@@ -73,6 +74,27 @@ static int measure_rest(double n, double q, const double base[3], unsigned seed,
     }
     fail_msg("a rest of white noise and a small random walk was never measured");
     return 0;
+}
+
+static int measure_rest(double n, double q, const double base[3], unsigned seed, hkf_rest_result_t *found)
+{
+    return measure_rest_with(&hkf_default_rest_settings, n, q, base, seed, found);
+}
+
+/* The player's stillness scales the measured wander, and nothing else. */
+static void test_stillness_scales_the_wander(void **state)
+{
+    hkf_rest_settings_t stiller = hkf_default_rest_settings;
+    hkf_rest_result_t one, two;
+    const double base[3] = {0.0, 0.0, 0.0};
+    (void)state;
+    stiller.stillness = R(2.0);
+    measure_rest(0.05, 1.0, base, 21u, &one);
+    measure_rest_with(&stiller, 0.05, 1.0, base, 21u, &two);
+    print_message("stillness 1: w %.4f deg^2; stillness 2: %.4f\n", D(one.wander), D(two.wander));
+    assert_true(D(one.wander) > 0.05);
+    assert_near_at(D(two.wander), 2.0 * D(one.wander), 1e-3, "stillness 2", __FILE__, __LINE__);
+    assert_true(D(two.noise[0]) == D(one.noise[0]) && D(two.center[1]) == D(one.center[1]));
 }
 
 /* The issue's goal: 2 s at 30 fps give the wander's rate q within 30 % (median over seeds), on rests of
@@ -328,6 +350,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_drift_rate_measured),
+        cmocka_unit_test(test_stillness_scales_the_wander),
         cmocka_unit_test(test_white_noise_keeps_onset),
         cmocka_unit_test(test_move_spoils_the_rest),
         cmocka_unit_test(test_rest_at_the_yaw_seam),

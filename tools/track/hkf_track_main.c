@@ -29,17 +29,19 @@ static const char *signal_name(int signal_number)
 static int watch(const track_options_t *o, lcm_t *lcm, track_monitor_t *monitor, track_programs_t *programs)
 {
     const int64_t started = clock_monotonic_us();
-    int64_t next_line = started + 1000000;
+    int64_t last_line = started, next_line = started + 1000000;
     char line[1024];
     while (!lcm_wait_stop_requested()) {
         int64_t now = clock_monotonic_us();
         if (o->seconds > 0.0 && (double)(now - started) >= o->seconds * 1e6) return -1;
         if (lcm_wait_and_handle(lcm, lcm_wait_time(next_line, now), "hkf-track") < 0) return -1;
-        if (clock_monotonic_us() >= next_line) {
-            track_monitor_line(monitor, (double)(clock_monotonic_us() - started) / 1e6, 1.0, line, sizeof line);
+        if (clock_monotonic_us() >= next_line) { /* a line a second; twice a second while the rest counts down */
+            const int64_t at = clock_monotonic_us();
+            track_monitor_line(monitor, (double)(at - started) / 1e6, (double)(at - last_line) / 1e6, line, sizeof line);
             printf("%s\n", line);
             fflush(stdout);
-            next_line += 1000000;
+            last_line = at;
+            next_line += track_monitor_resting(monitor) ? 500000 : 1000000;
         }
         int ended = track_programs_reap(programs);
         if (ended >= 0) return ended;
@@ -109,6 +111,9 @@ static int run(const track_options_t *o, track_programs_t *programs)
         return 1;
     }
     printf("hkf-track: logs in %s; Ctrl-C stops\n", o->logs);
+    printf("hkf-track: when your face is found, look at the screen's centre and keep still while the line "
+           "counts down: hkf-filter measures how your resting head pose wanders, to hold the view still at rest "
+           "(again after each recentre)\n");
     fflush(stdout);
     const int64_t started = clock_monotonic_us();
     int ended = watch(o, lcm, &monitor, programs);

@@ -45,6 +45,29 @@ void track_monitor_take_pose(track_monitor_t *m, const void *data, int size)
     m->last = pose, m->have_last = 1;
 }
 
+void track_monitor_take_status(track_monitor_t *m, const void *data, int size)
+{
+    hkf_tracker_status_t status;
+    if (hkf_tracker_status_t_decode(data, 0, size, &status) != size || status.rest < HKF_TRACKER_STATUS_T_NO_REST ||
+        status.rest > HKF_TRACKER_STATUS_T_MEASURED || !isfinite(status.rest_progress) || !isfinite(status.rest_time) ||
+        !isfinite(status.wander)) {
+        ++m->decode_errors;
+        return;
+    }
+    m->status = status, m->have_status = 1;
+}
+
+int track_monitor_resting(const track_monitor_t *m)
+{
+    return m->have_status && m->status.rest == HKF_TRACKER_STATUS_T_RESTING;
+}
+
+static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    track_monitor_take_status(user, rbuf->data, (int)rbuf->data_size);
+}
+
 static void on_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     (void)channel;
@@ -62,7 +85,8 @@ int track_monitor_start(track_monitor_t *m, lcm_t *lcm, int clock_is_real)
     memset(m, 0, sizeof *m);
     m->clock_is_real = clock_is_real;
     if (lcm_wait_subscribe(lcm, "HEAD_POSE_RAW", on_raw, m, "hkf-track") == NULL ||
-        lcm_wait_subscribe(lcm, "HEAD_POSE", on_pose, m, "hkf-track") == NULL) {
+        lcm_wait_subscribe(lcm, "HEAD_POSE", on_pose, m, "hkf-track") == NULL ||
+        lcm_wait_subscribe(lcm, "HEAD_POSE_STATUS", on_status, m, "hkf-track") == NULL) {
         return -1;
     }
     return 0;
@@ -100,6 +124,25 @@ static size_t pose_text(const hkf_head_pose_t *p, char *out, size_t size)
     return used;
 }
 
+/* The player's rest, as hkf-filter's status says: the request to keep still with the countdown while it
+ * is measured (a move spoiled it: asked again), and once that it was measured. */
+static size_t rest_text(track_monitor_t *m, char *out, size_t size)
+{
+    const hkf_tracker_status_t *s = &m->status;
+    size_t used = 0;
+    if (s->rest == HKF_TRACKER_STATUS_T_RESTING) {
+        const double left = (1.0 - (double)s->rest_progress) * (double)s->rest_time;
+        APPEND(" | look at the screen's centre and keep still: %.1f s", left > 0.0 ? left : 0.0);
+        if (s->rests_spoiled > m->said_spoiled) APPEND(" (you moved: again)");
+    } else if (s->rest == HKF_TRACKER_STATUS_T_MEASURED && !m->said_measured) {
+        APPEND(" | rest measured: the view holds still by %.2f deg^2 (--stillness %.2g)", (double)s->wander,
+               (double)s->stillness);
+    }
+    m->said_spoiled = s->rests_spoiled;
+    m->said_measured = s->rest == HKF_TRACKER_STATUS_T_MEASURED;
+    return used;
+}
+
 void track_monitor_line(track_monitor_t *m, double elapsed, double interval, char *out, size_t size)
 {
     size_t used = 0;
@@ -117,7 +160,11 @@ void track_monitor_line(track_monitor_t *m, double elapsed, double interval, cha
     if (m->have_last && m->silent_lines >= TRACK_SILENT_LINES) {
         APPEND(", no filtered pose for %d s: is hkf-filter stopped or hung?", m->silent_lines);
     } else if (m->have_last && used < size) {
-        pose_text(&m->last, out + used, size - used);
+        used += pose_text(&m->last, out + used, size - used);
+        used = used < size ? used : size;
+    }
+    if (m->have_status && used < size) {
+        rest_text(m, out + used, size - used);
     }
     m->raw = m->faces = m->poses = m->second = 0;
     m->latencies = 0;

@@ -27,6 +27,7 @@ static const option_t options[] = {
     FLAG("--realtime", realtime),       TEXT("--model", model),
     TEXT("--detector", detector),       TEXT("--second-model", second_model),
     TEXT("--config", config),           TEXT("--rate", rate),
+    TEXT("--stillness", stillness),
     FLAG("--opentrack", opentrack),     TEXT("--opentrack-host", opentrack_host),
     TEXT("--opentrack-port", opentrack_port), TEXT("--opentrack-args", opentrack_args),
     TEXT("--lcm-url", lcm_url),         TEXT("--build", build),
@@ -60,6 +61,9 @@ static void usage(FILE *to)
             "  --config FILE          hkf-filter settings file (default: hkf-filter's own search:\n"
             "                         hkf-filter --print-config says where each value came from)\n"
             "  --rate HZ              hkf-filter also publishes extrapolated poses at HZ (0.1-10000)\n"
+            "  --stillness X          how still the view holds while you rest: X times the wander\n"
+            "                         measured on your start-up rest (default 1; 0-100; 2 stiller,\n"
+            "                         0.5 quicker to follow)\n"
             "  --opentrack            also run hkf-opentrack\n"
             "  --opentrack-host HOST  where opentrack listens (default 127.0.0.1)\n"
             "  --opentrack-port PORT  (default 4242)\n"
@@ -131,6 +135,9 @@ static int check(const track_options_t *o)
     if (o->detector != NULL && strcmp(o->detector, "retina") != 0 && strcmp(o->detector, "short") != 0 &&
         strcmp(o->detector, "full") != 0) {
         return bad("--detector wants retina, short or full, not ", o->detector);
+    }
+    if (o->stillness != NULL && (strlen(o->stillness) > 32 || !argument_number(o->stillness, 0.0, 100.0, &rate))) { /* libhkf's HKF_MAX_STILLNESS */
+        return bad("--stillness wants a multiple of the measured wander from 0 to 100, not ", o->stillness);
     }
     if (o->rate != NULL && !argument_number(o->rate, 0.1, 10000.0, &rate)) { /* hkf-filter's range */
         return bad("--rate wants a frequency from 0.1 to 10000 Hz, not ", o->rate);

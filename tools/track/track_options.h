@@ -18,6 +18,7 @@ typedef struct {
     const char *second_model;
     const char *config;         /* hkf-filter's settings file, or NULL */
     const char *rate;           /* hkf-filter's --rate in Hz (checked), or NULL */
+    const char *stillness;      /* hkf-filter's stillness (checked), or NULL */
     int opentrack;              /* also run hkf-opentrack */
     const char *opentrack_host;
     const char *opentrack_port;

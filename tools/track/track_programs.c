@@ -119,8 +119,13 @@ static int plan_filter_and_estimator(track_programs_t *p, const track_options_t 
                                      const char *estimator_folder)
 {
     track_program_t *filter = next_program(p, "hkf-filter", tools);
+    char stillness[64];
     int failed = add_option(p, filter, "--lcm-url", o->lcm_url) | add_option(p, filter, "--config", o->config) |
                  add_option(p, filter, "--rate", o->rate);
+    if (o->stillness != NULL) { /* checked: a number, short */
+        snprintf(stillness, sizeof stillness, "stillness=%s", o->stillness);
+        failed |= add_option(p, filter, "--set", stillness);
+    }
     track_program_t *estimator = next_program(p, "hkf-estimator", estimator_folder);
     failed |= add_option(p, estimator, "--source", o->camera != NULL ? o->camera : o->source) |
               add_option(p, estimator, "--lcm-url", o->lcm_url);
