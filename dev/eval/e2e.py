@@ -66,6 +66,11 @@ RAW_OPTIONS = ["noise_time=0", "noise_mode=constant", "r_const=0.0001 0.0001 0.0
                "position_noise_time=0", "position_r_const=0.0001 0.0001 0.0001", "position_start_rate=0",
                "position_process_noise=1000000 1000000 1000000", "position_max_speed=0"]
 LEADS_MS = [0, 15, 30]
+# The player's rest (the rest issue): the defaults measure it on the clip's 2 s start-up hold; beside them, the
+# same without a rest (rest_time 0: the built-in still_wander) and release 0.3's constant wander.
+NO_REST = "defaults, no rest (built-in wander)"
+RELEASE_03 = "release 0.3 (still_wander 0.3, no rest)"
+RELEASE_03_OPTIONS = ["rest_time=0", "still_wander=0.3"]
 GOALS = {"onset_ms": 40.0, "onset_max_ms": 60.0, "onset_ms_60": 25.0, "rmse": 0.6, "jitter_share": 0.25,
          "overshoot": 0.05, "dropped_30": 0, "dropped_share_60": 0.01}
 
@@ -86,7 +91,8 @@ def variants_for(short, lead_ms=None):
     chosen = [] if lead_ms is None else [Variant(f"defaults, 250 Hz, --predict --lead {lead_ms}", (),
                                                  ["--rate", "250", "--predict", "--lead", str(lead_ms)])]
     return [Variant("raw (filter bypassed)", RAW_OPTIONS), Variant("paper settings", evaluate.PAPER_OPTIONS),
-            Variant("defaults"), Variant("defaults, 250 Hz", (), ["--rate", "250"])] + chosen
+            Variant("defaults"), Variant(NO_REST, ["rest_time=0"]), Variant(RELEASE_03, RELEASE_03_OPTIONS),
+            Variant("defaults, 250 Hz", (), ["--rate", "250"])] + chosen
 
 
 # ---- the clips ----
@@ -95,7 +101,7 @@ def roll_trajectory(fps, seed):
     """--short's: a hold, then two glances of 15-25 deg at 150-250 deg/s and back."""
     rng = np.random.default_rng(seed)
     b = truth_motion._Builder(fps, rng)
-    b.hold(1.5)
+    b.hold(truth_motion.START_REST_S)  # the player's start-up rest
     for _ in range(2):
         home = b.angle
         b.move(home + rng.uniform(15.0, 25.0) * rng.choice([-1.0, 1.0]), rng.uniform(150.0, 250.0), "glance")
@@ -476,20 +482,27 @@ def short_case(build, out):
 
 
 def goal_lines(named):
-    """The issue's end-to-end goals for the defaults, against raw from the same run."""
-    mine, raw = named["defaults"], named[SAME_RUN_RAW]
-    onset = (np.nanmedian(mine["onset"]), np.nanmax(mine["onset"]))
+    """The rest issue's end-to-end goals for the defaults (the start-up rest measured), against raw from the
+    same run; and, for comparison, the same figures without a rest and with release 0.3's wander."""
+    raw = named[SAME_RUN_RAW]
     raw_onset = (np.nanmedian(raw["onset"]), np.nanmax(raw["onset"]))
-    checks = [("onset median and worst no later than raw's",
-               f"{onset[0]:.0f} / {onset[1]:.0f} ms against {raw_onset[0]:.0f} / {raw_onset[1]:.0f} ms",
-               onset[0] <= raw_onset[0] and onset[1] <= raw_onset[1]),
-              ("RMSE at arrival, moving, <= 0.8x raw's", f"{mine['at_arrival'] / raw['at_arrival']:.2f}x",
-               mine["at_arrival"] <= 0.8 * raw["at_arrival"]),
-              ("still jitter <= 10 % of raw's", f"{100 * mine['jitter'] / raw['jitter']:.0f} %",
-               mine["jitter"] <= 0.1 * raw["jitter"]),
-              ("overshoot <= 5 % of the move", f"{100 * np.nanmax(mine['overshoot']):.1f} %",
-               np.nanmax(mine["overshoot"]) <= 0.05)]
-    return [f"- the defaults, {what}: {value} ({'met' if ok else 'NOT met'})" for what, value, ok in checks]
+    lines = []
+    for name in ("defaults", NO_REST, RELEASE_03):
+        mine = named.get(name)
+        if mine is None:
+            continue
+        onset = (np.nanmedian(mine["onset"]), np.nanmax(mine["onset"]))
+        checks = [("onset median <= raw's + 5 ms, worst <= raw's + 10 ms",
+                   f"{onset[0]:.0f} / {onset[1]:.0f} ms against {raw_onset[0]:.0f} / {raw_onset[1]:.0f} ms",
+                   onset[0] <= raw_onset[0] + 5.0 and onset[1] <= raw_onset[1] + 10.0),
+                  ("RMSE at arrival, moving, <= 1.0x raw's (stretch 0.8x)",
+                   f"{mine['at_arrival'] / raw['at_arrival']:.2f}x", mine["at_arrival"] <= raw["at_arrival"]),
+                  ("still jitter <= 10 % of raw's", f"{100 * mine['jitter'] / raw['jitter']:.0f} %",
+                   mine["jitter"] <= 0.1 * raw["jitter"]),
+                  ("overshoot <= 5 % of the move", f"{100 * np.nanmax(mine['overshoot']):.1f} %",
+                   np.nanmax(mine["overshoot"]) <= 0.05)]
+        lines += [f"- {name}, {what}: {value} ({'met' if ok else 'NOT met'})" for what, value, ok in checks]
+    return lines
 
 
 def stages_or_nan(m):

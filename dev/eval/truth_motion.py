@@ -44,6 +44,9 @@ class Trajectory:
     segments: list = field(default_factory=list)  # (name, t0, t1)
 
 
+START_REST_S = 2.0  # s: the hold a truth clip starts with, the player's start-up rest (hkf-filter's rest_time)
+
+
 def min_jerk(s):
     """The minimum-jerk position profile on s in [0, 1]."""
     s = np.clip(s, 0.0, 1.0)
@@ -112,10 +115,11 @@ class _Builder:
 
 def driver_trajectory(seed, fps=30.0, glances=4, max_abs=40.0):
     """A trajectory of holds, `glances` glances-and-returns, a drift, a sine and
-    a tremor, every angle within +-max_abs deg. Deterministic for a seed."""
+    a tremor, every angle within +-max_abs deg, after the player's start-up rest
+    (START_REST_S). Deterministic for a seed."""
     rng = np.random.default_rng(seed)
     b = _Builder(fps, rng)
-    b.hold(1.0)
+    b.hold(START_REST_S)
     parts = ["glance"] * glances + ["drift", "sine", "tremor"]
     rng.shuffle(parts)
     for part in parts:

@@ -127,12 +127,14 @@ static void from_origin(const hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t x
     x[HKF_AXIS_YAW] = hkf_wrap180(x[HKF_AXIS_YAW]);
 }
 
-/* A move: x further than reach from the rest's mean so far, on any axis. */
+/* A move: x further from the rest's mean so far than rest_reach beyond 3 standard deviations of the
+ * frame noise (n ~ gamma(1) / 2 so far), on any axis: a noisy camera's resting frames are not moves. */
 static int is_move(const hkf_rest_t *r, const hkf_real_t x[3])
 {
     int a, move = 0;
     for (a = 0; a < HKF_AXES; ++a) {
-        move |= hkf_abs(hkf_sub(x[a], r->mean[a])) > r->settings.rest_reach;
+        const hkf_real_t noise = hkf_sqrt(hkf_mul(r->gamma[0][a], HKF_REAL(4.5))); /* 3 sqrt(gamma(1) / 2) */
+        move |= hkf_abs(hkf_sub(x[a], r->mean[a])) > hkf_add(r->settings.rest_reach, noise);
     }
     return move;
 }

@@ -19,8 +19,9 @@
  * under-samples an axis that wandered little in them (docs/libhkf.md gives the figures per axis). White
  * noise alone gives w near 0, and a camera whose rest does not wander keeps raw's onset.
  *
- * A measurement further than `rest_reach` from the rest's mean so far (a move) spoils the rest: it is not
- * taken, and the measurement starts again from that frame (HKF_REST_SPOILED).
+ * A measurement further from the rest's mean so far than `rest_reach` beyond three standard deviations of
+ * the frame noise (a move) spoils the rest: it is not taken, and the measurement starts again from that
+ * frame (HKF_REST_SPOILED).
  *
  *     hkf_rest_t rest;  hkf_rest_result_t found;
  *     hkf_rest_init(&rest, &hkf_default_rest_settings);
@@ -48,7 +49,7 @@ extern "C" {
 
 typedef struct {
     hkf_real_t rest_time; /* s: how long a rest is measured, within [0, HKF_MAX_TIME]; 0 = off (none is asked for) */
-    hkf_real_t rest_reach;     /* deg: further from the rest's mean than this is a move, within (0, HKF_MAX_LC_THETA] */
+    hkf_real_t rest_reach;     /* deg: further from the rest's mean than this (beyond 3 sigma of noise) is a move, within (0, HKF_MAX_LC_THETA] */
     hkf_real_t stillness; /* HOLD's wander as a multiple of the measured one, within [0, HKF_MAX_STILLNESS] */
 } hkf_rest_settings_t;
 
