@@ -44,7 +44,8 @@ class Trajectory:
     segments: list = field(default_factory=list)  # (name, t0, t1)
 
 
-START_REST_S = 2.0  # s: the hold a truth clip starts with, the player's start-up rest (hkf-filter's rest_time)
+START_REST_S = 2.5  # s: the hold a truth clip starts with: the player's start-up rest (hkf-filter's rest_time, 2 s)
+#                    and 0.5 s for the camera's first frames (the face search's first estimate may be off by degrees)
 
 
 def min_jerk(s):

@@ -61,6 +61,7 @@ static void begin(hkf_rest_t *r)
     int l, a;
     r->frames = 0u;
     r->history = 0u;
+    r->beyond = 0u;
     r->elapsed = 0;
     r->period = 0;
     for (l = 0; l < HKF_REST_LAGS; ++l) {
@@ -203,10 +204,16 @@ static int take_measurement(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
     int a, result = HKF_REST_MEASURING;
     from_origin(r, z, x);
     if (r->frames > 0u && is_move(r, x)) {
+        if (++r->beyond < HKF_REST_MOVE_FRAMES) { /* one frame beyond: an outlier, not taken; it breaks the differences */
+            r->history = 0u;
+            r->elapsed = hkf_add(r->elapsed, dt);
+            return HKF_REST_MEASURING;
+        }
         begin(r); /* a move: not taken; the rest is measured again from this frame */
         r->spoiled += 1u;
         result = HKF_REST_SPOILED;
     }
+    r->beyond = 0u;
     if (r->frames == 0u) {
         for (a = 0; a < HKF_AXES; ++a) {
             r->origin[a] = z[a];

@@ -2,10 +2,11 @@
  * fuzz_libhkf.c - libFuzzer target for libhkf's whole API: arbitrary settings,
  * then an arbitrary sequence of init / update / update_pair (with a second
  * model's settings edited, perhaps to nonsense) / predict / extrapolate /
- * set_center / recenter / reset / get_output / set_noise with arbitrary values
+ * set_center / recenter / reset / get_output / set_noise / set_wander with arbitrary values
  * (NaN, infinities, denormals, huge numbers included), with the noise
  * calibration (its settings edited too) beside the filter when its settings
- * pass, stepped after each update and predict. It checks, after every call:
+ * pass, and the player's rest (hkf_rest.h), stepped after each update and predict (a rest measured:
+ * its values finite and in range, its wander one hkf_set_wander takes). It checks, after every call:
  *   - a rejected call (negative result) left the filter bit-identical;
  *   - an accepted call wrote only finite outputs, the yaw in [-180, 180),
  *     variances positive and bounded, R within its clamp. (Pitch and roll are
@@ -29,6 +30,7 @@
 
 #include "hkf/hkf.h"
 #include "hkf/hkf_calibration.h"
+#include "hkf/hkf_rest.h"
 
 /* The largest angle variance any accepted call may report (deg^2). */
 #define VARIANCE_BOUND 1e12
@@ -49,12 +51,38 @@ static hkf_calibration_settings_t calibration_settings;
 static hkf_calibration_t calibration;
 static int calibrating;
 
-/* After a call that stepped the filter (result HKF_OK): the calibration's step with the raw measurement z
- * (NULL: none); n stays within what R may be scaled by (checked through R by after_call). */
+/* The player's rest beside the filter (hkf_rest.h), asked for at the start and by op 11. */
+static hkf_rest_t rest;
+
+/* A rest measured: every value finite and within its range, the wander one hkf_set_wander takes. */
+static void check_rest(hkf_filter_t *f)
+{
+    hkf_rest_result_t found;
+    int a;
+    check(hkf_rest_get_result(&rest, &found) == HKF_OK, "a rest measured has no result");
+    for (a = 0; a < 3; ++a) {
+        check(found.noise[a] >= 0 && found.drift[a] >= 0 && found.spread[a] >= 0, "a rest's measure is negative");
+#if !defined(HKF_REAL_FIXED)
+        check(isfinite(found.noise[a]) && isfinite(found.drift[a]) && isfinite(found.spread[a]) &&
+                  isfinite(found.center[a]), "a rest's measure is not finite");
+#endif
+        check(found.center[HKF_AXIS_YAW] >= -180 && found.center[HKF_AXIS_YAW] < 180, "a rest's yaw not wrapped");
+    }
+    check(found.wander >= 0, "a rest's wander is negative");
+    if (found.wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE)) {
+        check(hkf_set_wander(f, found.wander) == HKF_OK, "hkf_set_wander refused a rest's wander");
+    }
+}
+
+/* After a call that stepped the filter (result HKF_OK): the calibration's and the rest's step with the raw
+ * measurement z (NULL: none); n stays within what R may be scaled by (checked through R by after_call). */
 static void calibrate(hkf_filter_t *f, int result, const hkf_real_t *z, hkf_real_t dt)
 {
     if (calibrating && result == HKF_OK && hkf_calibration_update(&calibration, f, z, dt) != HKF_OK) {
         abort();
+    }
+    if (result == HKF_OK && hkf_rest_update(&rest, z, dt) == HKF_REST_MEASURED) {
+        check_rest(f);
     }
 }
 
@@ -220,10 +248,17 @@ static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t
     int result;
     *before = *f;
     memset(&out, 0, sizeof out);
-    switch (op % 10) {
+    switch (op % 12) {
     case 0:
     case 1:
-        step(f, before, in, op % 10 == 0);
+        step(f, before, in, op % 12 == 0);
+        break;
+    case 10: /* a wander from outside: an arbitrary one is refused (the filter untouched) or taken */
+        result = hkf_set_wander(f, take_real(in));
+        after_call(before, f, result, NULL);
+        break;
+    case 11:
+        check(hkf_rest_start(&rest) == HKF_OK, "hkf_rest_start failed");
         break;
     case 2:
         result = hkf_extrapolate(f, take_real(in), &out);
@@ -296,6 +331,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     r_low = s.r_min;
     r_high = s.r_max;
     calibrating = hkf_calibration_init(&calibration, &calibration_settings, &f) == HKF_OK;
+    if (hkf_rest_init(&rest, &hkf_default_rest_settings) != HKF_OK || hkf_rest_start(&rest) != HKF_OK) {
+        abort();
+    }
     while (take_byte(&in, &op)) {
         api_step(&f, &before, &s, &in, op);
     }

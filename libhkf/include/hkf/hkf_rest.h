@@ -19,9 +19,9 @@
  * under-samples an axis that wandered little in them (docs/libhkf.md gives the figures per axis). White
  * noise alone gives w near 0, and a camera whose rest does not wander keeps raw's onset.
  *
- * A measurement further from the rest's mean so far than `rest_reach` beyond three standard deviations of
- * the frame noise (a move) spoils the rest: it is not taken, and the measurement starts again from that
- * frame (HKF_REST_SPOILED).
+ * Two measurements in a row further from the rest's mean so far than `rest_reach` beyond three standard
+ * deviations of the frame noise (a move) spoil the rest: it is not taken, and the measurement starts again
+ * from the second (HKF_REST_SPOILED). One alone is an outlier: skipped, not taken.
  *
  *     hkf_rest_t rest;  hkf_rest_result_t found;
  *     hkf_rest_init(&rest, &hkf_default_rest_settings);
@@ -46,6 +46,7 @@ extern "C" {
  * (dev/eval/adaptation_study/README.md). */
 #define HKF_REST_LAGS 6
 #define HKF_MAX_STILLNESS 100 /* the largest multiple of the measured wander */
+#define HKF_REST_MOVE_FRAMES 2 /* frames in a row beyond the reach that are a move (one alone: an outlier, skipped) */
 
 typedef struct {
     hkf_real_t rest_time; /* s: how long a rest is measured, within [0, HKF_MAX_TIME]; 0 = off (none is asked for) */
@@ -81,6 +82,7 @@ typedef struct {
     int measured;                  /* a result is held */
     unsigned frames;               /* measurements in this rest */
     unsigned history;              /* measurements in a row in `recent` (0..HKF_REST_LAGS) */
+    unsigned beyond;               /* measurements in a row beyond the reach */
     unsigned spoiled;              /* rests spoiled since hkf_rest_start */
     unsigned pairs[HKF_REST_LAGS]; /* measurement pairs L + 1 frames apart so far */
     hkf_real_t elapsed;            /* s: the rest's time so far (frames with a measurement) */
