@@ -7,6 +7,7 @@
  *   step_libhkf_defaults  hkf_update with hkf_default_settings (the motion adaptation; R at the noise
  *                         level the calibration beside it measured)
  *   step_libhkf_calibration  hkf_calibration_update after it: the noise calibration's step
+ *   step_libhkf_rest      hkf_rest_update: the player's rest, while one is measured (asked again when done)
  *   step_libhkf_position  hkf_position_update: the head's position (x, y, z), default settings
  *   step_libhkf_position_calibration  hkf_calibration_update_position after it: the position's calibration
  *   step_libhkf_pair      hkf_update_pair: the paper's filter, a second estimator's measurement
@@ -33,6 +34,7 @@
 
 #include "hkf/hkf.h"
 #include "hkf/hkf_calibration.h"
+#include "hkf/hkf_rest.h"
 #include "hkf/hkf_position.h"
 #include "head_motion_sim.h"
 
@@ -129,6 +131,11 @@ NOINLINE int step_libhkf_defaults(hkf_filter_t *f, const Input *in, hkf_output_t
 NOINLINE int step_libhkf_calibration(hkf_calibration_t *c, hkf_filter_t *f, const Input *in)
 {
     return hkf_calibration_update(c, f, in->z, in->dt);
+}
+
+NOINLINE int step_libhkf_rest(hkf_rest_t *r, const Input *in)
+{
+    return hkf_rest_update(r, in->z, in->dt);
 }
 
 NOINLINE int step_libhkf_pair(hkf_filter_t *f, const Input *in, const hkf_model_noise_t *second, hkf_output_t *out)
@@ -306,6 +313,7 @@ struct LibhkfFilters {
     hkf_model_noise_t second;
     hkf_model_prepared_t second_prepared;
     hkf_position_filter_t position;
+    hkf_rest_t rest;
 };
 
 /* The variants' settings (paper: the paper's, its loop closure widened) and filters; false when one fails (said). */
@@ -322,7 +330,8 @@ static bool init_libhkf(LibhkfFilters *l, const hkf_settings_t &paper)
         hkf_calibration_init(&l->calibration, &hkf_default_calibration_settings, &l->defaults) != HKF_OK ||
         hkf_position_init(&l->position, &hkf_position_default_settings) != HKF_OK ||
         hkf_calibration_init_position(&l->position_calibration, &hkf_default_calibration_settings, &l->position) !=
-            HKF_OK) {
+            HKF_OK ||
+        hkf_rest_init(&l->rest, &hkf_default_rest_settings) != HKF_OK || hkf_rest_start(&l->rest) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: a libhkf init failed\n");
         return false;
     }
@@ -343,6 +352,11 @@ static bool step_libhkf(LibhkfFilters *l, const Input &in, hkf_output_t *paper_o
         step_libhkf_position(&l->position, &in, &position) != HKF_OK ||
         step_libhkf_position_calibration(&l->position_calibration, &l->position, &in) != HKF_OK) {
         std::fprintf(stderr, "hkf-bench-update: a libhkf step failed\n");
+        return false;
+    }
+    const int rest = step_libhkf_rest(&l->rest, &in);
+    if (rest < 0 || (rest == HKF_REST_MEASURED && hkf_rest_start(&l->rest) != HKF_OK)) { /* always measuring */
+        std::fprintf(stderr, "hkf-bench-update: the rest's step failed\n");
         return false;
     }
     *pair_differences += std::memcmp(d.angle, e.angle, sizeof d.angle) != 0 || std::memcmp(d.r, e.r, sizeof d.r) != 0;

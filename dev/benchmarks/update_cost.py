@@ -19,6 +19,7 @@ STEPS = [
     ("step_libhkf_constant", "libhkf hkf_update: constant R, no loop closure"),
     ("step_libhkf_defaults", "libhkf hkf_update: the defaults (motion adaptation; R at the calibrated noise level)"),
     ("step_libhkf_calibration", "libhkf hkf_calibration_update: the noise calibration beside the defaults"),
+    ("step_libhkf_rest", "libhkf hkf_rest_update: the player's rest, while one is measured"),
     ("step_libhkf_pair", "libhkf hkf_update_pair: two estimators' measurements, each with its own Eq. 8 curves"),
     ("step_libhkf_pair_prepared", "libhkf hkf_update_pair_prepared: the same, the second model prepared once"),
     ("step_libhkf_position", "libhkf hkf_position_update: the head's position x, y, z"),

@@ -21,7 +21,8 @@ if it were a datagram; the shares of raw's jitter are of this raw:
   at arrival   RMS of datagram minus the truth when it arrives, on moving frames (deg)
   overshoot    past the target after a move, as a share of the move
   still jitter RMS frame-to-frame change of what the receiver holds at each frame time, on
-               still frames (deg), and as a share of raw's
+               still frames after the start-up hold (deg), and as a share of raw's; the start-up hold is
+               the player's rest, whose end moves the centre once (its step is reported as the centre step)
   dropped      frames the estimator dropped, frames without a pose, poses without a datagram
   stages       capture -> raw publish -> pose -> datagram (ms, medians; one datagram per pose)
 The lean clip (a zoom: the head nearer and farther) gives the same for the position (TZ, cm).
@@ -275,7 +276,11 @@ def measure_run(clip, datagrams, raw, poses, estimator_summary, player_axis, sca
     frame0 = raw[raw[:, 2] == raw[:, 2].min()][0]
     t0 = frame0[1] - frame0[2] * 1e6 / clip.fps  # the capture stamp of frame 0
     truth = Truth(t0, clip.fps, scale_to_truth(clip))
-    hold = (arrival > t0 + 0.3e6) & (arrival < t0 + 1.4e6)  # the initial hold: the player's zero
+    # the player's zero: the end of the initial hold, after the start-up rest has set the centre (its mean pose)
+    values = scale_to_truth(clip)
+    moved = np.flatnonzero(np.abs(values - values[0]) > 1e-9)
+    hold_end_us = t0 + (moved[0] / clip.fps if moved.size else 1.4) * 1e6
+    hold = (arrival > hold_end_us - 0.4e6) & (arrival < hold_end_us - 0.05e6)
     value = value - (np.median(value[hold]) if hold.any() else 0.0)
     moving = truth.speed(arrival) > (10.0 if clip.kind == "roll" else 2.0)
     at_arrival = float(np.sqrt(np.mean((value[moving] - truth.at(arrival[moving])) ** 2))) if moving.any() else np.nan
@@ -308,6 +313,11 @@ def measure_run(clip, datagrams, raw, poses, estimator_summary, player_axis, sca
     # period later and sent within the rest): a pair counts only when the frame after it is still too
     still = still_frames(truth.values, clip.fps)
     still[:-1] &= still[1:]
+    # the start-up hold is the player's rest, at whose end the centre moves onto the rest's mean (once, as a
+    # recentre does): still frames are counted after it; the step the centre made is reported on its own
+    in_hold = truth.t < hold_end_us
+    centre_step = float(np.nanmax(np.abs(np.diff(held[in_hold])))) if in_hold.sum() > 1 else np.nan
+    still &= ~in_hold
     steps = np.diff(held)
     pairs = still[1:] & still[:-1] & np.isfinite(steps)
     jitter = float(np.sqrt(np.mean(steps[pairs] ** 2))) if pairs.any() else np.nan
@@ -320,7 +330,7 @@ def measure_run(clip, datagrams, raw, poses, estimator_summary, player_axis, sca
             "overshoot": np.array(overshoots), "jitter": jitter, "frames": frames, "raw_frames": len(measured),
             "dropped": dropped + (frames - len(measured)), "without_pose": without_pose,
             "datagrams": len(datagrams), "poses": len(poses), "finite": bool(np.isfinite(value).all()),
-            "arrival": arrival, "value": value, "truth": truth, "t0": t0}
+            "arrival": arrival, "value": value, "truth": truth, "t0": t0, "centre_step": centre_step}
 
 
 def still_frames(values, fps, settle_s=0.3):
@@ -502,6 +512,8 @@ def goal_lines(named):
                   ("overshoot <= 5 % of the move", f"{100 * np.nanmax(mine['overshoot']):.1f} %",
                    np.nanmax(mine["overshoot"]) <= 0.05)]
         lines += [f"- {name}, {what}: {value} ({'met' if ok else 'NOT met'})" for what, value, ok in checks]
+        lines.append(f"- {name}: the largest step during the start-up hold (the centre set by the rest): "
+                     f"{mine['centre_step']:.2f} deg")
     return lines
 
 

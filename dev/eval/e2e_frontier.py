@@ -2,8 +2,10 @@
 """The jitter-error frontier end to end (the player's-lag issue): still jitter against the error at arrival,
 for hkf with its motion adaptation's knob swept, the 1 euro filter swept, and raw, through the live chain.
 
-hkf: the held-out roll clips of e2e.py (REPORT_CLIPS, 30 fps) played through the real programs once per
-still_wander in WANDERS (the defaults' 0.3 among them), each run measured as e2e.py measures a variant (the
+hkf: the held-out roll clips of e2e.py (REPORT_CLIPS, 30 fps) played through the real programs: the defaults
+(the clip's start-up rest measured, stillness 1), the rest measured with stillness in STILLNESS, and, without a
+rest (rest_time 0), once per constant still_wander in WANDERS (release 0.3's 0.3 among them), each run measured
+as e2e.py measures a variant (the
 datagrams against the truth when they arrive). Raw: each measurement as it reaches the node, from the defaults'
 run. The 1 euro filter: run on that same raw stream, each measurement filtered as it arrives (what a 1 euro
 filter in the node's place would publish, less its fraction of a millisecond), over evaluate.py's whole grid
@@ -24,7 +26,8 @@ import e2e  # noqa: E402
 import evaluate  # noqa: E402
 import peer_filters  # noqa: E402
 
-WANDERS = [0.0, 0.03, 0.1, 0.3, 1.0]  # deg^2: hkf's still_wander; 0.3 is the default
+WANDERS = [0.0, 0.03, 0.1, 0.3, 1.0]  # deg^2: hkf's still_wander without a rest; 0.03 the built-in, 0.3 release 0.3's
+STILLNESS = [0.25, 4.0]                # the player's knob with the rest measured (1: the defaults)
 SHARES = [0.05, 0.10, 0.20, 0.30]     # still jitter as a share of raw's (the issue's span)
 # the 1 euro grid: evaluate.py's, widened where its best points here sat at its edges (min_cutoff 0.005, d_cutoff 2 Hz)
 ONE_EURO_MIN_CUTOFF = [0.0001, 0.0003, 0.001, 0.002] + evaluate.ONE_EURO_MIN_CUTOFF
@@ -32,8 +35,8 @@ ONE_EURO_D_CUTOFF = evaluate.ONE_EURO_D_CUTOFF + [4.0, 8.0]
 
 
 def hkf_variants():
-    return [e2e.Variant("defaults") if w == 0.3 else e2e.Variant(f"still_wander {w:g}", (f"still_wander={w:g}",))
-            for w in WANDERS]
+    return ([e2e.Variant("defaults")] + [e2e.Variant(f"stillness {s:g}", (f"stillness={s:g}",)) for s in STILLNESS] +
+            [e2e.Variant(f"still_wander {w:g}, no rest", ("rest_time=0", f"still_wander={w:g}")) for w in WANDERS])
 
 
 def one_euro_points(raw, clip):
@@ -109,11 +112,16 @@ def plot(path, clips):
     for ax, (clip, hkf, raw_m, euro, raw_jitter) in zip(axes[0], clips):
         ax.scatter([100 * m["jitter"] / raw_jitter for _, m in euro], [m["at_arrival"] for _, m in euro], s=6,
                    color="tab:blue", alpha=0.4, label="1 euro (grid)")
-        ax.plot([100 * m["jitter"] / raw_jitter for _, m in hkf], [m["at_arrival"] for _, m in hkf], "o-",
-                color="tab:red", label="hkf (still_wander 0 - 1)")
+        constant = [(n, m) for n, m in hkf if n.endswith("no rest")]
+        rested = [(n, m) for n, m in hkf if not n.endswith("no rest")]
+        ax.plot([100 * m["jitter"] / raw_jitter for _, m in constant], [m["at_arrival"] for _, m in constant], "o-",
+                color="tab:red", label="hkf, no rest: still_wander 0 - 1")
+        ax.plot([100 * m["jitter"] / raw_jitter for _, m in rested], [m["at_arrival"] for _, m in rested], "D",
+                color="tab:green", label="hkf, the rest measured (stillness 0.25, 1, 4)")
         for name, m in hkf:
-            ax.annotate(name.replace("still_wander ", "w "), (100 * m["jitter"] / raw_jitter, m["at_arrival"]),
-                        fontsize=7, xytext=(3, 3), textcoords="offset points")
+            ax.annotate(name.replace("still_wander ", "w ").replace(", no rest", "").replace("defaults", "rest"),
+                        (100 * m["jitter"] / raw_jitter, m["at_arrival"]), fontsize=7, xytext=(3, 3),
+                        textcoords="offset points")
         ax.plot([100], [raw_m["at_arrival"]], "ks", label="raw")
         ax.set_xscale("log")
         ax.set_xlim(1, 300)
@@ -141,7 +149,8 @@ def main():
     os.makedirs(out, exist_ok=True)
     clips = [clip_points(build, out, name) for name in e2e.REPORT_CLIPS]
     lines = ["# The jitter-error frontier, end to end", "",
-             "Made by `dev/eval/e2e_frontier.py`: hkf's still_wander swept through the live chain, the 1 euro "
+             "Made by `dev/eval/e2e_frontier.py`: hkf with the rest measured, and without it its still_wander swept, "
+             "through the live chain, the 1 euro "
              "filter's grid on the same raw stream as it arrives, 30 fps, roll.", ""]
     for clip in clips:
         lines += report_lines(*clip)

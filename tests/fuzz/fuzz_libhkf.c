@@ -66,7 +66,8 @@ static void check_rest(hkf_filter_t *f)
         check(isfinite(found.noise[a]) && isfinite(found.drift[a]) && isfinite(found.spread[a]) &&
                   isfinite(found.center[a]), "a rest's measure is not finite");
 #endif
-        check(found.center[HKF_AXIS_YAW] >= -180 && found.center[HKF_AXIS_YAW] < 180, "a rest's yaw not wrapped");
+        check(found.center[HKF_AXIS_YAW] >= HKF_REAL_FROM(-180) && found.center[HKF_AXIS_YAW] < HKF_REAL_FROM(180),
+              "a rest's yaw not wrapped");
     }
     check(found.wander >= 0, "a rest's wander is negative");
     if (found.wander <= HKF_REAL_FROM(HKF_MAX_VARIANCE)) {
