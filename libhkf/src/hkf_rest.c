@@ -129,12 +129,15 @@ static void from_origin(const hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t x
 }
 
 /* A move: x further from the rest's mean so far than rest_reach beyond 3 standard deviations of the
- * frame noise (n ~ gamma(1) / 2 so far), on any axis: a noisy camera's resting frames are not moves. */
+ * frame noise, on any axis: a noisy camera's resting frames are not moves. The noise so far is read where
+ * a steady move cannot hide in it: a move at v per frame adds v^2 L^2 to gamma(L), which
+ * n = (4 gamma(1) - gamma(2)) / 6 cancels (9 n = 1.5 (4 gamma(1) - gamma(2))). */
 static int is_move(const hkf_rest_t *r, const hkf_real_t x[3])
 {
     int a, move = 0;
     for (a = 0; a < HKF_AXES; ++a) {
-        const hkf_real_t noise = hkf_sqrt(hkf_mul(r->gamma[0][a], HKF_REAL(4.5))); /* 3 sqrt(gamma(1) / 2) */
+        const hkf_real_t nine_n = hkf_mul(hkf_sub(hkf_mul(r->gamma[0][a], HKF_REAL(4.0)), r->gamma[1][a]), HKF_REAL(1.5));
+        const hkf_real_t noise = hkf_sqrt(nine_n > 0 ? nine_n : 0); /* 3 sqrt(n) */
         move |= hkf_abs(hkf_sub(x[a], r->mean[a])) > hkf_add(r->settings.rest_reach, noise);
     }
     return move;
@@ -169,10 +172,10 @@ static void take(hkf_rest_t *r, const hkf_real_t x[3], hkf_real_t dt)
 }
 
 /* The line gamma(L) = 2 n + q dt L through the rest's variogram (least squares): n and q per axis; the
- * rest's spread V about its mean; and HOLD's wander, w = stillness max over the axes of (V - n). */
-static void fit(hkf_rest_t *r)
+ * rest's spread V about its mean; and HOLD's wander, w = stillness max over the axes of (V - n), into out.
+ * Returns that largest V - n. */
+static hkf_real_t fit(const hkf_rest_t *r, hkf_rest_result_t *out)
 {
-    hkf_rest_result_t *out = &r->result;
     hkf_real_t excess = 0;
     int l, a;
     out->period = r->period;
@@ -194,6 +197,7 @@ static void fit(hkf_rest_t *r)
     }
     out->center[HKF_AXIS_YAW] = hkf_wrap180(out->center[HKF_AXIS_YAW]);
     out->wander = hkf_mul(r->settings.stillness, excess);
+    return excess;
 }
 
 /* A measurement z of a rest: a move spoils the rest so far (HKF_REST_SPOILED), and z starts it again;
@@ -247,7 +251,14 @@ int hkf_rest_update(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
     /* done at rest_time, to the nearest frame (a sum of float periods falls short of it) */
     if (hkf_add(r->elapsed, hkf_mul(r->period, HKF_REAL(0.5))) >= r->settings.rest_time &&
         r->pairs[HKF_REST_LAGS - 1] >= HKF_REST_LAGS) {
-        fit(r);
+        hkf_rest_result_t found;
+        const hkf_real_t half = hkf_mul(r->settings.rest_reach, HKF_REAL(0.5));
+        if (fit(r, &found) > hkf_mul(half, half)) { /* spread beyond the noise as a move across half the reach's */
+            begin(r);
+            r->spoiled += 1u;
+            return HKF_REST_SPOILED;
+        }
+        r->result = found;
         r->measuring = 0;
         r->measured = 1;
         return HKF_REST_MEASURED;

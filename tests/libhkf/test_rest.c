@@ -228,6 +228,27 @@ static void test_move_spoils_the_rest(void **state)
     assert_int_equal(hkf_rest_update(&rest, NULL, R(frame_s)), HKF_REST_IDLE); /* it runs only during a rest */
 }
 
+/* A slow turn, 2.8 deg/s, every frame within the reach of the rest's mean: at the rest's end its spread
+ * beyond the noise (2.6 deg^2, a move across 5.6 deg) is a move's, so the rest is spoiled, not measured. */
+static void test_slow_turn_is_not_a_rest(void **state)
+{
+    hkf_rest_t rest;
+    int k, spoiled_at = -1;
+    (void)state;
+    assert_int_equal(hkf_rest_init(&rest, &hkf_default_rest_settings), HKF_OK);
+    assert_int_equal(hkf_rest_start(&rest), HKF_OK);
+    for (k = 0; k < REST_FRAMES && spoiled_at < 0; ++k) {
+        hkf_real_t z[3];
+        int event;
+        set3(z, 0.02 * ((k % 2) * 2 - 1), 2.8 * frame_s * k, 0.0);
+        event = hkf_rest_update(&rest, z, R(frame_s));
+        assert_true(event != HKF_REST_MEASURED);
+        spoiled_at = event == HKF_REST_SPOILED ? k : -1;
+    }
+    print_message("a 2.8 deg/s turn: spoiled at frame %d\n", spoiled_at);
+    assert_int_equal(spoiled_at, REST_FRAMES - 1); /* at the end: no frame was beyond the reach */
+}
+
 /* A rest at the yaw seam (the head turned 179.9 deg, the estimate wrapping to -180): its centre is at the
  * seam, not at 0, and its noise is the noise's, not a jump of 360. */
 static void test_rest_at_the_yaw_seam(void **state)
@@ -354,6 +375,7 @@ int main(void)
         cmocka_unit_test(test_stillness_scales_the_wander),
         cmocka_unit_test(test_white_noise_keeps_onset),
         cmocka_unit_test(test_move_spoils_the_rest),
+        cmocka_unit_test(test_slow_turn_is_not_a_rest),
         cmocka_unit_test(test_rest_at_the_yaw_seam),
         cmocka_unit_test(test_set_wander),
         cmocka_unit_test(test_rest_errors),

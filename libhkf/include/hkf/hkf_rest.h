@@ -21,7 +21,8 @@
  *
  * Two measurements in a row further from the rest's mean so far than `rest_reach` beyond three standard
  * deviations of the frame noise (a move) spoil the rest: it is not taken, and the measurement starts again
- * from the second (HKF_REST_SPOILED). One alone is an outlier: skipped, not taken.
+ * from the second (HKF_REST_SPOILED). One alone is an outlier: skipped, not taken. A rest whose spread beyond
+ * its noise exceeds (rest_reach / 2)^2 (a slow move, each frame within the reach) is spoiled when it ends.
  *
  *     hkf_rest_t rest;  hkf_rest_result_t found;
  *     hkf_rest_init(&rest, &hkf_default_rest_settings);
