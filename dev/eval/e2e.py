@@ -269,6 +269,27 @@ def first_crossing(times, values, start_us, level, direction):
     return float(times[after[0]]) if after.size else float("nan")
 
 
+def still_jitter(clip, truth, arrival, value, hold_end_us):
+    """(still jitter, the largest step during the start-up hold): what the receiver holds SAMPLE_DELAY_S after
+    each frame's capture, frame to frame, over still frames after the hold."""
+    frame_t = truth.t + SAMPLE_DELAY_S * 1e6
+    held_index = np.searchsorted(arrival, frame_t, side="right") - 1
+    held = np.where(held_index >= 0, value[np.clip(held_index, 0, None)], np.nan)
+    # a sample SAMPLE_DELAY_S after frame i's capture may already hold frame i + 1's pose (captured one frame
+    # period later and sent within the rest): a pair counts only when the frame after it is still too
+    still = still_frames(truth.values, clip.fps)
+    still[:-1] &= still[1:]
+    # the start-up hold is the player's rest, at whose end the centre moves onto the rest's mean (once, as a
+    # recentre does): still frames are counted after it; the step the centre made is reported on its own
+    in_hold = truth.t < hold_end_us
+    centre_step = float(np.nanmax(np.abs(np.diff(held[in_hold])))) if in_hold.sum() > 1 else np.nan
+    still &= ~in_hold
+    steps = np.diff(held)
+    pairs = still[1:] & still[:-1] & np.isfinite(steps)
+    jitter = float(np.sqrt(np.mean(steps[pairs] ** 2))) if pairs.any() else np.nan
+    return jitter, centre_step
+
+
 def measure_run(clip, datagrams, raw, poses, estimator_summary, player_axis, scale_to_truth):
     """The measures of one run; player_axis picks what the player sees from a datagram."""
     arrival = np.array([d[0] for d in datagrams], float)
@@ -305,22 +326,7 @@ def measure_run(clip, datagrams, raw, poses, estimator_summary, player_axis, sca
         after = (arrival > m1) & (arrival < min(window_end, m1 + 1.5e6))
         beyond = direction * (value[after] - end)
         overshoots.append(max(0.0, float(beyond.max())) / size if after.any() else np.nan)
-    # still jitter: what the receiver holds SAMPLE_DELAY_S after each frame's capture, over still frames
-    frame_t = truth.t + SAMPLE_DELAY_S * 1e6
-    held_index = np.searchsorted(arrival, frame_t, side="right") - 1
-    held = np.where(held_index >= 0, value[np.clip(held_index, 0, None)], np.nan)
-    # a sample SAMPLE_DELAY_S after frame i's capture may already hold frame i + 1's pose (captured one frame
-    # period later and sent within the rest): a pair counts only when the frame after it is still too
-    still = still_frames(truth.values, clip.fps)
-    still[:-1] &= still[1:]
-    # the start-up hold is the player's rest, at whose end the centre moves onto the rest's mean (once, as a
-    # recentre does): still frames are counted after it; the step the centre made is reported on its own
-    in_hold = truth.t < hold_end_us
-    centre_step = float(np.nanmax(np.abs(np.diff(held[in_hold])))) if in_hold.sum() > 1 else np.nan
-    still &= ~in_hold
-    steps = np.diff(held)
-    pairs = still[1:] & still[:-1] & np.isfinite(steps)
-    jitter = float(np.sqrt(np.mean(steps[pairs] ** 2))) if pairs.any() else np.nan
+    jitter, centre_step = still_jitter(clip, truth, arrival, value, hold_end_us)
     dropped = parse_dropped(estimator_summary)
     frames = len(clip.theta)
     measured = np.unique(raw[:, 1])

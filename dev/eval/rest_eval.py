@@ -29,7 +29,7 @@ import evaluate  # noqa: E402
 import leave_one_out  # noqa: E402
 import player_rest  # noqa: E402
 
-STILLNESS = [0.25, 0.5, 1.0, 2.0, 4.0]
+STILLNESS = [0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0]
 RELEASE_03 = ["rest_time=0", "still_wander=0.3"]
 NO_REST = ["rest_time=0"]
 SHARE_GOAL = 0.25
@@ -121,7 +121,7 @@ def plot(rows, path):
                 label="1 euro, its best lag per jitter")
         knob = [(label, m) for label, m, *_ in results if label.startswith("rest, stillness")]
         ax.plot([100 * m["jitter"] / raw_jitter for _, m in knob], [m["lag_ms"] for _, m in knob], "o-", color="C0",
-                label="hkf, rest measured: stillness 0.25-4")
+                label="hkf, rest measured: stillness 0.1-8")
         for label, m in knob:
             ax.annotate(label.split()[-1], (100 * m["jitter"] / raw_jitter, m["lag_ms"]), fontsize=7,
                         xytext=(3, 3), textcoords="offset points")

@@ -241,11 +241,25 @@ static void step(hkf_filter_t *f, hkf_filter_t *before, input_t *in, int measure
     calibrate(f, result, measured ? v : NULL, dt);
 }
 
+/* op 3, 8 and 10: a value from outside, arbitrary: a centre, a noise level (refused, or R scaled within its
+ * clamp), a wander (refused with the filter untouched, or taken). */
+static void set_step(hkf_filter_t *f, const hkf_filter_t *before, input_t *in, int op)
+{
+    hkf_real_t v[3];
+    int result;
+    if (op == 10) {
+        result = hkf_set_wander(f, take_real(in));
+    } else {
+        v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
+        result = op == 3 ? hkf_set_center(f, v) : hkf_set_noise(f, v);
+    }
+    after_call(before, f, result, NULL);
+}
+
 /* One API call on the filter, chosen by op, its arguments from the input. */
 static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t *s, input_t *in, uint8_t op)
 {
     hkf_output_t out;
-    hkf_real_t v[3];
     int result;
     *before = *f;
     memset(&out, 0, sizeof out);
@@ -254,9 +268,10 @@ static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t
     case 1:
         step(f, before, in, op % 12 == 0);
         break;
-    case 10: /* a wander from outside: an arbitrary one is refused (the filter untouched) or taken */
-        result = hkf_set_wander(f, take_real(in));
-        after_call(before, f, result, NULL);
+    case 3:
+    case 8:
+    case 10:
+        set_step(f, before, in, op % 12);
         break;
     case 11:
         check(hkf_rest_start(&rest) == HKF_OK, "hkf_rest_start failed");
@@ -265,11 +280,6 @@ static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t
         result = hkf_extrapolate(f, take_real(in), &out);
         check(memcmp(before, f, sizeof *f) == 0, "hkf_extrapolate changed the filter");
         after_call(before, f, result, result == HKF_OK ? &out : NULL);
-        break;
-    case 3:
-        v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
-        result = hkf_set_center(f, v);
-        after_call(before, f, result, NULL);
         break;
     case 4:
         result = hkf_recenter(f);
@@ -288,11 +298,6 @@ static void api_step(hkf_filter_t *f, hkf_filter_t *before, const hkf_settings_t
         break;
     case 7:
         pair_step(f, before, s, in);
-        break;
-    case 8: /* a noise level from outside: an arbitrary one is refused or scales R within its clamp */
-        v[0] = take_real(in), v[1] = take_real(in), v[2] = take_real(in);
-        result = hkf_set_noise(f, v);
-        after_call(before, f, result, NULL);
         break;
     default:
         result = hkf_init(f, s);
