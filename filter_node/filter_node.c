@@ -302,9 +302,11 @@ static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
     return 1;
 }
 
-/* The posterior once a second measurement is fused, at the newest frame's time: what the second model
- * measured reaches the game now, not with the next frame (a frame later at a big turn, where it is the
- * only good measurement). 0 while there is no track. */
+/* The posterior once a second measurement is fused, at the newest frame's time: published only where
+ * that frame's pose came from no measurement (the first model found no face: a prediction), so that the
+ * second model's is the frame's only measurement and reaches the game now. Elsewhere the frame's pose is
+ * out already, and the correction is folded into the next frame's: one pose per measured frame, never a
+ * second one that steps back. 0 while there is no track. */
 static int pose_after_fusing(filter_node_t *node, hkf_head_pose_t *pose)
 {
     hkf_output_t out;
@@ -324,7 +326,8 @@ static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
     const second_model_frame_t *frame;
     const int fused = fuse_second(node, m, model, &frame);
     take_second_position(node, m, frame, model);
-    return fused && pose_after_fusing(node, pose);
+    return fused && frame == &node->second.frames[node->second.frame_newest] && !frame->valid &&
+           pose_after_fusing(node, pose);
 }
 
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,

@@ -24,17 +24,18 @@
  *   The node keeps the last FILTER_NODE_PAIR_FRAMES frames' steps; it goes back
  *   to the frame, takes both measurements there in one hkf_update_pair step
  *   (each with its own model's Eq. 8 curves; the second alone when the first
- *   found no face) and redoes the frames after it. The posterior with it is
- *   published at once, at the newest frame's time (the next frame would carry it
- *   a frame later: at a big turn it is the only good measurement). One per frame; a
- *   second measurement older than the kept frames (its seq and utime are
- *   one of the followed publisher's last frames) is counted, not used. A
- *   restart, a command or a clock resync forgets the kept frames. Two models
- *   disagree by a steady few degrees (docs/evaluation.md): the second's measurements are moved onto the first's
- *   frame by the running mean of their difference over the last
- *   FILTER_NODE_ALIGN_FRAMES frames both measured, so that the pose does not
- *   step when the second model comes and goes, and the first's innovations
- *   do not read the gap as motion (the motion adaptation).
+ *   found no face or measures |yaw| >= pair_second_alone_from_yaw) and redoes the frames after it.
+ *   One pose per frame: the frame's pose went out with the first model's measurement, so the
+ *   correction goes with the next frame's pose, and no second pose for the frame steps back; only
+ *   where the first model found no face (its pose was a prediction) and the frame is the newest is
+ *   the posterior with the second's published at once, at that frame's time. A second measurement
+ *   older than the kept frames (its seq and utime are one of the followed publisher's last frames)
+ *   is counted, not used. A restart, a command or a clock resync forgets the kept frames. Two models
+ *   disagree by an amount that changes with the turn (docs/evaluation.md): the second's angles are
+ *   moved onto the first's frame by their difference learnt as a piecewise-linear curve in the
+ *   second's angle (model_alignment.h) over about the last FILTER_NODE_ALIGN_FRAMES frames both
+ *   measured, so that the pose does not step when the second model comes and goes or where the
+ *   first model's reach ends, and the first's innovations do not read the gap as motion.
  * - position: a measurement's x, y, z (z > 0: measured) go through
  *   libhkf's position filter (hkf/hkf_position.h), with R scaled by its
  *   model's position_r_scale (node_config.h: 1 for the face mesh's fit, 25 for

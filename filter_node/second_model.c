@@ -10,7 +10,7 @@ void second_model_init(second_model_t *s)
 {
     memset(s, 0, sizeof *s);
     s->align_frames = FILTER_NODE_ALIGN_FRAMES;
-    model_offset_init(&s->offset);
+    model_alignment_init(&s->alignment);
 }
 
 void second_model_forget_frames(second_model_t *s)
@@ -92,21 +92,23 @@ static int redo_step(const resolved_models_t *models, hkf_filter_t *f, hkf_calib
     return result != HKF_OK ? result : hkf_calibration_update(c, f, taken, frame->dt);
 }
 
-/* The frame's second measurement (frame->z2) moved onto the first model's frame (model_offset.h),
- * the offset learning from this frame's difference where the first is trusted (fused with it). */
-static void align_second(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame)
+/* The frame's second measurement (frame->z2) moved onto the first model's frame (model_alignment.h),
+ * the alignment learning from this frame's difference where the first is trusted (fused with it). */
+static void align_second(second_model_t *s, second_model_frame_t *frame)
 {
-    /* at a large turn the mesh's own error is what the second model is there to avoid */
-    const int learn = frame->valid && !first_set_aside(models, frame);
-    double difference[3];
+    /* learnt wherever the first measured, at a large turn too: the pose is in the first model's frame,
+     * and the curve carries it across the first's reach without a step */
+    const int learn = frame->valid;
+    double difference[3], second[3];
     int a;
     for (a = 0; a < 3; ++a) {
-        difference[a] = (double)frame->z[a] - (double)frame->z2[a];
+        second[a] = (double)frame->z2[a];
+        difference[a] = (double)frame->z[a] - second[a];
     }
     difference[HKF_AXIS_YAW] = pose_angle_wrap(difference[HKF_AXIS_YAW]);
-    model_offset_learn(&s->offset, frame->second_model, learn ? difference : NULL, s->align_frames);
+    model_alignment_learn(&s->alignment, frame->second_model, second, learn ? difference : NULL, s->align_frames);
     for (a = 0; a < 3; ++a) {
-        double v = (double)frame->z2[a] + (double)s->offset.offset[a];
+        double v = second[a] + model_alignment_correction(&s->alignment, a, second[a]);
         if (a == HKF_AXIS_YAW) {
             v = pose_angle_wrap(v);
         }
@@ -132,7 +134,7 @@ static int fuse(second_model_t *s, const resolved_models_t *models, second_model
     frame->z2[0] = m->pitch;
     frame->z2[1] = m->yaw;
     frame->z2[2] = m->roll;
-    align_second(s, models, frame);
+    align_second(s, frame);
     f = frame->before;
     c = frame->calibration_before;
     for (i = 0; i < count; ++i) {

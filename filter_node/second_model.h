@@ -3,7 +3,7 @@
  * states the rules): the last frames' filter steps kept in a ring, a second
  * model's measurement of one of them fused there (hkf_update_pair_prepared) and the
  * frames after it redone, and the second model moved onto the first's frame
- * by the running mean of their difference (model_offset.h). The kept frames
+ * by their difference fitted as a line in the angle (model_alignment.h). The kept frames
  * hold what the first model measured of the position too (node_position.h).
  */
 #ifndef SECOND_MODEL_H
@@ -14,7 +14,7 @@
 #include "hkf/hkf.h"
 #include "hkf/hkf_calibration.h"
 #include "hkf_head_pose_measurement_t.h"
-#include "model_offset.h"
+#include "model_alignment.h"
 #include "node_config.h"
 #include "resolved_models.h"
 
@@ -23,7 +23,7 @@ extern "C" {
 #endif
 
 #define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
-#define FILTER_NODE_ALIGN_FRAMES 60 /* frames both models measured that the second's offset averages */
+#define FILTER_NODE_ALIGN_FRAMES 300 /* frames both models measured that the alignment averages: 10 s at 30 fps */
 
 /* One frame's filter step, kept so that a second model's measurement of it can
  * be fused afterwards. */
@@ -44,13 +44,13 @@ typedef struct {
     second_model_frame_t frames[FILTER_NODE_PAIR_FRAMES]; /* the last frames' steps, a ring */
     int frame_count, frame_newest;
     long align_frames;                      /* FILTER_NODE_ALIGN_FRAMES (0: no alignment) */
-    model_offset_t offset;                  /* first minus second, deg (model_offset.h) */
+    model_alignment_t alignment;            /* first minus second, a line in the angle (model_alignment.h) */
 } second_model_t;
 
 /* Empty, aligning over FILTER_NODE_ALIGN_FRAMES. */
 void second_model_init(second_model_t *s);
 
-/* Forgets the kept frames (a restart, a command, a new clock); the offset stays. */
+/* Forgets the kept frames (a restart, a command, a new clock); the alignment stays. */
 void second_model_forget_frames(second_model_t *s);
 
 /* Keeps the step made from `before` (and its calibration) for frame m: z (NULL: no face), dt. */

@@ -180,3 +180,31 @@ def lean_trajectory(seed, fps=30.0, moves=6):
     scale += [scale[-1]] * int(fps)
     shift += [shift[-1]] * int(fps)
     return np.arange(len(scale)) / fps, np.array(scale), np.array(shift)
+
+
+def held_turn_trajectory(seed, fps=30.0, max_abs=40.0, step=10.0, hold_s=1.5, peak_speed=120.0):
+    """Held turns (turn_truth.py): after the start-up rest, a staircase out to +max_abs in steps of
+    `step` deg with a hold of hold_s at each, one move back to 0, the same to -max_abs and back,
+    then two glances, a drift and a sine (truth_motion's driver segments) for the moving error.
+    Deterministic for a seed."""
+    rng = np.random.default_rng(seed)
+    b = _Builder(fps, rng)
+    b.hold(START_REST_S)
+    for sign in (1.0, -1.0):
+        for k in range(1, int(round(max_abs / step)) + 1):
+            b.move(sign * k * step, peak_speed, "step")
+            b.hold(hold_s)
+        b.move(0.0, peak_speed, "return")
+        b.hold(hold_s)
+    for _ in range(2):
+        size = rng.uniform(15.0, max_abs) * rng.choice([-1.0, 1.0])
+        b.move(size, rng.uniform(150.0, PEAK_SPEED_LIMIT), "glance")
+        b.hold(rng.uniform(0.6, 1.2))
+        b.move(0.0, rng.uniform(150.0, PEAK_SPEED_LIMIT), "return")
+        b.hold(rng.uniform(0.6, 1.2))
+    b.drift()
+    b.hold(0.6)
+    b.sine()
+    b.hold(1.0)
+    theta = np.array(b.values)
+    return Trajectory(np.arange(len(theta)) / fps, theta, b.moves, b.segments)
