@@ -154,13 +154,14 @@ def published(filter_program, log_path, work):
 
 
 class TurnClip:
-    """One head turned on one axis: the trajectory, the truth, raw per model per frame, and the raw logs."""
+    """One head turned on one axis: the trajectory, the truth, raw per model per frame, and the raw log
+    (per_model: read_measurements' of it)."""
 
-    def __init__(self, head, role, axis_name, trajectory, log_path, types_dir):
-        self.head, self.role, self.axis_name = head, role, axis_name
+    def __init__(self, head, axis_name, trajectory, log_path, per_model):
+        self.head, self.axis_name = head, axis_name
+        self.role = "tuning" if head in evaluate.TUNING_CLIPS else "held out"
         self.axis = AXES[axis_name][0]
         self.trajectory, self.log = trajectory, log_path
-        per_model, _ = read_measurements(log_path, types_dir)
         first = per_model.get(FIRST, {})
         seqs = sorted(first)[:len(trajectory.theta)]
         self.utime = np.array([first[s][0] for s in seqs], np.int64)
@@ -287,7 +288,6 @@ def make_clips(build, out, heads):
             evaluate.fail(f"no clip {name} in ../shared/data/videos")
         head, pose = make_head(build, out, by_name[name])
         rendered[name] = (head, pose)
-        role = "tuning" if name in evaluate.TUNING_CLIPS else "held out"
         for axis_name, (axis, reach) in AXES.items():
             seed = sum(map(ord, name + axis_name))
             trajectory = truth_motion.held_turn_trajectory(seed, FPS, max_abs=reach)
@@ -300,7 +300,7 @@ def make_clips(build, out, heads):
                 estimate(build, folder, log_path)
                 log(f"{name} {axis_name}: {len(trajectory.theta)} frames rendered and estimated, "
                     f"{time.time() - started:.0f} s")
-            made.append(TurnClip(name, role, axis_name, trajectory, log_path, types_dir))
+            made.append(TurnClip(name, axis_name, trajectory, log_path, read_measurements(log_path, types_dir)[0]))
     return made, rendered
 
 
