@@ -21,20 +21,32 @@ static void place(double x, int *k, double *share)
     *share = u - (double)*k;
 }
 
-/* One knot learns value v with weight w (0-1): a running mean over about `most` weight. */
-static void teach(double *d, double *weight, double v, double w, long most)
+/* The knots' values that minimise the forgotten squared residuals plus MODEL_ALIGNMENT_SMOOTHING times
+ * the squared steps between neighbouring knots: the tridiagonal normal equations (A + eps L) d = b,
+ * solved by elimination from the first knot down (Thomas; A + eps L is positive definite once eps > 0). */
+static void solve(const double diagonal[MODEL_ALIGNMENT_KNOTS], const double beside[MODEL_ALIGNMENT_KNOTS - 1],
+                  const double moment[MODEL_ALIGNMENT_KNOTS], double d[MODEL_ALIGNMENT_KNOTS])
 {
-    if (w <= 0.0) {
-        return;
+    const double eps = MODEL_ALIGNMENT_SMOOTHING;
+    double upper[MODEL_ALIGNMENT_KNOTS], right[MODEL_ALIGNMENT_KNOTS];
+    int k;
+    for (k = 0; k < MODEL_ALIGNMENT_KNOTS; ++k) {
+        const double steps = (k > 0) + (k < MODEL_ALIGNMENT_KNOTS - 1); /* L's diagonal: 1 at the ends, else 2 */
+        const double off_below = k > 0 ? beside[k - 1] - eps : 0.0;
+        const double pivot = diagonal[k] + eps * steps - (k > 0 ? off_below * upper[k - 1] : 0.0);
+        upper[k] = k < MODEL_ALIGNMENT_KNOTS - 1 ? (beside[k] - eps) / pivot : 0.0;
+        right[k] = (moment[k] - (k > 0 ? off_below * right[k - 1] : 0.0)) / pivot;
     }
-    *weight = *weight + w < (double)most ? *weight + w : (double)most;
-    *d += w * (v - *d) / *weight;
+    d[MODEL_ALIGNMENT_KNOTS - 1] = right[MODEL_ALIGNMENT_KNOTS - 1];
+    for (k = MODEL_ALIGNMENT_KNOTS - 2; k >= 0; --k) {
+        d[k] = right[k] - upper[k] * d[k + 1];
+    }
 }
 
 void model_alignment_learn(model_alignment_t *a, const char *model, const double second[3],
                            const double difference[3], long most)
 {
-    int axis;
+    int axis, j, k;
     if (strncmp(a->model, model, sizeof a->model) != 0) { /* another second model: start over */
         model_alignment_init(a);
         strncpy(a->model, model, sizeof a->model - 1);
@@ -44,27 +56,26 @@ void model_alignment_learn(model_alignment_t *a, const char *model, const double
     }
     ++a->frames;
     for (axis = 0; axis < 3; ++axis) {
-        int k;
-        double share;
+        const double keep = 1.0 - 1.0 / (double)most; /* the older frames' weight: forgotten over `most` */
+        double share, w[2];
         place(second[axis], &k, &share);
-        teach(&a->d[axis][k], &a->weight[axis][k], difference[axis], 1.0 - share, most);
-        teach(&a->d[axis][k + 1], &a->weight[axis][k + 1], difference[axis], share, most);
-    }
-}
-
-/* Knot k's value, or the nearest taught knot's (the lower one on a tie); 0 when none is taught. */
-static double knot(const model_alignment_t *a, int axis, int k)
-{
-    int step;
-    for (step = 0; step < MODEL_ALIGNMENT_KNOTS; ++step) {
-        if (k - step >= 0 && a->weight[axis][k - step] > 0.0) {
-            return a->d[axis][k - step];
+        w[0] = 1.0 - share;
+        w[1] = share;
+        for (j = 0; j < MODEL_ALIGNMENT_KNOTS; ++j) {
+            a->diagonal[axis][j] *= keep;
+            a->moment[axis][j] *= keep;
+            if (j < MODEL_ALIGNMENT_KNOTS - 1) {
+                a->beside[axis][j] *= keep;
+            }
         }
-        if (k + step < MODEL_ALIGNMENT_KNOTS && a->weight[axis][k + step] > 0.0) {
-            return a->d[axis][k + step];
-        }
+        /* the frame's residual d - (w0 d_k + w1 d_k+1), squared: its row of the normal equations */
+        a->diagonal[axis][k] += w[0] * w[0];
+        a->diagonal[axis][k + 1] += w[1] * w[1];
+        a->beside[axis][k] += w[0] * w[1];
+        a->moment[axis][k] += w[0] * difference[axis];
+        a->moment[axis][k + 1] += w[1] * difference[axis];
+        solve(a->diagonal[axis], a->beside[axis], a->moment[axis], a->d[axis]);
     }
-    return 0.0;
 }
 
 double model_alignment_correction(const model_alignment_t *a, int axis, double x)
@@ -72,5 +83,5 @@ double model_alignment_correction(const model_alignment_t *a, int axis, double x
     int k;
     double share;
     place(x, &k, &share);
-    return (1.0 - share) * knot(a, axis, k) + share * knot(a, axis, k + 1);
+    return (1.0 - share) * a->d[axis][k] + share * a->d[axis][k + 1];
 }

@@ -4,12 +4,15 @@
  * mesh reads 0.87 of a turn and WHENet 1.31, and the mesh's reading flattens towards its reach
  * (docs/evaluation.md), so neither a constant offset nor a line aligns them. Per axis, the difference
  * d(x) = first - second, as a function of the second's own angle x on that axis, is learnt as a
- * piecewise-linear curve on knots every MODEL_ALIGNMENT_KNOT_STEP deg: each frame both models measured
- * teaches the two knots around its x, in proportion to its nearness (linear interpolation weights), a
- * running mean over about the last `most` frames each knot learnt from (docs/programs.md derives it).
- * The curve is read by the same interpolation; a knot nothing taught takes the nearest taught knot's
- * value, so beyond the first model's reach the second keeps the disagreement last seen at its edge: the
- * hand-over across the reach has no step. The mapped angle is x + d(x).
+ * piecewise-linear curve on knots every MODEL_ALIGNMENT_KNOT_STEP deg, fitted by least squares: each
+ * frame both models measured is one residual d - ((1 - s) d_k + s d_k+1), x being the share s of the way
+ * from knot k to k+1, its weight forgotten over about the last `most` such frames; the knots minimise the
+ * weighted squares plus MODEL_ALIGNMENT_SMOOTHING times the squared steps between neighbours (tridiagonal
+ * normal equations, solved after each frame; docs/programs.md derives it). The fit goes through a held
+ * turn's own disagreement, where a mean per knot would mix in the frames either side of it. A knot
+ * nothing taught follows its taught neighbours (flat beyond the last, linear between two), so beyond the
+ * first model's reach the second keeps the disagreement last seen at its edge: the hand-over across the
+ * reach has no step. The mapped angle is x + d(x).
  */
 #ifndef MODEL_ALIGNMENT_H
 #define MODEL_ALIGNMENT_H
@@ -23,11 +26,15 @@ extern "C" {
 #define MODEL_ALIGNMENT_KNOT_STEP 10.0 /* deg between knots */
 #define MODEL_ALIGNMENT_REACH 90.0     /* deg: knots from -this to +this; x beyond counts as at the end */
 #define MODEL_ALIGNMENT_KNOTS 19       /* 2 * REACH / KNOT_STEP + 1 */
+#define MODEL_ALIGNMENT_SMOOTHING 0.01 /* weight of a squared step between knots, against a frame's 1: it
+                                        * only settles the knots the frames leave open */
 
 typedef struct {
     char model[NODE_MODEL_NAME_MAX];              /* the second model the curve is for */
-    double d[3][MODEL_ALIGNMENT_KNOTS];           /* first minus second at each knot, deg */
-    double weight[3][MODEL_ALIGNMENT_KNOTS];      /* the weight each knot averages (at most `most`) */
+    double d[3][MODEL_ALIGNMENT_KNOTS];           /* first minus second at each knot, deg (the fit) */
+    double diagonal[3][MODEL_ALIGNMENT_KNOTS];    /* the normal equations: sum of w_k^2 over the frames, */
+    double beside[3][MODEL_ALIGNMENT_KNOTS - 1];  /* of w_k w_k+1, */
+    double moment[3][MODEL_ALIGNMENT_KNOTS];      /* of w_k d; each forgotten by 1 - 1/most a frame */
     long frames;                                  /* frames learnt from */
 } model_alignment_t;
 
@@ -36,7 +43,7 @@ void model_alignment_init(model_alignment_t *a);
 
 /* Second model `model`'s angles `second` of a frame (another model than before: the curve starts again),
  * and first minus second there (NULL when the first did not measure the frame; the yaw's wrapped into
- * +-180). Each axis teaches its two knots around its x, over about the last `most` frames (0: never). */
+ * +-180). Each axis's fit takes the frame at its x, over about the last `most` frames (0: never). */
 void model_alignment_learn(model_alignment_t *a, const char *model, const double second[3],
                            const double difference[3], long most);
 

@@ -184,12 +184,13 @@ static void test_second_model_offset_aligned(void **state)
     unaligned.second.align_frames = 0;
     for (i = 0; i < 400; ++i) {
         hkf_head_pose_t p_alone, p_unaligned;
-        const double pitch = 5.0 * sin(0.05 * i), yaw = 20.0 * sin(0.03 * i), noise = 0.5 * sin(1.7 * i);
+        const double pitch = 5.0 * sin(0.05 * i), yaw = 20.0 * sin(0.03 * i), noise = 0.5 * sin(1.7 * i),
+                     noise2 = 0.5 * sin(2.3 * i + 1.0); /* the models' errors are their own */
         m = measurement(T0 + i * FRAME_US, 1, pitch + noise, yaw - noise, 1.0);
         second = m;
         second.model = "hopenet";
-        second.pitch = (float)(pitch + 4.0 - noise);
-        second.yaw = (float)(yaw - 3.0 + noise);
+        second.pitch = (float)(pitch + 4.0 + noise2);
+        second.yaw = (float)(yaw - 3.0 - noise2);
         assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
         assert_int_equal(filter_node_receive(&alone, &m, m.utime + 2000, &p_alone), 1);
         assert_int_equal(filter_node_receive(&unaligned, &m, m.utime + 2000, &p_unaligned), 1);
@@ -208,17 +209,20 @@ static void test_second_model_offset_aligned(void **state)
     /* unaligned, the second model pulls the track by its weight, R1 / (R1 + R2) of its offset: in pitch it is
      * visible (0.23 deg of 4 with the defaults); in yaw hopenet's curve leaves it next to none */
     assert_true(bias_unaligned[0] > 0.15 && bias_unaligned[0] > 5.0 * fabs(bias_aligned[0]));
-    /* the curve at the second's angles: its pitch 4 deg high, its yaw 3 deg low, wherever it looked */
-    for (i = -20; i <= 20; i += 5) {
+    /* the curve at the second's angles: its pitch 4 deg high, its yaw 3 deg low, wherever it looked (within
+     * its sway: at the sway's ends the fit also sees the second's own noise, in its angle and, against it, in
+     * the difference) */
+    for (i = -16; i <= 16; i += 4) {
         assert_float_equal(model_alignment_correction(&node.second.alignment, 0, 0.25 * i + 4.0), -4.0, 0.1);
         assert_float_equal(model_alignment_correction(&node.second.alignment, 1, i - 3.0), 3.0, 0.1);
     }
 }
 
-/* The curve is a running mean from the first frame on: after 10 frames that both models measured 4 deg
- * apart in pitch (and 3 in yaw), the node has learnt 4 (and -3), not a fraction of it on its way to the
- * window. A large turn teaches the curve where the second model looked, and only there: the second's pitch
- * of -10 deg learns 12 deg, its pitch near 0 keeps 4. */
+/* The curve is fitted from the first frame on: after 10 frames that both models measured 4 deg apart in
+ * pitch (and 3 in yaw), the node has learnt 4 (and -3), not a fraction of it on its way to the window, and
+ * beyond what it saw it keeps that. A large turn teaches the curve where the second model looked, and only
+ * there: the second's pitch of -20 deg learns 22 deg, its pitch of 2-5 deg keeps 4 (the knot between
+ * follows the two). */
 static void test_second_model_offset_from_the_first_frames(void **state)
 {
     hkf_head_pose_measurement_t m, second;
@@ -227,7 +231,7 @@ static void test_second_model_offset_from_the_first_frames(void **state)
     int i;
     (void)state;
     for (i = 0; i < 10; ++i) {
-        m = measurement(T0 + i * FRAME_US, 1, 2.0 + 0.3 * i, 5.0, 0.0);
+        m = measurement(T0 + i * FRAME_US, 1, 6.0 + 0.3 * i, 5.0, 0.0);
         second = m;
         second.model = "hopenet";
         second.pitch = m.pitch - 4.0f;
@@ -244,14 +248,14 @@ static void test_second_model_offset_from_the_first_frames(void **state)
         m = measurement(T0 + i * FRAME_US, 1, 2.0, 40.0, 0.0);
         second = m;
         second.model = "hopenet";
-        second.pitch = m.pitch - 12.0f;
+        second.pitch = m.pitch - 22.0f;
         (void)filter_node_receive(&node, &m, m.utime + 2000, &pose);
         (void)filter_node_receive(&node, &second, m.utime + 20000, &pose);
     }
     assert_int_equal(curve->frames, 40);
-    assert_true(model_alignment_correction(curve, 0, -10.0) > 11.0);
-    assert_float_equal(model_alignment_correction(curve, 0, 0.0), 4.0, 1e-4);
-    assert_float_equal(model_alignment_correction(curve, 1, 8.0), -3.0, 1e-4);
+    assert_float_equal(model_alignment_correction(curve, 0, -20.0), 22.0, 0.05);
+    assert_float_equal(model_alignment_correction(curve, 0, 3.0), 4.0, 0.05);
+    assert_float_equal(model_alignment_correction(curve, 1, 8.0), -3.0, 0.05);
     /* another second model: its own curve, from its first frame on */
     m = measurement(T0 + 40 * FRAME_US, 1, 2.0, 5.0, 0.0);
     second = m;
