@@ -175,13 +175,20 @@ static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_
         strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model, model) == HKF_OK) {
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
-    second_model_keep_frame(&node->second, m, NULL, dt, &node->filter, &node->calibration);
+    second_model_keep_frame(&node->second, m, NULL, dt, 0, &node->filter, &node->calibration);
     if (hkf_predict(&node->filter, dt, out) != HKF_OK) { /* no track yet (or again, after a gap) */
         return ANGLES_NO_POSE;
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
     node_rest_take(&node->rest, &node->filter, NULL, dt);
     return ANGLES_POSE;
+}
+
+/* How recent a frame with a second model's measurement must be for the next to wait for the second's:
+ * half coast_time, so that waiting never coasts the track to LOST. */
+static int64_t prompt_us(const filter_node_t *node)
+{
+    return (int64_t)(0.5e6 * (double)node->config->settings.coast_time);
 }
 
 /* A measurement: the filter set up for its model (a change of model restarts
@@ -204,12 +211,21 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
     node->counts.unknown_models += !model->in_table;
     before = node->filter;
     calibration_before = node->calibration;
+    if (second_model_awaits(&node->second, &node->models, z, m->utime, prompt_us(node)) &&
+        hkf_predict(&node->filter, dt, out) == HKF_OK) {
+        ++node->counts.awaited; /* its step and its pose when the second model's measurement comes (take_second) */
+        (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
+        second_model_keep_frame(&node->second, m, z, dt, 1, &before, &calibration_before);
+        node_rest_take(&node->rest, &node->filter, NULL, dt);
+        node->last_measurement_utime = m->utime;
+        return ANGLES_NO_POSE;
+    }
     if (hkf_update(&node->filter, z, dt, out) != HKF_OK) {
         ++node->counts.bad_values;
         return ANGLES_REFUSED; /* not kept: the step never happened */
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, z, dt); /* for the next measurement's R */
-    second_model_keep_frame(&node->second, m, z, dt, &before, &calibration_before);
+    second_model_keep_frame(&node->second, m, z, dt, 0, &before, &calibration_before);
     node_rest_take(&node->rest, &node->filter, z, dt); /* after the frame is kept: a redo keeps the rest (fuse_second) */
     node->last_measurement_utime = m->utime;
     return ANGLES_POSE;
@@ -303,15 +319,18 @@ static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
 }
 
 /* The posterior once a second measurement is fused, at the newest frame's time: published only where
- * that frame's pose came from no measurement (the first model found no face: a prediction), so that the
- * second model's is the frame's only measurement and reaches the game now. Elsewhere the frame's pose is
- * out already, and the correction is folded into the next frame's: one pose per measured frame, never a
- * second one that steps back. 0 while there is no track. */
-static int pose_after_fusing(filter_node_t *node, hkf_head_pose_t *pose)
+ * that frame's pose has not gone out, its first measurement waiting for the second's (second_model_awaits)
+ * or missing (no face: its pose was a prediction), so that the second model's measurement reaches the game
+ * now. Elsewhere the frame's pose is out already, and the correction is folded into the next frame's: one
+ * pose per measured frame, never a second one that steps back. 0 while there is no track. */
+static int pose_after_fusing(filter_node_t *node, int awaited, hkf_head_pose_t *pose)
 {
     hkf_output_t out;
     if (hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED || hkf_get_output(&node->filter, &out) != HKF_OK) {
         return 0;
+    }
+    if (awaited) {
+        out.status = HKF_STATUS_TRACKING; /* the frames after the fused one were measured, not coasted through */
     }
     fill_pose(node, &out, node->admission.last_utime, pose);
     return 1;
@@ -319,15 +338,16 @@ static int pose_after_fusing(filter_node_t *node, hkf_head_pose_t *pose)
 
 /* A second model's measurement m of one of the followed publisher's frames: its angles fused into that
  * frame while it is kept (a frame no longer kept: too late), its position standing in where the first
- * model measured none, the pose. Returns 1 when *pose, the posterior with it, is to be published. */
+ * model measured none, the pose. Returns 1 when *pose, the posterior with it, is to be published
+ * (pose_after_fusing). */
 static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
 {
     const resolved_model_t *model = resolved_models_find(&node->models, m->model); /* resolved at start */
-    const second_model_frame_t *frame;
+    const second_model_frame_t *newest = &node->second.frames[node->second.frame_newest], *frame;
     const int fused = fuse_second(node, m, model, &frame);
     take_second_position(node, m, frame, model);
-    return fused && frame == &node->second.frames[node->second.frame_newest] && !frame->valid &&
-           pose_after_fusing(node, pose);
+    return fused && (newest->awaited || (frame == newest && !frame->valid)) &&
+           pose_after_fusing(node, newest->awaited, pose);
 }
 
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,

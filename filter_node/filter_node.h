@@ -92,6 +92,7 @@ typedef struct {
     unsigned long silences;        /* the estimator fell silent for coast_time: LOST published */
     unsigned long paired;          /* second-model measurements fused into their frame */
     unsigned long unpaired;        /* second-model measurements not used: too late, no face, or a frame's third */
+    unsigned long awaited;         /* frames whose first measurement waited for the second's (second_model_awaits) */
     unsigned long commands;        /* commands applied */
 } filter_node_counts_t;
 

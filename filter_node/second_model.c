@@ -18,8 +18,30 @@ void second_model_forget_frames(second_model_t *s)
     s->frame_count = 0;
 }
 
+int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
+                        int64_t utime, int64_t prompt_us)
+{
+    const int awaiting = s->frame_count > 0 && s->frames[s->frame_newest].awaited;
+    int i;
+    if (fabs((double)z[HKF_AXIS_YAW]) < (double)models->second_alone_from_yaw - (awaiting ? FILTER_NODE_AWAIT_HYSTERESIS : 0.0)) {
+        return 0;
+    }
+    for (i = 0; i < s->frame_count; ++i) {
+        const second_model_frame_t *frame =
+            &s->frames[(s->frame_newest + FILTER_NODE_PAIR_FRAMES - i) % FILTER_NODE_PAIR_FRAMES];
+        if (utime - frame->utime > prompt_us) {
+            return 0;
+        }
+        if (frame->paired) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3],
-                             hkf_real_t dt, const hkf_filter_t *before, const hkf_calibration_t *calibration_before)
+                             hkf_real_t dt, int awaited, const hkf_filter_t *before,
+                             const hkf_calibration_t *calibration_before)
 {
     second_model_frame_t *frame;
     s->frame_newest = (s->frame_newest + 1) % FILTER_NODE_PAIR_FRAMES;
@@ -32,6 +54,7 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
     frame->utime = m->utime;
     strncpy(frame->model, m->model ? m->model : "", sizeof frame->model - 1);
     frame->valid = z != NULL;
+    frame->awaited = z != NULL && awaited;
     if (z != NULL) {
         memcpy(frame->z, z, sizeof frame->z);
     }
@@ -67,17 +90,17 @@ static int first_set_aside(const resolved_models_t *models, const second_model_f
 static int redo_filter_step(const resolved_models_t *models, hkf_filter_t *f, const second_model_frame_t *frame,
                             const hkf_real_t **taken)
 {
-    *taken = frame->valid ? frame->z : NULL;
+    *taken = frame->valid && !frame->awaited ? frame->z : NULL;
     if (frame->paired) {
         const resolved_model_t *second = resolved_models_find(models, frame->second_model);
         const int first = frame->valid && !first_set_aside(models, frame);
         *taken = first ? frame->z : frame->z2;
         return hkf_update_pair_prepared(f, first ? frame->z : NULL, frame->z2, &second->noise, frame->dt, NULL);
     }
-    if (frame->valid) {
+    if (*taken != NULL) {
         return hkf_update(f, frame->z, frame->dt, NULL);
     }
-    return hkf_predict(f, frame->dt, NULL);
+    return hkf_predict(f, frame->dt, NULL); /* no face, or z awaiting the second's measurement */
 }
 
 /* One kept frame's step on f and its calibration c, as the node made it. */

@@ -3,7 +3,7 @@
  * states the rules): the last frames' filter steps kept in a ring, a second
  * model's measurement of one of them fused there (hkf_update_pair_prepared) and the
  * frames after it redone, and the second model moved onto the first's frame
- * by their difference fitted as a line in the angle (model_alignment.h). The kept frames
+ * by their difference fitted as a curve in the angle (model_alignment.h). The kept frames
  * hold what the first model measured of the position too (node_position.h).
  */
 #ifndef SECOND_MODEL_H
@@ -23,6 +23,7 @@ extern "C" {
 #endif
 
 #define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
+#define FILTER_NODE_AWAIT_HYSTERESIS 5.0 /* deg: a frame after one that waited waits from this below the pair's rule */
 #define FILTER_NODE_ALIGN_FRAMES 300 /* frames both models measured that the alignment averages: 10 s at 30 fps */
 
 /* One frame's filter step, kept so that a second model's measurement of it can
@@ -31,6 +32,8 @@ typedef struct {
     int64_t seq, utime;                      /* the frame */
     char model[NODE_MODEL_NAME_MAX];         /* the first model (the filter's) */
     int valid;                               /* the first model measured z */
+    int awaited;                             /* z was set aside for the second model's (the pair's rule,
+                                              * second_model_awaits): the step was a prediction */
     hkf_real_t z[3], dt;
     float xyz[3];                            /* its position as measured (node_position.h reads it) */
     int paired;                              /* a second model measured z2: */
@@ -44,7 +47,7 @@ typedef struct {
     second_model_frame_t frames[FILTER_NODE_PAIR_FRAMES]; /* the last frames' steps, a ring */
     int frame_count, frame_newest;
     long align_frames;                      /* FILTER_NODE_ALIGN_FRAMES (0: no alignment) */
-    model_alignment_t alignment;            /* first minus second, a line in the angle (model_alignment.h) */
+    model_alignment_t alignment;            /* first minus second, a curve in the angle (model_alignment.h) */
 } second_model_t;
 
 /* Empty, aligning over FILTER_NODE_ALIGN_FRAMES. */
@@ -53,9 +56,20 @@ void second_model_init(second_model_t *s);
 /* Forgets the kept frames (a restart, a command, a new clock); the alignment stays. */
 void second_model_forget_frames(second_model_t *s);
 
-/* Keeps the step made from `before` (and its calibration) for frame m: z (NULL: no face), dt. */
+/* 1 when the first model's measurement z of a new frame at `utime` is to wait for the second model's: z
+ * measures |yaw| >= the pair's pair_second_alone_from_yaw (where the frame takes the second's alone) and
+ * the second model's measurements come promptly (a frame kept from the last `prompt_us` has one). The
+ * node then predicts, and the second's measurement makes the frame's step when it comes: a pose from z
+ * would step back once it did. With prompt_us under coast_time, a second model that stops or falls
+ * behind ends the waiting before the track would coast to LOST. */
+int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
+                        int64_t utime, int64_t prompt_us);
+
+/* Keeps the step made from `before` (and its calibration) for frame m: z (NULL: no face), dt; awaited:
+ * the step was a prediction, z waiting for the second model's measurement (second_model_awaits). */
 void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3],
-                             hkf_real_t dt, const hkf_filter_t *before, const hkf_calibration_t *calibration_before);
+                             hkf_real_t dt, int awaited, const hkf_filter_t *before,
+                             const hkf_calibration_t *calibration_before);
 
 /* A second model's measurement m of one of the publisher's frames: *frame is the kept frame it is of
  * (the same seq and utime, another model; NULL: no longer kept). With a filter (m's angles are good

@@ -48,7 +48,7 @@ print("90 frames, each measured by mesh_pnp then whenet with one seq and time")
 PY
 
 "$filter" --offline "$work/both.lcmlog" "$work/both.out.lcmlog" 2>&1 | tee "$work/filter.txt"
-grep -q "90 second-model measurements fused into their frame (0 not used)" "$work/filter.txt" ||
+grep -q "90 second-model measurements fused into their frame (0 not used;" "$work/filter.txt" ||
   fail "the node did not fuse every WHENet measurement"
 grep -q " 0 from another publisher" "$work/filter.txt" || fail "WHENet's messages taken for another publisher"
 grep -q " 0 track restarts" "$work/filter.txt" || fail "a model change restarted the track"

@@ -336,8 +336,10 @@ static void test_second_model_alone_at_large_yaw(void **state)
         second.pitch = z2[0];
         second.yaw = z2[1];
         second.roll = z2[2];
-        assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), 1);
-        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 0); /* folded into the next */
+        /* below 25 deg the frame's pose goes out with the first's measurement, the second's folded into the
+         * next; from there the first's waits for the second's, and the frame's pose goes out with that */
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + 2000, &pose), yaw < 25.0);
+        assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), yaw >= 25.0);
         assert_int_equal(hkf_update_pair(&reference, yaw >= 25.0 ? NULL : z, z2, &s2,
                                          (hkf_real_t)(i == 0 ? 0.0 : FRAME_US * 1e-6), NULL), HKF_OK);
         assert_int_equal(hkf_calibration_update(&calibration, &reference, yaw >= 25.0 ? z2 : z,
@@ -351,6 +353,7 @@ static void test_second_model_alone_at_large_yaw(void **state)
     /* the second model's pitch, not a blend: the first's (2 deg) is set aside */
     assert_true(fabs(ours.angle[0] - (-1.0)) < 1.0);
     assert_int_equal(node.counts.paired, 60);
+    assert_int_equal(node.counts.awaited, 43); /* 25.5 .. 88.5 deg */
 }
 
 /* Another estimator with another model on the channel, its counter behind and
