@@ -298,13 +298,13 @@ static int passed(filter_node_t *node, stream_verdict_t verdict)
 }
 
 /* A second model's measurement m: fused into its kept frame when its angles are good (*frame: that
- * frame, NULL when no longer kept), and counted. Returns 1 when fused. */
+ * frame, NULL when no longer kept; *posterior: the output of its step), and counted. Returns 1 when fused. */
 static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
-                       const second_model_frame_t **frame)
+                       const second_model_frame_t **frame, hkf_output_t *posterior)
 {
     const int bad = m->valid && !finite_angles(m);
     if (!second_model_take(&node->second, &node->models, m, m->valid && !bad ? &node->filter : NULL,
-                           &node->calibration, frame)) {
+                           &node->calibration, frame, posterior)) {
         ++*(bad ? &node->counts.bad_values : &node->counts.unpaired);
         return 0;
     }
@@ -318,19 +318,30 @@ static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
     return 1;
 }
 
-/* The posterior once a second measurement is fused, at the newest frame's time: published only where
- * that frame's pose has not gone out, its first measurement waiting for the second's (second_model_awaits)
- * or missing (no face: its pose was a prediction), so that the second model's measurement reaches the game
- * now. Elsewhere the frame's pose is out already, and the correction is folded into the next frame's: one
- * pose per measured frame, never a second one that steps back. 0 while there is no track. */
-static int pose_after_fusing(filter_node_t *node, int awaited, hkf_head_pose_t *pose)
+/* The pose once a second measurement is fused into `frame`, published only where the frame's pose has not
+ * gone out, so that the second model's measurement reaches the game now:
+ * - the frame's first measurement waited for it (second_model_awaits): the frame's own posterior, at its
+ *   time, unless a later pose is out already. A frame or more late (a slow second model) it is not
+ *   predicted on to the newest frame, whose first measurement waits too: at the end of a fast turn that
+ *   prediction would overshoot the stop and step back;
+ * - the first model found no face and the frame is the newest (its pose was a prediction): the posterior.
+ * Elsewhere the frame's pose is out already, and the correction is folded into the next frame's: one pose
+ * per measured frame, never a second one that steps back. 0 while there is no track. */
+static int pose_after_fusing(filter_node_t *node, const second_model_frame_t *frame, const hkf_output_t *posterior,
+                             hkf_head_pose_t *pose)
 {
     hkf_output_t out;
-    if (hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED || hkf_get_output(&node->filter, &out) != HKF_OK) {
-        return 0;
+    if (frame->awaited) {
+        if (frame->utime <= node->published_utime) {
+            return 0;
+        }
+        fill_pose(node, posterior, frame->utime, pose);
+        pose->measurement_utime = frame->utime;
+        return 1;
     }
-    if (awaited) {
-        out.status = HKF_STATUS_TRACKING; /* the frames after the fused one were measured, not coasted through */
+    if (frame != &node->second.frames[node->second.frame_newest] || frame->valid ||
+        hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED || hkf_get_output(&node->filter, &out) != HKF_OK) {
+        return 0;
     }
     fill_pose(node, &out, node->admission.last_utime, pose);
     return 1;
@@ -338,16 +349,15 @@ static int pose_after_fusing(filter_node_t *node, int awaited, hkf_head_pose_t *
 
 /* A second model's measurement m of one of the followed publisher's frames: its angles fused into that
  * frame while it is kept (a frame no longer kept: too late), its position standing in where the first
- * model measured none, the pose. Returns 1 when *pose, the posterior with it, is to be published
- * (pose_after_fusing). */
+ * model measured none, the pose. Returns 1 when *pose is to be published (pose_after_fusing). */
 static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
 {
     const resolved_model_t *model = resolved_models_find(&node->models, m->model); /* resolved at start */
-    const second_model_frame_t *newest = &node->second.frames[node->second.frame_newest], *frame;
-    const int fused = fuse_second(node, m, model, &frame);
+    const second_model_frame_t *frame;
+    hkf_output_t posterior;
+    const int fused = fuse_second(node, m, model, &frame, &posterior);
     take_second_position(node, m, frame, model);
-    return fused && (newest->awaited || (frame == newest && !frame->valid)) &&
-           pose_after_fusing(node, newest->awaited, pose);
+    return fused && pose_after_fusing(node, frame, &posterior, pose);
 }
 
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,

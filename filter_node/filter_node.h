@@ -26,9 +26,12 @@
  *   (each with its own model's Eq. 8 curves; the second alone when the first
  *   found no face or measures |yaw| >= pair_second_alone_from_yaw) and redoes the frames after it.
  *   One pose per frame: the frame's pose went out with the first model's measurement, so the
- *   correction goes with the next frame's pose, and no second pose for the frame steps back; only
- *   where the first model found no face (its pose was a prediction) and the frame is the newest is
- *   the posterior with the second's published at once, at that frame's time. A second measurement
+ *   correction goes with the next frame's pose, and no second pose for the frame steps back. Where
+ *   the first measures |yaw| >= pair_second_alone_from_yaw (its measurement set aside once the
+ *   second's comes) and the second's measurements come promptly, the first's waits
+ *   (second_model_awaits): the node predicts and publishes the posterior when the second's is fused.
+ *   Where the first model found no face (its pose was a prediction) and the frame is the newest, the
+ *   posterior with the second's is published at once too, at that frame's time. A second measurement
  *   older than the kept frames (its seq and utime are one of the followed publisher's last frames)
  *   is counted, not used. A restart, a command or a clock resync forgets the kept frames. Two models
  *   disagree by an amount that changes with the turn (docs/evaluation.md): the second's angles are

@@ -22,8 +22,9 @@ fused and published at once. Per clip and axis:
   newest pose per frame against raw's, and the ratio;
 - reversals: within each move of the staircase (the truth moving one way), the
   largest step of the published stream against the move;
-- hand-over: the largest step of the published stream, beyond the truth's own,
-  between a frame WHENet measured and one it did not.
+- hand-over: where WHENet starts or stops measuring, the largest difference
+  between the published pose's step from frame to frame and the same filter's
+  on the mesh's measurements alone (which has the same lag).
 Orders, each as a live camera at 30 fps delivers the frames (the estimator read
 the folder faster than that): each mesh measurement 8 ms after its frame's
 capture, and each WHENet measurement as late behind it as in the log (this
@@ -272,21 +273,37 @@ def largest_reversal(clip, rows):
     return worst
 
 
-def largest_handover_step(clip, rows, after_frames=5):
-    """Where WHENet starts or stops measuring (frame to frame): the published stream's largest step beyond the
-    truth's own, over the poses of that frame and the after_frames after it (a late measurement redoes them)."""
+def largest_handover_step(clip, rows, alone_rows, after_frames=5):
+    """Where WHENet starts or stops measuring (frame to frame): over that frame and the after_frames after it (a
+    late measurement redoes them), the largest difference between the published pose's step from frame to frame
+    (each frame's last pose) and the step of the same filter on the mesh's measurements alone, which has the
+    same lag: what the second model's joining or leaving adds."""
     a, worst = clip.axis, 0.0
     has = np.isfinite(clip.raw[SECOND][:, a])
     changes = np.flatnonzero(has[1:] != has[:-1]) + 1
-    frame_of = np.array([clip.index.get(int(u), -1) for u in rows[:, 0]])
-    truth = clip.truth[:, a]
+    both, alone = newest_per_frame(clip, rows)[:, a], newest_per_frame(clip, alone_rows)[:, a]
     for i in changes:
-        for k in np.flatnonzero((frame_of >= i) & (frame_of <= i + after_frames)):
-            if k == 0 or frame_of[k - 1] < 0:
-                continue
-            step = rows[k, 1 + a] - rows[k - 1, 1 + a]
-            worst = max(worst, abs(step - (truth[frame_of[k]] - truth[frame_of[k - 1]])))
+        for k in range(max(i, 1), min(i + after_frames + 1, len(both))):
+            step = (both[k] - both[k - 1]) - (alone[k] - alone[k - 1])
+            if np.isfinite(step):
+                worst = max(worst, abs(float(step)))
     return worst
+
+
+def first_alone(log_path, types_dir):
+    """The raw log without the second model's measurements (made once)."""
+    import lcm
+    path = log_path.replace(".lcmlog", ".first.lcmlog")
+    if os.path.exists(path):
+        return path
+    _, events = read_measurements(log_path, types_dir)
+    out = lcm.EventLog(path + ".part", "w", overwrite=True)
+    for t, model, _, data in events:
+        if model == FIRST:
+            out.write_event(t, "HEAD_POSE_RAW", data)
+    out.close()
+    os.replace(path + ".part", path)
+    return path
 
 
 def make_head(build, out, clip_path):
@@ -333,11 +350,12 @@ def measure(clips, filters, out):
                 log_path = retimed(clip.log, types_dir, ORDERS[order])
                 work = os.path.join(out, "turn", "work", label.replace(" ", "_"), order.replace(" ", "_"), clip.name)
                 poses = published(program, log_path, work)
+                alone = published(program, first_alone(log_path, types_dir), work)
                 hold_rows = holds(clip, poses)
                 moving, raw_moving = moving_error(clip, poses)
                 rows.append({"filter": label, "order": order, "clip": clip.name, "role": clip.role,
                              "holds": hold_rows, "moving": moving, "raw_moving": raw_moving,
-                             "reversal": largest_reversal(clip, poses), "handover": largest_handover_step(clip, poses),
+                             "reversal": largest_reversal(clip, poses), "handover": largest_handover_step(clip, poses, alone),
                              "poses": poses})
     return rows
 

@@ -385,6 +385,73 @@ static void test_other_model_publisher_not_a_second(void **state)
     assert_true(fabsf(pose.yaw - 10.0f) < 0.5f);
 }
 
+/* The first model's measurement waits for the second's where the frame takes the second's alone (|yaw| >=
+ * 25 deg), while the second's come promptly: no pose goes out with the first's, one with the second's. A
+ * frame after one that waited waits down to 20 deg (no flicker between the two rules at a hold near 25).
+ * A second model that stops ends the waiting within coast_time / 2, before the track would be LOST. */
+static void test_second_model_first_waits_for_it(void **state)
+{
+    static const struct {
+        double yaw;
+        int second_sent, first_posed; /* the second's measurement sent; the first's arrival publishes */
+    } stretch[] = {{15.0, 1, 1}, {30.0, 1, 0}, {22.0, 1, 0}, {18.0, 1, 1}, {30.0, 1, 0}};
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    unsigned long awaited;
+    int i, k, frame = 0;
+    (void)state;
+    for (k = 0; k < 5; ++k) {
+        for (i = 0; i < 10; ++i, ++frame) {
+            m = measurement(T0 + frame * FRAME_US, 1, 1.0, stretch[k].yaw, 0.0);
+            second = m;
+            second.model = "hopenet";
+            second.yaw = (float)(stretch[k].yaw + 6.0);
+            assert_int_equal(filter_node_receive(&node, &m, m.utime + 8000, &pose), stretch[k].first_posed);
+            assert_int_equal(filter_node_receive(&node, &second, m.utime + 20000, &pose), !stretch[k].first_posed);
+        }
+    }
+    assert_int_equal(node.counts.awaited, 30);
+    /* the second stops: the first waits while a frame of the last 125 ms had the second's (three frames
+     * at 33 ms), then is taken again, and the track is tracking */
+    awaited = node.counts.awaited;
+    for (i = 0; i < 6; ++i, ++frame) {
+        m = measurement(T0 + frame * FRAME_US, 1, 1.0, 30.0, 0.0);
+        assert_int_equal(filter_node_receive(&node, &m, m.utime + 8000, &pose), i >= 3);
+        if (i >= 3) {
+            assert_int_equal(pose.status, HKF_HEAD_POSE_T_TRACKING);
+        }
+    }
+    assert_int_equal(node.counts.awaited, awaited + 3);
+}
+
+/* A second model a frame late (its measurement of a frame after the next frame's first): the first's still
+ * waits (a frame of the last 125 ms has the second's), and each second measurement publishes its own frame's
+ * posterior at that frame's time, not one predicted on to the newest frame (which at the end of a fast turn
+ * would overshoot the stop and step back): one pose per frame, in order. */
+static void test_second_model_late_publishes_its_frame(void **state)
+{
+    hkf_head_pose_measurement_t m[40], second;
+    hkf_head_pose_t pose;
+    int i, published = 0;
+    (void)state;
+    for (i = 0; i < 40; ++i) {
+        m[i] = measurement(T0 + i * FRAME_US, 1, 1.0, i < 10 ? 15.0 : 30.0, 0.0);
+        assert_int_equal(filter_node_receive(&node, &m[i], m[i].utime + 8000, &pose), i < 10);
+        if (i > 0) {
+            second = m[i - 1];
+            second.model = "hopenet";
+            second.yaw += 6.0f;
+            if (filter_node_receive(&node, &second, m[i].utime + 20000, &pose)) {
+                ++published;
+                assert_true(pose.utime == m[i - 1].utime && pose.measurement_utime == m[i - 1].utime);
+                assert_int_equal(pose.status, HKF_HEAD_POSE_T_TRACKING);
+            }
+        }
+    }
+    assert_int_equal(published, 29); /* frames 10-38 (frame 8 has the second's when 10 comes), by their seconds */
+    assert_int_equal(node.counts.awaited, 30);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -397,6 +464,8 @@ int main(void)
         cmocka_unit_test_setup(test_second_model_offset_across_the_seam, setup),
         cmocka_unit_test_setup(test_second_model_alone_at_large_yaw, setup),
         cmocka_unit_test_setup(test_other_model_publisher_not_a_second, setup),
+        cmocka_unit_test_setup(test_second_model_first_waits_for_it, setup),
+        cmocka_unit_test_setup(test_second_model_late_publishes_its_frame, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
