@@ -423,7 +423,7 @@ def held_turn_figure(clips, rows, path, head="d10", axis_name="yaw"):
     a = clip.axis
     shown = [r for r in rows if r["clip"] == clip.name and r["order"] == "this machine"]
     fig, axes = plt.subplots(1, 2, figsize=(13, 4.5), gridspec_kw={"width_ratios": [2, 1]})
-    for ax, (t0, t1) in zip(axes, ((0, clip.t[-1]), (7.0, 13.5))):
+    for ax, (t0, t1) in zip(axes, ((0, clip.t[-1]), (4.0, 9.4))):
         ax.plot(clip.t, clip.truth[:, a], color="black", lw=1.2, label="truth")
         ax.plot(clip.t, clip.raw[FIRST][:, a], ".", ms=3, color="tab:blue", label="raw: face mesh")
         ax.plot(clip.t, clip.raw[SECOND][:, a], ".", ms=3, color="tab:orange", label="raw: WHENet")
@@ -434,10 +434,10 @@ def held_turn_figure(clips, rows, path, head="d10", axis_name="yaw"):
         ax.set_xlim(t0, t1)
         ax.set_xlabel("s")
         ax.set_ylabel(f"{axis_name} (deg)")
-    axes[1].set_ylim(15, 50)
+    axes[1].set_ylim(15, 55)
     axes[0].legend(fontsize=8, loc="lower left")
     axes[0].set_title(f"{clip.name} ({clip.role}): a staircase of held turns, glances, a drift, a sine")
-    axes[1].set_title("the holds at 20, 30 and 40 deg, every pose as published")
+    axes[1].set_title("holds at 20, 30, 40 deg: every pose published")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
