@@ -303,8 +303,10 @@ static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
                        const second_model_frame_t **frame, hkf_output_t *posterior)
 {
     const int bad = m->valid && !finite_angles(m);
-    if (!second_model_take(&node->second, &node->models, m, m->valid && !bad ? &node->filter : NULL,
-                           &node->calibration, frame, posterior)) {
+    second_model_track_t track;
+    track.filter = m->valid && !bad ? &node->filter : NULL;
+    track.calibration = &node->calibration;
+    if (!second_model_take(&node->second, &node->models, m, &track, frame)) {
         ++*(bad ? &node->counts.bad_values : &node->counts.unpaired);
         return 0;
     }
@@ -315,6 +317,7 @@ static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
     }
     node->counts.unknown_models += !model->in_table;
     ++node->counts.paired;
+    *posterior = track.posterior;
     return 1;
 }
 

@@ -142,8 +142,7 @@ static void align_second(second_model_t *s, second_model_frame_t *frame)
 
 /* m fused into its kept frame `frame` (second_model_take). */
 static int fuse(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame,
-                const hkf_head_pose_measurement_t *m, hkf_filter_t *filter, hkf_calibration_t *calibration,
-                hkf_output_t *posterior)
+                const hkf_head_pose_measurement_t *m, second_model_track_t *track)
 {
     hkf_filter_t f, before[FILTER_NODE_PAIR_FRAMES];
     hkf_calibration_t c, calibration_before[FILTER_NODE_PAIR_FRAMES];
@@ -173,17 +172,16 @@ static int fuse(second_model_t *s, const resolved_models_t *models, second_model
         s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES].before = before[i];
         s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES].calibration_before = calibration_before[i];
     }
-    (void)hkf_get_output(count > 1 ? &before[1] : &f, posterior); /* the frame's own step, before the later ones */
-    *filter = f;
-    *calibration = c;
+    (void)hkf_get_output(count > 1 ? &before[1] : &f, &track->posterior); /* the frame's own step, before the later ones */
+    *track->filter = f;
+    *track->calibration = c;
     return 1;
 }
 
 int second_model_take(second_model_t *s, const resolved_models_t *models, const hkf_head_pose_measurement_t *m,
-                      hkf_filter_t *filter, hkf_calibration_t *calibration, const second_model_frame_t **frame,
-                      hkf_output_t *posterior)
+                      second_model_track_t *track, const second_model_frame_t **frame)
 {
     second_model_frame_t *kept = frame_of(s, m);
     *frame = kept;
-    return kept != NULL && filter != NULL && fuse(s, models, kept, m, filter, calibration, posterior);
+    return kept != NULL && track->filter != NULL && fuse(s, models, kept, m, track);
 }

@@ -71,15 +71,21 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
                              hkf_real_t dt, int awaited, const hkf_filter_t *before,
                              const hkf_calibration_t *calibration_before);
 
+/* Where a second measurement is fused: the node's filter and noise calibration, into which the fused frame's
+ * step and the later frames' are redone, and the output of the fused frame's own step. */
+typedef struct {
+    hkf_filter_t *filter;           /* NULL: m's angles are not to be fused (bad ones) */
+    hkf_calibration_t *calibration;
+    hkf_output_t posterior;         /* out: the fused frame's own step */
+} second_model_track_t;
+
 /* A second model's measurement m of one of the publisher's frames: *frame is the kept frame it is of
- * (the same seq and utime, another model; NULL: no longer kept). With a filter (m's angles are good
- * ones), m is fused there into *filter and its *calibration: that frame's step again with both (the
- * second model's R and the pair's rule from `models`), then the steps of the frames after it;
- * *posterior is the output of that frame's own step. Returns 1 when fused, 0 when not (no frame kept,
- * no filter, or the frame has a second measurement already). */
+ * (the same seq and utime, another model; NULL: no longer kept). With a filter in `track`, m is fused
+ * there: that frame's step again with both (the second model's R and the pair's rule from `models`),
+ * then the steps of the frames after it. Returns 1 when fused, 0 when not (no frame kept, no filter, or
+ * the frame has a second measurement already). */
 int second_model_take(second_model_t *s, const resolved_models_t *models, const hkf_head_pose_measurement_t *m,
-                      hkf_filter_t *filter, hkf_calibration_t *calibration, const second_model_frame_t **frame,
-                      hkf_output_t *posterior);
+                      second_model_track_t *track, const second_model_frame_t **frame);
 
 #ifdef __cplusplus
 }

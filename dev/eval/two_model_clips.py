@@ -152,18 +152,25 @@ def table(clips, rows):
              "| filter | order | axis | moves | largest reversal (deg), clip | moves with one over 0.3 deg | "
              "frames published twice | largest change within a frame (deg) |",
              "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"]
-    keys = []
-    for r in rows:
-        key = (r["filter"], r["order"], r["axis"])
-        if key not in keys:
-            keys.append(key)
-    for key in keys:
+    lines += summary_lines(rows) + per_clip_lines(clips, rows)
+    return "\n".join(lines) + "\n"
+
+
+def summary_lines(rows):
+    """One row per (filter, order, axis), over the clips."""
+    lines = []
+    for key in dict.fromkeys((r["filter"], r["order"], r["axis"]) for r in rows):
         mine = [r for r in rows if (r["filter"], r["order"], r["axis"]) == key]
         worst = max(mine, key=lambda r: r["largest"])
         lines.append(f"| {key[0]} | {key[1]} | {key[2]} | {sum(r['moves'] for r in mine)} | "
                      f"{worst['largest']:.2f} ({worst['clip']}) | {sum(r['over'] for r in mine)} | "
                      f"{sum(r['twice'] for r in mine)} | {max(r['step'] for r in mine):.2f} |")
-    lines += ["", "Per clip (yaw, largest reversal in deg; this build, then each other filter, this machine's order):", ""]
+    return lines
+
+
+def per_clip_lines(clips, rows):
+    """Yaw's largest reversal per clip and filter, this machine's order."""
+    lines = ["", "Per clip (yaw, largest reversal in deg; this build, then each other filter, this machine's order):", ""]
     filters = list(dict.fromkeys(r["filter"] for r in rows))
     lines.append("| clip | " + " | ".join(filters) + " |")
     lines.append("| --- |" + " ---: |" * len(filters))
@@ -174,7 +181,7 @@ def table(clips, rows):
                      and r["order"] == "this machine")
             cells.append(f"{r['largest']:.2f} ({r['over']} of {r['moves']})")
         lines.append(f"| {clip.name} | " + " | ".join(cells) + " |")
-    return "\n".join(lines) + "\n"
+    return lines
 
 
 def main():
