@@ -26,14 +26,15 @@ if it were a datagram; the shares of raw's jitter are of this raw:
   dropped      frames the estimator dropped, frames without a pose, poses without a datagram
   stages       capture -> raw publish -> pose -> datagram (ms, medians; one datagram per pose)
 The lean clip (a zoom: the head nearer and farther) gives the same for the position (TZ, cm). The yaw
-truth (turn_truth.py: a real frame of TURN_HEAD made into a 3D head, turned along a staircase of held turns,
-glances, a drift and a sine) runs with both models, at 30 and 60 fps, with the still jitter per hold too.
+and pitch truth (turn_truth.py: a real frame of TURN_HEAD made into a 3D head, turned along a staircase of held
+turns, glances, a drift and a sine) run with the default pipeline (both models), at 30 and 60 fps, with the still
+jitter per hold too.
 
 Clips: a frontal frame of held-out clips (not the filter's tuning clips, evaluate.TUNING_CLIPS):
 --lead's default is chosen on TUNE_CLIP; the report is on REPORT_CLIPS.
 
-usage: e2e.py [--build DIR] [--out DIR] [--short | --yaw]
---yaw: only the yaw truth (out/e2e/e2e_yaw.md, e2e_yaw.png).
+usage: e2e.py [--build DIR] [--out DIR] [--short | --turn]
+--turn: only the yaw and pitch truth (out/e2e/e2e_turn.md, e2e_yaw.png).
 --short: one clip of 6 s at 30 fps, the defaults only; exit 1 if no datagram arrives, any is
 not finite, or the median onset is beyond SHORT_MAX_ONSET_MS (the ./run test case).
 Needs root (a private network namespace: nothing leaves the machine); exit 77 otherwise.
@@ -158,19 +159,21 @@ def make_clip(out, frame, clip_name, fps, kind, short):
     return Clip(label, folder, fps, kind, theta, scale, moves, roll_of_turn)
 
 
-def make_turn_clip(build, out, fps):
-    """The yaw truth (turn_truth.py) for the live chain: TURN_HEAD's most frontal frame made into a 3D head and
-    turned along a held-turn trajectory at fps (holds every 10 deg out to +-40, glances, a drift, a sine)."""
+def make_turn_clip(build, out, fps, axis_name):
+    """The yaw or pitch truth (turn_truth.py) for the live chain: TURN_HEAD's most frontal frame made into a 3D
+    head and turned along a held-turn trajectory at fps (holds every 10 deg out to turn_truth.AXES' reach,
+    glances, a drift, a sine)."""
     head, pose = turn_truth.make_head(build, out, os.path.join(ROOT, "..", "shared", "data", "videos",
                                                                TURN_HEAD + ".mp4"))
-    label = f"{TURN_HEAD}_yaw_{fps:g}fps"
+    axis, reach = turn_truth.AXES[axis_name]
+    label = f"{TURN_HEAD}_{axis_name}_{fps:g}fps"
     folder = os.path.join(out, "clips", label)
     seed = zlib.crc32(label.encode())
-    trajectory = truth_motion.held_turn_trajectory(seed, fps, max_abs=turn_truth.AXES["yaw"][1])
+    trajectory = truth_motion.held_turn_trajectory(seed, fps, max_abs=reach)
     if not os.path.isdir(folder):
-        turn_truth.write_clip(folder, head, turn_truth.turns(pose, turn_truth.AXES["yaw"][0], trajectory.theta), seed)
+        turn_truth.write_clip(folder, head, turn_truth.turns(pose, axis, trajectory.theta), seed)
         log(f"{label}: {len(trajectory.theta)} frames written")
-    clip = Clip(label, folder, fps, "yaw", trajectory.theta, np.ones(len(trajectory.theta)), trajectory.moves, None)
+    clip = Clip(label, folder, fps, "turn", trajectory.theta, np.ones(len(trajectory.theta)), trajectory.moves, None)
     clip.segments = trajectory.segments
     return clip
 
@@ -263,7 +266,7 @@ def read_chain_log(path, types_dir):
     raw, poses = [], []
     for timestamp, channel, m in decoded_events(path, types_dir):
         if channel == "HEAD_POSE_RAW" and m.model == "mesh_pnp":
-            raw.append((timestamp, m.utime, m.seq, m.valid, m.roll, m.z, m.yaw))
+            raw.append((timestamp, m.utime, m.seq, m.valid, m.roll, m.z, m.yaw, m.pitch))
         elif channel == "HEAD_POSE":
             poses.append((timestamp, m.utime, m.measurement_utime, m.extrapolated))
     return np.array(raw, float), np.array(poses, float)
@@ -325,7 +328,7 @@ def measure_run(clip, datagrams, raw, poses, estimator_summary, player_axis, sca
     hold_end_us = t0 + (moved[0] / clip.fps if moved.size else 1.4) * 1e6
     hold = (arrival > hold_end_us - 0.4e6) & (arrival < hold_end_us - 0.05e6)
     value = value - (np.median(value[hold]) if hold.any() else 0.0)
-    moving = truth.speed(arrival) > (10.0 if clip.kind in ("roll", "yaw") else 2.0)
+    moving = truth.speed(arrival) > (10.0 if clip.kind in ("roll", "turn") else 2.0)
     at_arrival = float(np.sqrt(np.mean((value[moving] - truth.at(arrival[moving])) ** 2))) if moving.any() else np.nan
     onsets, halves, overshoots = [], [], []
     threshold = 1.0  # deg, or cm for the lean
@@ -430,8 +433,13 @@ def yaw_of_datagram(values):
     return values[3]  # opentrack's yaw is hkf's
 
 
-def yaw_truth(clip):
-    """The head's yaw change: R(b + d) R(b)^T turns the head at b to b + d in hkf's angles (turn_truth.turns)."""
+def pitch_of_datagram(values):
+    return values[4]  # opentrack's pitch is hkf's
+
+
+def turn_truth_of(clip):
+    """The head's yaw or pitch change: R(b + d) R(b)^T turns the head at b to b + d in hkf's angles
+    (turn_truth.turns)."""
     return clip.theta
 
 
@@ -455,13 +463,18 @@ HEADER = ("| variant | onset median (ms) | onset worst (ms) | half-move median (
           "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
 
 
-def plot(path, runs, title, quantity="roll, deg (as the player sees it)"):
+def plot(path, runs, title, quantity="roll, deg (as the player sees it)", from_farthest=False):
+    """The first two moves of over 5 deg (from_farthest: the two that start farthest from 0), each run's
+    datagrams against the truth."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
     base = runs[0][1]
-    moves = [m for m in base["clip"].moves if abs(m.end_angle - m.start_angle) > 5][:2]
+    moves = [m for m in base["clip"].moves if abs(m.end_angle - m.start_angle) > 5]
+    if from_farthest:
+        moves = sorted(sorted(moves, key=lambda m: -abs(m.start_angle))[:2], key=lambda m: m.t0)
+    moves = moves[:2]
     for ax, move in zip(axes, moves):
         t0 = base["t0"]
         lo, hi = t0 + (move.t0 - 0.25) * 1e6, t0 + (move.t1 + 0.35) * 1e6
@@ -488,8 +501,8 @@ def raw_as_datagrams(raw):
     """The valid raw measurements of a run as the receiver would hold them: (arrival, the six values), with
     roll, yaw and z where roll_of_datagram, yaw_of_datagram and tz_of_datagram read them."""
     valid = raw[raw[:, 3] != 0]
-    return [(t, (0.0, 0.0, z, yaw, 0.0, -roll)) for t, roll, z, yaw in zip(valid[:, 0], valid[:, 4], valid[:, 5],
-                                                                              valid[:, 6])]
+    return [(t, (0.0, 0.0, z, yaw, pitch, -roll)) for t, roll, z, yaw, pitch in
+            zip(valid[:, 0], valid[:, 4], valid[:, 5], valid[:, 6], valid[:, 7])]
 
 
 def run_clip(build, out, clip, variants, axis, to_truth):
@@ -526,7 +539,7 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "e2e"))
     parser.add_argument("--short", action="store_true")
-    parser.add_argument("--yaw", action="store_true", help="only the yaw truth (both models), at 30 and 60 fps")
+    parser.add_argument("--turn", action="store_true", help="only the yaw and pitch truth (both models), 30 and 60 fps")
     args = parser.parse_args()
     if os.environ.get("HKF_IN_NETNS") != "1":
         os.environ["HKF_IN_NETNS"] = "1"
@@ -536,8 +549,8 @@ def main():
     os.makedirs(out, exist_ok=True)
     if args.short:
         return short_case(build, out)
-    if args.yaw:
-        return yaw_only(build, out)
+    if args.turn:
+        return turn_only(build, out)
     return full_report(build, out)
 
 
@@ -636,7 +649,7 @@ def full_report(build, out):
         raw_jitter = raw_jitter_of(runs)
         lines += [f"## {lean.name} (held out): position TZ, cm", "", HEADER.replace("deg", "cm")]
         lines += [row_text(n, m, raw_jitter) for n, m in runs] + [""]
-    lines += yaw_report(build, out)
+    lines += turn_report(build, out)
     lines += ["## Where the time goes (medians, ms; one datagram per pose)", "",
               "| clip | variant | capture -> raw publish | raw -> pose | pose -> datagram |", "| --- | --- | ---: | ---: | ---: |"]
     lines += stage_rows
@@ -648,31 +661,35 @@ def full_report(build, out):
     return 0
 
 
-def yaw_report(build, out):
-    """The yaw truth through the live chain with both models, at 30 and 60 fps: the table, the goals, the still
-    jitter per hold; the 30 fps run drawn (e2e_yaw.png)."""
+def turn_report(build, out):
+    """The yaw and pitch truth through the live chain (both models, the default pipeline), at 30 and 60 fps: the
+    table, the goals, the still jitter per hold; the 30 fps yaw run drawn (e2e_yaw.png)."""
     lines = []
-    for fps in (30.0, 60.0):
-        clip = make_turn_clip(build, out, fps)
-        runs = run_clip(build, out, clip, [Variant("raw (filter bypassed)", RAW_OPTIONS), Variant("defaults")],
-                        yaw_of_datagram, yaw_truth)
-        named = dict(runs)
-        lines += [f"## {clip.name} (held out): yaw, both models", "", HEADER]
-        lines += [row_text(n, m, raw_jitter_of(runs)) for n, m in runs] + [""]
-        lines += goal_lines(named) + hold_lines(named) + [""]
-        if fps == 30.0:
-            plot(os.path.join(out, "e2e_yaw.png"), [r for r in runs if r[0] in (SAME_RUN_RAW, "defaults")],
-                 f"{clip.name}: truth and the datagrams as they arrive", "yaw, deg (as the player sees it)")
+    for axis_name, datagram_axis in (("yaw", yaw_of_datagram), ("pitch", pitch_of_datagram)):
+        for fps in (30.0, 60.0):
+            clip = make_turn_clip(build, out, fps, axis_name)
+            runs = run_clip(build, out, clip, [Variant("raw (filter bypassed)", RAW_OPTIONS), Variant("defaults")],
+                            datagram_axis, turn_truth_of)
+            named = dict(runs)
+            lines += [f"## {clip.name} (held out): {axis_name}, the default pipeline (both models)", "", HEADER]
+            lines += [row_text(n, m, raw_jitter_of(runs)) for n, m in runs] + [""]
+            lines += goal_lines(named) + hold_lines(named) + [""]
+            if fps == 30.0 and axis_name == "yaw":
+                plot(os.path.join(out, "e2e_yaw.png"), [r for r in runs if r[0] in (SAME_RUN_RAW, "defaults")],
+                     f"{clip.name}: the moves from the largest held turns (the mesh's measurement waits for "
+                     "WHENet's there), truth and the datagrams as they arrive", "yaw, deg (as the player sees it)",
+                     from_farthest=True)
     return lines
 
 
-def yaw_only(build, out):
-    """--yaw: only the yaw truth (out/e2e/e2e_yaw.md)."""
-    text = "\n".join(["# End to end: the yaw truth through the live chain", ""] + yaw_report(build, out)) + "\n"
-    with open(os.path.join(out, "e2e_yaw.md"), "w") as f:
+def turn_only(build, out):
+    """--turn: only the yaw and pitch truth (out/e2e/e2e_turn.md)."""
+    text = "\n".join(["# End to end: the yaw and pitch truth through the live chain", ""] +
+                      turn_report(build, out)) + "\n"
+    with open(os.path.join(out, "e2e_turn.md"), "w") as f:
         f.write(text)
     print(text)
-    log(f"table in {out}/e2e_yaw.md, picture in {out}/e2e_yaw.png")
+    log(f"table in {out}/e2e_turn.md, picture in {out}/e2e_yaw.png")
     return 0
 
 
