@@ -676,8 +676,8 @@ def turn_report(build, out):
             lines += goal_lines(named) + hold_lines(named) + [""]
             if fps == 30.0 and axis_name == "yaw":
                 plot(os.path.join(out, "e2e_yaw.png"), [r for r in runs if r[0] in (SAME_RUN_RAW, "defaults")],
-                     f"{clip.name}: the moves from the largest held turns (the mesh's measurement waits for "
-                     "WHENet's there), truth and the datagrams as they arrive", "yaw, deg (as the player sees it)",
+                     f"{clip.name}: the moves from the largest held turns (where the mesh waits for WHENet)",
+                     "yaw, deg (as the player sees it)",
                      from_farthest=True)
     return lines
 
