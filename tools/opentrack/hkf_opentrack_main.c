@@ -2,11 +2,14 @@
  * hkf-opentrack - the bridge to opentrack: subscribes the filtered head pose
  * (HEAD_POSE) and sends each one to opentrack's "UDP over network" input as
  * one datagram (opentrack_packet.h has the format and the angle mapping).
- * opentrack then moves the camera of every game it supports.
+ * opentrack then moves the camera of every game it supports. With --flightgear
+ * the same poses, by the same rules, go to FlightGear's generic input as one
+ * line each (flightgear_line.h), which moves FlightGear's cockpit view.
  */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <math.h>
 #include <netdb.h>
 #include <netinet/in.h>
 #include <stdio.h>
@@ -19,6 +22,7 @@
 
 #include "arguments.h"
 #include "clocks.h"
+#include "flightgear_line.h"
 
 #include "lcm_file_url.h"
 #include "lcm_wait.h"
@@ -36,6 +40,9 @@ typedef struct {
     double lead_s;        /* --lead: and this much further */
     lost_policy_t lost;
     opentrack_mapping_t mapping;
+    int flightgear;       /* --flightgear: FlightGear's generic input, one line a pose */
+    double eye[3];        /* --eye: the aircraft's eye point (m), added to the head's offset for FlightGear */
+    const char *target;   /* "opentrack" or "FlightGear", for the messages */
 } options_t;
 
 typedef struct {
@@ -46,7 +53,8 @@ typedef struct {
 typedef struct {
     const options_t *options;
     int socket_fd;
-    unsigned char packet[OPENTRACK_PACKET_SIZE]; /* the latest packet: what --rate repeats, LOST holds */
+    unsigned char packet[FLIGHTGEAR_LINE_MAX]; /* the latest packet: what --rate repeats, LOST holds */
+    size_t packet_size;                        /* OPENTRACK_PACKET_SIZE, or the FlightGear line's length */
     int have_packet;
     double last_values[OPENTRACK_FIELDS]; /* the last pose's values: a position beyond the range keeps its */
     hkf_head_pose_t pose;                 /* the last pose taken, which --predict moves on at each send */
@@ -80,6 +88,12 @@ static void usage(FILE *to)
             "                     capture stamp is on this machine's clock and at most 250 ms old)\n"
             "  --lead MS          with --predict, this much further ahead (0 to 100 ms): the camera's own\n"
             "                     delay before the capture stamp\n"
+            "  --flightgear       send to FlightGear's generic input instead (default port 5550): one line\n"
+            "                     a pose, heading, pitch, roll (deg), x, y, z (m) of the view, for the protocol\n"
+            "                     file hkf.xml (/usr/share/hkf/flightgear/Protocol/); run fgfs with\n"
+            "                     --data=/usr/share/hkf/flightgear --generic=socket,in,60,,5550,udp,hkf\n"
+            "  --eye X,Y,Z        with --flightgear, the aircraft's eye point (m; its view's x/y/z-offset-m),\n"
+            "                     which the head's offset is added to (default 0,0,0)\n"
             "  --help, --version  this text; the version\n"
             "Non-finite poses, and angles beyond +-180 deg that no head makes (a forged or corrupt\n"
             "message), are never sent (counted); a destination that refuses (opentrack not running) is\n"
@@ -162,6 +176,16 @@ static int mapping_option(options_t *o, const char *arg, const char *value)
     return -1;
 }
 
+/* --eye's X,Y,Z (m, each within +-100): 0, or -1. */
+static int parse_eye(const char *text, double eye[3])
+{
+    char rest;
+    return sscanf(text, "%lf,%lf,%lf%c", &eye[0], &eye[1], &eye[2], &rest) == 3 && fabs(eye[0]) <= 100.0 &&
+                   fabs(eye[1]) <= 100.0 && fabs(eye[2]) <= 100.0
+               ? 0
+               : -1;
+}
+
 /* --port, --bind, --lead or --rate with its value: 0, -1 when arg is none of them, 2 for a bad value (said). */
 static int number_option(options_t *o, const char *arg, const char *value)
 {
@@ -202,6 +226,11 @@ static int value_option(options_t *o, const char *arg, const char *value)
         o->channel = value;
     } else if (strcmp(arg, "--host") == 0) {
         o->host = value;
+    } else if (strcmp(arg, "--eye") == 0) {
+        if (parse_eye(value, o->eye) != 0) {
+            fprintf(stderr, "hkf-opentrack: --eye wants X,Y,Z in m (each within +-100), not '%s'\n", value);
+            return 2;
+        }
     } else if ((result = number_option(o, arg, value)) >= 0 || (result = mapping_option(o, arg, value)) >= 0) {
         return result;
     } else {
@@ -218,7 +247,7 @@ static int parse_options(int argc, char **argv, options_t *o)
     o->lcm_url = LCM_URL_DEFAULT;
     o->channel = "HEAD_POSE";
     o->host = "127.0.0.1";
-    o->port = "4242";
+    o->port = NULL; /* 4242, or 5550 with --flightgear */
     o->lost = LOST_HOLD;
     o->mapping = opentrack_default_mapping();
     for (int i = 1; i < argc; ++i) {
@@ -230,12 +259,18 @@ static int parse_options(int argc, char **argv, options_t *o)
             o->mapping.relative_to_center = 0;
         } else if (strcmp(arg, "--predict") == 0) {
             o->predict = 1;
+        } else if (strcmp(arg, "--flightgear") == 0) {
+            o->flightgear = 1;
         } else if (value == NULL) {
             fprintf(stderr, "hkf-opentrack: unknown or incomplete argument '%s' (see --help)\n", arg);
             return 2;
         } else if (value_option(o, arg, argv[++i]) != 0) {
             return 2;
         }
+    }
+    o->target = o->flightgear ? "FlightGear" : "opentrack";
+    if (o->port == NULL) {
+        o->port = o->flightgear ? FLIGHTGEAR_DEFAULT_PORT : "4242";
     }
     if (o->channel[0] == '\0' || strlen(o->channel) > LCM_MAX_CHANNEL_NAME_LENGTH) {
         fprintf(stderr, "hkf-opentrack: a channel name has 1 to %d characters, not '%.80s'\n",
@@ -304,17 +339,35 @@ static int open_socket(const options_t *o)
 
 static void send_packet(bridge_t *bridge)
 {
-    if (send(bridge->socket_fd, bridge->packet, sizeof bridge->packet, MSG_DONTWAIT) ==
-        (ssize_t)sizeof bridge->packet) {
+    const options_t *o = bridge->options;
+    if (send(bridge->socket_fd, bridge->packet, bridge->packet_size, MSG_DONTWAIT) == (ssize_t)bridge->packet_size) {
         ++bridge->counts.sent;
         return;
     }
-    /* opentrack not (yet) listening, a full buffer, a network down: the next pose tries again */
+    /* opentrack or FlightGear not (yet) listening, a full buffer, a network down: the next pose tries again */
     if (bridge->counts.send_errors++ < 5) {
-        fprintf(stderr, "hkf-opentrack: sending to %s port %s failed: %s%s\n", bridge->options->host,
-                bridge->options->port, strerror(errno),
-                errno == ECONNREFUSED ? " (is opentrack running with the \"UDP over network\" input?)" : "");
+        fprintf(stderr, "hkf-opentrack: sending to %s port %s failed: %s%s\n", o->host, o->port, strerror(errno),
+                errno != ECONNREFUSED ? ""
+                : o->flightgear      ? " (is FlightGear running with --generic=socket,in,...,udp,hkf?)"
+                                     : " (is opentrack running with the \"UDP over network\" input?)");
     }
+}
+
+/* The six values as the packet (opentrack's datagram, or FlightGear's line): 0, or -1 when FlightGear's
+ * line cannot be made (a value not finite: never sent). */
+static int encode(bridge_t *bridge, const double values[OPENTRACK_FIELDS])
+{
+    double view[6];
+    int length;
+    if (!bridge->options->flightgear) {
+        opentrack_encode(values, bridge->packet);
+        bridge->packet_size = OPENTRACK_PACKET_SIZE;
+        return 0;
+    }
+    flightgear_view_values(values, bridge->options->eye, view);
+    length = flightgear_line(view, (char *)bridge->packet, sizeof bridge->packet);
+    bridge->packet_size = length > 0 ? (size_t)length : 0;
+    return length > 0 ? 0 : -1;
 }
 
 /* A tracked or coasting pose into the packet (moved on to now with --predict); 0, or -1 when
@@ -347,8 +400,11 @@ static int pack_pose(bridge_t *bridge, const hkf_head_pose_t *pose, int count)
         fprintf(stderr, "hkf-opentrack: a position not finite or beyond +-1000 cm (x %g, y %g, z %g) not sent: the "
                         "angles went with the last position\n", (double)pose->x, (double)pose->y, (double)pose->z);
     }
+    if (encode(bridge, values) != 0) {
+        bridge->counts.non_finite += count;
+        return -1;
+    }
     memcpy(bridge->last_values, values, sizeof values);
-    opentrack_encode(values, bridge->packet);
     bridge->have_packet = 1;
     return 0;
 }
@@ -367,8 +423,7 @@ static int handle_pose(bridge_t *bridge, const hkf_head_pose_t *pose)
         ++bridge->counts.held;
     } else if (pose->status == HKF_HEAD_POSE_T_LOST && o->lost == LOST_CENTER) {
         const double centre[OPENTRACK_FIELDS] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-        opentrack_encode(centre, bridge->packet);
-        bridge->have_packet = 1;
+        bridge->have_packet = encode(bridge, centre) == 0;
         ++bridge->counts.centered;
     } else if (pack_pose(bridge, pose, 1) != 0) {
         bridge->have_packet = 0;
@@ -424,7 +479,7 @@ static int run(bridge_t *bridge)
         return 1;
     }
     lcm_wait_stop_on_signals();
-    fprintf(stderr, "hkf-opentrack: %s on %s -> opentrack at %s port %s\n", o->channel, o->lcm_url, o->host, o->port);
+    fprintf(stderr, "hkf-opentrack: %s on %s -> %s at %s port %s\n", o->channel, o->lcm_url, o->target, o->host, o->port);
     while (!lcm_wait_stop_requested()) {
         if (lcm_wait_and_handle(lcm, lcm_wait_time(tick_us > 0 ? next_tick : 0, clock_monotonic_us()), "hkf-opentrack") < 0) {
             status = 1;
@@ -466,10 +521,10 @@ int main(int argc, char **argv)
     status = run(&bridge);
     close(bridge.socket_fd);
     fprintf(stderr,
-            "hkf-opentrack: %lu poses received, %lu datagrams sent to %s port %s (%lu repeats of the last pose "
+            "hkf-opentrack: %lu poses received, %lu datagrams sent to %s at %s port %s (%lu repeats of the last pose "
             "while LOST, %lu centre poses while LOST); dropped: %lu non-finite, %lu beyond +-180 deg, %lu send "
             "errors, %lu undecodable, %lu of unknown status; %lu positions beyond +-1000 cm held at the last\n",
-            c->received, c->sent, options.host, options.port, c->held, c->centered, c->non_finite, c->absurd,
+            c->received, c->sent, options.target, options.host, options.port, c->held, c->centered, c->non_finite, c->absurd,
             c->send_errors, c->decode_errors, c->unknown_status, c->position_beyond);
     return status;
 }

@@ -30,6 +30,7 @@ static const option_t options[] = {
     TEXT("--stillness", stillness),
     FLAG("--opentrack", opentrack),     TEXT("--opentrack-host", opentrack_host),
     TEXT("--opentrack-port", opentrack_port), TEXT("--opentrack-args", opentrack_args),
+    TEXT("--flightgear", flightgear),   TEXT("--flightgear-args", flightgear_args),
     TEXT("--lcm-url", lcm_url),         TEXT("--build", build),
     TEXT("--logs", logs),
 };
@@ -53,6 +54,7 @@ static void usage(FILE *to)
             "taken: the line says so and counts down again.\n"
             "\n"
             "  hkf-track --camera 0 --opentrack            a webcam into opentrack\n"
+            "  hkf-track --camera 0 --flightgear 5550      a webcam into FlightGear's cockpit view\n"
             "  hkf-track --source clip.mp4 --realtime      a video standing in for the camera\n"
             "\n"
             "options:\n"
@@ -74,6 +76,12 @@ static void usage(FILE *to)
             "  --opentrack-host HOST  where opentrack listens (default 127.0.0.1)\n"
             "  --opentrack-port PORT  (default 4242)\n"
             "  --opentrack-args ARGS  more hkf-opentrack options, e.g. '--invert yaw'\n"
+            "  --flightgear [HOST:]PORT\n"
+            "                         also run hkf-opentrack --flightgear: each pose to FlightGear's\n"
+            "                         generic input at HOST (default 127.0.0.1) and PORT; start fgfs with\n"
+            "                         --data=/usr/share/hkf/flightgear --generic=socket,in,60,,PORT,udp,hkf\n"
+            "  --flightgear-args ARGS more options for it, e.g. '--eye -0.2,0.6,-3.5' (the aircraft's\n"
+            "                         eye point, m) or '--invert yaw'\n"
             "  --lcm-url URL          LCM provider for all of them (default %s)\n"
             "  --seconds S            stop after this long (default: Ctrl-C, or the source's end)\n"
             "  --build DIR            where the programs were built (default: beside hkf-track)\n"
@@ -151,6 +159,12 @@ static int check(const track_options_t *o)
     if (!argument_number(o->opentrack_port, 1.0, 65535.0, &port) || port != (double)(long)port) {
         return bad("--opentrack-port wants a UDP port from 1 to 65535, not ", o->opentrack_port);
     }
+    if (o->flightgear != NULL && !argument_number(o->flightgear_port, 1.0, 65535.0, &port)) {
+        return bad("--flightgear wants [HOST:]PORT, a UDP port from 1 to 65535, not ", o->flightgear);
+    }
+    if (o->flightgear != NULL && port != (double)(long)port) {
+        return bad("--flightgear wants [HOST:]PORT, a whole port number, not ", o->flightgear);
+    }
     if (strncmp(o->lcm_url, "file://", 7) == 0) {
         return bad("--lcm-url: hkf-track runs live programs; a file:// log is for hkf-estimator and "
                    "hkf-filter --offline, not ", o->lcm_url);
@@ -162,12 +176,28 @@ static int check(const track_options_t *o)
     return 0;
 }
 
+/* --flightgear's [HOST:]PORT into flightgear_host and flightgear_port (the port checked with the rest). 0, or
+ * 2 (said) when the host does not fit. */
+static int split_flightgear(track_options_t *o)
+{
+    const char *colon = o->flightgear != NULL ? strrchr(o->flightgear, ':') : NULL;
+    size_t length = colon != NULL ? (size_t)(colon - o->flightgear) : 0;
+    if (o->flightgear == NULL) return 0;
+    if (length >= sizeof o->flightgear_host) return bad("--flightgear: the host is too long: ", o->flightgear);
+    memcpy(o->flightgear_host, o->flightgear, length);
+    o->flightgear_host[length] = '\0';
+    if (length == 0) strcpy(o->flightgear_host, "127.0.0.1");
+    o->flightgear_port = colon != NULL ? colon + 1 : o->flightgear;
+    return 0;
+}
+
 int track_options_parse(int argc, char **argv, track_options_t *o)
 {
     memset(o, 0, sizeof *o);
     o->opentrack_host = "127.0.0.1";
     o->opentrack_port = "4242";
     o->opentrack_args = "";
+    o->flightgear_args = "";
     o->lcm_url = LCM_URL_DEFAULT;
     o->logs = "hkf-track-logs";
     for (int i = 1; i < argc; ++i) {
@@ -176,5 +206,5 @@ int track_options_parse(int argc, char **argv, track_options_t *o)
         if (status != 0) return status;
     }
     o->lcm_url = lcm_url_resolve(o->lcm_url); /* '': $LCM_DEFAULT_URL, as LCM reads it; passed on resolved */
-    return check(o);
+    return split_flightgear(o) != 0 ? 2 : check(o);
 }

@@ -23,6 +23,10 @@ typedef struct {
     const char *opentrack_host;
     const char *opentrack_port;
     const char *opentrack_args; /* more hkf-opentrack options, split like a shell's words */
+    const char *flightgear;     /* --flightgear [HOST:]PORT as given, or NULL: no bridge to FlightGear */
+    char flightgear_host[256];  /* its HOST (default 127.0.0.1) */
+    const char *flightgear_port;/* its PORT */
+    const char *flightgear_args;/* more options for the bridge to FlightGear (e.g. --eye X,Y,Z) */
     const char *lcm_url;
     double seconds;             /* stop after this long; 0: on Ctrl-C or at the source's end */
     const char *build;          /* where the programs were built, or NULL: beside hkf-track */

@@ -98,27 +98,38 @@ static int program_folders(const track_options_t *o, char *tools, char *estimato
     return fits && snprintf(estimator, size, "%s/../estimator", tools) < (int)size ? 0 : -1;
 }
 
-static track_program_t *next_program(track_programs_t *p, const char *name, const char *folder)
+static track_program_t *next_program(track_programs_t *p, const char *name, const char *log_name,
+                                     const char *folder)
 {
     char path[TRACK_PATH_SIZE + 32];
     track_program_t *program = &p->program[p->count++];
     memset(program, 0, sizeof *program);
     program->name = name;
+    program->log_name = log_name;
     if (snprintf(path, sizeof path, "%s/%s", folder, name) < (int)sizeof path) add(p, program, path);
     return program;
 }
 
 static int plan_opentrack(track_programs_t *p, const track_options_t *o, const char *tools)
 {
-    track_program_t *bridge = next_program(p, "hkf-opentrack", tools);
+    track_program_t *bridge = next_program(p, "hkf-opentrack", "hkf-opentrack", tools);
     return add_option(p, bridge, "--lcm-url", o->lcm_url) | add_option(p, bridge, "--host", o->opentrack_host) |
            add_option(p, bridge, "--port", o->opentrack_port) | add_words(p, bridge, o->opentrack_args);
+}
+
+/* --flightgear [HOST:]PORT: the bridge in its FlightGear mode, its log apart from opentrack's. */
+static int plan_flightgear(track_programs_t *p, const track_options_t *o, const char *tools)
+{
+    track_program_t *bridge = next_program(p, "hkf-opentrack", "hkf-opentrack-flightgear", tools);
+    return add(p, bridge, "--flightgear") | add_option(p, bridge, "--lcm-url", o->lcm_url) |
+           add_option(p, bridge, "--host", o->flightgear_host) | add_option(p, bridge, "--port", o->flightgear_port) |
+           add_words(p, bridge, o->flightgear_args);
 }
 
 static int plan_filter_and_estimator(track_programs_t *p, const track_options_t *o, const char *tools,
                                      const char *estimator_folder)
 {
-    track_program_t *filter = next_program(p, "hkf-filter", tools);
+    track_program_t *filter = next_program(p, "hkf-filter", "hkf-filter", tools);
     char stillness[64];
     int failed = add_option(p, filter, "--lcm-url", o->lcm_url) | add_option(p, filter, "--config", o->config) |
                  add_option(p, filter, "--rate", o->rate);
@@ -126,7 +137,7 @@ static int plan_filter_and_estimator(track_programs_t *p, const track_options_t 
         snprintf(stillness, sizeof stillness, "stillness=%s", o->stillness);
         failed |= add_option(p, filter, "--set", stillness);
     }
-    track_program_t *estimator = next_program(p, "hkf-estimator", estimator_folder);
+    track_program_t *estimator = next_program(p, "hkf-estimator", "hkf-estimator", estimator_folder);
     failed |= add_option(p, estimator, "--source", o->camera != NULL ? o->camera : o->source) |
               add_option(p, estimator, "--lcm-url", o->lcm_url);
     if (o->realtime) failed |= add(p, estimator, "--realtime");
@@ -143,8 +154,10 @@ int track_programs_plan(track_programs_t *p, const track_options_t *o)
         fprintf(stderr, "hkf-track: the programs' folder is too long a path\n");
         return 2;
     }
-    if ((o->opentrack && plan_opentrack(p, o, tools) != 0) || plan_filter_and_estimator(p, o, tools, estimator) != 0) {
-        fprintf(stderr, "hkf-track: the programs' arguments are too long, or --opentrack-args has an open quote\n");
+    if ((o->opentrack && plan_opentrack(p, o, tools) != 0) || (o->flightgear != NULL && plan_flightgear(p, o, tools) != 0) ||
+        plan_filter_and_estimator(p, o, tools, estimator) != 0) {
+        fprintf(stderr, "hkf-track: the programs' arguments are too long, or --opentrack-args or --flightgear-args "
+                        "has an open quote\n");
         return 2;
     }
     for (int i = 0; i < p->count; ++i) {
@@ -204,7 +217,7 @@ static int start_one(track_program_t *program, const char *logs)
 {
     char reason[2 * TRACK_PATH_SIZE + 200];
     const pid_t parent = getpid();
-    snprintf(program->log, sizeof program->log, "%s/%s.log", logs, program->name);
+    snprintf(program->log, sizeof program->log, "%s/%s.log", logs, program->log_name);
     if (safe_output_problem(program->log, reason, sizeof reason) != 0) { /* an input under another name, /proc ... */
         fprintf(stderr, "hkf-track: %s\n", reason);
         return 1;

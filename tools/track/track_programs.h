@@ -15,13 +15,14 @@
 extern "C" {
 #endif
 
-#define TRACK_PROGRAMS 3      /* hkf-opentrack, hkf-filter, hkf-estimator */
+#define TRACK_PROGRAMS 4      /* hkf-opentrack (to opentrack, to FlightGear), hkf-filter, hkf-estimator */
 #define TRACK_MAX_ARGS 64
 #define TRACK_TEXT_SIZE 16384 /* the characters of all arguments */
 #define TRACK_PATH_SIZE 4096
 
 typedef struct {
-    const char *name;
+    const char *name;      /* the program */
+    const char *log_name;  /* its log's, LOGS/LOG_NAME.log: the name, or the bridge's to FlightGear */
     char *argv[TRACK_MAX_ARGS + 1];
     int argc;
     char log[TRACK_PATH_SIZE];
@@ -42,7 +43,7 @@ typedef struct {
  * (a program missing, arguments too long). */
 int track_programs_plan(track_programs_t *p, const track_options_t *o);
 
-/* Starts each program with its output in LOGS/NAME.log, prints its command
+/* Starts each program with its output in LOGS/LOG_NAME.log, prints its command
  * line, and waits 0.3 s before the next one so the subscribers listen before
  * the estimator publishes. 0, or 1 (said) when a log or a process could not
  * be made; the programs started are then stopped. */
