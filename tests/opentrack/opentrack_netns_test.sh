@@ -4,7 +4,8 @@
 # live, several hkf-opentrack bridges send to stand-ins for opentrack's UDP
 # input, lcm-logger records HEAD_POSE. Each receiver must hold exactly the
 # bytes opentrack expects for the recorded poses, message for message. Bad
-# input: a NaN pose, a destination nobody listens on, a local port in use.
+# input: a NaN pose, a destination nobody listens on, a local port in use. A bridge in --flightgear mode
+# sends FlightGear's lines, each checked the same way.
 # Needs root (unshare --net); exits 77 (skipped) otherwise.
 # usage: opentrack_netns_test.sh BUILD_DIR SOURCE_DIR PYTHON
 set -euo pipefail
@@ -25,11 +26,11 @@ fail() { echo "FAIL: $*" >&2; tail -n 5 "$work"/*.txt >&2 2>/dev/null || true; e
 "$build/tools/hkf-simlog" --out "$work/raw.lcmlog" --seconds 10 --seed 7 >/dev/null
 
 # receivers standing in for opentrack
-for port in 4242 4243 4245; do
+for port in 4242 4243 4245 5550; do
   "$python" "$here/udp_receiver.py" "$work/udp$port.hex" --port "$port" 2>"$work/receiver$port.txt" &
   pids+=($!)
 done
-for port in 4242 4243 4245; do
+for port in 4242 4243 4245 5550; do
   for _ in $(seq 50); do [ -e "$work/udp$port.hex.ready" ] && break; sleep 0.1; done
   [ -e "$work/udp$port.hex.ready" ] || fail "receiver on $port did not start"
 done
@@ -56,6 +57,7 @@ bridge defaults                                  # relative to the centre, hold 
 bridge options --port 4243 --absolute --lost send --invert yaw --scale pitch=2 --scale roll=-0.5
 bridge nobody --port 4244                        # nothing listens there
 bridge rate --port 4245 --rate 50
+bridge flightgear --flightgear --eye -0.21,0.208,0.36 --invert yaw   # FlightGear's generic input (port 5550)
 sleep 0.7
 
 lcm-logplayer -s 2 --lcm-url "$url" "$work/raw.lcmlog" &
@@ -90,7 +92,7 @@ wait "$logger_pid" || true
 sleep 0.2
 for p in "${pids[@]}"; do kill -TERM "$p" 2>/dev/null || true; done
 wait || true
-cat "$work/filter.txt" "$work"/defaults.txt "$work"/options.txt "$work"/nobody.txt "$work"/rate.txt
+cat "$work/filter.txt" "$work"/defaults.txt "$work"/options.txt "$work"/nobody.txt "$work"/rate.txt "$work"/flightgear.txt
 grep -q "300 measurements" "$work/filter.txt" || fail "the live filter did not receive all 300 measurements"
 
 check() { "$python" "$here/check_datagrams.py" --types "$types" "$work/poses.lcmlog" "$@"; }
@@ -98,6 +100,8 @@ check "$work/udp4242.hex" || fail "defaults: the bytes differ"
 check "$work/udp4243.hex" --absolute --lost send --invert yaw --scale pitch=2 --scale roll=-0.5 \
   || fail "options: the bytes differ"
 check "$work/udp4245.hex" --rate || fail "--rate: datagrams that were not due"
+check "$work/udp5550.hex" --flightgear=-0.21,0.208,0.36 --invert yaw || fail "--flightgear: the lines differ"
+grep -q "sent to FlightGear at 127.0.0.1 port 5550" "$work/flightgear.txt" || fail "--flightgear's summary"
 grep -q "1 commands" "$work/filter.txt" || fail "hkf-filter did not get the RECENTER"
 # the centre moved once, mid-drive, onto the pose of that moment
 "$python" - "$types" "$work/poses.lcmlog" <<'PY' || fail "RECENTER did not move the published centre"
