@@ -93,9 +93,7 @@ class Session:
                 raise FlightGearError(f"fgfs exited with status {self.fgfs.returncode} while starting (see {self.fg_log})")
             try:
                 if self.props is None:
-                    self.props = socket.create_connection(("127.0.0.1", PROPS_PORT), timeout=limit_s)
-                    self.props.sendall(b"data\r\n")
-                    self.props_file = self.props.makefile("rb")
+                    self._connect(limit_s)
                 left = max(1.0, limit_s - (time.time() - started))
                 if self.get("/sim/signals/fdm-initialized", left) == "true" and \
                         self.get_float("/sim/frame-rate", left) > 0:
@@ -108,16 +106,33 @@ class Session:
         raise FlightGearError(f"FlightGear was not running within {limit_s:.0f} s (its property server answering, "
                               "its flight model initialised)")
 
-    def get(self, path, limit_s=60.0):
-        """A property's value as text (answered once a rendered frame)."""
-        self.props.settimeout(limit_s)
+    def _connect(self, limit_s):
+        self.props = socket.create_connection(("127.0.0.1", PROPS_PORT), timeout=limit_s)
+        self.props.sendall(b"data\r\n")
+        self.props_file = self.props.makefile("rb")
+
+    def get(self, path, limit_s=60.0, again=True):
+        """A property's value as text (answered once a rendered frame). A connection the server reset or closed
+        (the c172p does once while it settles) is opened again, once."""
         try:
+            self.props.settimeout(limit_s)
             self.props.sendall(f"get {path}\r\n".encode())
-            answer = self.props_file.readline()
+            answer = self.props_file.readline()  # an empty value is a line of its own: an answer too
+        except socket.timeout as e:
+            raise FlightGearError(f"FlightGear stopped answering ({path}: no answer in {limit_s:.0f} s)") from e
         except OSError as e:
-            raise FlightGearError(f"FlightGear stopped answering ({path}: {e})") from e
+            answer, error = b"", e
+        else:
+            error = None
         if not answer:
-            raise FlightGearError(f"FlightGear closed its property server ({path})")
+            if again:
+                try:
+                    self.props.close()
+                    self._connect(limit_s)
+                except OSError as e:
+                    raise FlightGearError(f"FlightGear's property server is gone ({path}: {e})") from e
+                return self.get(path, limit_s, again=False)
+            raise FlightGearError(f"FlightGear closed its property server ({path}: {error or 'closed'})")
         return answer.decode().strip()
 
     def get_float(self, path, limit_s=60.0):

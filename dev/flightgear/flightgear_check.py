@@ -14,7 +14,7 @@ Steps, each timed:
      each datagram to the first answer that has it, against the frame time (the answers' interval);
   3. roll alone (Mesa's software renderer draws a rolled view at about 1 fps, so the chain runs with roll 0);
   4. the chain on the ufo, the bridge at --rate 1 (well below FlightGear's frame rate, so every pose sent is
-     on screen for frames): every pose sent read back within 0.05 deg (the heading after FlightGear's
+     on screen for frames), then with every pose sent: from each frame's capture to the view with its pose; every pose sent read back within 0.05 deg (the heading after FlightGear's
      wrap to 0-360) and 0.1 mm; the view's yaw at each hold against the truth;
   5. the c172p cockpit: the chain again, screenshots at rest and turned, and the figure beside the head.
 Any failure, a FlightGear that does not start or stops answering included, ends the run within its limits,
@@ -128,18 +128,25 @@ class Relay(threading.Thread):
 
 
 def run_chain(build, folder, eye, work, rate_hz, on_first_line=None):
-    """The clip through hkf-estimator -> hkf-filter -> hkf-opentrack --flightgear --rate rate_hz: the lines sent
-    ((arrival s, six values)); on_first_line is called with the first's time."""
+    """The clip through hkf-estimator -> hkf-filter -> hkf-opentrack --flightgear (--rate rate_hz, or every pose
+    when None), HEAD_POSE recorded in work/poses.lcmlog: the lines sent ((arrival s, six values));
+    on_first_line is called with the first's time."""
     os.makedirs(work, exist_ok=True)
     relay = Relay()
     relay.start()
     logs = {name: open(os.path.join(work, name + ".txt"), "w") for name in ("filter", "bridge", "estimator")}
     tools = os.path.join(build, "tools")
+    rate = ["--rate", f"{rate_hz:g}"] if rate_hz is not None else []
+    poses = os.path.join(work, "poses.lcmlog")
+    if os.path.exists(poses):
+        os.remove(poses)
     background = [
+        subprocess.Popen(["lcm-logger", "-q", "-c", "HEAD_POSE", "--lcm-url", URL, poses], stdout=subprocess.DEVNULL,
+                         stderr=subprocess.DEVNULL),
         subprocess.Popen([os.path.join(tools, "hkf-filter"), "--lcm-url", URL], stdout=logs["filter"],
                          stderr=subprocess.STDOUT),
         subprocess.Popen([os.path.join(tools, "hkf-opentrack"), "--flightgear", "--lcm-url", URL, "--port",
-                          str(RELAY_PORT), "--rate", f"{rate_hz:g}", "--eye", ",".join(f"{v:.4f}" for v in eye)] + NO_ROLL,
+                          str(RELAY_PORT), "--eye", ",".join(f"{v:.4f}" for v in eye)] + rate + NO_ROLL,
                          stdout=logs["bridge"], stderr=subprocess.STDOUT)]
     time.sleep(0.7)
     estimator = subprocess.Popen([os.path.join(build, "estimator", "hkf-estimator"), "--source", folder, "--fps",
@@ -291,12 +298,50 @@ def follow_step(check, build, fg, eye, frame_s, clip):
                        " (the face mesh reads 0.8 of a yaw on this head: docs/evaluation.md, yaw and pitch truth)")
 
 
+def capture_step(check, build, fg, clip, types):
+    """The chain on the ufo with every pose sent: from each frame's capture to the first frame whose view had its
+    pose or a newer one (FlightGear draws the newest line a frame). The view read back is matched by heading and
+    pitch, to 0.0001 deg, to the line sent, the line to its pose: one a pose, in order; the answers that more than
+    one line could be are left out."""
+    import lcm
+    sys.path.insert(0, types)
+    from hkf import head_pose_t
+    started = time.time()
+    first = len(fg.samples)
+    work = os.path.join(check.out, "chain_ufo_every_pose")
+    sent = run_chain(build, clip[0], fg.eye, work, None)
+    poses = [head_pose_t.decode(e.data) for e in lcm.EventLog(os.path.join(work, "poses.lcmlog"), "r")
+             if e.channel == "HEAD_POSE"]
+    if len(poses) != len(sent):  # the bridge sends one line a pose (a LOST one repeats the last line)
+        raise fg_session.FlightGearError(f"{len(poses)} poses recorded but {len(sent)} lines sent")
+    index = {}  # a line's (heading, pitch) -> the lines (poses) that had it
+    for k, (_, values) in enumerate(sent):
+        index.setdefault((round(values[0], 4), round(values[1], 4)), []).append(k)
+    shown = []  # (answer s, the line the view had), where one line alone had the view's heading and pitch
+    for t, view in list(fg.samples)[first:]:
+        key = (round((view["heading-offset-deg"] + 180.0) % 360.0 - 180.0, 4), round(view["pitch-offset-deg"], 4))
+        if len(index.get(key, [])) == 1:
+            shown.append((t, index[key][0]))
+    # per pose: from its capture to the first frame whose view had it or a newer pose (what the player sees)
+    latencies = [next(t for t, j in shown if j >= k) - poses[k].measurement_utime * 1e-6
+                 for k in range(len(poses)) if shown and shown[-1][1] >= k]
+    latencies = np.array(latencies)
+    if latencies.size < 10:
+        raise fg_session.FlightGearError(f"only {latencies.size} poses were followed by a view matched to its line")
+    check.step("capture to view, ufo", time.time() - started,
+               f"{len(sent)} poses sent (every one), {len(shown)} answers matched to their line: from each frame's "
+               f"capture to FlightGear's view having it or a newer pose, median {1000 * np.median(latencies):.0f} ms, 90 % "
+               f"{1000 * np.percentile(latencies, 90):.0f} ms, worst {1000 * latencies.max():.0f} ms")
+    check.lines.append(f"- from capture to FlightGear's view (the ufo, every pose sent): median "
+                       f"{1000 * np.median(latencies):.0f} ms, 90 % {1000 * np.percentile(latencies, 90):.0f} ms")
+
+
 def cockpit_step(check, build, fg, eye, clip, head_frames):
     """The c172p: the chain, screenshots at rest and turned (the view's heading asked for right after each: the
     c172p draws 1-4 fps and stalls at times), the figure."""
     folder, theta = clip
     started = time.time()
-    shots = {}
+    shots, shooter = {}, []
 
     def shoot(t0):
         def at(name, clip_t):
@@ -305,10 +350,12 @@ def cockpit_step(check, build, fg, eye, clip, head_frames):
             shot = fg.screenshot(path)
             heading = fg.get_float(f"{fg_session.VIEW}/heading-offset-deg", 60.0)  # the view as it was drawn
             shots[name] = (time.time(), path, shot, -((heading + 180.0) % 360.0 - 180.0))
-        rest_t, turned_t = 2.0, (np.flatnonzero(theta >= 30.0 - 1e-9)[0] / FPS) + 2.5
-        threading.Thread(target=lambda: (at("rest", rest_t), at("turned", turned_t)), daemon=True).start()
+        rest_t, turned_t = 1.0, (np.flatnonzero(theta >= 30.0 - 1e-9)[0] / FPS) + 2.5  # the rest: 2.5 s
+        shooter.append(threading.Thread(target=lambda: (at("rest", rest_t), at("turned", turned_t)), daemon=True))
+        shooter[0].start()
     sent = run_chain(build, folder, eye, os.path.join(check.out, "chain_c172p"), 4.0, on_first_line=shoot)
-    time.sleep(1.0)
+    if shooter:
+        shooter[0].join(timeout=60.0)  # its get waits for a frame: the c172p draws 1-4 fps and stalls at times
     with open(os.path.join(check.out, "chain_c172p", "read_back.txt"), "w") as f:
         f.writelines(f"sent {t:.3f} {values}\n" for t, values in sent)
         f.writelines(f"shot {name} {shot[0]:.3f} the view's yaw {shot[3]:+.2f}\n" for name, shot in shots.items())
@@ -347,7 +394,7 @@ def run(check, build):
     head, pose = turn_truth.make_head(build, check.out, by_name[HEAD])
     follow = make_clip(check.out, head, pose, "follow", [(30.0, 2.0), (-30.0, 2.0), (0.0, 1.5)])
     cockpit = make_clip(check.out, head, pose, "cockpit", [(30.0, 4.0)])
-    rest_index, turned_index = int(2.0 * FPS), int((np.flatnonzero(cockpit[1] >= 30.0 - 1e-9)[0] / FPS + 2.5) * FPS)
+    rest_index, turned_index = int(1.0 * FPS), int((np.flatnonzero(cockpit[1] >= 30.0 - 1e-9)[0] / FPS + 2.5) * FPS)
     head_frames = [("the head at rest", os.path.join(cockpit[0], f"{rest_index:05d}.jpg")),
                    ("the head turned 30 deg right", os.path.join(cockpit[0], f"{turned_index:05d}.jpg"))]
     check.step("clips", time.time() - started, f"{HEAD}'s head turned: {len(follow[1])} and {len(cockpit[1])} frames")
@@ -356,7 +403,7 @@ def run(check, build):
         with fg_session.Session(check.out, aircraft, data, log) as fg:
             try:
                 ready = fg.wait_ready(90.0 if aircraft == "c172p" else 60.0)
-                eye = fg.eye_point()
+                eye = fg.eye = fg.eye_point()
                 check.step(f"FlightGear ({aircraft})", ready, f"property server answering; eye point "
                            f"{', '.join(f'{v:.3f}' for v in eye)} m; frame rate {fg.get('/sim/frame-rate')} fps")
                 if aircraft == "ufo":
@@ -364,6 +411,7 @@ def run(check, build):
                     roll_step(check, fg, eye)
                     fg.start_reading()
                     follow_step(check, build, fg, eye, frame_s, follow)
+                    capture_step(check, build, fg, follow, os.path.join(build, "lcmtypes", "python"))
                 else:
                     cockpit_step(check, build, fg, eye, cockpit, head_frames)
             except Exception:
