@@ -112,14 +112,17 @@ class Session:
         self.props_file = self.props.makefile("rb")
 
     def get(self, path, limit_s=60.0, again=True):
-        """A property's value as text (answered once a rendered frame). A connection the server reset or closed
-        (the c172p does once while it settles) is opened again, once."""
+        """A property's value as text (answered once a rendered frame). A connection the server reset, closed or
+        stopped answering (the c172p does once while it settles) is opened again, once."""
+        wait = min(limit_s, 15.0) if again else limit_s  # a connection the server dropped silently: again after 15 s
         try:
-            self.props.settimeout(limit_s)
+            self.props.settimeout(wait)
             self.props.sendall(f"get {path}\r\n".encode())
             answer = self.props_file.readline()  # an empty value is a line of its own: an answer too
         except socket.timeout as e:
-            raise FlightGearError(f"FlightGear stopped answering ({path}: no answer in {limit_s:.0f} s)") from e
+            if not again:
+                raise FlightGearError(f"FlightGear stopped answering ({path}: no answer in {limit_s:.0f} s)") from e
+            answer, error = b"", e
         except OSError as e:
             answer, error = b"", e
         else:

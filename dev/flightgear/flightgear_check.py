@@ -301,8 +301,8 @@ def follow_step(check, build, fg, eye, frame_s, clip):
 def capture_step(check, build, fg, clip, types):
     """The chain on the ufo with every pose sent: from each frame's capture to the first frame whose view had its
     pose or a newer one (FlightGear draws the newest line a frame). The view read back is matched by heading and
-    pitch, to 0.0001 deg, to the line sent, the line to its pose: one a pose, in order; the answers that more than
-    one line could be are left out."""
+    pitch, to 0.0001 deg, to the newest line sent before with those values (FlightGear shows the newest), the line
+    to its pose: one a pose, in order."""
     import lcm
     sys.path.insert(0, types)
     from hkf import head_pose_t
@@ -317,11 +317,12 @@ def capture_step(check, build, fg, clip, types):
     index = {}  # a line's (heading, pitch) -> the lines (poses) that had it
     for k, (_, values) in enumerate(sent):
         index.setdefault((round(values[0], 4), round(values[1], 4)), []).append(k)
-    shown = []  # (answer s, the line the view had), where one line alone had the view's heading and pitch
+    shown = []  # (answer s, the line the view had: of the lines with its heading and pitch, the newest sent before)
     for t, view in list(fg.samples)[first:]:
         key = (round((view["heading-offset-deg"] + 180.0) % 360.0 - 180.0, 4), round(view["pitch-offset-deg"], 4))
-        if len(index.get(key, [])) == 1:
-            shown.append((t, index[key][0]))
+        before = [k for k in index.get(key, []) if sent[k][0] < t]
+        if before:
+            shown.append((t, max(before)))
     # per pose: from its capture to the first frame whose view had it or a newer pose (what the player sees)
     latencies = [next(t for t, j in shown if j >= k) - poses[k].measurement_utime * 1e-6
                  for k in range(len(poses)) if shown and shown[-1][1] >= k]
