@@ -21,7 +21,7 @@ Any failure, a FlightGear that does not start or stops answering included, ends 
 with a screenshot and a clear message, exit 1.
 
 usage: flightgear_check.py [--build DIR] [--out DIR]
-writes OUT/flightgear.md, OUT/*.png (the screenshots) and OUT/flightgear_cockpit.png (the figure).
+writes OUT/flightgear.md, OUT/*.png (the screenshots) and OUT/flightgear_cockpit.jpg (the figure).
 Needs root (a private network namespace) and FlightGear (./run flightgear installs it).
 """
 import argparse
@@ -385,7 +385,10 @@ def figure(out, head_frames, shots, views):
         cv2.putText(cockpit, f"FlightGear's view: yaw {view:+.1f} deg", (10, 590), cv2.FONT_HERSHEY_SIMPLEX, 0.8,
                     (0, 255, 0), 2)
         rows.append(np.hstack([head, cockpit]))
-    if not cv2.imwrite(os.path.join(out, "flightgear_cockpit.png"), np.vstack(rows)):
+    picture = np.vstack(rows)
+    picture = cv2.resize(picture, (1000, int(round(picture.shape[0] * 1000 / picture.shape[1]))),
+                         interpolation=cv2.INTER_AREA)
+    if not cv2.imwrite(os.path.join(out, "flightgear_cockpit.jpg"), picture, [cv2.IMWRITE_JPEG_QUALITY, 85]):
         raise fg_session.FlightGearError("cannot write the figure")
 
 
