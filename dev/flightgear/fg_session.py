@@ -111,9 +111,10 @@ class Session:
         self.props.sendall(b"data\r\n")
         self.props_file = self.props.makefile("rb")
 
-    def get(self, path, limit_s=60.0, again=True):
+    def get(self, path, limit_s=60.0, again=5):
         """A property's value as text (answered once a rendered frame). A connection the server reset, closed or
-        stopped answering (the c172p does once while it settles) is opened again, once."""
+        stopped answering (the c172p does while it settles, more than once at times) is opened again, up to `again`
+        times."""
         wait = min(limit_s, 15.0) if again else limit_s  # a connection the server dropped silently: again after 15 s
         try:
             self.props.settimeout(wait)
@@ -134,7 +135,7 @@ class Session:
                     self._connect(limit_s)
                 except OSError as e:
                     raise FlightGearError(f"FlightGear's property server is gone ({path}: {e})") from e
-                return self.get(path, limit_s, again=False)
+                return self.get(path, limit_s, again - 1)
             raise FlightGearError(f"FlightGear closed its property server ({path}: {error or 'closed'})")
         return answer.decode().strip()
 
