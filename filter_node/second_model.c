@@ -22,8 +22,9 @@ int second_model_awaits(const second_model_t *s, const resolved_models_t *models
                         int64_t utime, int64_t prompt_us)
 {
     const int awaiting = s->frame_count > 0 && s->frames[s->frame_newest].awaited;
+    const double from_yaw = (double)models->second_alone_from_yaw - (awaiting ? FILTER_NODE_AWAIT_HYSTERESIS : 0.0);
     int i;
-    if (fabs((double)z[HKF_AXIS_YAW]) < (double)models->second_alone_from_yaw - (awaiting ? FILTER_NODE_AWAIT_HYSTERESIS : 0.0)) {
+    if (fabs((double)z[HKF_AXIS_YAW]) < from_yaw) {
         return 0;
     }
     for (i = 0; i < s->frame_count; ++i) {
