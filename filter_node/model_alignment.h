@@ -26,8 +26,9 @@ extern "C" {
 #define MODEL_ALIGNMENT_KNOT_STEP 10.0 /* deg between knots */
 #define MODEL_ALIGNMENT_REACH 90.0     /* deg: knots from -this to +this; x beyond counts as at the end */
 #define MODEL_ALIGNMENT_KNOTS 19       /* 2 * REACH / KNOT_STEP + 1 */
-#define MODEL_ALIGNMENT_SMOOTHING 0.01 /* weight of a squared step between knots, against a frame's 1: it
-                                        * only settles the knots the frames leave open */
+#define MODEL_ALIGNMENT_SMOOTHING 0.1 /* weight of a squared step between knots, against a frame's 1: it
+                                       * settles the knots the frames leave open, and damps those few frames
+                                       * taught (chosen on the tuning heads over 1e-4 to 1: docs/programs.md) */
 
 typedef struct {
     char model[NODE_MODEL_NAME_MAX];              /* the second model the curve is for */

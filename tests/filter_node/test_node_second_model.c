@@ -254,7 +254,9 @@ static void test_second_model_offset_from_the_first_frames(void **state)
     }
     assert_int_equal(curve->frames, 40);
     assert_float_equal(model_alignment_correction(curve, 0, -20.0), 22.0, 0.05);
-    assert_float_equal(model_alignment_correction(curve, 0, 3.0), 4.0, 0.05);
+    /* within 0.2: the smoothing (MODEL_ALIGNMENT_SMOOTHING, 0.1 of a frame's weight per squared step) pulls a
+     * knot that ten frames taught a little toward the 18 deg steeper knot beside it */
+    assert_float_equal(model_alignment_correction(curve, 0, 3.0), 4.0, 0.2);
     assert_float_equal(model_alignment_correction(curve, 1, 8.0), -3.0, 0.05);
     /* another second model: its own curve, from its first frame on */
     m = measurement(T0 + 40 * FRAME_US, 1, 2.0, 5.0, 0.0);
