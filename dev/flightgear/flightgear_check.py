@@ -57,6 +57,12 @@ NO_ROLL = ["--scale", "roll=0"]
 # The bridge's rate on the ufo: a pose a second, so that every pose sent is on screen for frames even while
 # FlightGear stalls (it takes the newest line a frame and draws 3-8 fps here with the chain running).
 FOLLOW_RATE_HZ = 1.0
+# The c172p's screenshots: at the clip's rest and 2.5 s into its +30 deg hold, each once the view has shown the
+# newest pose (its heading within VIEW_SHOWN_DEG) for FRAMES_DRAWN answers in a row (one a frame: the frame that
+# took it drawn and on screen); turned right, the cockpit moves left on screen (-219 px at a view yaw of +22).
+REST_SHOT_S, TURNED_SHOT_S = 1.0, 2.5
+VIEW_SHOWN_DEG, FRAMES_DRAWN, SHOT_LIMIT_S = 0.5, 3, 30.0
+MIN_COCKPIT_SHIFT_PX = 100
 
 
 def log(message):
@@ -130,7 +136,7 @@ class Relay(threading.Thread):
 def run_chain(build, folder, eye, work, rate_hz, on_first_line=None):
     """The clip through hkf-estimator -> hkf-filter -> hkf-opentrack --flightgear (--rate rate_hz, or every pose
     when None), HEAD_POSE recorded in work/poses.lcmlog: the lines sent ((arrival s, six values));
-    on_first_line is called with the first's time."""
+    on_first_line is called with them (a list the relay goes on filling) once the first is in."""
     os.makedirs(work, exist_ok=True)
     relay = Relay()
     relay.start()
@@ -156,7 +162,7 @@ def run_chain(build, folder, eye, work, rate_hz, on_first_line=None):
         while estimator.poll() is None and not relay.sent:
             time.sleep(0.02)
         if relay.sent:
-            on_first_line(relay.sent[0][0])
+            on_first_line(relay.sent)
     estimator.wait(timeout=120)
     time.sleep(1.5)  # the last pose read back
     for proc in reversed(background):
@@ -337,39 +343,69 @@ def capture_step(check, build, fg, clip, types):
                        f"{1000 * np.median(latencies):.0f} ms, 90 % {1000 * np.percentile(latencies, 90):.0f} ms")
 
 
+def view_shows(fg, sent, limit_s):
+    """Until the view's heading has the newest line's (within VIEW_SHOWN_DEG) in FRAMES_DRAWN answers in a row
+    (one a frame: the frame that took the line has been drawn and shown): the view's yaw then."""
+    started, row = time.time(), 0
+    while row < FRAMES_DRAWN:
+        if time.time() - started > limit_s:
+            raise fg_session.FlightGearError(f"the c172p's view did not show the newest pose within {limit_s:.0f} s")
+        heading = fg.get_float(f"{fg_session.VIEW}/heading-offset-deg", limit_s)
+        row = row + 1 if sent and angle_gap(heading, sent[-1][1][0]) <= VIEW_SHOWN_DEG else 0
+    return -((heading + 180.0) % 360.0 - 180.0)
+
+
+def cockpit_shift(rest_png, turned_png):
+    """How far the cockpit moved on screen from the rest screenshot to the turned one: the horizontal shift (px,
+    < 0: to the left) of the screenshots' lower half (the panel), by phase correlation."""
+    import cv2
+    halves = []
+    for path in (rest_png, turned_png):
+        grey = cv2.cvtColor(cv2.imread(path), cv2.COLOR_BGR2GRAY).astype(np.float32)
+        halves.append(grey[grey.shape[0] // 2:])
+    window = cv2.createHanningWindow(halves[0].shape[::-1], cv2.CV_32F)
+    return cv2.phaseCorrelate(halves[0], halves[1], window)[0][0]
+
+
 def cockpit_step(check, build, fg, eye, clip, head_frames):
-    """The c172p: the chain, screenshots at rest and turned (the view's heading asked for right after each: the
-    c172p draws 1-4 fps and stalls at times), the figure."""
+    """The c172p: the chain; at rest and turned, once the view shows the newest pose (the c172p draws 1-4 fps and
+    stalls at times), a screenshot, the view's heading asked for again; the cockpit's shift between the two
+    screenshots; the figure."""
     folder, theta = clip
     started = time.time()
     shots, shooter = {}, []
 
-    def shoot(t0):
+    def shoot(sent):
+        t0 = sent[0][0]
+
         def at(name, clip_t):
             time.sleep(max(0.0, t0 + clip_t - time.time()))
+            before = view_shows(fg, sent, SHOT_LIMIT_S)
             path = os.path.join(check.out, f"c172p_{name}.png")
             shot = fg.screenshot(path)
-            heading = fg.get_float(f"{fg_session.VIEW}/heading-offset-deg", 60.0)  # the view as it was drawn
-            shots[name] = (time.time(), path, shot, -((heading + 180.0) % 360.0 - 180.0))
-        rest_t, turned_t = 1.0, (np.flatnonzero(theta >= 30.0 - 1e-9)[0] / FPS) + 2.5  # the rest: 2.5 s
-        shooter.append(threading.Thread(target=lambda: (at("rest", rest_t), at("turned", turned_t)), daemon=True))
+            heading = fg.get_float(f"{fg_session.VIEW}/heading-offset-deg", SHOT_LIMIT_S)
+            shots[name] = (time.time(), path, shot, before, -((heading + 180.0) % 360.0 - 180.0))
+        shooter.append(threading.Thread(target=lambda: (at("rest", REST_SHOT_S), at("turned", turned_t)), daemon=True))
         shooter[0].start()
+    turned_t = np.flatnonzero(theta >= 30.0 - 1e-9)[0] / FPS + TURNED_SHOT_S
     sent = run_chain(build, folder, eye, os.path.join(check.out, "chain_c172p"), 4.0, on_first_line=shoot)
     if shooter:
-        shooter[0].join(timeout=60.0)  # its get waits for a frame: the c172p draws 1-4 fps and stalls at times
+        shooter[0].join(timeout=2 * SHOT_LIMIT_S)
     with open(os.path.join(check.out, "chain_c172p", "read_back.txt"), "w") as f:
         f.writelines(f"sent {t:.3f} {values}\n" for t, values in sent)
-        f.writelines(f"shot {name} {shot[0]:.3f} the view's yaw {shot[3]:+.2f}\n" for name, shot in shots.items())
-    views = []
+        f.writelines(f"shot {name} {shot[0]:.3f} the view's yaw before {shot[3]:+.2f}, after {shot[4]:+.2f}\n"
+                     for name, shot in shots.items())
     for name in ("rest", "turned"):
         if name not in shots or shots[name][2] != 0:
             raise fg_session.FlightGearError(f"no {name} screenshot of the c172p")
-        views.append(shots[name][3])
+    views = [shots[name][4] for name in ("rest", "turned")]
+    shift = cockpit_shift(shots["rest"][1], shots["turned"][1])
     check.step("the chain, c172p", time.time() - started,
                f"{len(sent)} poses sent; the view's yaw at the screenshots: rest {views[0]:+.1f}, turned {views[1]:+.1f} "
-               f"deg ({shots['rest'][1]}, {shots['turned'][1]})")
-    check.goal("the cockpit turned with the head (the view's yaw at the turned screenshot, deg)", f"{views[1]:+.1f}",
-               views[1] > 15.0 and abs(views[0]) < 3.0)
+               f"deg; the cockpit moved {shift:+.0f} px ({shots['rest'][1]}, {shots['turned'][1]})")
+    check.goal("the cockpit turned with the head (the view's yaw after the turned screenshot, deg; the cockpit's "
+               "shift on screen from rest, px)", f"{views[1]:+.1f} deg, {shift:+.0f} px",
+               views[1] > 15.0 and abs(views[0]) < 3.0 and shift < -MIN_COCKPIT_SHIFT_PX)
     figure(check.out, head_frames, [shots["rest"][1], shots["turned"][1]], views)
 
 
@@ -398,7 +434,8 @@ def run(check, build):
     head, pose = turn_truth.make_head(build, check.out, by_name[HEAD])
     follow = make_clip(check.out, head, pose, "follow", [(30.0, 2.0), (-30.0, 2.0), (0.0, 1.5)])
     cockpit = make_clip(check.out, head, pose, "cockpit", [(30.0, 4.0)])
-    rest_index, turned_index = int(1.0 * FPS), int((np.flatnonzero(cockpit[1] >= 30.0 - 1e-9)[0] / FPS + 2.5) * FPS)
+    rest_index = int(REST_SHOT_S * FPS)
+    turned_index = int((np.flatnonzero(cockpit[1] >= 30.0 - 1e-9)[0] / FPS + TURNED_SHOT_S) * FPS)
     head_frames = [("the head at rest", os.path.join(cockpit[0], f"{rest_index:05d}.jpg")),
                    ("the head turned 30 deg right", os.path.join(cockpit[0], f"{turned_index:05d}.jpg"))]
     check.step("clips", time.time() - started, f"{HEAD}'s head turned: {len(follow[1])} and {len(cockpit[1])} frames")
