@@ -320,11 +320,15 @@ def capture_step(check, build, fg, clip, types):
              if e.channel == "HEAD_POSE"]
     if len(poses) != len(sent):  # the bridge sends one line a pose (a LOST one repeats the last line)
         raise fg_session.FlightGearError(f"{len(poses)} poses recorded but {len(sent)} lines sent")
+    samples = list(fg.samples)[first:]
+    with open(os.path.join(work, "read_back.txt"), "w") as f:  # what was sent and what FlightGear read
+        f.writelines(f"sent {t:.3f} {values}\n" for t, values in sent)
+        f.writelines(f"view {t:.3f} {[view[n] for n in ANGLES + POSITIONS]}\n" for t, view in samples)
     index = {}  # a line's (heading, pitch) -> the lines (poses) that had it
     for k, (_, values) in enumerate(sent):
         index.setdefault((round(values[0], 4), round(values[1], 4)), []).append(k)
     shown = []  # (answer s, the line the view had: of the lines with its heading and pitch, the newest sent before)
-    for t, view in list(fg.samples)[first:]:
+    for t, view in samples:
         key = (round((view["heading-offset-deg"] + 180.0) % 360.0 - 180.0, 4), round(view["pitch-offset-deg"], 4))
         before = [k for k in index.get(key, []) if sent[k][0] < t]
         if before:
