@@ -304,11 +304,31 @@ def follow_step(check, build, fg, eye, frame_s, clip):
                        " (the face mesh reads 0.8 of a yaw on this head: docs/evaluation.md, yaw and pitch truth)")
 
 
+def capture_latencies(sent, samples, poses, tracking):
+    """Per tracked pose (status `tracking`): from its frame's capture to the first answer whose view had its line
+    or a newer one. The view is matched by heading and pitch, to 0.0001 deg, to the newest line sent before with
+    those values (FlightGear shows the newest), the line to its pose: one a pose, in order. Also: how many answers
+    were matched."""
+    index = {}  # a line's (heading, pitch) -> the lines (poses) that had it
+    for k, (_, values) in enumerate(sent):
+        index.setdefault((round(values[0], 4), round(values[1], 4)), []).append(k)
+    shown = []  # (answer s, the line the view had: of the lines with its heading and pitch, the newest sent before)
+    for t, view in samples:
+        key = (round((view["heading-offset-deg"] + 180.0) % 360.0 - 180.0, 4), round(view["pitch-offset-deg"], 4))
+        before = [k for k in index.get(key, []) if sent[k][0] < t]
+        if before:
+            shown.append((t, max(before)))
+    # per pose: from its capture to the first frame whose view had it or a newer pose (what the player sees)
+    # (a pose without a capture of its own, COASTING or LOST, carries the last measurement's time: left out)
+    tracked = [k for k, pose in enumerate(poses) if pose.status == tracking]
+    latencies = [next(t for t, j in shown if j >= k) - poses[k].measurement_utime * 1e-6
+                 for k in tracked if shown and shown[-1][1] >= k]
+    return np.array(latencies), len(shown)
+
+
 def capture_step(check, build, fg, clip, types):
     """The chain on the ufo with every pose sent: from each frame's capture to the first frame whose view had its
-    pose or a newer one (FlightGear draws the newest line a frame). The view read back is matched by heading and
-    pitch, to 0.0001 deg, to the newest line sent before with those values (FlightGear shows the newest), the line
-    to its pose: one a pose, in order."""
+    pose or a newer one (FlightGear draws the newest line a frame)."""
     import lcm
     sys.path.insert(0, types)
     from hkf import head_pose_t
@@ -324,25 +344,14 @@ def capture_step(check, build, fg, clip, types):
     with open(os.path.join(work, "read_back.txt"), "w") as f:  # what was sent and what FlightGear read
         f.writelines(f"sent {t:.3f} {values}\n" for t, values in sent)
         f.writelines(f"view {t:.3f} {[view[n] for n in ANGLES + POSITIONS]}\n" for t, view in samples)
-    index = {}  # a line's (heading, pitch) -> the lines (poses) that had it
-    for k, (_, values) in enumerate(sent):
-        index.setdefault((round(values[0], 4), round(values[1], 4)), []).append(k)
-    shown = []  # (answer s, the line the view had: of the lines with its heading and pitch, the newest sent before)
-    for t, view in samples:
-        key = (round((view["heading-offset-deg"] + 180.0) % 360.0 - 180.0, 4), round(view["pitch-offset-deg"], 4))
-        before = [k for k in index.get(key, []) if sent[k][0] < t]
-        if before:
-            shown.append((t, max(before)))
-    # per pose: from its capture to the first frame whose view had it or a newer pose (what the player sees)
-    latencies = [next(t for t, j in shown if j >= k) - poses[k].measurement_utime * 1e-6
-                 for k in range(len(poses)) if shown and shown[-1][1] >= k]
-    latencies = np.array(latencies)
+    latencies, matched = capture_latencies(sent, samples, poses, head_pose_t.TRACKING)
     if latencies.size < 10:
         raise fg_session.FlightGearError(f"only {latencies.size} poses were followed by a view matched to its line")
     check.step("capture to view, ufo", time.time() - started,
-               f"{len(sent)} poses sent (every one), {len(shown)} answers matched to their line: from each frame's "
-               f"capture to FlightGear's view having it or a newer pose, median {1000 * np.median(latencies):.0f} ms, 90 % "
-               f"{1000 * np.percentile(latencies, 90):.0f} ms, worst {1000 * latencies.max():.0f} ms")
+               f"{len(sent)} poses sent (every one), {matched} answers matched to their line: from each tracked "
+               f"frame's capture to FlightGear's view having its pose or a newer one ({latencies.size}), median "
+               f"{1000 * np.median(latencies):.0f} ms, 90 % {1000 * np.percentile(latencies, 90):.0f} ms, worst "
+               f"{1000 * latencies.max():.0f} ms")
     check.lines.append(f"- from capture to FlightGear's view (the ufo, every pose sent): median "
                        f"{1000 * np.median(latencies):.0f} ms, 90 % {1000 * np.percentile(latencies, 90):.0f} ms")
 
