@@ -26,6 +26,7 @@ Needs root (a private network namespace) and FlightGear (./run flightgear instal
 """
 import argparse
 import os
+import shutil
 import signal
 import socket
 import subprocess
@@ -57,12 +58,15 @@ NO_ROLL = ["--scale", "roll=0"]
 # The bridge's rate on the ufo: a pose a second, so that every pose sent is on screen for frames even while
 # FlightGear stalls (it takes the newest line a frame and draws 3-8 fps here with the chain running).
 FOLLOW_RATE_HZ = 1.0
-# The c172p's screenshots: at the clip's rest and 2.5 s into its +30 deg hold, each once the view has shown the
-# newest pose (its heading within VIEW_SHOWN_DEG) for FRAMES_DRAWN answers in a row (one a frame: the frame that
-# took it drawn and on screen); turned right, the cockpit moves left on screen (-219 px at a view yaw of +22).
-REST_SHOT_S, TURNED_SHOT_S = 1.0, 2.5
+# The c172p's screenshots: at rest, 1 s after the start-up rest was measured (the clip stays still 3 s more, time
+# for a c172p drawing 1-4 fps), and 2.5 s into its +30 deg hold, each once the view has shown the newest pose (its
+# heading within VIEW_SHOWN_DEG) for FRAMES_DRAWN answers in a row (one a frame: the frame that took it drawn and
+# on screen); turned right, the cockpit moves left on screen (-222 to -226 px at a view yaw of +22).
+COCKPIT_STILL_S = truth_motion.START_REST_S + 3.0
+REST_SHOT_S, TURNED_SHOT_S = truth_motion.START_REST_S + 1.0, 2.5
 VIEW_SHOWN_DEG, FRAMES_DRAWN, SHOT_LIMIT_S = 0.5, 3, 30.0
 MIN_COCKPIT_SHIFT_PX = 100
+MIN_FEATURES = 50          # matched features that agree on the shift (292-471 in five pairs of screenshots)
 
 
 def log(message):
@@ -97,17 +101,21 @@ class Check:
 
 # ---- the clips ----
 
-def make_clip(out, head, pose, name, moves):
-    """A yaw clip of the head: the start-up rest, then (target deg, hold s) moves at 120 deg/s peak."""
+def make_clip(out, head, pose, name, moves, rest_s=truth_motion.START_REST_S):
+    """A yaw clip of the head: still for rest_s (the start-up rest and more), then (target deg, hold s) moves at
+    120 deg/s peak. A clip made before is used again when its yaw truth (yaw.txt) is the same."""
     builder = truth_motion._Builder(FPS, np.random.default_rng(7))
-    builder.hold(truth_motion.START_REST_S)
+    builder.hold(rest_s)
     for target, hold in moves:
         builder.move(target, 120.0, "step")
         builder.hold(hold)
     theta = np.array(builder.values)
     folder = os.path.join(out, "clips", name)
-    if not os.path.isdir(folder):
+    truth = os.path.join(folder, "yaw.txt")
+    if not (os.path.exists(truth) and np.array_equal(np.loadtxt(truth, ndmin=1), theta)):
+        shutil.rmtree(folder, ignore_errors=True)  # another clip, or one from a version without yaw.txt
         turn_truth.write_clip(folder, head, turn_truth.turns(pose, turn_truth.AXES["yaw"][0], theta), 11)
+        np.savetxt(truth, theta, fmt="%.17g")
     return folder, theta
 
 
@@ -369,15 +377,24 @@ def view_shows(fg, sent, limit_s):
 
 
 def cockpit_shift(rest_png, turned_png):
-    """How far the cockpit moved on screen from the rest screenshot to the turned one: the horizontal shift (px,
-    < 0: to the left) of the screenshots' lower half (the panel), by phase correlation."""
+    """How far the cockpit moved on screen from the rest screenshot to the turned one: the median horizontal shift
+    (px, < 0: to the left) of ORB features matched between the screenshots' lower halves (the panel; the menu bar
+    on top does not move), and how many matches (of all) lie within 20 px of it. (Phase correlation of the two
+    found -16 px once for a turn the screenshots show plainly.)"""
     import cv2
-    halves = []
-    for path in (rest_png, turned_png):
-        grey = cv2.cvtColor(cv2.imread(path), cv2.COLOR_BGR2GRAY).astype(np.float32)
-        halves.append(grey[grey.shape[0] // 2:])
-    window = cv2.createHanningWindow(halves[0].shape[::-1], cv2.CV_32F)
-    return cv2.phaseCorrelate(halves[0], halves[1], window)[0][0]
+    greys = [cv2.cvtColor(cv2.imread(path), cv2.COLOR_BGR2GRAY) for path in (rest_png, turned_png)]
+    lower = np.zeros_like(greys[0])
+    lower[lower.shape[0] // 2:] = 255
+    orb = cv2.ORB_create(2000)
+    (points_a, features_a), (points_b, features_b) = [orb.detectAndCompute(g, lower) for g in greys]
+    if features_a is None or features_b is None:
+        return 0.0, 0, 0
+    matches = cv2.BFMatcher(cv2.NORM_HAMMING, crossCheck=True).match(features_a, features_b)
+    dx = np.array([points_b[m.trainIdx].pt[0] - points_a[m.queryIdx].pt[0] for m in matches])
+    if dx.size == 0:
+        return 0.0, 0, 0
+    shift = float(np.median(dx))
+    return shift, int(np.sum(np.abs(dx - shift) < 20.0)), int(dx.size)
 
 
 def cockpit_step(check, build, fg, eye, clip, head_frames):
@@ -393,11 +410,12 @@ def cockpit_step(check, build, fg, eye, clip, head_frames):
 
         def at(name, clip_t):
             time.sleep(max(0.0, t0 + clip_t - time.time()))
+            asked = time.time()
             before = view_shows(fg, sent, SHOT_LIMIT_S)
             path = os.path.join(check.out, f"c172p_{name}.png")
             shot = fg.screenshot(path)
             heading = fg.get_float(f"{fg_session.VIEW}/heading-offset-deg", SHOT_LIMIT_S)
-            shots[name] = (time.time(), path, shot, before, -((heading + 180.0) % 360.0 - 180.0))
+            shots[name] = (time.time() - asked, path, shot, before, -((heading + 180.0) % 360.0 - 180.0))
         shooter.append(threading.Thread(target=lambda: (at("rest", REST_SHOT_S), at("turned", turned_t)), daemon=True))
         shooter[0].start()
     turned_t = np.flatnonzero(theta >= 30.0 - 1e-9)[0] / FPS + TURNED_SHOT_S
@@ -406,19 +424,24 @@ def cockpit_step(check, build, fg, eye, clip, head_frames):
         shooter[0].join(timeout=2 * SHOT_LIMIT_S)
     with open(os.path.join(check.out, "chain_c172p", "read_back.txt"), "w") as f:
         f.writelines(f"sent {t:.3f} {values}\n" for t, values in sent)
-        f.writelines(f"shot {name} {shot[0]:.3f} the view's yaw before {shot[3]:+.2f}, after {shot[4]:+.2f}\n"
+        f.writelines(f"shot {name} in {shot[0]:.2f} s: the view's yaw before {shot[3]:+.2f}, after {shot[4]:+.2f}\n"
                      for name, shot in shots.items())
     for name in ("rest", "turned"):
         if name not in shots or shots[name][2] != 0:
             raise fg_session.FlightGearError(f"no {name} screenshot of the c172p")
-    views = [shots[name][4] for name in ("rest", "turned")]
-    shift = cockpit_shift(shots["rest"][1], shots["turned"][1])
+    rest, turned = shots["rest"][3:], shots["turned"][3:]
+    shift, agreeing, matched = cockpit_shift(shots["rest"][1], shots["turned"][1])
+    seen = ", ".join(f"{name} {a:+.1f} / {b:+.1f} deg (the shot {shots[name][0]:.1f} s)"
+                     for name, (a, b) in (("rest", rest), ("turned", turned)))
     check.step("the chain, c172p", time.time() - started,
-               f"{len(sent)} poses sent; the view's yaw at the screenshots: rest {views[0]:+.1f}, turned {views[1]:+.1f} "
-               f"deg; the cockpit moved {shift:+.0f} px ({shots['rest'][1]}, {shots['turned'][1]})")
-    check.goal("the cockpit turned with the head (the view's yaw after the turned screenshot, deg; the cockpit's "
-               "shift on screen from rest, px)", f"{views[1]:+.1f} deg, {shift:+.0f} px",
-               views[1] > 15.0 and abs(views[0]) < 3.0 and shift < -MIN_COCKPIT_SHIFT_PX)
+               f"{len(sent)} poses sent; the view's yaw before / after each screenshot: {seen}; the cockpit moved "
+               f"{shift:+.0f} px ({agreeing} of {matched} features matched within 20 px of it; {shots['rest'][1]}, "
+               f"{shots['turned'][1]})")
+    check.goal("the cockpit turned with the head (the view's yaw before / after the screenshots, deg: rest within 3, "
+               "turned over 15; the cockpit's shift on screen, px)", f"{seen}, {shift:+.0f} px",
+               max(map(abs, rest)) < 3.0 and min(turned) > 15.0 and shift < -MIN_COCKPIT_SHIFT_PX and
+               agreeing >= MIN_FEATURES and 2 * agreeing > matched)
+    views = [rest[1], turned[1]]
     figure(check.out, head_frames, [shots["rest"][1], shots["turned"][1]], views)
 
 
@@ -446,7 +469,7 @@ def run(check, build):
     started = time.time()
     head, pose = turn_truth.make_head(build, check.out, by_name[HEAD])
     follow = make_clip(check.out, head, pose, "follow", [(30.0, 2.0), (-30.0, 2.0), (0.0, 1.5)])
-    cockpit = make_clip(check.out, head, pose, "cockpit", [(30.0, 4.0)])
+    cockpit = make_clip(check.out, head, pose, "cockpit", [(30.0, 4.0)], COCKPIT_STILL_S)
     rest_index = int(REST_SHOT_S * FPS)
     turned_index = int((np.flatnonzero(cockpit[1] >= 30.0 - 1e-9)[0] / FPS + TURNED_SHOT_S) * FPS)
     head_frames = [("the head at rest", os.path.join(cockpit[0], f"{rest_index:05d}.jpg")),
