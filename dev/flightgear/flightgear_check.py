@@ -14,9 +14,11 @@ Steps, each timed:
      each datagram to the first answer that has it, against the frame time (the answers' interval);
   3. roll alone (Mesa's software renderer draws a rolled view at about 1 fps, so the chain runs with roll 0);
   4. the chain on the ufo, the bridge at --rate 1 (well below FlightGear's frame rate, so every pose sent is
-     on screen for frames), then with every pose sent: from each frame's capture to the view with its pose; every pose sent read back within 0.05 deg (the heading after FlightGear's
-     wrap to 0-360) and 0.1 mm; the view's yaw at each hold against the truth;
-  5. the c172p cockpit: the chain again, screenshots at rest and turned, and the figure beside the head.
+     on screen for frames): every pose sent read back within 0.05 deg (the heading after FlightGear's wrap to
+     0-360) and 0.1 mm; the view's yaw at each hold against the truth; then with every pose sent: from each
+     frame's capture to the view with its pose;
+  5. the c172p cockpit: the chain again, screenshots at rest and turned once the view shows the pose, the
+     cockpit's shift on screen between them, and the figure beside the head.
 Any failure, a FlightGear that does not start or stops answering included, ends the run within its limits,
 with a screenshot and a clear message, exit 1.
 
@@ -25,6 +27,7 @@ writes OUT/flightgear.md, OUT/*.png (the screenshots) and OUT/flightgear_cockpit
 Needs root (a private network namespace) and FlightGear (./run flightgear installs it).
 """
 import argparse
+import collections
 import os
 import shutil
 import signal
@@ -185,23 +188,25 @@ def run_chain(build, folder, eye, work, rate_hz, on_first_line=None):
     return relay.sent
 
 
+def within_180(angle):
+    """An angle (deg) as -180 to 180: FlightGear reports the heading offset in 0-360."""
+    return (angle + 180.0) % 360.0 - 180.0
+
+
 def angle_gap(a, b):
-    return abs((a - b + 180.0) % 360.0 - 180.0)
+    return abs(within_180(a - b))
 
 
-ANGLES = ("heading-offset-deg", "pitch-offset-deg", "roll-offset-deg")
-POSITIONS = ("x-offset-m", "y-offset-m", "z-offset-m")
+def yaw_of_heading(heading):
+    """The view's yaw as hkf's (> 0 looks right) from FlightGear's heading offset (> 0 looks left)."""
+    return -within_180(heading)
 
 
-def first_match(samples, start, end, name, value):
-    """The first answer in (start, end] for property `name` within the tolerance of value, or None."""
-    angle = name in ANGLES
-    for t, values in samples:
-        if start < t <= end and name in values:
-            gap = angle_gap(values[name], value) if angle else abs(values[name] - value)
-            if gap <= (ANGLE_TOLERANCE if angle else POSITION_TOLERANCE):
-                return t
-    return None
+def view_has(view, values):
+    """Whether one frame's answers hold the line's six values (angles within ANGLE_TOLERANCE after the wrap,
+    positions within POSITION_TOLERANCE)."""
+    return all((angle_gap(view[name], v) <= ANGLE_TOLERANCE) if name.endswith("-deg") else
+               (abs(view[name] - v) <= POSITION_TOLERANCE) for name, v in zip(fg_session.VIEW_VALUES, values))
 
 
 def read_back(sent, samples, frame_s):
@@ -210,17 +215,28 @@ def read_back(sent, samples, frame_s):
     delays = []
     for i, (t, values) in enumerate(sent):
         end = (sent[i + 1][0] if i + 1 < len(sent) else t + 1.0) + 2 * frame_s
-        hit = next((ts for ts, view in samples if t < ts <= end and all(
-            first_match([(ts, view)], t, end, name, v) is not None for name, v in zip(ANGLES + POSITIONS, values))),
-            None)
+        hit = next((ts for ts, view in samples if t < ts <= end and view_has(view, values)), None)
         delays.append(hit - t if hit is not None else np.nan)
     return np.array(delays)
 
 
 def view_yaw(samples, start, end):
-    """The view's yaw (-heading, within +-180) answered in [start, end]."""
-    return [-((v["heading-offset-deg"] + 180.0) % 360.0 - 180.0) for t, v in samples
-            if start <= t <= end and "heading-offset-deg" in v]
+    """The view's yaw answered in [start, end]."""
+    return [yaw_of_heading(v["heading-offset-deg"]) for t, v in samples if start <= t <= end]
+
+
+def write_read_back(path, sent, samples, delays=None):
+    """What was sent (with each line's read-back delay, when known) and what FlightGear read, for a look later."""
+    with open(path, "w") as f:
+        for k, (t, values) in enumerate(sent):
+            f.write(f"sent {t:.3f} {values}" + (f" read back after {delays[k]:.3f} s" if delays is not None else "")
+                    + "\n")
+        f.writelines(f"view {t:.3f} {[view[n] for n in fg_session.VIEW_VALUES]}\n" for t, view in samples)
+
+
+def send_line(sock, values):
+    """One line straight to FlightGear's input: heading, pitch, roll (deg), x, y, z (m)."""
+    sock.sendto((",".join(f"{v:.5f}" for v in values) + "\n").encode(), ("127.0.0.1", fg_session.INPUT_PORT))
 
 
 # ---- the steps ----
@@ -236,7 +252,7 @@ def latency_step(check, fg, eye):
         line = [heading, 0.5 * k, 0.0] + list(eye)  # roll 0: the roll step checks it
         answers += fg.heading_answers(0.05 * (k % 5) + 0.2)  # a datagram at different moments of a frame
         t = time.time()
-        sock.sendto((",".join(f"{v:.5f}" for v in line) + "\n").encode(), ("127.0.0.1", fg_session.INPUT_PORT))
+        send_line(sock, line)
         before = 0
         while True:
             answer = fg.heading_answers(0.0)[0]
@@ -265,14 +281,14 @@ def roll_step(check, fg, eye):
     started = time.time()
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     for roll in (10.0, 0.0):
-        sock.sendto((",".join(f"{v:.5f}" for v in [0.0, 0.0, roll] + list(eye)) + "\n").encode(),
-                    ("127.0.0.1", fg_session.INPUT_PORT))
+        send_line(sock, [0.0, 0.0, roll] + list(eye))
         read = np.nan
         while time.time() - started < 30.0 and not angle_gap(read, roll) <= ANGLE_TOLERANCE:
             read = fg.get_float(f"{fg_session.VIEW}/roll-offset-deg", 30.0)
         if roll != 0.0:
             fg.screenshot(os.path.join(check.out, "ufo_roll10.png"))
-            check.goal("a roll of 10 deg read back within 0.05 deg", f"{read:.3f}", angle_gap(read, roll) <= ANGLE_TOLERANCE)
+            check.goal("a roll of 10 deg read back within 0.05 deg", f"{read:.3f}",
+                       angle_gap(read, roll) <= ANGLE_TOLERANCE)
     check.step("roll", time.time() - started, f"roll 10 deg read back, then level (out/flightgear/ufo_roll10.png: "
                "the view turned clockwise, the right ear down)")
 
@@ -285,11 +301,7 @@ def follow_step(check, build, fg, eye, frame_s, clip):
     samples = list(fg.samples)
     delays = read_back(sent, samples, frame_s)
     missed = int(np.sum(np.isnan(delays)))
-    with open(os.path.join(check.out, "chain_ufo", "read_back.txt"), "w") as f:  # what was sent and what FlightGear read
-        for (t, values), delay in zip(sent, delays):
-            f.write(f"sent {t:.3f} {values} read back after {delay:.3f} s\n")
-        for t, view in samples:
-            f.write(f"view {t:.3f} {[view[n] for n in ANGLES + POSITIONS]}\n")
+    write_read_back(os.path.join(check.out, "chain_ufo", "read_back.txt"), sent, samples, delays)
     check.step("the chain, ufo", time.time() - started,
                f"{len(sent)} poses sent; read back {len(sent) - missed}, median {1000 * np.nanmedian(delays):.0f} ms "
                f"after the datagram")
@@ -322,7 +334,7 @@ def capture_latencies(sent, samples, poses, tracking):
         index.setdefault((round(values[0], 4), round(values[1], 4)), []).append(k)
     shown = []  # (answer s, the line the view had: of the lines with its heading and pitch, the newest sent before)
     for t, view in samples:
-        key = (round((view["heading-offset-deg"] + 180.0) % 360.0 - 180.0, 4), round(view["pitch-offset-deg"], 4))
+        key = (round(within_180(view["heading-offset-deg"]), 4), round(view["pitch-offset-deg"], 4))
         before = [k for k in index.get(key, []) if sent[k][0] < t]
         if before:
             shown.append((t, max(before)))
@@ -349,9 +361,7 @@ def capture_step(check, build, fg, clip, types):
     if len(poses) != len(sent):  # the bridge sends one line a pose (a LOST one repeats the last line)
         raise fg_session.FlightGearError(f"{len(poses)} poses recorded but {len(sent)} lines sent")
     samples = list(fg.samples)[first:]
-    with open(os.path.join(work, "read_back.txt"), "w") as f:  # what was sent and what FlightGear read
-        f.writelines(f"sent {t:.3f} {values}\n" for t, values in sent)
-        f.writelines(f"view {t:.3f} {[view[n] for n in ANGLES + POSITIONS]}\n" for t, view in samples)
+    write_read_back(os.path.join(work, "read_back.txt"), sent, samples)
     latencies, matched = capture_latencies(sent, samples, poses, head_pose_t.TRACKING)
     if latencies.size < 10:
         raise fg_session.FlightGearError(f"only {latencies.size} poses were followed by a view matched to its line")
@@ -373,7 +383,7 @@ def view_shows(fg, sent, limit_s):
             raise fg_session.FlightGearError(f"the c172p's view did not show the newest pose within {limit_s:.0f} s")
         heading = fg.get_float(f"{fg_session.VIEW}/heading-offset-deg", limit_s)
         row = row + 1 if sent and angle_gap(heading, sent[-1][1][0]) <= VIEW_SHOWN_DEG else 0
-    return -((heading + 180.0) % 360.0 - 180.0)
+    return yaw_of_heading(heading)
 
 
 def cockpit_shift(rest_png, turned_png):
@@ -397,6 +407,11 @@ def cockpit_shift(rest_png, turned_png):
     return shift, int(np.sum(np.abs(dx - shift) < 20.0)), int(dx.size)
 
 
+# A c172p screenshot: how long it took (the wait for the view included), its file, the import's status, and the
+# view's yaw (deg) read before and after it.
+Shot = collections.namedtuple("Shot", "seconds path status before after")
+
+
 def cockpit_step(check, build, fg, eye, clip, head_frames):
     """The c172p: the chain; at rest and turned, once the view shows the newest pose (the c172p draws 1-4 fps and
     stalls at times), a screenshot, the view's heading asked for again; the cockpit's shift between the two
@@ -415,7 +430,7 @@ def cockpit_step(check, build, fg, eye, clip, head_frames):
             path = os.path.join(check.out, f"c172p_{name}.png")
             shot = fg.screenshot(path)
             heading = fg.get_float(f"{fg_session.VIEW}/heading-offset-deg", SHOT_LIMIT_S)
-            shots[name] = (time.time() - asked, path, shot, before, -((heading + 180.0) % 360.0 - 180.0))
+            shots[name] = Shot(time.time() - asked, path, shot, before, yaw_of_heading(heading))
         shooter.append(threading.Thread(target=lambda: (at("rest", REST_SHOT_S), at("turned", turned_t)), daemon=True))
         shooter[0].start()
     turned_t = np.flatnonzero(theta >= 30.0 - 1e-9)[0] / FPS + TURNED_SHOT_S
@@ -424,25 +439,24 @@ def cockpit_step(check, build, fg, eye, clip, head_frames):
         shooter[0].join(timeout=2 * SHOT_LIMIT_S)
     with open(os.path.join(check.out, "chain_c172p", "read_back.txt"), "w") as f:
         f.writelines(f"sent {t:.3f} {values}\n" for t, values in sent)
-        f.writelines(f"shot {name} in {shot[0]:.2f} s: the view's yaw before {shot[3]:+.2f}, after {shot[4]:+.2f}\n"
-                     for name, shot in shots.items())
+        f.writelines(f"shot {name} in {shot.seconds:.2f} s: the view's yaw before {shot.before:+.2f}, after "
+                     f"{shot.after:+.2f}\n" for name, shot in shots.items())
     for name in ("rest", "turned"):
-        if name not in shots or shots[name][2] != 0:
+        if name not in shots or shots[name].status != 0:
             raise fg_session.FlightGearError(f"no {name} screenshot of the c172p")
-    rest, turned = shots["rest"][3:], shots["turned"][3:]
-    shift, agreeing, matched = cockpit_shift(shots["rest"][1], shots["turned"][1])
-    seen = ", ".join(f"{name} {a:+.1f} / {b:+.1f} deg (the shot {shots[name][0]:.1f} s)"
-                     for name, (a, b) in (("rest", rest), ("turned", turned)))
+    rest, turned = shots["rest"], shots["turned"]
+    shift, agreeing, matched = cockpit_shift(rest.path, turned.path)
+    seen = ", ".join(f"{name} {shot.before:+.1f} / {shot.after:+.1f} deg (the shot {shot.seconds:.1f} s)"
+                     for name, shot in (("rest", rest), ("turned", turned)))
     check.step("the chain, c172p", time.time() - started,
                f"{len(sent)} poses sent; the view's yaw before / after each screenshot: {seen}; the cockpit moved "
-               f"{shift:+.0f} px ({agreeing} of {matched} features matched within 20 px of it; {shots['rest'][1]}, "
-               f"{shots['turned'][1]})")
+               f"{shift:+.0f} px ({agreeing} of {matched} features matched within 20 px of it; {rest.path}, "
+               f"{turned.path})")
     check.goal("the cockpit turned with the head (the view's yaw before / after the screenshots, deg: rest within 3, "
                "turned over 15; the cockpit's shift on screen, px)", f"{seen}, {shift:+.0f} px",
-               max(map(abs, rest)) < 3.0 and min(turned) > 15.0 and shift < -MIN_COCKPIT_SHIFT_PX and
-               agreeing >= MIN_FEATURES and 2 * agreeing > matched)
-    views = [rest[1], turned[1]]
-    figure(check.out, head_frames, [shots["rest"][1], shots["turned"][1]], views)
+               max(abs(rest.before), abs(rest.after)) < 3.0 and min(turned.before, turned.after) > 15.0 and
+               shift < -MIN_COCKPIT_SHIFT_PX and agreeing >= MIN_FEATURES and 2 * agreeing > matched)
+    figure(check.out, head_frames, [rest.path, turned.path], [rest.after, turned.after])
 
 
 def figure(out, head_frames, shots, views):
