@@ -7,6 +7,9 @@
 /* The filter set up for the model `model` (its settings: resolved), the calibration beside it. */
 static int setup_filter(filter_node_t *node, const char *model, const resolved_model_t *resolved)
 {
+    if (strncmp(model, node->model, sizeof node->model) != 0) {
+        second_model_forget_alignment(&node->second); /* first minus second: another first model, another curve */
+    }
     if (model != node->model) {
         strncpy(node->model, model, sizeof node->model - 1);
         node->model[sizeof node->model - 1] = '\0';
@@ -107,11 +110,65 @@ static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utim
     ++node->counts.published;
 }
 
+/* A pose into the queue, behind those there (FILTER_NODE_QUEUED: the kept frames and one more, never full). */
+static void queue_pose(filter_node_t *node, const hkf_head_pose_t *pose)
+{
+    if (node->queued_count < FILTER_NODE_QUEUED) {
+        node->queued[(node->queued_first + node->queued_count++) % FILTER_NODE_QUEUED] = *pose;
+    }
+}
+
+/* The queue's first pose into *pose: 1, or 0 when it is empty. */
+static int unqueue_pose(filter_node_t *node, hkf_head_pose_t *pose)
+{
+    if (node->queued_count == 0) {
+        return 0;
+    }
+    *pose = node->queued[node->queued_first];
+    node->queued_first = (node->queued_first + 1) % FILTER_NODE_QUEUED;
+    --node->queued_count;
+    return 1;
+}
+
+/* The oldest waiting frame settled without its answer (second_model_settle), its own step's pose into *pose
+ * unless a later pose is out already. Returns -1 when no frame waits, else whether *pose is to be published. */
+static int settle_oldest(filter_node_t *node, hkf_head_pose_t *pose)
+{
+    const second_model_frame_t *frame;
+    second_model_track_t track;
+    track.filter = &node->filter;
+    track.calibration = &node->calibration;
+    if (!second_model_settle(&node->second, &node->models, &track, &frame)) {
+        return -1;
+    }
+    node_rest_keep(&node->rest, &node->filter); /* the frames redone from before the player's rest or RECENTER */
+    ++node->counts.awaits_expired;
+    if (frame->utime <= node->published_utime) {
+        return 0;
+    }
+    fill_pose(node, &track.posterior, frame->utime, pose);
+    pose->measurement_utime = frame->utime;
+    return 1;
+}
+
+/* Every waiting frame settled without its answer, their poses queued (a later frame came first). */
+static void settle_waiting(filter_node_t *node)
+{
+    hkf_head_pose_t pose;
+    int result;
+    while ((result = settle_oldest(node, &pose)) >= 0) {
+        if (result) {
+            queue_pose(node, &pose);
+        }
+    }
+}
+
 /* The track starts again with the next measurement (a gap longer than
  * max_dt, or a new clock): the filter reset, the restart counted, the kept
  * frames forgotten. */
 static void restart_track(filter_node_t *node)
 {
+    settle_waiting(node); /* one pose per frame: a waiting frame's is published before its step is forgotten */
     hkf_reset(&node->filter);
     (void)hkf_calibration_reset(&node->calibration, &node->filter);
     node_position_restart(&node->position);
@@ -166,24 +223,6 @@ typedef enum {
     ANGLES_POSE     /* taken: *out is the pose's */
 } angles_step_t;
 
-/* A frame without a face: the filter coasts (hkf_predict). */
-static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
-                           hkf_real_t dt, hkf_output_t *out)
-{
-    ++node->counts.without_face;
-    if (hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
-        strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model, model) == HKF_OK) {
-        second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
-    }
-    second_model_keep_frame(&node->second, m, NULL, dt, 0, &node->filter, &node->calibration);
-    if (hkf_predict(&node->filter, dt, out) != HKF_OK) { /* no track yet (or again, after a gap) */
-        return ANGLES_NO_POSE;
-    }
-    (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
-    node_rest_take(&node->rest, &node->filter, NULL, dt);
-    return ANGLES_POSE;
-}
-
 /* How recent a frame with a second model's measurement must be for the next to wait for the second's:
  * half coast_time, so that waiting never coasts the track to LOST. */
 static int64_t prompt_us(const filter_node_t *node)
@@ -191,10 +230,40 @@ static int64_t prompt_us(const filter_node_t *node)
     return (int64_t)(0.5e6 * (double)node->config->settings.coast_time);
 }
 
+/* One frame's measurement z (NULL: none) to the rest, with the time of the frames not given to it before. */
+static void feed_rest(filter_node_t *node, const hkf_real_t *z, hkf_real_t dt)
+{
+    node_rest_take(&node->rest, &node->filter, z, node->rest_dt + dt);
+    node->rest_dt = 0;
+}
+
+/* A frame without a face: the filter coasts (hkf_predict). */
+static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
+                           int64_t arrival, hkf_real_t dt, hkf_output_t *out)
+{
+    ++node->counts.without_face;
+    if (hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED && m->model != NULL &&
+        strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model, model) == HKF_OK) {
+        second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
+    }
+    second_model_keep_frame(&node->second, m, arrival, NULL, dt, 0, &node->filter, &node->calibration);
+    if (hkf_predict(&node->filter, dt, out) != HKF_OK) { /* no track yet (or again, after a gap) */
+        return ANGLES_NO_POSE;
+    }
+    (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
+    if (second_model_answers(&node->second, m->utime, prompt_us(node))) {
+        node->rest_dt += dt; /* the second model may see the face: its measurement goes to the rest (take_second) */
+    } else {
+        node_rest_take(&node->rest, &node->filter, NULL, dt);
+        node->rest_dt = 0;
+    }
+    return ANGLES_POSE;
+}
+
 /* A measurement: the filter set up for its model (a change of model restarts
  * the track with the new curves), then hkf_update. */
 static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
-                            hkf_real_t dt, hkf_output_t *out)
+                            int64_t arrival, hkf_real_t dt, hkf_output_t *out)
 {
     const hkf_real_t z[3] = {m->pitch, m->yaw, m->roll};
     hkf_filter_t before;
@@ -215,8 +284,8 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
         hkf_predict(&node->filter, dt, out) == HKF_OK) {
         ++node->counts.awaited; /* its step and its pose when the second model's measurement comes (take_second) */
         (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
-        second_model_keep_frame(&node->second, m, z, dt, 1, &before, &calibration_before);
-        node_rest_take(&node->rest, &node->filter, NULL, dt);
+        second_model_keep_frame(&node->second, m, arrival, z, dt, 1, &before, &calibration_before);
+        feed_rest(node, z, dt); /* the head measured at any yaw: a rest beside the screen too */
         node->last_measurement_utime = m->utime;
         return ANGLES_NO_POSE;
     }
@@ -225,19 +294,21 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
         return ANGLES_REFUSED; /* not kept: the step never happened */
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, z, dt); /* for the next measurement's R */
-    second_model_keep_frame(&node->second, m, z, dt, 0, &before, &calibration_before);
-    node_rest_take(&node->rest, &node->filter, z, dt); /* after the frame is kept: a redo keeps the rest (fuse_second) */
+    second_model_keep_frame(&node->second, m, arrival, z, dt, 0, &before, &calibration_before);
+    feed_rest(node, z, dt); /* after the frame is kept: a redo keeps the rest (fuse_second) */
     node->last_measurement_utime = m->utime;
     return ANGLES_POSE;
 }
 
 /* A measurement taken, its step dt: the angles (a frame with a face updates them, one without coasts),
  * the position, the pose. Returns 1 when *pose is to be published. */
-static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_real_t dt, hkf_head_pose_t *pose)
+static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival, hkf_real_t dt,
+                   hkf_head_pose_t *pose)
 {
     const resolved_model_t *model = resolved_models_find(&node->models, m->model); /* resolved at start */
     hkf_output_t out;
-    const angles_step_t angles = m->valid ? update(node, m, model, dt, &out) : coast(node, m, model, dt, &out);
+    const angles_step_t angles =
+        m->valid ? update(node, m, model, arrival, dt, &out) : coast(node, m, model, arrival, dt, &out);
     if (angles == ANGLES_REFUSED) {
         return 0;
     }
@@ -254,7 +325,7 @@ int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement
     hkf_real_t dt;
     const stream_admission_result_t r = stream_admission_admit_time(&node->admission, m->utime, values_ok(m));
     ++node->counts.received;
-    return taken(node, &r, &dt) && measure(node, m, dt, pose);
+    return taken(node, &r, &dt) && measure(node, m, m->utime, dt, pose);
 }
 
 /* The node follows a new capture clock (stream_admission.h): the track restarts as after a gap. The
@@ -267,6 +338,7 @@ static void resync_clock(filter_node_t *node)
     if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
         restart_track(node);
     } else {
+        settle_waiting(node);
         node_position_restart(&node->position);
         second_model_forget_frames(&node->second);
     }
@@ -300,17 +372,20 @@ static int passed(filter_node_t *node, stream_verdict_t verdict)
 /* A second model's measurement m: fused into its kept frame when its angles are good (*frame: that
  * frame, NULL when no longer kept; *posterior: the output of its step), and counted. Returns 1 when fused. */
 static int fuse_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
-                       const second_model_frame_t **frame, hkf_output_t *posterior)
+                       int64_t arrival, const second_model_frame_t **frame, hkf_output_t *posterior)
 {
     const int bad = m->valid && !finite_angles(m);
     second_model_track_t track;
     track.filter = m->valid && !bad ? &node->filter : NULL;
     track.calibration = &node->calibration;
-    if (!second_model_take(&node->second, &node->models, m, &track, frame)) {
+    if (!second_model_take(&node->second, &node->models, m, arrival, &track, frame)) {
         ++*(bad ? &node->counts.bad_values : &node->counts.unpaired);
         return 0;
     }
-    node_rest_keep(&node->rest, &node->filter); /* the frames redone from before a rest was measured */
+    node_rest_keep(&node->rest, &node->filter); /* the frames redone from before the player's rest or RECENTER */
+    if (*frame == &node->second.frames[node->second.frame_newest] && !(*frame)->valid && node->rest_dt > 0) {
+        feed_rest(node, (*frame)->z2, 0); /* a face only the second model sees: its measurement, aligned */
+    }
 
     if (m->utime > node->last_measurement_utime) {
         node->last_measurement_utime = m->utime;
@@ -350,15 +425,36 @@ static int pose_after_fusing(filter_node_t *node, const second_model_frame_t *fr
     return 1;
 }
 
+int64_t filter_node_await_due(const filter_node_t *node)
+{
+    return node->queued_count > 0 ? 1 : second_model_deadline(&node->second);
+}
+
+int filter_node_await_next(filter_node_t *node, int64_t now, hkf_head_pose_t *pose, int64_t *due)
+{
+    int result;
+    if (unqueue_pose(node, pose)) {
+        *due = now;
+        return 1;
+    }
+    while ((*due = second_model_deadline(&node->second)) != 0 && *due <= now) {
+        if ((result = settle_oldest(node, pose)) != 0) {
+            return result > 0;
+        }
+    }
+    return 0;
+}
+
 /* A second model's measurement m of one of the followed publisher's frames: its angles fused into that
  * frame while it is kept (a frame no longer kept: too late), its position standing in where the first
  * model measured none, the pose. Returns 1 when *pose is to be published (pose_after_fusing). */
-static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose)
+static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival,
+                       hkf_head_pose_t *pose)
 {
     const resolved_model_t *model = resolved_models_find(&node->models, m->model); /* resolved at start */
     const second_model_frame_t *frame;
     hkf_output_t posterior;
-    const int fused = fuse_second(node, m, model, &frame, &posterior);
+    const int fused = fuse_second(node, m, model, arrival, &frame, &posterior);
     take_second_position(node, m, frame, model);
     return fused && pose_after_fusing(node, frame, &posterior, pose);
 }
@@ -373,13 +469,17 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
     hkf_real_t dt;
     ++node->counts.received; /* every measurement that reaches the node, whatever becomes of it */
     if (r.verdict == STREAM_SECOND_MODEL) {
-        return take_second(node, m, pose);
+        return take_second(node, m, arrival_utime, pose);
     }
     if (!passed(node, r.verdict) || !taken(node, &r, &dt)) {
         return 0;
     }
     node->lost_published = 0; /* the estimator speaks: no silence */
-    return measure(node, m, dt, pose);
+    settle_waiting(node); /* a later frame came: the frames still waiting are published first, without their answer */
+    if (measure(node, m, arrival_utime, dt, pose)) {
+        queue_pose(node, pose);
+    }
+    return unqueue_pose(node, pose);
 }
 
 int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
@@ -453,17 +553,22 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
     switch (command->command) {
     case HKF_TRACKER_COMMAND_T_RECENTER:
         ++node->counts.commands;
+        settle_waiting(node); /* the waiting frames' poses (queued) on the centre they were measured with */
         second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
-        node_rest_ask(&node->rest);        /* and on the rest's mean once it is measured */
+        node_rest_recentered(&node->rest, &node->filter); /* the player's centre; the rest's mean once it is measured */
+        node->rest_dt = 0;
         /* the position's centre: the position last published (at the angles' frame time), so that it reads 0 after */
         node_position_recenter(&node->position, node->admission.last_utime);
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;
+        settle_waiting(node);
         second_model_forget_frames(&node->second);
+        second_model_forget_alignment(&node->second); /* a curve learnt from a broken model does not outlive it */
         node_position_reset(&node->position); /* the models' offset too: nothing of before stays */
         node_rest_forget(&node->rest); /* before the set-up, which would keep it */
+        node->rest_dt = 0;
         (void)setup_filter(node, node->model, resolved_models_find(&node->models, node->model));
         return 0;
     default:

@@ -96,8 +96,11 @@ typedef struct {
     unsigned long paired;          /* second-model measurements fused into their frame */
     unsigned long unpaired;        /* second-model measurements not used: too late, no face, or a frame's third */
     unsigned long awaited;         /* frames whose first measurement waited for the second's (second_model_awaits) */
+    unsigned long awaits_expired;  /* of those, published without it: its deadline passed, or a later frame came */
     unsigned long commands;        /* commands applied */
 } filter_node_counts_t;
+
+#define FILTER_NODE_QUEUED (FILTER_NODE_PAIR_FRAMES + 1) /* waiting frames settled at once, and the frame after them */
 
 typedef struct {
     const node_config_t *config;
@@ -115,6 +118,10 @@ typedef struct {
     int64_t seq;
     int64_t published_utime;          /* the last pose's utime: none later is older (INT64_MIN: none on this clock) */
     second_model_t second;            /* the kept frames and the second model's offset (second_model.h) */
+    hkf_real_t rest_dt;               /* s of frames without a face not yet given to the rest: their second
+                                       * model's measurement may still come (a face only it sees) */
+    hkf_head_pose_t queued[FILTER_NODE_QUEUED];  /* poses due at once, in order (filter_node_queued) */
+    int queued_first, queued_count;
     node_position_t position;         /* the head's position, a second model's standing in (node_position.h) */
     filter_node_counts_t counts;
 } filter_node_t;
@@ -137,6 +144,21 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
  * Returns 1 when *pose is to be published. */
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose);
+
+/* One pose per frame whatever the second model does: a frame whose first measurement waits for the second's
+ * (second_model_awaits) is published by its deadline (second_model_deadline: most of a frame period after it
+ * arrived), with the second's answer or, when none came, from its own measurement; a later frame that
+ * arrives first settles it the same way. Where one call has more than one pose to publish (waiting frames
+ * settled by a later one), the first is its *pose and the others wait in order in the queue. */
+
+/* The arrival time at which a waiting frame is due (second_model_deadline), 1 when poses are queued (due
+ * now), or 0: none. */
+int64_t filter_node_await_due(const filter_node_t *node);
+
+/* The next queued pose (*due: now), or else the oldest waiting frame's if its deadline (*due) is at or before
+ * `now` (settled without its answer: second_model_settle). Returns 1 when *pose is to be published; called
+ * until 0. A command, a restart or a new clock settles the waiting frames too, their poses queued. */
+int filter_node_await_next(filter_node_t *node, int64_t now, hkf_head_pose_t *pose, int64_t *due);
 
 /* Handles one measurement by its capture time alone; returns 1 when *pose is to be published. */
 int filter_node_measurement(filter_node_t *node, const hkf_head_pose_measurement_t *m, hkf_head_pose_t *pose);

@@ -81,7 +81,9 @@ void model_alignment_learn(model_alignment_t *a, const char *model, const double
 double model_alignment_correction(const model_alignment_t *a, int axis, double x)
 {
     int k;
-    double share;
+    double share, d, most;
     place(x, &k, &share);
-    return (1.0 - share) * a->d[axis][k] + share * a->d[axis][k + 1];
+    d = (1.0 - share) * a->d[axis][k] + share * a->d[axis][k + 1];
+    most = MODEL_ALIGNMENT_MOST_AT_0 + MODEL_ALIGNMENT_MOST_SLOPE * fmin(fabs(x), MODEL_ALIGNMENT_REACH);
+    return d > most ? most : d < -most ? -most : d; /* the models' plausible disagreement, no more */
 }

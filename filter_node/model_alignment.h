@@ -30,6 +30,13 @@ extern "C" {
                                        * settles the knots the frames leave open, and damps those few frames
                                        * taught (chosen on the tuning heads over 1e-4 to 1: docs/programs.md) */
 
+/* The most the curve moves a second model's angle x: MODEL_ALIGNMENT_MOST_AT_0 + MODEL_ALIGNMENT_MOST_SLOPE |x|
+ * deg, the models' plausible disagreement. On the yaw truth renders the mesh reads 0.87 of a turn and WHENet
+ * 1.31: first - second = -0.34 x (30 deg at x = 90); at the centre the two agree within their AFLW2000
+ * errors (3-4 deg each in pitch, up to 6 at 30-60 deg of yaw: docs/estimator.md), twice that is the 10 deg. A curve learnt from a forged or broken second model moves the view by no more. */
+#define MODEL_ALIGNMENT_MOST_AT_0 10.0
+#define MODEL_ALIGNMENT_MOST_SLOPE 0.4
+
 typedef struct {
     char model[NODE_MODEL_NAME_MAX];              /* the second model the curve is for */
     double d[3][MODEL_ALIGNMENT_KNOTS];           /* first minus second at each knot, deg (the fit) */
@@ -48,7 +55,8 @@ void model_alignment_init(model_alignment_t *a);
 void model_alignment_learn(model_alignment_t *a, const char *model, const double second[3],
                            const double difference[3], long most);
 
-/* The correction d(x) on `axis` for the second's angle x (deg): what to add to move it onto the first's. */
+/* The correction d(x) on `axis` for the second's angle x (deg): what to add to move it onto the first's,
+ * within +-(MODEL_ALIGNMENT_MOST_AT_0 + MODEL_ALIGNMENT_MOST_SLOPE |x|), x taken within +-MODEL_ALIGNMENT_REACH. */
 double model_alignment_correction(const model_alignment_t *a, int axis, double x);
 
 #ifdef __cplusplus

@@ -11,14 +11,18 @@ int node_rest_init(node_rest_t *r, const hkf_rest_settings_t *s)
     return result != HKF_OK ? result : hkf_rest_start(&r->rest);
 }
 
-void node_rest_ask(node_rest_t *r)
+void node_rest_recentered(node_rest_t *r, const hkf_filter_t *f)
 {
+    if (hkf_get_status(f) != HKF_STATUS_UNINITIALIZED && hkf_get_center(f, r->center) == HKF_OK) {
+        r->center_set = 1; /* without a track nothing was centred: the rest's mean will be */
+    }
     (void)hkf_rest_start(&r->rest);
 }
 
 void node_rest_forget(node_rest_t *r)
 {
     r->measured = 0;
+    r->center_set = 0;
     (void)hkf_rest_start(&r->rest);
 }
 
@@ -26,7 +30,9 @@ void node_rest_keep(const node_rest_t *r, hkf_filter_t *f)
 {
     if (r->measured) {
         (void)hkf_set_wander(f, r->result.wander);
-        (void)hkf_set_center(f, r->result.center);
+    }
+    if (r->center_set) {
+        (void)hkf_set_center(f, r->center);
     }
 }
 
@@ -54,6 +60,8 @@ void node_rest_take(node_rest_t *r, hkf_filter_t *f, const hkf_real_t *z, hkf_re
     case HKF_REST_MEASURED:
         (void)hkf_rest_get_result(&r->rest, &r->result);
         r->measured = 1;
+        memcpy(r->center, r->result.center, sizeof r->center); /* the rest's mean: the player's centre now */
+        r->center_set = 1;
         ++r->measured_count;
         node_rest_keep(r, f);
         break;

@@ -19,28 +19,35 @@
 extern "C" {
 #endif
 
+/* The node's one owner of the view's centre and HOLD's wander: whatever set them last (a rest measured, a
+ * RECENTER) is what the filter gets back after it is set up anew or restored to an earlier step (a model
+ * change, a second model's frames redone), so that a replay never undoes a player's command. */
 typedef struct {
     hkf_rest_t rest;
     hkf_rest_result_t result; /* the last rest measured */
-    int measured;             /* result holds one */
+    int measured;             /* result holds one: its wander is HOLD's */
+    hkf_real_t center[3];     /* the centre the player set last (a rest's mean or a RECENTER), if center_set */
+    int center_set;
     unsigned long measured_count, spoiled_count; /* rests measured and spoiled so far, for the runners to say */
 } node_rest_t;
 
 /* The settings taken (checked by the config), and the rest asked for: tracking starts. */
 int node_rest_init(node_rest_t *r, const hkf_rest_settings_t *s);
 
-/* RECENTER: a new rest is asked for (the last one's wander stays until it is measured). */
-void node_rest_ask(node_rest_t *r);
+/* RECENTER: the centre f was just recentred on becomes the player's (it is kept over replays), and a new
+ * rest is asked for (the last one's wander stays until it is measured). */
+void node_rest_recentered(node_rest_t *r, const hkf_filter_t *f);
 
-/* RESET: the last rest forgotten too, and a new one asked for. */
+/* RESET: the last rest and the centre forgotten too, and a new rest asked for. */
 void node_rest_forget(node_rest_t *r);
 
 /* One first-model frame the filter took: z its measurement (NULL: no face), dt its step. A rest
  * measured is handed to f (node_rest_keep); a spoiled one is counted. */
 void node_rest_take(node_rest_t *r, hkf_filter_t *f, const hkf_real_t *z, hkf_real_t dt);
 
-/* The measured rest's wander and centre given to f again, after f was set up anew or restored to an
- * earlier step (a model change, a second model's frame redone). Nothing before a rest is measured. */
+/* The player's centre (the last rest's mean or RECENTER's) and the measured rest's wander given to f again,
+ * after f was set up anew or restored to an earlier step (a model change, a second model's frames redone).
+ * Nothing of what was never set. */
 void node_rest_keep(const node_rest_t *r, hkf_filter_t *f);
 
 /* What a runner says of a rest measured (the wander, the spread, noise and drift per axis, the centre) or

@@ -55,12 +55,15 @@ int64_t node_schedule_wake(node_schedule_t *s, const filter_node_t *node)
 {
     int64_t t;
     follow_measurement(s, node);
-    return earlier(tick_due(s, node, &t), lost_due(s, node));
+    return earlier(filter_node_await_due(node), earlier(tick_due(s, node, &t), lost_due(s, node)));
 }
 
 int node_schedule_next(node_schedule_t *s, filter_node_t *node, int64_t now, hkf_head_pose_t *pose, int64_t *due)
 {
     int64_t t, tick, lost;
+    if (filter_node_await_next(node, now, pose, due)) {
+        return 1; /* a waiting frame's pose first: the oldest frame */
+    }
     follow_measurement(s, node);
     /* ticks first: they end where extrapolation does, at coast_time, and LOST is due no earlier */
     while ((tick = tick_due(s, node, &t)) != 0 && tick <= now) {

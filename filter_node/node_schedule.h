@@ -8,6 +8,8 @@
  *   measurement taken, due when as much arrival time has passed since that measurement arrived;
  *   ticks stop where extrapolation does (coast_time after the measurement, or no track) until
  *   the next measurement is taken;
+ * - first, a frame that waited for the second model's answer, at its deadline or queued by a later frame, a
+ *   command or a restart (filter_node_await_next: one pose per frame);
  * - a LOST pose when the followed estimator has been silent for coast_time (filter_node.h); live,
  *   again every FILTER_NODE_LOST_REPEAT_US for late subscribers; in a log, once per silence.
  */

@@ -18,32 +18,81 @@ void second_model_forget_frames(second_model_t *s)
     s->frame_count = 0;
 }
 
+void second_model_forget_alignment(second_model_t *s)
+{
+    model_alignment_init(&s->alignment);
+}
+
+/* The kept frame i frames before the newest. */
+static const second_model_frame_t *kept_back(const second_model_t *s, int i)
+{
+    return &s->frames[(s->frame_newest + FILTER_NODE_PAIR_FRAMES - i) % FILTER_NODE_PAIR_FRAMES];
+}
+
+/* The newest kept frame from the last prompt_us before utime with a second model's answer, or NULL. */
+static const second_model_frame_t *newest_answered(const second_model_t *s, int64_t utime, int64_t prompt_us)
+{
+    int i;
+    for (i = 0; i < s->frame_count; ++i) {
+        const second_model_frame_t *frame = kept_back(s, i);
+        if (utime - frame->utime > prompt_us) {
+            return NULL;
+        }
+        if (frame->paired) {
+            return frame;
+        }
+    }
+    return NULL;
+}
+
+int second_model_answers(const second_model_t *s, int64_t utime, int64_t prompt_us)
+{
+    return newest_answered(s, utime, prompt_us) != NULL;
+}
+
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
                         int64_t utime, int64_t prompt_us)
 {
     const int awaiting = s->frame_count > 0 && s->frames[s->frame_newest].awaited;
     const double from_yaw = (double)models->second_alone_from_yaw - (awaiting ? FILTER_NODE_AWAIT_HYSTERESIS : 0.0);
-    int i;
+    const second_model_frame_t *answered;
     if (fabs((double)z[HKF_AXIS_YAW]) < from_yaw) {
         return 0;
     }
-    for (i = 0; i < s->frame_count; ++i) {
-        const second_model_frame_t *frame =
-            &s->frames[(s->frame_newest + FILTER_NODE_PAIR_FRAMES - i) % FILTER_NODE_PAIR_FRAMES];
-        if (utime - frame->utime > prompt_us) {
-            return 0;
-        }
-        if (frame->paired) {
-            return 1;
-        }
-    }
-    return 0;
+    answered = newest_answered(s, utime, prompt_us);
+    return answered != NULL && answered->answered_in_time; /* answers that come later than the wait: not waited for */
 }
 
-void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3],
-                             hkf_real_t dt, int awaited, const hkf_filter_t *before,
+/* The index of the oldest kept frame waiting for the second's answer, or -1. */
+static int oldest_waiting(const second_model_t *s)
+{
+    int i;
+    for (i = s->frame_count - 1; i >= 0; --i) {
+        const second_model_frame_t *frame = kept_back(s, i);
+        if (frame->awaited && !frame->paired) {
+            return (int)(frame - s->frames);
+        }
+    }
+    return -1;
+}
+
+const second_model_frame_t *second_model_waiting(const second_model_t *s)
+{
+    const int index = oldest_waiting(s);
+    return index < 0 ? NULL : &s->frames[index];
+}
+
+int64_t second_model_deadline(const second_model_t *s)
+{
+    const second_model_frame_t *frame = second_model_waiting(s);
+    return frame == NULL ? 0 : frame->arrival + frame->wait_us;
+}
+
+void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, int64_t arrival,
+                             const hkf_real_t z[3], hkf_real_t dt, int awaited, const hkf_filter_t *before,
                              const hkf_calibration_t *calibration_before)
 {
+    const double wait_us = FILTER_NODE_AWAIT_SHARE * 1e6 * (double)dt;
     second_model_frame_t *frame;
     s->frame_newest = (s->frame_newest + 1) % FILTER_NODE_PAIR_FRAMES;
     if (s->frame_count < FILTER_NODE_PAIR_FRAMES) {
@@ -60,6 +109,8 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
         memcpy(frame->z, z, sizeof frame->z);
     }
     frame->dt = dt;
+    frame->arrival = arrival;
+    frame->wait_us = wait_us > (double)FILTER_NODE_AWAIT_MIN_US ? (int64_t)wait_us : FILTER_NODE_AWAIT_MIN_US;
     frame->xyz[0] = m->x;
     frame->xyz[1] = m->y;
     frame->xyz[2] = m->z;
@@ -141,31 +192,23 @@ static void align_second(second_model_t *s, second_model_frame_t *frame)
     }
 }
 
-/* m fused into its kept frame `frame` (second_model_take). */
-static int fuse(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame,
-                const hkf_head_pose_measurement_t *m, second_model_track_t *track)
+/* The kept frames' steps made again from `frame` on (its own step first) into `track`, with what each holds
+ * now; the later frames keep the filter before their step. 0 when a step failed (cannot happen: each was
+ * made before): then nothing changes. */
+static int replay_from(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame,
+                       second_model_track_t *track)
 {
     hkf_filter_t f, before[FILTER_NODE_PAIR_FRAMES];
     hkf_calibration_t c, calibration_before[FILTER_NODE_PAIR_FRAMES];
     const int index = (int)(frame - s->frames);
     const int count = (s->frame_newest - index + FILTER_NODE_PAIR_FRAMES) % FILTER_NODE_PAIR_FRAMES + 1;
     int i;
-    if (frame->paired) { /* one second measurement per frame */
-        return 0;
-    }
-    frame->paired = 1;
-    strncpy(frame->second_model, m->model ? m->model : "", sizeof frame->second_model - 1);
-    frame->z2[0] = m->pitch;
-    frame->z2[1] = m->yaw;
-    frame->z2[2] = m->roll;
-    align_second(s, frame);
     f = frame->before;
     c = frame->calibration_before;
     for (i = 0; i < count; ++i) {
         before[i] = f;
         calibration_before[i] = c;
         if (redo_step(models, &f, &c, &s->frames[(index + i) % FILTER_NODE_PAIR_FRAMES]) != HKF_OK) {
-            frame->paired = 0; /* cannot happen (the steps were made before, z2 is checked): nothing changes */
             return 0;
         }
     }
@@ -179,10 +222,48 @@ static int fuse(second_model_t *s, const resolved_models_t *models, second_model
     return 1;
 }
 
+/* m, arrived at `arrival`, fused into its kept frame `frame` (second_model_take). */
+static int fuse(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame,
+                const hkf_head_pose_measurement_t *m, int64_t arrival, second_model_track_t *track)
+{
+    if (frame->paired) { /* one second measurement per frame */
+        return 0;
+    }
+    frame->paired = 1;
+    frame->answered_in_time = arrival - frame->arrival <= frame->wait_us;
+    strncpy(frame->second_model, m->model ? m->model : "", sizeof frame->second_model - 1);
+    frame->z2[0] = m->pitch;
+    frame->z2[1] = m->yaw;
+    frame->z2[2] = m->roll;
+    align_second(s, frame);
+    if (!replay_from(s, models, frame, track)) {
+        frame->paired = 0; /* cannot happen (the steps were made before, z2 is checked): nothing changes */
+        return 0;
+    }
+    return 1;
+}
+
 int second_model_take(second_model_t *s, const resolved_models_t *models, const hkf_head_pose_measurement_t *m,
-                      second_model_track_t *track, const second_model_frame_t **frame)
+                      int64_t arrival, second_model_track_t *track, const second_model_frame_t **frame)
 {
     second_model_frame_t *kept = frame_of(s, m);
     *frame = kept;
-    return kept != NULL && track->filter != NULL && fuse(s, models, kept, m, track);
+    return kept != NULL && track->filter != NULL && fuse(s, models, kept, m, arrival, track);
+}
+
+int second_model_settle(second_model_t *s, const resolved_models_t *models, second_model_track_t *track,
+                        const second_model_frame_t **frame)
+{
+    const int index = oldest_waiting(s);
+    second_model_frame_t *waiting = index < 0 ? NULL : &s->frames[index];
+    *frame = waiting;
+    if (waiting == NULL) {
+        return 0;
+    }
+    waiting->awaited = 0; /* its own measurement makes its step */
+    if (!replay_from(s, models, waiting, track)) {
+        waiting->awaited = 1; /* cannot happen: nothing changes */
+        return 0;
+    }
+    return 1;
 }

@@ -25,6 +25,10 @@ extern "C" {
 #define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
 #define FILTER_NODE_AWAIT_HYSTERESIS 5.0 /* deg: a frame after one that waited waits from this below the pair's rule */
 #define FILTER_NODE_ALIGN_FRAMES 300 /* frames both models measured that the alignment averages: 10 s at 30 fps */
+#define FILTER_NODE_AWAIT_SHARE 1.0 /* a frame waits for the second model's answer at most this share of its
+                                     * frame period after it arrived, about when the next frame comes:
+                                     * published then without it (one pose per frame, at the camera's rate) */
+#define FILTER_NODE_AWAIT_MIN_US 5000LL /* and at least this long (a first frame's period is not known) */
 
 /* One frame's filter step, kept so that a second model's measurement of it can
  * be fused afterwards. */
@@ -39,6 +43,9 @@ typedef struct {
     int paired;                              /* a second model measured z2: */
     char second_model[NODE_MODEL_NAME_MAX];
     hkf_real_t z2[3];
+    int64_t arrival;                         /* when its first measurement arrived (the receive clock) */
+    int64_t wait_us;                         /* how long it may wait for the second's answer (FILTER_NODE_AWAIT_SHARE) */
+    int answered_in_time;                    /* the second's answer came within wait_us */
     hkf_filter_t before;                     /* the filter before this frame's step */
     hkf_calibration_t calibration_before;    /* and the noise calibration beside it */
 } second_model_frame_t;
@@ -56,20 +63,35 @@ void second_model_init(second_model_t *s);
 /* Forgets the kept frames (a restart, a command, a new clock); the alignment stays. */
 void second_model_forget_frames(second_model_t *s);
 
+/* Forgets the alignment too (RESET, another first model): the curve is learnt again from the next frames. */
+void second_model_forget_alignment(second_model_t *s);
+
+/* 1 when the second model answers: a frame kept from the last `prompt_us` before `utime` has its measurement. */
+int second_model_answers(const second_model_t *s, int64_t utime, int64_t prompt_us);
+
 /* 1 when the first model's measurement z of a new frame at `utime` is to wait for the second model's: z
  * measures |yaw| >= the pair's pair_second_alone_from_yaw (where the frame takes the second's alone) and
- * the second model's measurements come promptly (a frame kept from the last `prompt_us` has one). The
- * node then predicts, and the second's measurement makes the frame's step when it comes: a pose from z
- * would step back once it did. With prompt_us under coast_time, a second model that stops or falls
- * behind ends the waiting before the track would coast to LOST. */
+ * the second model's measurements come promptly: the newest frame kept from the last `prompt_us` that has
+ * one had it within its wait (wait_us). The node then predicts, and the second's measurement makes the
+ * frame's step when it comes: a pose from z would step back once it did. A frame's wait ends at its deadline
+ * (second_model_overdue): it is then published from z. With prompt_us under coast_time, a second model that
+ * stops or falls behind ends the waiting before the track would coast to LOST; one whose answers come later
+ * than the wait is not waited for (its answers are fused when they come, into the next frame's pose). */
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
                         int64_t utime, int64_t prompt_us);
 
-/* Keeps the step made from `before` (and its calibration) for frame m: z (NULL: no face), dt; awaited:
- * the step was a prediction, z waiting for the second model's measurement (second_model_awaits). */
-void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const hkf_real_t z[3],
-                             hkf_real_t dt, int awaited, const hkf_filter_t *before,
+/* Keeps the step made from `before` (and its calibration) for frame m that arrived at `arrival`: z (NULL: no
+ * face), dt; awaited: the step was a prediction, z waiting for the second model's measurement
+ * (second_model_awaits) until arrival + its wait (FILTER_NODE_AWAIT_SHARE of dt). */
+void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, int64_t arrival,
+                             const hkf_real_t z[3], hkf_real_t dt, int awaited, const hkf_filter_t *before,
                              const hkf_calibration_t *calibration_before);
+
+/* The oldest kept frame still waiting for the second's answer (awaited, none yet), or NULL. */
+const second_model_frame_t *second_model_waiting(const second_model_t *s);
+
+/* The arrival time by which the oldest waiting frame is published without its answer, or 0: none waits. */
+int64_t second_model_deadline(const second_model_t *s);
 
 /* Where a second measurement is fused: the node's filter and noise calibration, into which the fused frame's
  * step and the later frames' are redone, and the output of the fused frame's own step. */
@@ -79,13 +101,19 @@ typedef struct {
     hkf_output_t posterior;         /* out: the fused frame's own step */
 } second_model_track_t;
 
-/* A second model's measurement m of one of the publisher's frames: *frame is the kept frame it is of
- * (the same seq and utime, another model; NULL: no longer kept). With a filter in `track`, m is fused
- * there: that frame's step again with both (the second model's R and the pair's rule from `models`),
+/* A second model's measurement m, arrived at `arrival`, of one of the publisher's frames: *frame is the kept
+ * frame it is of (the same seq and utime, another model; NULL: no longer kept). With a filter in `track`, m
+ * is fused there: that frame's step again with both (the second model's R and the pair's rule from `models`),
  * then the steps of the frames after it. Returns 1 when fused, 0 when not (no frame kept, no filter, or
  * the frame has a second measurement already). */
 int second_model_take(second_model_t *s, const resolved_models_t *models, const hkf_head_pose_measurement_t *m,
-                      second_model_track_t *track, const second_model_frame_t **frame);
+                      int64_t arrival, second_model_track_t *track, const second_model_frame_t **frame);
+
+/* The oldest waiting frame (second_model_waiting) settled without its answer: its step made from its first
+ * model's measurement z after all, and the frames after it redone, into `track` (its posterior: that frame's
+ * own step). Returns 1, or 0 when no frame waits. */
+int second_model_settle(second_model_t *s, const resolved_models_t *models, second_model_track_t *track,
+                        const second_model_frame_t **frame);
 
 #ifdef __cplusplus
 }

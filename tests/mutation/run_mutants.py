@@ -16,7 +16,7 @@ a block: a realistic single bug, as a reviewer would plant it (a wrong
 comparison, a lost wrap, an off-by-one, a skipped check), with a snippet that
 occurs once in the file. `--check` validates the list without building.
 
-usage: run_mutants.py [--list FILE] [--work DIR] [--only N[,N...] | --sample K] [--check]
+usage: run_mutants.py [--list FILE] [--work DIR] [--only N[-M][,N...] | --sample K] [--check]
                       [--check-selection BUILD]
 The baseline runs the union of the chosen mutants' tests, resolved to test names one
 expression at a time (`ctest -N -R`), so no single regular expression grows with the list
@@ -194,11 +194,29 @@ def run_tests(build_dir, tests, timeout):
     return result.returncode == 0, count, result.stdout
 
 
+def mutant_numbers(text):
+    """--only's value: numbers and ranges, comma-separated ("3,7,242-255"), as a set; a clear error otherwise."""
+    wanted = set()
+    for part in text.split(","):
+        bounds = part.strip().split("-")
+        try:
+            if len(bounds) not in (1, 2):
+                raise ValueError
+            low, high = int(bounds[0]), int(bounds[-1])
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{part.strip()!r} is not a mutant number or a range N-M") from None
+        if low < 1 or high < low:
+            raise argparse.ArgumentTypeError(f"{part.strip()!r}: a range runs from 1 up, low to high")
+        wanted.update(range(low, high + 1))
+    return wanted
+
+
 def arguments():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--list", default=os.path.join(ROOT, "tests", "mutation", "mutants.txt"))
     parser.add_argument("--work", default=os.path.join(ROOT, "out", "mutate"))
-    parser.add_argument("--only", default="", help="comma-separated mutant numbers")
+    parser.add_argument("--only", default=None, type=mutant_numbers,
+                        help="mutant numbers, comma-separated, each a number or a range (3,7,242-255)")
     parser.add_argument("--sample", type=int, default=0, help="every K-th mutant only (a fixed sample)")
     parser.add_argument("--check", action="store_true", help="validate the list, build and run nothing")
     parser.add_argument("--check-selection", metavar="BUILD",
@@ -236,8 +254,7 @@ def chosen_mutants(mutants, args):
             if not m.tests.startswith(LIBHKF_TESTS):
                 m.tests = LIBHKF_TESTS
     if args.only:
-        wanted = {int(n) for n in args.only.split(",")}
-        return [m for m in chosen if m.number in wanted]
+        return [m for m in chosen if m.number in args.only]
     return chosen[::args.sample] if args.sample else chosen
 
 

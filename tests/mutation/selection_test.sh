@@ -27,3 +27,24 @@ for list in groups none; do
   grep -q "run_mutants: " "$scratch/err" || { echo "selection_test: no reason given for '$list'" >&2; exit 1; }
   echo "selection_test: the broken list '$list' refused: $(tail -1 "$scratch/err")"
 done
+
+# --only takes numbers and ranges (issue 73: the closing notes' "--only 242-255" was refused), and refuses
+# what is neither with a clear error
+PYTHONPATH=$source/tests/mutation "$python" - <<'PY'
+import argparse, run_mutants
+assert run_mutants.mutant_numbers("14") == {14}
+assert run_mutants.mutant_numbers("3,7,242-245") == {3, 7, 242, 243, 244, 245}
+assert run_mutants.mutant_numbers(" 5 - 6 ") == {5, 6}
+for bad in ("", "a", "5-", "-5", "9-3", "1-2-3", "0"):
+    try:
+        run_mutants.mutant_numbers(bad)
+    except argparse.ArgumentTypeError:
+        continue
+    raise SystemExit(f"selection_test: --only accepted {bad!r}")
+print("selection_test: --only reads numbers and ranges, refuses the rest")
+PY
+if "$python" "$runner" --only 5-x --check 2>"$scratch/err"; then
+  echo "selection_test: --only 5-x accepted" >&2
+  exit 1
+fi
+grep -q "is not a mutant number" "$scratch/err" || { echo "selection_test: --only 5-x refused without a reason" >&2; exit 1; }
