@@ -110,7 +110,7 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
     }
     frame->dt = dt;
     frame->arrival = arrival;
-    frame->wait_us = wait_us > (double)FILTER_NODE_AWAIT_MIN_US ? (int64_t)wait_us : FILTER_NODE_AWAIT_MIN_US;
+    frame->wait_us = wait_us > (double)FILTER_NODE_AWAIT_MIN_US ? (int64_t)(wait_us + 0.5) : FILTER_NODE_AWAIT_MIN_US;
     frame->xyz[0] = m->x;
     frame->xyz[1] = m->y;
     frame->xyz[2] = m->z;
