@@ -1,6 +1,7 @@
 /* node_rest.c - see node_rest.h. */
 #include "node_rest.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -48,14 +49,29 @@ void node_rest_describe_measured(const node_rest_t *r, char *text, size_t size)
 
 void node_rest_describe_spoiled(const node_rest_t *r, char *text, size_t size)
 {
+    const hkf_rest_result_t *m = &r->rest.last_refused;
     unsigned spoiled = 0u;
     (void)hkf_rest_get_progress(&r->rest, NULL, NULL, &spoiled, NULL);
+    if (r->refused_last) {
+        double excess = 0.0, drift = 0.0;
+        int a;
+        for (a = 0; a < 3; ++a) {
+            excess = fmax(excess, (double)m->spread[a] - (double)m->noise[a]);
+            drift = fmax(drift, (double)m->drift[a]);
+        }
+        snprintf(text, size, "the rest was refused: the head moved through it (spread %.2f deg^2 beyond its noise, "
+                             "drift %.1f deg^2/s; a rest keeps within %.1f and %.1f) (%u since it was asked for); "
+                             "keep still for %.1f s",
+                 excess, drift, HKF_REST_MOVED_WANDER, HKF_REST_MOVED_DRIFT, spoiled, (double)r->rest.settings.rest_time);
+        return;
+    }
     snprintf(text, size, "the rest was spoiled by a move (%u since it was asked for); keep still for %.1f s", spoiled,
              (double)r->rest.settings.rest_time);
 }
 
 void node_rest_take(node_rest_t *r, hkf_filter_t *f, const hkf_real_t *z, hkf_real_t dt)
 {
+    const unsigned refused_before = r->rest.refused;
     switch (hkf_rest_update(&r->rest, z, dt)) {
     case HKF_REST_MEASURED:
         (void)hkf_rest_get_result(&r->rest, &r->result);
@@ -67,6 +83,7 @@ void node_rest_take(node_rest_t *r, hkf_filter_t *f, const hkf_real_t *z, hkf_re
         break;
     case HKF_REST_SPOILED:
         ++r->spoiled_count;
+        r->refused_last = r->rest.refused != refused_before; /* refused at its end, not spoiled by a move */
         break;
     default: /* measuring, idle, or a value the filter refused too */
         break;

@@ -29,6 +29,7 @@ typedef struct {
     hkf_real_t center[3];     /* the centre the player set last (a rest's mean or a RECENTER), if center_set */
     int center_set;
     unsigned long measured_count, spoiled_count; /* rests measured and spoiled so far, for the runners to say */
+    int refused_last;         /* the last spoiled rest was refused at its end: the head moved through it */
 } node_rest_t;
 
 /* The settings taken (checked by the config), and the rest asked for: tracking starts. */

@@ -52,6 +52,7 @@ int hkf_rest_init(hkf_rest_t *r, const hkf_rest_settings_t *s)
     r->measured = 0;
     r->measuring = 0;
     r->spoiled = 0u;
+    r->refused = 0u;
     return HKF_OK;
 }
 
@@ -86,6 +87,7 @@ int hkf_rest_start(hkf_rest_t *r)
     begin(r);
     r->measuring = r->settings.rest_time > 0;
     r->spoiled = 0u;
+    r->refused = 0u;
     return HKF_OK;
 }
 
@@ -196,8 +198,19 @@ static hkf_real_t fit(const hkf_rest_t *r, hkf_rest_result_t *out)
         out->center[a] = hkf_add(r->origin[a], r->mean[a]);
     }
     out->center[HKF_AXIS_YAW] = hkf_wrap180(out->center[HKF_AXIS_YAW]);
-    out->wander = hkf_mul(r->settings.stillness, excess);
+    out->wander = hkf_mul(r->settings.stillness, excess < HKF_REAL_FROM(HKF_REST_MAX_WANDER) ? excess : HKF_REAL_FROM(HKF_REST_MAX_WANDER));
     return excess;
+}
+
+/* 1 when a rest that ended, fitted as `found` with the spread `excess` beyond its noise, was a head that moved:
+ * over HKF_REST_MOVED_WANDER of spread, or over HKF_REST_MOVED_DRIFT of wander's rate on any axis. */
+static int moved(const hkf_rest_result_t *found, hkf_real_t excess)
+{
+    int a, drifted = 0;
+    for (a = 0; a < HKF_AXES; ++a) {
+        drifted |= found->drift[a] > HKF_REAL_FROM(HKF_REST_MOVED_DRIFT);
+    }
+    return drifted || excess > HKF_REAL_FROM(HKF_REST_MOVED_WANDER);
 }
 
 /* A measurement z of a rest: a move spoils the rest so far (HKF_REST_SPOILED), and z starts it again;
@@ -253,9 +266,17 @@ int hkf_rest_update(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
         r->pairs[HKF_REST_LAGS - 1] >= HKF_REST_LAGS) {
         hkf_rest_result_t found;
         const hkf_real_t half = hkf_mul(r->settings.rest_reach, HKF_REAL(0.5));
-        if (fit(r, &found) > hkf_mul(half, half)) { /* spread beyond the noise as a move across half the reach's */
+        const hkf_real_t excess = fit(r, &found);
+        if (excess > hkf_mul(half, half)) { /* spread beyond the noise as a move across half the reach's */
             begin(r);
             r->spoiled += 1u;
+            return HKF_REST_SPOILED;
+        }
+        if (moved(&found, excess)) { /* a head that swayed or settled: refused, asked again */
+            r->last_refused = found;
+            begin(r);
+            r->spoiled += 1u;
+            r->refused += 1u;
             return HKF_REST_SPOILED;
         }
         r->result = found;

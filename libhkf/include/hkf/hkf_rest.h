@@ -24,6 +24,13 @@
  * from the second (HKF_REST_SPOILED). One alone is an outlier: skipped, not taken. A rest whose spread beyond
  * its noise exceeds (rest_reach / 2)^2 (a slow move, each frame within the reach) is spoiled when it ends.
  *
+ * A rest is a rest (libhkf 1.3): a head that sways, talks or settles keeps every frame within the reach, but
+ * it moves. When the rest ends, a spread beyond the noise over HKF_REST_MOVED_WANDER or a wander's rate q over
+ * HKF_REST_MOVED_DRIFT on any axis is such a head: the rest is refused (HKF_REST_SPOILED, counted in
+ * `refused` too) and measured again; until one is taken the filter keeps its built-in still_wander. The
+ * measured wander is bounded at HKF_REST_MAX_WANDER, where the filter still shows a 2 deg glance within a
+ * frame of raw, before stillness scales it. docs/libhkf.md gives the evidence for the three.
+ *
  *     hkf_rest_t rest;  hkf_rest_result_t found;
  *     hkf_rest_init(&rest, &hkf_default_rest_settings);
  *     at start-up and at every recentre:  hkf_rest_start(&rest);
@@ -48,6 +55,14 @@ extern "C" {
 #define HKF_REST_LAGS 6
 #define HKF_MAX_STILLNESS 100 /* the largest multiple of the measured wander */
 #define HKF_REST_MOVE_FRAMES 2 /* frames in a row beyond the reach that are a move (one alone: an outlier, skipped) */
+/* deg^2: the most of a rest's spread beyond its noise that HOLD takes as wander: with more, a 2 deg glance is
+ * shown two frames or more after raw shows it (30 fps, the noise of real rests; docs/libhkf.md). */
+#define HKF_REST_MAX_WANDER 0.3
+/* deg^2 and deg^2/s: a rest's spread beyond its noise, or its wander's rate, above which it was a head that
+ * moved (the clips' longest still stretches: 0.21-0.45 deg^2 and 0.3-4.1 deg^2/s; heads that moved through
+ * their start-up "rest": 0.63-2.2 deg^2 or 4.5-30 deg^2/s; docs/libhkf.md) */
+#define HKF_REST_MOVED_WANDER 0.6
+#define HKF_REST_MOVED_DRIFT 5.0
 
 typedef struct {
     hkf_real_t rest_time; /* s: how long a rest is measured, within [0, HKF_MAX_TIME]; 0 = off (none is asked for) */
@@ -84,7 +99,9 @@ typedef struct {
     unsigned frames;               /* measurements in this rest */
     unsigned history;              /* measurements in a row in `recent` (0..HKF_REST_LAGS) */
     unsigned beyond;               /* measurements in a row beyond the reach */
-    unsigned spoiled;              /* rests spoiled since hkf_rest_start */
+    unsigned spoiled;              /* rests spoiled since hkf_rest_start (refused ones too) */
+    unsigned refused;              /* of those, rests refused at their end as a head that moved */
+    hkf_rest_result_t last_refused; /* what the last refused rest measured */
     unsigned pairs[HKF_REST_LAGS]; /* measurement pairs L + 1 frames apart so far */
     hkf_real_t elapsed;            /* s: the rest's time so far (frames with a measurement) */
     hkf_real_t period;             /* s: the mean time between consecutive measurements */
