@@ -84,6 +84,7 @@ void node_rest_take(node_rest_t *r, hkf_filter_t *f, const hkf_real_t *z, hkf_re
     case HKF_REST_SPOILED:
         ++r->spoiled_count;
         r->refused_last = r->rest.refused != refused_before; /* refused at its end, not spoiled by a move */
+        r->refused_count += (unsigned long)r->refused_last;
         break;
     default: /* measuring, idle, or a value the filter refused too */
         break;

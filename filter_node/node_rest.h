@@ -30,6 +30,7 @@ typedef struct {
     int center_set;
     unsigned long measured_count, spoiled_count; /* rests measured and spoiled so far, for the runners to say */
     int refused_last;         /* the last spoiled rest was refused at its end: the head moved through it */
+    unsigned long refused_count; /* of the spoiled, rests refused so */
 } node_rest_t;
 
 /* The settings taken (checked by the config), and the rest asked for: tracking starts. */

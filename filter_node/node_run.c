@@ -40,12 +40,12 @@ void node_run_say_rest_summary(const filter_node_t *node, FILE *to)
     hkf_real_t wander = 0;
     if (r->measured) {
         node_rest_describe_measured(r, text, sizeof text);
-        fprintf(to, "hkf-filter: the player's rest: %lu measured, %lu spoiled; the last %s\n", r->measured_count,
-                r->spoiled_count, text);
+        fprintf(to, "hkf-filter: the player's rest: %lu measured, %lu spoiled (%lu of them refused: the head moved "
+                    "through it); the last %s\n", r->measured_count, r->spoiled_count, r->refused_count, text);
     } else {
         (void)hkf_get_wander(&node->filter, &wander);
-        fprintf(to, "hkf-filter: the player's rest: none measured (%lu spoiled); the built-in wander %.3f deg^2 held\n",
-                r->spoiled_count, (double)wander);
+        fprintf(to, "hkf-filter: the player's rest: none measured (%lu spoiled, %lu of them refused: the head moved "
+                    "through it); the built-in wander %.3f deg^2 held\n", r->spoiled_count, r->refused_count, (double)wander);
     }
 }
 

@@ -33,7 +33,8 @@ jitter per hold too.
 Clips: a frontal frame of held-out clips (not the filter's tuning clips, evaluate.TUNING_CLIPS):
 --lead's default is chosen on TUNE_CLIP; the report is on REPORT_CLIPS.
 
-usage: e2e.py [--build DIR] [--out DIR] [--short | --turn]
+usage: e2e.py [--build DIR] [--out DIR] [--short | --turn | --sway]
+--sway: only the roll truth whose start-up rest sways 1.2 deg at 0.5 Hz (out/e2e/e2e_sway.md).
 --turn: only the yaw and pitch truth (out/e2e/e2e_turn.md, e2e_yaw.png).
 --short: one clip of 6 s at 30 fps, the defaults only; exit 1 if no datagram arrives, any is
 not finite, or the median onset is beyond SHORT_MAX_ONSET_MS (the ./run test case).
@@ -62,6 +63,7 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 URL = "udpm://239.255.76.67:7667?ttl=0"
 PORT = 4242
 TUNE_CLIP = "d12"
+SWAY_DEG, SWAY_HZ, SWAY_S = 1.2, 0.5, 2.0  # --sway: the start-up rest's sway (one whole period, back at 0 at its end)
 REPORT_CLIPS = ["d10", "d18"]
 TURN_HEAD = "d10"  # the yaw truth's head: held out (the models' curve and the waiting were chosen on d14)
 SHORT_MAX_ONSET_MS = 150.0
@@ -141,9 +143,12 @@ def make_clip(out, frame, clip_name, fps, kind, short):
     label = f"{clip_name}_{kind}_{fps:g}fps" + ("_short" if short else "")
     folder = os.path.join(out, "clips", label)
     seed = zlib.crc32(label.encode())
-    if kind == "roll":
+    if kind in ("roll", "roll_sway"):
         trajectory = roll_trajectory(fps, seed) if short else truth_motion.driver_trajectory(seed, fps, glances=4)
         theta, scale, moves = trajectory.theta, np.ones(len(trajectory.theta)), trajectory.moves
+        if kind == "roll_sway":  # a player who talks or settles during the start-up rest: a 0.5 Hz sway of 1.2 deg
+            t = np.arange(len(theta)) / fps
+            theta = theta + np.where(t < SWAY_S, SWAY_DEG * np.sin(2.0 * np.pi * SWAY_HZ * t), 0.0)
     else:  # the lean: a zoom about the face, between holds
         _, scale, _ = truth_motion.lean_trajectory(seed, fps, moves=4)
         scale = np.concatenate([np.ones(int(1.5 * fps)), scale])
@@ -540,6 +545,8 @@ def main():
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "e2e"))
     parser.add_argument("--short", action="store_true")
     parser.add_argument("--turn", action="store_true", help="only the yaw and pitch truth (both models), 30 and 60 fps")
+    parser.add_argument("--sway", action="store_true",
+                        help="only the roll truth with a start-up rest in which the head sways 1.2 deg at 0.5 Hz")
     args = parser.parse_args()
     if os.environ.get("HKF_IN_NETNS") != "1":
         os.environ["HKF_IN_NETNS"] = "1"
@@ -551,7 +558,33 @@ def main():
         return short_case(build, out)
     if args.turn:
         return turn_only(build, out)
+    if args.sway:
+        return sway_only(build, out)
     return full_report(build, out)
+
+
+def sway_only(build, out):
+    """--sway: the held-out roll truth with a swaying start-up rest (out/e2e/e2e_sway.md): the defaults (the rest
+    refused, asked again) and the built-in wander, against raw in the same run."""
+    lines = ["# End to end: a start-up rest in which the head sways", "",
+             f"Made by `./run e2e` (dev/eval/e2e.py --sway): the roll truth clips with their start-up hold made a "
+             f"{SWAY_HZ:g} Hz sway of {SWAY_DEG:g} deg for {SWAY_S:g} s (a player who talks or settles during the "
+             "countdown), through the live chain.", ""]
+    for clip_name in REPORT_CLIPS:
+        frame = frontal_frame(build, out, clip_name)
+        for fps in (30.0, 60.0):
+            clip = make_clip(out, frame, clip_name, fps, "roll_sway", short=False)
+            runs = run_clip(build, out, clip, [Variant("defaults"), Variant(NO_REST, ["rest_time=0"])],
+                            roll_of_datagram, roll_truth)
+            raw_jitter = raw_jitter_of(runs)
+            lines += [f"## {clip.name} (held out): roll, the start-up rest swaying", "", HEADER]
+            lines += [row_text(n, m, raw_jitter) for n, m in runs] + [""] + goal_lines(dict(runs)) + [""]
+    text = "\n".join(lines) + "\n"
+    with open(os.path.join(out, "e2e_sway.md"), "w") as f:
+        f.write(text)
+    print(text)
+    log(f"table in {out}/e2e_sway.md")
+    return 0
 
 
 def short_case(build, out):
