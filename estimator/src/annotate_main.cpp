@@ -23,7 +23,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "image_size_cap.hpp"
+#include "opencv_environment.hpp"
 #include "pose_drawing.hpp"
 #include "written_video.hpp"
 
@@ -198,8 +198,8 @@ int main(int argc, char **argv)
     case 2: return 2;
     default: break;
     }
-    if (*hkf_estimator::image_size_cap_problem() != '\0') {  // settled before OpenCV loaded (image_size_cap.hpp)
-        std::fprintf(stderr, "hkf-annotate: %s\n", hkf_estimator::image_size_cap_problem());
+    if (*hkf_estimator::opencv_environment_problem() != '\0') {  // settled before OpenCV loaded (opencv_environment.hpp)
+        std::fprintf(stderr, "hkf-annotate: %s\n", hkf_estimator::opencv_environment_problem());
         return 2;
     }
     for (const std::string *input : {&o.video, &o.raw_log, &o.filtered_log}) safe_note_read(input->c_str());

@@ -25,7 +25,7 @@
 #include "dataset_eval.hpp"
 #include "face_detector.hpp"
 #include "frame_source.hpp"
-#include "image_size_cap.hpp"
+#include "opencv_environment.hpp"
 #include "model_spec.hpp"
 #include "simd_level.hpp"
 #include "pipeline.hpp"
@@ -415,7 +415,7 @@ int run_dataset(const hkf_estimator::DatasetRun &run, const Options &o)
 }
 
 // OpenCV reads its image size cap as it loads, before main: without one in the environment, run again
-// with ours (image_size_cap.hpp), so that a larger image is refused from its header, not decoded first
+// with ours (opencv_environment.hpp), so that a larger image is refused from its header, not decoded first
 // (a 9000 x 9000 image took 360 MB). The program's own path is executed, not /proc/self/exe, so that the
 // process keeps its name (pgrep -x hkf-estimator). Should the exec fail, the cap is checked after
 // decoding. With the variable already set (by a user, or under valgrind, whose /proc/self/exe is its
@@ -423,6 +423,7 @@ int run_dataset(const hkf_estimator::DatasetRun &run, const Options &o)
 void run_again_with_the_image_cap(char **argv)
 {
     if (std::getenv("OPENCV_IO_MAX_IMAGE_PIXELS") != nullptr) return;
+    if (*hkf_estimator::opencv_environment_problem() != '\0') return;  // a variable refused: said and exit 2 (start_checks)
     std::error_code error;
     const std::string self = std::filesystem::read_symlink("/proc/self/exe", error).string();
     setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(hkf_estimator::kMaxFramePixels).c_str(), 0);
@@ -433,8 +434,8 @@ void run_again_with_the_image_cap(char **argv)
 // layers' level, then the inputs noted and the --annotate output checked against them. false (said): exit 2.
 bool start_checks(const Options &o)
 {
-    if (*hkf_estimator::image_size_cap_problem() != '\0') {  // settled before OpenCV loaded (image_size_cap.hpp)
-        std::cerr << "hkf-estimator: " << hkf_estimator::image_size_cap_problem() << "\n";
+    if (*hkf_estimator::opencv_environment_problem() != '\0') {  // settled before OpenCV loaded (opencv_environment.hpp)
+        std::cerr << "hkf-estimator: " << hkf_estimator::opencv_environment_problem() << "\n";
         return false;
     }
     if (!announce_layer_level()) return false;

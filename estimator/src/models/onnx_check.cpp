@@ -177,6 +177,21 @@ bool raw_integers_ok(const std::uint8_t *raw, std::size_t length, int size)
 
 std::string graph_problem(const std::uint8_t *data, std::size_t size, int depth);
 
+// A singular message field given more than once is read by protobuf (and so by OpenCV) as one message, the
+// occurrences merged: repeated fields joined, scalars from the last. Parsing the occurrences' bytes one after
+// the other gives exactly that merge, so each such field is gathered here and checked as one.
+struct Merged {
+    std::string bytes;
+    bool present = false;
+
+    void add(const Field &f)
+    {
+        bytes.append(reinterpret_cast<const char *>(f.bytes), f.length);
+        present = true;
+    }
+    const std::uint8_t *data() const { return reinterpret_cast<const std::uint8_t *>(bytes.data()); }
+};
+
 // What a TensorProto declares and holds, as its fields were read.
 struct TensorFields {
     std::string name;
@@ -292,20 +307,29 @@ std::string tensor_problem(const std::uint8_t *data, std::size_t size)
     return tensor_data_problem(t);
 }
 
-// An AttributeProto: its tensors (t 5, tensors 10, sparse 22 / 23) and graphs (g 6, graphs 11).
+// An AttributeProto: its tensors (t 5, singular: its occurrences merged; tensors 10; sparse 22 / 23) and
+// graphs (g 6, singular: merged; graphs 11).
 std::string attribute_problem(const std::uint8_t *data, std::size_t size, int depth)
 {
     Message m(data, size);
     Field f;
+    Merged t, g;
     while (m.next(f)) {
         if (f.wire != kBytes) continue;
         std::string problem;
-        if (f.number == 5 || f.number == 10) problem = tensor_problem(f.bytes, f.length);
-        else if (f.number == 6 || f.number == 11) problem = graph_problem(f.bytes, f.length, depth + 1);
+        if (f.number == 5) t.add(f);
+        else if (f.number == 6) g.add(f);
+        else if (f.number == 10) problem = tensor_problem(f.bytes, f.length);
+        else if (f.number == 11) problem = graph_problem(f.bytes, f.length, depth + 1);
         else if (f.number == 22 || f.number == 23) problem = "a sparse tensor attribute (not taken)";
         if (!problem.empty()) return problem;
     }
-    return m.ok ? "" : "an attribute that is no protobuf";
+    if (!m.ok) return "an attribute that is no protobuf";
+    if (t.present) {
+        const std::string problem = tensor_problem(t.data(), t.bytes.size());
+        if (!problem.empty()) return problem;
+    }
+    return g.present ? graph_problem(g.data(), g.bytes.size(), depth + 1) : "";
 }
 
 // A NodeProto: its attributes (5).
@@ -359,17 +383,20 @@ std::string onnx_model_problem(const std::uint8_t *data, std::size_t size)
 {
     Message m(data, size);
     Field f;
-    bool graph = false;
-    while (m.next(f)) {  // ModelProto: graph 7, functions 25
+    Merged graph;  // ModelProto: graph 7 (singular: its occurrences merged), functions 25
+    while (m.next(f)) {
         if (f.number != 7 && f.number != 25) continue;
         if (f.wire != kBytes) return "not a readable ONNX model (its graph field has the wrong wire type)";
-        if (f.number == 7) graph = true;
-        const std::string problem = f.number == 7 ? graph_problem(f.bytes, f.length, 0) : function_problem(f.bytes, f.length);
+        if (f.number == 7) {
+            graph.add(f);
+            continue;
+        }
+        const std::string problem = function_problem(f.bytes, f.length);
         if (!problem.empty()) return problem;
     }
     if (!m.ok) return "not a readable ONNX model (no protobuf)";
-    if (!graph) return "not a readable ONNX model (no graph)";
-    return "";
+    if (!graph.present) return "not a readable ONNX model (no graph)";
+    return graph_problem(graph.data(), graph.bytes.size(), 0);
 }
 
 }  // namespace hkf_estimator

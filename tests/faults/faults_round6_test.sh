@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# The fault catalogue, part 5: the sixth hostile review (docs/reliability.md, "round 6"), on real data (the
+# shipped models, a real clip): a model whose tensor is given twice (protobuf merges the two), OpenCV's
+# variables that it parses as it loads (every one that aborted before main), OPENCV_TRACE. Each case fails
+# without its fix.
+# usage: faults_round6_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)
+python=$source/.venv/bin/python
+estimator=$build/estimator/hkf-estimator annotate=$build/estimator/hkf-annotate
+data=$source/../shared/data models=$source/.models
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+expect_exit() { # expect_exit CODE LABEL COMMAND...: wants exit CODE (60 s at most); the output in $work/out.txt
+  local want=$1 label=$2 status=0
+  shift 2
+  timeout 60 "$@" >"$work/out.txt" 2>&1 || status=$?
+  [ "$status" = "$want" ] || { cat "$work/out.txt" >&2; fail "$label: exit $status (expected $want)"; }
+  echo "$label: exit $status; $(grep -v "measurements (\|own layers at" "$work/out.txt" | head -n 1)"
+}
+said() { grep -q -- "$1" "$work/out.txt" || { cat "$work/out.txt" >&2; fail "expected to be told '$1'"; }; }
+cd "$work"
+mkdir -p ds/images
+head -n 3 "$data/aflw2000/labels.csv" >ds/labels.csv
+for image in $(tail -n +2 ds/labels.csv | cut -d, -f1); do cp "$data/aflw2000/images/$image" ds/images/; done
+
+echo "== 1. a Constant's tensor given twice (INT8 [N] with N values, then FLOAT [1] with 4 bytes): protobuf merges"
+echo "   them into FLOAT [N, 1] with 4 bytes, which OpenCV over-read (SIGSEGV); the check reads the merge"
+mkdir m_merged
+cp "$models"/*.onnx "$models"/canonical_face.txt m_merged/
+"$python" - "$models/whenet_fast.onnx" m_merged/whenet_fast.onnx <<'PY'
+import sys
+def varint(v):
+    out = bytearray()
+    while v >= 0x80:
+        out.append((v & 0x7f) | 0x80)
+        v >>= 7
+    out.append(v)
+    return bytes(out)
+def field(number, payload):  # a length-delimited field
+    return varint(number << 3 | 2) + varint(len(payload)) + payload
+def number(n, v):
+    return varint(n << 3) + varint(v)
+n = 1 << 22
+int8_part = number(1, n) + number(2, 3) + field(5, b"".join(varint(1) for _ in range(n)))
+float_part = number(1, 1) + number(2, 1) + field(9, bytes(4))
+attribute = field(1, b"value") + number(20, 4) + field(5, int8_part) + field(5, float_part)
+node = field(2, b"merged_constant") + field(4, b"Constant") + field(5, attribute)
+with open(sys.argv[1], "rb") as f:
+    model = f.read()
+with open(sys.argv[2], "wb") as f:  # a second occurrence of the model's graph: merged into the first
+    f.write(model + field(7, field(1, node)))
+PY
+expect_exit 1 "whenet_fast.onnx with a tensor given twice" "$estimator" --dataset ds --predictions p.csv --model whenet \
+  --models-dir m_merged
+said "cannot load model file m_merged/whenet_fast.onnx: tensor"
+
+echo "== 3. OpenCV's variables parsed as it loads: a bad value is a clear error and exit 2, never an abort"
+for setting in OPENCV_IO_MAX_IMAGE_WIDTH=abc OPENCV_IO_MAX_IMAGE_HEIGHT= OPENCV_IO_MAX_IMAGE_PARAMS=-1 \
+  OPENCV_IO_MAX_IMAGE_WIDTH=100000000000000000000 OPENCV_IO_MAX_IMAGE_WIDTH=5GB OPENCV_BUFFER_AREA_ALWAYS_SAFE=abc \
+  OPENCV_DUMP_ERRORS=yes OPENCV_THREAD_POOL_ACTIVE_WAIT_WORKER=-3 OPENCV_VIDEOIO_DEBUG=on; do
+  name=${setting%%=*}
+  for program in "$estimator" "$annotate"; do
+    expect_exit 0 "$setting $(basename "$program") --version" env "$setting" "$program" --version
+    expect_exit 0 "$setting $(basename "$program") --help" env "$setting" "$program" --help
+  done
+  expect_exit 2 "$setting hkf-estimator" env "$setting" "$estimator" --dataset ds --predictions p.csv --second-model none
+  said "hkf-estimator: $name='"
+  expect_exit 2 "$setting hkf-annotate" env "$setting" "$annotate" clip.mp4 raw.lcmlog filtered.lcmlog a.mp4
+  said "hkf-annotate: $name='"
+done
+# good values still load and run
+expect_exit 0 "OPENCV_IO_MAX_IMAGE_WIDTH=5MB OPENCV_DUMP_ERRORS=false" env OPENCV_IO_MAX_IMAGE_WIDTH=5MB \
+  OPENCV_DUMP_ERRORS=false "$estimator" --dataset ds --predictions p.csv --second-model none
+
+echo "== 10. OPENCV_TRACE on would write OpenCVTrace.txt into the current folder, unchecked: refused"
+expect_exit 2 "OPENCV_TRACE=1 hkf-estimator" env OPENCV_TRACE=1 "$estimator" --dataset ds --predictions p.csv --second-model none
+said "OPENCV_TRACE='1' would have OpenCV write OpenCVTrace.txt"
+[ ! -e OpenCVTrace.txt ] || fail "OpenCVTrace.txt was written"
+expect_exit 0 "OPENCV_TRACE=0 hkf-estimator" env OPENCV_TRACE=0 "$estimator" --dataset ds --predictions p.csv --second-model none
+[ ! -e OpenCVTrace.txt ] || fail "OpenCVTrace.txt was written"
+echo "faults_round6_test: all checks passed"
