@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The fault catalogue, part 5: the sixth hostile review (docs/reliability.md, "round 6"), on real data (the
 # shipped models, a real clip): a model whose tensor is given twice (protobuf merges the two), OpenCV's
-# variables that it parses as it loads (every one that aborted before main), OPENCV_TRACE. Each case fails
-# without its fix.
+# variables that it parses as it loads (every one that aborted before main), OPENCV_TRACE, hkf-track's logs
+# over its programs' inputs, Ctrl-C in hkf-track's first moments. Each case fails without its fix.
 # usage: faults_round6_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)
@@ -80,4 +80,37 @@ said "OPENCV_TRACE='1' would have OpenCV write OpenCVTrace.txt"
 [ ! -e OpenCVTrace.txt ] || fail "OpenCVTrace.txt was written"
 expect_exit 0 "OPENCV_TRACE=0 hkf-estimator" env OPENCV_TRACE=0 "$estimator" --dataset ds --predictions p.csv --second-model none
 [ ! -e OpenCVTrace.txt ] || fail "OpenCVTrace.txt was written"
+echo "== 2. hkf-track never opens a log over a file its programs read: the config, the models (noted before any log)"
+track=$build/tools/hkf-track
+cp "$source/filter_node/hkf-filter.conf" my.conf
+config_sum=$(sha256sum my.conf)
+mkdir logs
+ln my.conf logs/hkf-filter.log
+expect_exit 1 "a log hard-linked to --config" "$track" --source "$data/videos/d3.mp4" --config my.conf --logs logs
+said "'logs/hkf-filter.log' is the same file as 'my.conf'"
+said "nothing started"
+[ "$(sha256sum my.conf)" = "$config_sum" ] || fail "the config was changed"
+pgrep -f "hkf-estimator --source $data/videos/d3.mp4" >/dev/null && fail "a program was started"
+rm logs/hkf-filter.log
+mkdir m_copy
+cp "$models"/*.onnx "$models"/canonical_face.txt m_copy/
+model_sum=$(sha256sum m_copy/whenet_fast.onnx)
+ln -s "$work/m_copy/whenet_fast.onnx" logs/hkf-estimator.log
+expect_exit 1 "a log symlinked to a model in HKF_MODELS_DIR" env HKF_MODELS_DIR="$work/m_copy" "$track" \
+  --source "$data/videos/d3.mp4" --logs logs
+said "is the same file as '$work/m_copy/whenet_fast.onnx'"
+[ "$(sha256sum m_copy/whenet_fast.onnx)" = "$model_sum" ] || fail "the model was changed"
+rm logs/hkf-estimator.log
+
+echo "== 5. Ctrl-C in hkf-track's first 0.7 s: a program stopped before its first line lost no output"
+for delay in 0.2 0.4 0.6; do
+  "$track" --source "$data/videos/d3.mp4" --second-model none --logs logs >early.txt 2>&1 &
+  running=$!
+  sleep "$delay"
+  kill -INT "$running"
+  status=0
+  wait "$running" || status=$?
+  if grep -q "output was lost" early.txt || [ "$status" != 0 ]; then cat early.txt >&2; fail "Ctrl-C after $delay s: exit $status"; fi
+  echo "Ctrl-C after $delay s: exit 0; $(grep -c "stopped before it wrote" early.txt || true) program(s) stopped before their first line"
+done
 echo "faults_round6_test: all checks passed"

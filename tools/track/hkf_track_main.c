@@ -93,10 +93,7 @@ static int run(const track_options_t *o, track_programs_t *programs)
     static track_monitor_t monitor;
     track_exclusive_t exclusive;
     if (track_programs_make_log_folder(o->logs) != 0) return 1;
-    if (o->source != NULL) { /* no log may be the source, or one of its images, under another name */
-        safe_note_read(o->source);
-        safe_note_folder(o->source);
-    }
+    if (track_programs_check_inputs(programs, o, o->logs) != 0) return 1; /* no log over an input: nothing started */
     if (track_exclusive_claim(&exclusive, o->lcm_url, o->logs) != 0) return 2; /* another tracker: nothing started */
     lcm_t *lcm = lcm_create(o->lcm_url); /* resolved by track_options_parse */
     if (lcm == NULL) {

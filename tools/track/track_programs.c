@@ -4,6 +4,7 @@
 #include "track_programs.h"
 
 #include <ctype.h>
+#include <limits.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -16,6 +17,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "config_files.h"
 #include "safe_files.h"
 
 static void sleep_ms(long ms)
@@ -243,6 +245,58 @@ static int start_one(track_program_t *program, const char *logs)
     return 0;
 }
 
+/* The folder the estimator reads SUB from (its main.cpp: <prefix>/share/hkf/SUB beside an installed <prefix>/bin,
+ * else the build's), noted. */
+static void note_estimator_data(const char *estimator_program, const char *sub, const char *built)
+{
+    char installed[TRACK_PATH_SIZE + 64], resolved[PATH_MAX];
+    struct stat st;
+    if (realpath(estimator_program, resolved) != NULL) {
+        char *slash = strrchr(resolved, '/');
+        if (slash != NULL) *slash = '\0'; /* its folder: bin */
+        if (snprintf(installed, sizeof installed, "%s/../share/hkf/%s", resolved, sub) < (int)sizeof installed &&
+            stat(installed, &st) == 0 && S_ISDIR(st.st_mode)) {
+            safe_note_folder(installed);
+            return;
+        }
+    }
+    safe_note_folder(built);
+}
+
+int track_programs_check_inputs(const track_programs_t *p, const track_options_t *o, const char *logs)
+{
+    char reason[2 * TRACK_PATH_SIZE + 200], log[TRACK_PATH_SIZE];
+    config_files_t configs;
+    const char *models = getenv("HKF_MODELS_DIR");
+    if (o->source != NULL) { /* no log may be the source, or one of its images, under another name */
+        safe_note_read(o->source);
+        safe_note_folder(o->source);
+    }
+    if (o->config != NULL) {
+        safe_note_read(o->config);
+    } else { /* hkf-filter's own search */
+        config_files_find(&configs);
+        for (int i = 0; i < configs.count; ++i) safe_note_read(configs.path[i]);
+    }
+    for (int i = 0; i < p->count; ++i) {
+        if (strcmp(p->program[i].name, "hkf-estimator") != 0) continue;
+        if (models != NULL && *models != '\0') {
+            safe_note_folder(models);
+        } else {
+            note_estimator_data(p->program[i].argv[0], "models", HKF_DEFAULT_MODELS_DIR);
+        }
+        note_estimator_data(p->program[i].argv[0], "specs", HKF_DEFAULT_SPEC_DIR);
+    }
+    for (int i = 0; i < p->count; ++i) { /* every log, before the first is opened */
+        snprintf(log, sizeof log, "%s/%s.log", logs, p->program[i].log_name);
+        if (safe_output_problem(log, reason, sizeof reason) != 0) {
+            fprintf(stderr, "hkf-track: %s; nothing started\n", reason);
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* mkdir -p: the folder and those above it. 0, or -1 with errno. */
 static int make_folders(const char *path)
 {
@@ -299,6 +353,7 @@ int track_programs_reap(track_programs_t *p)
 static void stop_one(track_program_t *program)
 {
     int wait_status;
+    program->stopped = 1;
     kill(-program->pid, SIGINT); /* its process group (run_child made it): what it started goes too */
     for (int waited = 0; waited < 5000; waited += 20) {
         if (waitpid(program->pid, &wait_status, WNOHANG) == program->pid) {
@@ -350,13 +405,16 @@ static int print_summary(const track_program_t *program)
     if (count != NULL) printf("%s\n", count);
     if (last != NULL && (count == NULL || strcmp(count, last) != 0)) printf("%s\n", last);
     fflush(stdout);
-    if (last == NULL) {
+    const int lost = last == NULL && !program->stopped; /* stopped before its first line: nothing to lose */
+    if (lost) {
         fprintf(stderr, "hkf-track: %s's log %s is empty: its output was lost (a full disk?)\n", program->name,
                 program->log);
+    } else if (last == NULL) {
+        printf("hkf-track: %s was stopped before it wrote a line\n", program->name);
     }
     if (log != NULL) fclose(log);
     free(line), free(count);
-    int empty = last == NULL;
+    int empty = lost;
     free(last);
     return empty;
 }

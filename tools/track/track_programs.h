@@ -29,6 +29,7 @@ typedef struct {
     pid_t pid;
     int running;
     int status; /* its exit code, or minus the signal that ended it */
+    int stopped; /* hkf-track stopped it (Ctrl-C, a stop): an empty log is then no lost output */
 } track_program_t;
 
 typedef struct {
@@ -48,6 +49,12 @@ int track_programs_plan(track_programs_t *p, const track_options_t *o);
  * the estimator publishes. 0, or 1 (said) when a log or a process could not
  * be made; the programs started are then stopped. */
 int track_programs_start(track_programs_t *p, const char *logs);
+
+/* Notes every file the planned programs will read (safe_note_read, safe_note_folder): --source, hkf-filter's
+ * config (--config, or the files it finds without one), hkf-estimator's models and specs; then checks that no
+ * log in LOGS is one of them, or anything else an output may not be (safe_output_problem). 0, or 1 (said):
+ * nothing may start. Call before any log is opened. */
+int track_programs_check_inputs(const track_programs_t *p, const track_options_t *o, const char *logs);
 
 /* mkdir -p logs: 0, or 1 (said). Before track_programs_start, which writes the logs there. */
 int track_programs_make_log_folder(const char *logs);
