@@ -54,15 +54,24 @@ static void usage(FILE *to)
             "included); 2 for bad arguments or settings.\n");
 }
 
-/* Every channel name is one LCM accepts: 0, or 2 (said). */
+/* Every channel name is one LCM accepts, and each of the four is the node's for one use only (a status
+ * message on the pose or input channel would reach every subscriber of that one): 0, or 2 (said). */
 static int check_channels(const node_options_t *o)
 {
     const char *const channels[] = {o->input_channel, o->output_channel, o->command_channel, o->status_channel};
+    static const char *const options[] = {"--input-channel", "--output-channel", "--command-channel", "--status-channel"};
     for (int i = 0; i < 4; ++i) {
         if (channels[i][0] == '\0' || strlen(channels[i]) > LCM_MAX_CHANNEL_NAME_LENGTH) {
             fprintf(stderr, "hkf-filter: a channel name has 1 to %d characters, not '%.80s%s'\n",
                     LCM_MAX_CHANNEL_NAME_LENGTH, channels[i], strlen(channels[i]) > 80 ? "..." : "");
             return 2;
+        }
+        for (int j = 0; j < i; ++j) {
+            if (strcmp(channels[i], channels[j]) == 0) {
+                fprintf(stderr, "hkf-filter: %s and %s are both '%s': each of the node's channels has one use\n",
+                        options[j], options[i], channels[i]);
+                return 2;
+            }
         }
     }
     return 0;

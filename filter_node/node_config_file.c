@@ -124,6 +124,9 @@ int node_config_read_file(node_config_t *config, const char *path, char *error, 
             return -1;
         }
         snprintf(origin, sizeof origin, "%.80s:%d", path, number);
+        if (number == 1 && strncmp(line, "\xef\xbb\xbf", 3) == 0) { /* a UTF-8 byte order mark (Notepad's): not text */
+            memmove(line, line + 3, strlen(line + 3) + 1);
+        }
         hash = strchr(line, '#');
         if (hash != NULL) {
             *hash = '\0';

@@ -34,6 +34,20 @@ int argument_help_or_version(const char *arg, const char *program, void (*usage)
     return 0;
 }
 
+int argument_port(const char *text, long low, long *port)
+{
+    long value = 0;
+    const char *c = text;
+    for (; *c >= '0' && *c <= '9' && c - text < 5; ++c) {
+        value = value * 10 + (*c - '0');
+    }
+    if (c == text || *c != '\0' || value < low || value > 65535) {
+        return 0;
+    }
+    *port = value;
+    return 1;
+}
+
 int argument_number(const char *text, double low, double high, double *value)
 {
     char *end = NULL;

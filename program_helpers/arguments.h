@@ -17,6 +17,11 @@ extern "C" {
  * [low, high]: *value holds it; else 0 (the caller says what it wanted). */
 int argument_number(const char *text, double low, double high, double *value);
 
+/* 1 when text is a UDP port: decimal digits alone (no sign, space, point, exponent or 0x), from low to
+ * 65535; *port holds it; else 0. The one reading of a port for every program (hkf-track passes its ports on
+ * to the bridge, which must read them as hkf-track did). */
+int argument_port(const char *text, long low, long *port);
+
 /* 1 when arg is --help or -h (usage(stdout) called) or --version ("PROGRAM
  * VERSION" printed): the program has answered and exits 0; else 0. When the
  * answer cannot be written (stdout on a full disk), it says so and exits 1. */

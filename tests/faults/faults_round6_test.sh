@@ -2,7 +2,8 @@
 # The fault catalogue, part 5: the sixth hostile review (docs/reliability.md, "round 6"), on real data (the
 # shipped models, a real clip): a model whose tensor is given twice (protobuf merges the two), OpenCV's
 # variables that it parses as it loads (every one that aborted before main), OPENCV_TRACE, hkf-track's logs
-# over its programs' inputs, Ctrl-C in hkf-track's first moments. Each case fails without its fix.
+# over its programs' inputs, Ctrl-C in hkf-track's first moments, ports read one way by every program, a
+# config's byte order mark, a status channel that is another's. Each case fails without its fix.
 # usage: faults_round6_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd)
@@ -113,4 +114,28 @@ for delay in 0.2 0.4 0.6; do
   if grep -q "output was lost" early.txt || [ "$status" != 0 ]; then cat early.txt >&2; fail "Ctrl-C after $delay s: exit $status"; fi
   echo "Ctrl-C after $delay s: exit 0; $(grep -c "stopped before it wrote" early.txt || true) program(s) stopped before their first line"
 done
+echo "== 4. (hkf.track.exclusive) a port LCM reads as 7667 is one claim however it is spelled"
+
+echo "== 6. a port hkf-track passes on is read as its bridge reads it: refused before anything starts"
+for option in "--flightgear 5550.0" "--flightgear 0x15ae" "--flightgear 5550e0" "--opentrack --opentrack-port 4242.0" \
+  "--opentrack --opentrack-port +4242"; do
+  # shellcheck disable=SC2086
+  expect_exit 2 "hkf-track $option" "$track" --source "$data/videos/d3.mp4" $option --logs logs
+  said "a UDP port from 1 to 65535 (digits alone)"
+  if grep -q "started" "$work/out.txt"; then fail "hkf-track $option started a program"; fi
+done
+expect_exit 2 "hkf-opentrack --port 4242.0" "$build/tools/hkf-opentrack" --port 4242.0
+said "wants a UDP port from 1 to 65535"
+
+echo "== 8. a UTF-8 byte order mark at a config file's start is no part of its first key"
+printf '\xef\xbb\xbfstillness = 2\n' >bom.conf
+expect_exit 0 "a config with a BOM" "$build/tools/hkf-filter" --config bom.conf --print-config
+said "^stillness  *= 2 .*bom.conf:1"
+
+echo "== 9. the status channel is none of the node's other channels"
+for channel in HEAD_POSE HEAD_POSE_RAW HEAD_TRACKER_CMD; do
+  expect_exit 2 "--status-channel $channel" "$build/tools/hkf-filter" --status-channel "$channel" --lcm-url memq://
+  said "both '$channel': each of the node's channels has one use"
+done
+expect_exit 2 "--output-channel HEAD_POSE_RAW" "$build/tools/hkf-filter" --output-channel HEAD_POSE_RAW --lcm-url memq://
 echo "faults_round6_test: all checks passed"

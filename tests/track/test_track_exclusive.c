@@ -60,6 +60,27 @@ static void test_one_group_one_claim(void **state)
     track_exclusive_release(&first);
 }
 
+/* Hardening round 6, item 4: LCM reads the port with strtol(..., 0) and ignores what follows it, and the group
+ * with inet_aton (checked by binding in a private network namespace: 0x1df3, " +7667", 7667abc and 7667.5 bind
+ * 7667, 07667 binds 4023, so 016763 is 7667): each spelling of one port is one claim; a port LCM refuses is keyed on its text. */
+static void test_port_spelled_as_lcm_reads_it(void **state)
+{
+    static const char *const same[] = {"udpm://239.255.76.67:0x1df3?ttl=0", "udpm://239.255.76.67:7667abc?ttl=0",
+                                       "udpm://239.255.76.67: +7667?ttl=0", "udpm://239.255.76.67:7667.5",
+                                       "udpm://239.255.76.67:016763", "udpm://0xefff4c43:7667?ttl=0"};
+    track_exclusive_t first, second;
+    size_t i;
+    (void)state;
+    assert_int_equal(track_exclusive_claim(&first, "udpm://239.255.76.67:7667?ttl=0", folders[0]), 0);
+    for (i = 0; i < sizeof same / sizeof same[0]; ++i) {
+        print_message("%s: the same port\n", same[i]);
+        assert_int_equal(track_exclusive_claim(&second, same[i], folders[1]), -1);
+    }
+    assert_int_equal(track_exclusive_claim(&second, "udpm://239.255.76.67:07667?ttl=0", folders[1]), 0); /* 4023 */
+    track_exclusive_release(&second);
+    track_exclusive_release(&first);
+}
+
 /* Two URLs longer than a socket's name that differ only at their end are two claims. */
 static void test_long_urls_hashed_not_cut(void **state)
 {
@@ -83,6 +104,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_group_one_claim),
+        cmocka_unit_test(test_port_spelled_as_lcm_reads_it),
         cmocka_unit_test(test_long_urls_hashed_not_cut),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

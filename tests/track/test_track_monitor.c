@@ -157,6 +157,22 @@ static void test_poses_checked(void **state)
     assert_non_null(strstr(line, "p50 15.0 ms"));
 }
 
+/* Hardening round 6, item 7: the faces are a rate beside the camera's: 15 frames with a face in the half
+ * second a line covers read "camera 30.0 fps (30.0 with a face)", not "(15 with a face)". */
+static void test_faces_a_rate(void **state)
+{
+    uint8_t raw[256];
+    char line[512];
+    int i;
+    (void)state;
+    for (i = 0; i < 15; ++i) {
+        deliver("HEAD_POSE_RAW", raw, measurement_bytes(i + 1, raw, sizeof raw));
+    }
+    track_monitor_line(&monitor, 0.5, 0.5, line, sizeof line);
+    print_message("%s\n", line);
+    assert_non_null(strstr(line, "camera  30.0 fps (30.0 with a face)"));
+}
+
 /* A filter that stops (SIGSTOP) or hangs: its last pose is not shown as current; after
  * TRACK_SILENT_LINES silent seconds the line says so, and the pose returns when poses do. */
 static void test_silent_filter_said(void **state)
@@ -191,6 +207,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_seq_at_the_ends, setup, teardown),
         cmocka_unit_test_setup_teardown(test_poses_checked, setup, teardown),
         cmocka_unit_test_setup_teardown(test_silent_filter_said, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_faces_a_rate, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -93,14 +93,6 @@ static int parse_scale(const char *text, opentrack_mapping_t *mapping)
     return 0;
 }
 
-static int parse_port(const char *text, long low, long *port)
-{
-    char *end = NULL;
-    errno = 0;
-    *port = strtol(text, &end, 10);
-    return end != text && *end == '\0' && errno == 0 && *port >= low && *port <= 65535 ? 0 : -1;
-}
-
 /* --invert, --scale or --lost with its value: 0, -1 when arg is none of them, 2 for a bad value (said). */
 static int mapping_option(bridge_options_t *o, const char *arg, const char *value)
 {
@@ -145,7 +137,7 @@ static int number_option(bridge_options_t *o, const char *arg, const char *value
     long port;
     if (strcmp(arg, "--port") == 0 || strcmp(arg, "--bind") == 0) {
         const int bind = strcmp(arg, "--bind") == 0;
-        if (parse_port(value, 1, bind ? &o->bind_port : &port) != 0) {
+        if (!argument_port(value, 1, bind ? &o->bind_port : &port)) {
             fprintf(stderr, "hkf-opentrack: %s wants a UDP port from 1 to 65535, not '%s'\n", arg, value);
             return 2;
         }

@@ -15,7 +15,8 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-/* What LCM will use of url, as a key: for udpm, the multicast group and port after parsing, with LCM's
+/* What LCM will use of url, as a key: for udpm, the multicast group (inet_aton) and port (strtol, base 0,
+ * trailing text ignored) as LCM 1.4 reads them, with LCM's
  * defaults filled in (239.255.76.67, 7667), so that "udpm://239.255.76.67:7667?ttl=0" and
  * "udpm://239.255.76.67:7667" are one key. The TTL is left out on purpose: two trackers on one group and
  * port receive each other's poses whatever TTL each sends with. Any other provider: its text. */
@@ -42,13 +43,14 @@ static void url_key(const char *url, char *key, size_t size)
         memcpy(address, network, length);
         address[length] = '\0';
     }
-    if (colon != NULL) {
+    if (colon != NULL) { /* as LCM reads it: strtol(..., 0), so 0x1df3, 017763, " +7667" and 7667abc are 7667 */
         char *stop;
-        port = strtoul(colon + 1, &stop, 10);
-        if (stop != end || stop == colon + 1 || port > 65535) {
+        const long read = strtol(colon + 1, &stop, 0);
+        if (stop == colon + 1 || read < 0 || read > 65535) {
             snprintf(key, size, "%s", url); /* LCM refuses it: keyed on its text */
             return;
         }
+        port = (unsigned long)read;
     }
     if (inet_aton(address, &group) == 0) { /* as LCM reads it (an octal 076 is 62) */
         snprintf(key, size, "%s", url);

@@ -146,7 +146,7 @@ static size_t rest_text(track_monitor_t *m, char *out, size_t size)
 void track_monitor_line(track_monitor_t *m, double elapsed, double interval, char *out, size_t size)
 {
     size_t used = 0;
-    APPEND("[%6.1f s] camera %5.1f fps (%ld with a face), filter %5.1f poses/s", elapsed, m->raw / interval, m->faces,
+    APPEND("[%6.1f s] camera %5.1f fps (%.1f with a face), filter %5.1f poses/s", elapsed, m->raw / interval, m->faces / interval,
            m->poses / interval);
     if (m->second) APPEND(", second model %4.1f/s", m->second / interval);
     if (m->latencies > 0 && m->clock_is_real) {

@@ -141,7 +141,8 @@ static int read_option(int argc, char **argv, int *i, track_options_t *o)
 static int check(const track_options_t *o)
 {
     struct stat info;
-    double rate, port;
+    double rate;
+    long port;
     if ((o->camera == NULL) == (o->source == NULL)) return bad("give one of --camera N and --source FILE", NULL);
     if (o->source != NULL && stat(o->source, &info) != 0) {
         return bad("--source: no such file or folder: ", o->source);
@@ -156,14 +157,11 @@ static int check(const track_options_t *o)
     if (o->rate != NULL && !argument_number(o->rate, 0.1, 10000.0, &rate)) { /* hkf-filter's range */
         return bad("--rate wants a frequency from 0.1 to 10000 Hz, not ", o->rate);
     }
-    if (!argument_number(o->opentrack_port, 1.0, 65535.0, &port) || port != (double)(long)port) {
-        return bad("--opentrack-port wants a UDP port from 1 to 65535, not ", o->opentrack_port);
+    if (!argument_port(o->opentrack_port, 1, &port)) {
+        return bad("--opentrack-port wants a UDP port from 1 to 65535 (digits alone), not ", o->opentrack_port);
     }
-    if (o->flightgear != NULL && !argument_number(o->flightgear_port, 1.0, 65535.0, &port)) {
-        return bad("--flightgear wants [HOST:]PORT, a UDP port from 1 to 65535, not ", o->flightgear);
-    }
-    if (o->flightgear != NULL && port != (double)(long)port) {
-        return bad("--flightgear wants [HOST:]PORT, a whole port number, not ", o->flightgear);
+    if (o->flightgear != NULL && !argument_port(o->flightgear_port, 1, &port)) {
+        return bad("--flightgear wants [HOST:]PORT, a UDP port from 1 to 65535 (digits alone), not ", o->flightgear);
     }
     if (strncmp(o->lcm_url, "file://", 7) == 0) {
         return bad("--lcm-url: hkf-track runs live programs; a file:// log is for hkf-estimator and "
