@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Small ONNX graphs for fuzz_onnx_model's corpus, beside the shipped models: a convolution with a bias,
 the estimator's own three layer types (hkf.DepthwiseConv, hkf.PointwiseConv, hkf.Swish) and a Constant
-node, typed (not raw) data, an int64 shape and a graph inside an attribute (If).
+node, typed (not raw) data, an int64 shape and a graph inside an attribute (If); and three whose singular
+messages are given more than once, which protobuf merges (hardening round 6): the model's graph in two
+occurrences, a Constant's tensor whose dims and data come in two, an If's branch graph in two.
 usage: make_onnx_seeds.py OUT_DIR"""
 import os
 import sys
@@ -47,4 +49,56 @@ branch = helper.make_graph(
 for graph in (conv, hkf, typed, branch):
     model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 11), helper.make_opsetid("hkf", 1)])
     onnx.save(model, os.path.join(out, graph.name + ".onnx"))
-print(f"make_onnx_seeds: 4 graphs in {out}")
+
+
+def field(number, payload):
+    """A length-delimited protobuf field: key, length, payload."""
+    def varint(v):
+        out = bytearray()
+        while v >= 0x80:
+            out.append((v & 0x7f) | 0x80)
+            v >>= 7
+        out.append(v)
+        return bytes(out)
+    return varint(number << 3 | 2) + varint(len(payload)) + payload
+
+
+def model_bytes(graph):
+    return helper.make_model(graph, opset_imports=[helper.make_opsetid("", 11)]).SerializeToString()
+
+
+# the model's graph (ModelProto field 7) in two occurrences: the first's nodes, then the rest
+head = helper.make_graph([conv.node[0]], "conv", [x], [y], list(conv.initializer))
+tail = onnx.GraphProto()
+tail.node.extend([conv.node[1]])
+with open(os.path.join(out, "graph_twice.onnx"), "wb") as f:
+    f.write(model_bytes(head) + field(7, tail.SerializeToString()))
+# a Constant's tensor (AttributeProto field 5) in two occurrences: dims [2] then dims [3], data_type and 24 bytes
+first_part, second_part = onnx.TensorProto(), onnx.TensorProto()
+first_part.dims.extend([2])
+second_part.dims.extend([3])
+second_part.data_type = TensorProto.FLOAT
+second_part.raw_data = np.zeros(6, np.float32).tobytes()
+attribute = onnx.AttributeProto()
+attribute.name, attribute.type = "value", onnx.AttributeProto.TENSOR
+attribute_bytes = attribute.SerializeToString() + field(5, first_part.SerializeToString()) + \
+    field(5, second_part.SerializeToString())
+node = helper.make_node("Constant", [], ["k"])
+node_bytes = node.SerializeToString() + field(5, attribute_bytes)
+graph = helper.make_graph([helper.make_node("Identity", ["x"], ["y"])], "tensor_twice", [x], [y])
+with open(os.path.join(out, "tensor_twice.onnx"), "wb") as f:
+    f.write(model_bytes(graph) + field(7, field(1, node_bytes)))
+# an If's then-branch (AttributeProto field 6) in two occurrences: its name and output, then its node
+then_head = helper.make_graph([], "then", [], [helper.make_tensor_value_info("t", TensorProto.FLOAT, None)])
+then_tail = onnx.GraphProto()
+then_tail.node.extend([helper.make_node("Identity", ["x"], ["t"])])
+branch_attribute = onnx.AttributeProto()
+branch_attribute.name, branch_attribute.type = "then_branch", onnx.AttributeProto.GRAPH
+branch_attribute_bytes = branch_attribute.SerializeToString() + field(6, then_head.SerializeToString()) + \
+    field(6, then_tail.SerializeToString())
+if_node = helper.make_node("If", ["c"], ["y"], else_branch=other)
+if_bytes = if_node.SerializeToString() + field(5, branch_attribute_bytes)
+branch_head = helper.make_graph([branch.node[0]], "branch_twice", [x], [y])
+with open(os.path.join(out, "branch_twice.onnx"), "wb") as f:
+    f.write(model_bytes(branch_head) + field(7, field(1, if_bytes)))
+print(f"make_onnx_seeds: 7 graphs in {out} (3 with singular messages given twice)")

@@ -216,6 +216,28 @@ static void test_swaying_head_refused(void **state)
     assert_int_equal(spoiled, (unsigned)refused);
 }
 
+/* A head that jiggles fast and little (3 Hz, 0.8 deg: a player who talks) spreads only 0.3 deg^2 beyond its
+ * noise, under HKF_REST_MOVED_WANDER, but wanders at over HKF_REST_MOVED_DRIFT: refused by its drift. */
+static void test_jiggling_head_refused_by_its_drift(void **state)
+{
+    hkf_rest_t rest;
+    int k, refused = 0, measured;
+    (void)state;
+    assert_int_equal(hkf_rest_init(&rest, &hkf_default_rest_settings), HKF_OK);
+    assert_int_equal(hkf_rest_start(&rest), HKF_OK);
+    for (k = 0; k < 2 * REST_FRAMES; ++k) {
+        hkf_real_t z[3];
+        set3(z, 0.0, 0.8 * sin(2.0 * M_PI * 3.0 * k * frame_s), 0.0);
+        refused += hkf_rest_update(&rest, z, R(frame_s)) == HKF_REST_SPOILED;
+    }
+    assert_int_equal(hkf_rest_get_progress(&rest, NULL, NULL, NULL, &measured), HKF_OK);
+    print_message("a 3 Hz jiggle of 0.8 deg: %d refused; spread beyond noise %.2f deg^2, drift %.1f deg^2/s\n", refused,
+                  D(rest.last_refused.spread[1]) - D(rest.last_refused.noise[1]), D(rest.last_refused.drift[1]));
+    assert_true(refused >= 1 && !measured);
+    assert_true(D(rest.last_refused.spread[1]) - D(rest.last_refused.noise[1]) < HKF_REST_MOVED_WANDER);
+    assert_true(D(rest.last_refused.drift[1]) > HKF_REST_MOVED_DRIFT);
+}
+
 /* The frames after raw's own that the filter with HOLD's wander w shows 1 deg of a 2 deg glance (a step at
  * frame `start`), on the noise n of `seed`. */
 static int frames_behind_raw(hkf_real_t wander, double n, unsigned seed, int start)
@@ -343,6 +365,7 @@ static void test_slow_turn_is_not_a_rest(void **state)
     }
     print_message("a 2.8 deg/s turn: spoiled at frame %d\n", spoiled_at);
     assert_int_equal(spoiled_at, REST_FRAMES - 1); /* at the end: no frame was beyond the reach */
+    assert_int_equal(rest.refused, 0u); /* a move across half the reach: spoiled by that rule, before the refusal's */
 }
 
 /* A rest at the yaw seam (the head turned 179.9 deg, the estimate wrapping to -180): its centre is at the
@@ -468,6 +491,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_swaying_head_refused),
+        cmocka_unit_test(test_jiggling_head_refused_by_its_drift),
         cmocka_unit_test(test_wander_bounded_where_a_glance_follows),
         cmocka_unit_test(test_drift_rate_measured),
         cmocka_unit_test(test_stillness_scales_the_wander),
