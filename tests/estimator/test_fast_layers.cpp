@@ -117,6 +117,9 @@ void test_depthwise_matches_the_loops(void **)
         {9, 7, 7, 5, 1, 2, 2, 2, 2, 0},       // planes narrower than a vector
         {4, 13, 10, 3, 2, 1, 0, 1, 2, 0},     // odd sizes, every side padded differently
         {3, 9, 11, 7, 3, 3, 0, 2, 1, 1},      // a kernel and stride without a template of their own
+        {3, 1, 1, 3, 1, 1, 1, 1, 1, 1},       // round 6's review: a 1 x 1 image (every tap but the centre padding)
+        {5, 1, 7, 3, 2, 1, 1, 1, 1, 0},       // one row
+        {2, 1024, 1536, 3, 2, 1, 1, 1, 1, 1}, // a large image
     };
     for (const Case &c : cases) {
         const double error = depthwise_error(c);

@@ -230,6 +230,30 @@ void test_merged_occurrences(void **)
     assert_true(problem(short_model).find("declares 6 elements (24 bytes) but holds 4 bytes") != std::string::npos);
 }
 
+// Round 6's own review: nesting. Graphs inside attributes inside graphs are checked to 16 levels and refused
+// beyond, without recursing further (a file of 10,000 nested If branches: no stack overflow).
+void test_nesting_bounded(void **)
+{
+    auto nested = [](int depth) {
+        Bytes graph;
+        bytes(graph, 5, tensor({2}, 1, 8));
+        for (int level = 0; level < depth; ++level) {
+            Bytes attribute, node, outer;
+            bytes(attribute, 1, text("then_branch"));
+            bytes(attribute, 6, graph);
+            bytes(node, 5, attribute);
+            bytes(outer, 1, node);
+            graph = outer;
+        }
+        Bytes model;
+        bytes(model, 7, graph);
+        return model;
+    };
+    assert_string_equal(problem(nested(16)).c_str(), "");
+    assert_true(problem(nested(17)).find("graphs nested deeper than 16") != std::string::npos);
+    assert_true(problem(nested(10000)).find("graphs nested deeper than 16") != std::string::npos);
+}
+
 }  // namespace
 
 int main()
@@ -238,6 +262,7 @@ int main()
         cmocka_unit_test(test_whole_tensors_taken), cmocka_unit_test(test_data_against_shape),
         cmocka_unit_test(test_shape_bounds),        cmocka_unit_test(test_integers_bounded),
         cmocka_unit_test(test_not_taken),           cmocka_unit_test(test_merged_occurrences),
+        cmocka_unit_test(test_nesting_bounded),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);
 }

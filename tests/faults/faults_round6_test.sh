@@ -138,4 +138,51 @@ for channel in HEAD_POSE HEAD_POSE_RAW HEAD_TRACKER_CMD; do
   said "both '$channel': each of the node's channels has one use"
 done
 expect_exit 2 "--output-channel HEAD_POSE_RAW" "$build/tools/hkf-filter" --output-channel HEAD_POSE_RAW --lcm-url memq://
+echo "== review: outputs named through /dev/fd and /proc/self/fd, a bind mount, a full tmpfs"
+filter=$build/tools/hkf-filter
+"$estimator" --source "$data/videos/d3.mp4" --max-frames 30 --second-model none --lcm-url "file://$work/raw.lcmlog?mode=w" \
+  >/dev/null 2>&1 || fail "the raw log"
+raw_sum=$(sha256sum raw.lcmlog)
+expect_exit 1 "--offline to /dev/fd/5, the input open there" "$filter" --offline raw.lcmlog /dev/fd/5 5<>raw.lcmlog
+said "'/dev/fd/5' is also 'raw.lcmlog'"
+expect_exit 1 "--offline to /proc/self/fd/5" "$filter" --offline raw.lcmlog /proc/self/fd/5 5<>raw.lcmlog
+said "'/proc/self/fd/5' is also 'raw.lcmlog'"
+if [ "$(id -u)" = 0 ] && unshare -m true 2>/dev/null; then
+  touch bound.lcmlog
+  expect_exit 1 "--offline to a bind mount of the input" unshare -m sh -c \
+    "mount --bind raw.lcmlog bound.lcmlog && exec '$filter' --offline raw.lcmlog bound.lcmlog"
+  said "'bound.lcmlog' is also 'raw.lcmlog'"
+  mkdir small
+  expect_exit 1 "--offline and --csv onto a full tmpfs" unshare -m sh -c \
+    "mount -t tmpfs -o size=8k tmpfs small && exec '$filter' --offline raw.lcmlog small/out.lcmlog --csv small/out.csv"
+  said "error writing 'small/out.lcmlog' (a full disk?)"
+else
+  echo "(not root, or no mount namespace: the bind mount and the full tmpfs not tried)"
+fi
+[ "$(sha256sum raw.lcmlog)" = "$raw_sum" ] || fail "the raw log was changed"
+echo "== review: a model whose Reshape, Expand, Tile or ConstantOfShape asks for 2^48 elements (each size within the"
+echo "   check's 2^24): OpenCV refuses it while importing (an allocation it cannot make, or its own assertion); exit 1"
+for op in ConstantOfShape Reshape Expand Tile; do
+  mkdir "m_$op"
+  cp "$models"/*.onnx "$models"/canonical_face.txt "m_$op/"
+  "$python" - "$op" "m_$op/whenet_fast.onnx" <<'PY'
+import sys
+import numpy as np
+import onnx
+from onnx import TensorProto, helper
+op, path = sys.argv[1], sys.argv[2]
+big = 1 << 24
+shape = [big, big] if op == "ConstantOfShape" else [big, big, 1, 1]
+nodes = [helper.make_node("Constant", [], ["s"], value=helper.make_tensor("sv", TensorProto.INT64, [len(shape)],
+                                                                           np.array(shape, np.int64).tobytes(), raw=True))]
+nodes += [helper.make_node("ConstantOfShape", ["s"], ["c"]), helper.make_node("Add", ["x", "c"], ["y"])] \
+    if op == "ConstantOfShape" else [helper.make_node(op, ["x", "s"], ["y"])]
+graph = helper.make_graph(nodes, op, [helper.make_tensor_value_info("x", TensorProto.FLOAT, [1, 3, 224, 224])],
+                          [helper.make_tensor_value_info("y", TensorProto.FLOAT, [1])])
+onnx.save(helper.make_model(graph, opset_imports=[helper.make_opsetid("", 13)]), path)
+PY
+  expect_exit 1 "whenet_fast.onnx asking $op for 2^48 elements" "$estimator" --dataset ds --predictions p.csv \
+    --model whenet --models-dir "m_$op"
+  said "cannot load model file m_$op/whenet_fast.onnx"
+done
 echo "faults_round6_test: all checks passed"
