@@ -187,6 +187,11 @@ int main(int argc, char **argv)
     const char *level = nullptr;
     try {
         level = hkf_estimator::layer_kernels_in_use().name;  // HKF_SIMD, or the best this CPU runs
+    } catch (const hkf_estimator::EstimatorError &e) {  // a level this CPU cannot run, or none: exit 2
+        std::fprintf(stderr, "hkf-bench-layers: %s\n", e.what());
+        return 2;
+    }
+    try {
         net = hkf_estimator::load_onnx_network(o.model, {});
     } catch (const hkf_estimator::EstimatorError &e) {
         std::fprintf(stderr, "hkf-bench-layers: %s\n", e.what());
