@@ -128,6 +128,17 @@ def peer_points(t, valid, z):
     return [p for p in euro if not np.isnan(p["jitter"])], [p for p in accela if not np.isnan(p["jitter"])]
 
 
+def real_clip(build, out, types, path):
+    """A real clip through the default estimator: (name, its raw log, the measurements' utime, the clip: t, valid,
+    z, raw's metrics and the 1 euro sweep's points, as ratios() wants it)."""
+    name = os.path.splitext(os.path.basename(path))[0]
+    raw = evaluate.raw_log(build, out, path, ESTIMATOR)
+    utime, t, valid, z = evaluate.read_raw(raw, types)
+    clip = {"t": t, "valid": valid, "z": z, "raw": evaluate.measure(t, valid, z, np.where(valid[:, None], z, np.nan))}
+    clip["euro"], _ = peer_points(t, valid, z)
+    return name, raw, utime, clip
+
+
 def judged(clip):
     return clip["raw"]["still_pairs"] >= MIN_STILL_PAIRS and clip["raw"]["moving"] >= MIN_MOVING
 

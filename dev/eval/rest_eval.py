@@ -47,11 +47,8 @@ def settings(window, t, valid):
 
 def measure_clip(build, out, types, work, path):
     """The clip's rest window and, per setting, its metrics and ratios against the 1 euro sweep."""
-    name = os.path.splitext(os.path.basename(path))[0]
-    raw = evaluate.raw_log(build, out, path, leave_one_out.ESTIMATOR)
-    utime, t, valid, z = evaluate.read_raw(raw, types)
-    clip = {"t": t, "valid": valid, "z": z, "raw": evaluate.measure(t, valid, z, np.where(valid[:, None], z, np.nan))}
-    clip["euro"], _ = leave_one_out.peer_points(t, valid, z)
+    name, raw, utime, clip = leave_one_out.real_clip(build, out, types, path)
+    t, valid, z = clip["t"], clip["valid"], clip["z"]
     window = player_rest.rest_window(t, valid, z)
     rest_log = os.path.join(work, f"{name}.rest.lcmlog")
     if window is not None:

@@ -57,11 +57,8 @@ def rest_outcome(build, raw, work):
 
 
 def measure_clip(build, out, types, work, path):
-    name = os.path.splitext(os.path.basename(path))[0]
-    raw = evaluate.raw_log(build, out, path, leave_one_out.ESTIMATOR)
-    utime, t, valid, z = evaluate.read_raw(raw, types)
-    clip = {"t": t, "valid": valid, "z": z, "raw": evaluate.measure(t, valid, z, np.where(valid[:, None], z, np.nan))}
-    clip["euro"], _ = leave_one_out.peer_points(t, valid, z)
+    name, raw, utime, clip = leave_one_out.real_clip(build, out, types, path)
+    t, valid, z = clip["t"], clip["valid"], clip["z"]
     outcome, refused, wander = rest_outcome(build, raw, work)
     results = []
     for label, options in SETTINGS:

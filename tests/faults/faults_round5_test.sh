@@ -13,15 +13,8 @@ simlog=$build/tools/hkf-simlog cmd=$build/tools/hkf-cmd
 data=$source/../shared/data models=$source/.models
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-expect_exit() { # expect_exit CODE LABEL COMMAND...: wants exit CODE (60 s at most); the output in $work/out.txt
-  local want=$1 label=$2 status=0
-  shift 2
-  timeout 60 "$@" >"$work/out.txt" 2>&1 || status=$?
-  [ "$status" = "$want" ] || { cat "$work/out.txt" >&2; fail "$label: exit $status (expected $want)"; }
-  echo "$label: exit $status; $(grep -v "measurements (\|own layers at" "$work/out.txt" | head -n 1)"
-}
-said() { grep -q -- "$1" "$work/out.txt" || { cat "$work/out.txt" >&2; fail "expected to be told '$1'"; }; }
+# shellcheck source=expect_exit.sh
+. "$source/tests/faults/expect_exit.sh"  # fail, expect_exit, said
 sum() { sha256sum "$@" | sha256sum | cut -d' ' -f1; }
 cd "$work"
 

@@ -12,15 +12,8 @@ estimator=$build/estimator/hkf-estimator annotate=$build/estimator/hkf-annotate
 data=$source/../shared/data models=$source/.models
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-fail() { echo "FAIL: $*" >&2; exit 1; }
-expect_exit() { # expect_exit CODE LABEL COMMAND...: wants exit CODE (60 s at most); the output in $work/out.txt
-  local want=$1 label=$2 status=0
-  shift 2
-  timeout 60 "$@" >"$work/out.txt" 2>&1 || status=$?
-  [ "$status" = "$want" ] || { cat "$work/out.txt" >&2; fail "$label: exit $status (expected $want)"; }
-  echo "$label: exit $status; $(grep -v "measurements (\|own layers at" "$work/out.txt" | head -n 1)"
-}
-said() { grep -q -- "$1" "$work/out.txt" || { cat "$work/out.txt" >&2; fail "expected to be told '$1'"; }; }
+# shellcheck source=expect_exit.sh
+. "$source/tests/faults/expect_exit.sh"  # fail, expect_exit, said
 cd "$work"
 mkdir -p ds/images
 head -n 3 "$data/aflw2000/labels.csv" >ds/labels.csv
@@ -30,19 +23,10 @@ echo "== 1. a Constant's tensor given twice (INT8 [N] with N values, then FLOAT 
 echo "   them into FLOAT [N, 1] with 4 bytes, which OpenCV over-read (SIGSEGV); the check reads the merge"
 mkdir m_merged
 cp "$models"/*.onnx "$models"/canonical_face.txt m_merged/
-"$python" - "$models/whenet_fast.onnx" m_merged/whenet_fast.onnx <<'PY'
+"$python" - "$models/whenet_fast.onnx" m_merged/whenet_fast.onnx "$source/tests/fuzz" <<'PY'
 import sys
-def varint(v):
-    out = bytearray()
-    while v >= 0x80:
-        out.append((v & 0x7f) | 0x80)
-        v >>= 7
-    out.append(v)
-    return bytes(out)
-def field(number, payload):  # a length-delimited field
-    return varint(number << 3 | 2) + varint(len(payload)) + payload
-def number(n, v):
-    return varint(n << 3) + varint(v)
+sys.path.insert(0, sys.argv[3])
+from protobuf_bytes import field, number, varint
 n = 1 << 22
 int8_part = number(1, n) + number(2, 3) + field(5, b"".join(varint(1) for _ in range(n)))
 float_part = number(1, 1) + number(2, 1) + field(9, bytes(4))

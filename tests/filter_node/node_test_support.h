@@ -28,6 +28,16 @@ static inline int setup(void **state)
     return 0;
 }
 
+/* The node with the rest as shipped (setup has none). */
+static inline int setup_with_rest(void **state)
+{
+    (void)state;
+    node_config_defaults(&config);
+    assert_true(config.rest.rest_time > 0);
+    assert_int_equal(filter_node_init(&node, &config), 0);
+    return 0;
+}
+
 static int64_t next_seq; /* the estimator's frame counter: +1 per measurement made */
 
 static inline hkf_head_pose_measurement_t measurement(int64_t utime, int valid, double pitch, double yaw, double roll)

@@ -19,15 +19,6 @@
 #define FIRST_LATENCY_US 8000LL   /* capture to the first model's measurement arriving */
 #define SECOND_LATENCY_US 20000LL /* capture to the second's, when it answers on time */
 
-/* The node with the rest as shipped (node_test_support.h's setup has none). */
-static int setup_with_rest(void **state)
-{
-    (void)state;
-    node_config_defaults(&config);
-    assert_true(config.rest.rest_time > 0);
-    assert_int_equal(filter_node_init(&node, &config), 0);
-    return 0;
-}
 
 /* What the published poses were: their count, and whether each frame's time came once, in order. */
 typedef struct {

@@ -15,15 +15,6 @@
 
 #include "node_test_support.h"
 
-/* The node with the rest as shipped (node_test_support.h's setup has none). */
-static int setup_with_rest(void **state)
-{
-    (void)state;
-    node_config_defaults(&config);
-    assert_true(config.rest.rest_time > 0);
-    assert_int_equal(filter_node_init(&node, &config), 0);
-    return 0;
-}
 
 /* Frame i of a head resting at (pitch, yaw, roll) whose estimate wanders slowly (a 0.6 deg, 1.3 s sine on
  * pitch) with a little frame noise; valid, taken by the node. The status that goes with its pose. */

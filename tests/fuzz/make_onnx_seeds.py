@@ -12,6 +12,9 @@ import numpy as np
 import onnx
 from onnx import TensorProto, helper, numpy_helper
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from protobuf_bytes import field  # noqa: E402
+
 out = sys.argv[1]
 os.makedirs(out, exist_ok=True)
 rng = np.random.RandomState(3)
@@ -49,18 +52,6 @@ branch = helper.make_graph(
 for graph in (conv, hkf, typed, branch):
     model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 11), helper.make_opsetid("hkf", 1)])
     onnx.save(model, os.path.join(out, graph.name + ".onnx"))
-
-
-def field(number, payload):
-    """A length-delimited protobuf field: key, length, payload."""
-    def varint(v):
-        out = bytearray()
-        while v >= 0x80:
-            out.append((v & 0x7f) | 0x80)
-            v >>= 7
-        out.append(v)
-        return bytes(out)
-    return varint(number << 3 | 2) + varint(len(payload)) + payload
 
 
 def model_bytes(graph):
