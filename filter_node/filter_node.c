@@ -246,7 +246,8 @@ static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_
         strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model, model) == HKF_OK) {
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
-    second_model_keep_frame(&node->second, m, arrival, NULL, dt, 0, &node->filter, &node->calibration);
+    const second_model_step_t step = {NULL, dt, 0, arrival};
+    second_model_keep_frame(&node->second, m, &step, &node->filter, &node->calibration);
     if (hkf_predict(&node->filter, dt, out) != HKF_OK) { /* no track yet (or again, after a gap) */
         return ANGLES_NO_POSE;
     }
@@ -284,7 +285,8 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
         hkf_predict(&node->filter, dt, out) == HKF_OK) {
         ++node->counts.awaited; /* its step and its pose when the second model's measurement comes (take_second) */
         (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
-        second_model_keep_frame(&node->second, m, arrival, z, dt, 1, &before, &calibration_before);
+        const second_model_step_t waiting = {z, dt, 1, arrival};
+        second_model_keep_frame(&node->second, m, &waiting, &before, &calibration_before);
         feed_rest(node, z, dt); /* the head measured at any yaw: a rest beside the screen too */
         node->last_measurement_utime = m->utime;
         return ANGLES_NO_POSE;
@@ -294,7 +296,8 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
         return ANGLES_REFUSED; /* not kept: the step never happened */
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, z, dt); /* for the next measurement's R */
-    second_model_keep_frame(&node->second, m, arrival, z, dt, 0, &before, &calibration_before);
+    const second_model_step_t step = {z, dt, 0, arrival};
+    second_model_keep_frame(&node->second, m, &step, &before, &calibration_before);
     feed_rest(node, z, dt); /* after the frame is kept: a redo keeps the rest (fuse_second) */
     node->last_measurement_utime = m->utime;
     return ANGLES_POSE;

@@ -88,11 +88,11 @@ int64_t second_model_deadline(const second_model_t *s)
     return frame == NULL ? 0 : frame->arrival + frame->wait_us;
 }
 
-void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, int64_t arrival,
-                             const hkf_real_t z[3], hkf_real_t dt, int awaited, const hkf_filter_t *before,
-                             const hkf_calibration_t *calibration_before)
+void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const second_model_step_t *step,
+                             const hkf_filter_t *before, const hkf_calibration_t *calibration_before)
 {
-    const double wait_us = FILTER_NODE_AWAIT_SHARE * 1e6 * (double)dt;
+    const hkf_real_t *z = step->z;
+    const double wait_us = FILTER_NODE_AWAIT_SHARE * 1e6 * (double)step->dt;
     second_model_frame_t *frame;
     s->frame_newest = (s->frame_newest + 1) % FILTER_NODE_PAIR_FRAMES;
     if (s->frame_count < FILTER_NODE_PAIR_FRAMES) {
@@ -104,12 +104,12 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
     frame->utime = m->utime;
     strncpy(frame->model, m->model ? m->model : "", sizeof frame->model - 1);
     frame->valid = z != NULL;
-    frame->awaited = z != NULL && awaited;
+    frame->awaited = z != NULL && step->awaited;
     if (z != NULL) {
         memcpy(frame->z, z, sizeof frame->z);
     }
-    frame->dt = dt;
-    frame->arrival = arrival;
+    frame->dt = step->dt;
+    frame->arrival = step->arrival;
     frame->wait_us = wait_us > (double)FILTER_NODE_AWAIT_MIN_US ? (int64_t)(wait_us + 0.5) : FILTER_NODE_AWAIT_MIN_US;
     frame->xyz[0] = m->x;
     frame->xyz[1] = m->y;

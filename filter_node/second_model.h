@@ -80,12 +80,17 @@ int second_model_answers(const second_model_t *s, int64_t utime, int64_t prompt_
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
                         int64_t utime, int64_t prompt_us);
 
-/* Keeps the step made from `before` (and its calibration) for frame m that arrived at `arrival`: z (NULL: no
- * face), dt; awaited: the step was a prediction, z waiting for the second model's measurement
- * (second_model_awaits) until arrival + its wait (FILTER_NODE_AWAIT_SHARE of dt). */
-void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, int64_t arrival,
-                             const hkf_real_t z[3], hkf_real_t dt, int awaited, const hkf_filter_t *before,
-                             const hkf_calibration_t *calibration_before);
+/* A first model's frame as the node stepped it. */
+typedef struct {
+    const hkf_real_t *z; /* its measurement (NULL: no face) */
+    hkf_real_t dt;
+    int awaited;         /* the step was a prediction, z waiting for the second model's (second_model_awaits) */
+    int64_t arrival;     /* when it arrived: it waits until arrival + FILTER_NODE_AWAIT_SHARE of dt */
+} second_model_step_t;
+
+/* Keeps the step made from `before` (and its calibration) for frame m. */
+void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const second_model_step_t *step,
+                             const hkf_filter_t *before, const hkf_calibration_t *calibration_before);
 
 /* The oldest kept frame still waiting for the second's answer (awaited, none yet), or NULL. */
 const second_model_frame_t *second_model_waiting(const second_model_t *s);

@@ -243,6 +243,31 @@ static int take_measurement(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
     return result;
 }
 
+/* A rest that reached rest_time, judged: a move across half the reach spoils it, a head that moved through it
+ * (moved) refuses it; otherwise it is measured. The hkf_rest_event_t. */
+static int end_rest(hkf_rest_t *r)
+{
+    hkf_rest_result_t found;
+    const hkf_real_t half = hkf_mul(r->settings.rest_reach, HKF_REAL(0.5));
+    const hkf_real_t excess = fit(r, &found);
+    if (excess > hkf_mul(half, half)) { /* spread beyond the noise as a move across half the reach's */
+        begin(r);
+        r->spoiled += 1u;
+        return HKF_REST_SPOILED;
+    }
+    if (moved(&found, excess)) { /* a head that swayed or settled: refused, asked again */
+        r->last_refused = found;
+        begin(r);
+        r->spoiled += 1u;
+        r->refused += 1u;
+        return HKF_REST_SPOILED;
+    }
+    r->result = found;
+    r->measuring = 0;
+    r->measured = 1;
+    return HKF_REST_MEASURED;
+}
+
 int hkf_rest_update(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
 {
     int result;
@@ -264,25 +289,7 @@ int hkf_rest_update(hkf_rest_t *r, const hkf_real_t z[3], hkf_real_t dt)
     /* done at rest_time, to the nearest frame (a sum of float periods falls short of it) */
     if (hkf_add(r->elapsed, hkf_mul(r->period, HKF_REAL(0.5))) >= r->settings.rest_time &&
         r->pairs[HKF_REST_LAGS - 1] >= HKF_REST_LAGS) {
-        hkf_rest_result_t found;
-        const hkf_real_t half = hkf_mul(r->settings.rest_reach, HKF_REAL(0.5));
-        const hkf_real_t excess = fit(r, &found);
-        if (excess > hkf_mul(half, half)) { /* spread beyond the noise as a move across half the reach's */
-            begin(r);
-            r->spoiled += 1u;
-            return HKF_REST_SPOILED;
-        }
-        if (moved(&found, excess)) { /* a head that swayed or settled: refused, asked again */
-            r->last_refused = found;
-            begin(r);
-            r->spoiled += 1u;
-            r->refused += 1u;
-            return HKF_REST_SPOILED;
-        }
-        r->result = found;
-        r->measuring = 0;
-        r->measured = 1;
-        return HKF_REST_MEASURED;
+        return end_rest(r);
     }
     return result;
 }
