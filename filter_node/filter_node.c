@@ -246,7 +246,8 @@ static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_
         strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model, model) == HKF_OK) {
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
-    const second_model_step_t step = {NULL, dt, 0, arrival};
+    const second_model_step_t step = {NULL, dt, 0, arrival, prompt_us(node)};
+    settle_waiting(node); /* its prediction goes out now: the frames still waiting before it go first */
     second_model_keep_frame(&node->second, m, &step, &node->filter, &node->calibration);
     if (hkf_predict(&node->filter, dt, out) != HKF_OK) { /* no track yet (or again, after a gap) */
         return ANGLES_NO_POSE;
@@ -279,13 +280,16 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
         second_model_forget_frames(&node->second);
     }
     node->counts.unknown_models += !model->in_table;
+    const int awaits = second_model_awaits(&node->second, &node->models, z, m->utime, prompt_us(node));
+    if (!awaits) {
+        settle_waiting(node); /* its pose goes out now: the frames still waiting before it go first */
+    }
     before = node->filter;
     calibration_before = node->calibration;
-    if (second_model_awaits(&node->second, &node->models, z, m->utime, prompt_us(node)) &&
-        hkf_predict(&node->filter, dt, out) == HKF_OK) {
+    if (awaits && hkf_predict(&node->filter, dt, out) == HKF_OK) {
         ++node->counts.awaited; /* its step and its pose when the second model's measurement comes (take_second) */
         (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
-        const second_model_step_t waiting = {z, dt, 1, arrival};
+        const second_model_step_t waiting = {z, dt, 1, arrival, prompt_us(node)};
         second_model_keep_frame(&node->second, m, &waiting, &before, &calibration_before);
         feed_rest(node, z, dt); /* the head measured at any yaw: a rest beside the screen too */
         node->last_measurement_utime = m->utime;
@@ -296,7 +300,7 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
         return ANGLES_REFUSED; /* not kept: the step never happened */
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, z, dt); /* for the next measurement's R */
-    const second_model_step_t step = {z, dt, 0, arrival};
+    const second_model_step_t step = {z, dt, 0, arrival, prompt_us(node)};
     second_model_keep_frame(&node->second, m, &step, &before, &calibration_before);
     feed_rest(node, z, dt); /* after the frame is kept: a redo keeps the rest (fuse_second) */
     node->last_measurement_utime = m->utime;
@@ -428,6 +432,30 @@ static int pose_after_fusing(filter_node_t *node, const second_model_frame_t *fr
     return 1;
 }
 
+/* The waiting frames whose deadline is at or before `now`, settled without their answer, their poses queued. */
+static void settle_due(filter_node_t *node, int64_t now)
+{
+    hkf_head_pose_t pose;
+    int64_t due;
+    while ((due = second_model_deadline(&node->second)) != 0 && due <= now) {
+        if (settle_oldest(node, &pose) > 0) {
+            queue_pose(node, &pose);
+        }
+    }
+}
+
+/* The frames waiting from before `utime`, settled without their answer, their poses queued: a later frame's
+ * answer came first (a second model that answers some frames only). */
+static void settle_before(filter_node_t *node, int64_t utime)
+{
+    hkf_head_pose_t pose;
+    while (second_model_waiting_before(&node->second, utime)) {
+        if (settle_oldest(node, &pose) > 0) {
+            queue_pose(node, &pose);
+        }
+    }
+}
+
 int64_t filter_node_await_due(const filter_node_t *node)
 {
     return node->queued_count > 0 ? 1 : second_model_deadline(&node->second);
@@ -457,9 +485,13 @@ static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
     const resolved_model_t *model = resolved_models_find(&node->models, m->model); /* resolved at start */
     const second_model_frame_t *frame;
     hkf_output_t posterior;
+    settle_before(node, m->utime); /* one pose per frame, in order: the frames waiting before this one first */
     const int fused = fuse_second(node, m, model, arrival, &frame, &posterior);
     take_second_position(node, m, frame, model);
-    return fused && pose_after_fusing(node, frame, &posterior, pose);
+    if (fused && pose_after_fusing(node, frame, &posterior, pose)) {
+        queue_pose(node, pose);
+    }
+    return unqueue_pose(node, pose);
 }
 
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
@@ -478,7 +510,7 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
         return 0;
     }
     node->lost_published = 0; /* the estimator speaks: no silence */
-    settle_waiting(node); /* a later frame came: the frames still waiting are published first, without their answer */
+    settle_due(node, arrival_utime); /* waiting frames whose deadline passed before this one came go first */
     if (measure(node, m, arrival_utime, dt, pose)) {
         queue_pose(node, pose);
     }

@@ -76,6 +76,12 @@ static int oldest_waiting(const second_model_t *s)
     return -1;
 }
 
+int second_model_waiting_before(const second_model_t *s, int64_t utime)
+{
+    const second_model_frame_t *frame = second_model_waiting(s);
+    return frame != NULL && frame->utime < utime;
+}
+
 const second_model_frame_t *second_model_waiting(const second_model_t *s)
 {
     const int index = oldest_waiting(s);
@@ -92,7 +98,8 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
                              const hkf_filter_t *before, const hkf_calibration_t *calibration_before)
 {
     const hkf_real_t *z = step->z;
-    const double wait_us = FILTER_NODE_AWAIT_SHARE * 1e6 * (double)step->dt;
+    const double period_us = 1e6 * (double)step->dt, late_us = s->lateness_us + (double)FILTER_NODE_AWAIT_MARGIN_US;
+    double wait_us = late_us > period_us ? late_us : period_us;
     second_model_frame_t *frame;
     s->frame_newest = (s->frame_newest + 1) % FILTER_NODE_PAIR_FRAMES;
     if (s->frame_count < FILTER_NODE_PAIR_FRAMES) {
@@ -110,6 +117,7 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
     }
     frame->dt = step->dt;
     frame->arrival = step->arrival;
+    wait_us = wait_us < (double)step->prompt_us ? wait_us : (double)step->prompt_us;
     frame->wait_us = wait_us > (double)FILTER_NODE_AWAIT_MIN_US ? (int64_t)(wait_us + 0.5) : FILTER_NODE_AWAIT_MIN_US;
     frame->xyz[0] = m->x;
     frame->xyz[1] = m->y;
@@ -222,6 +230,24 @@ static int replay_from(second_model_t *s, const resolved_models_t *models, secon
     return 1;
 }
 
+/* An answer's lateness behind its frame's first measurement into the running quantile: up by q steps when
+ * above it, down by 1 - q steps when below (the quantile where the two balance); the first sets it. */
+static void learn_lateness(second_model_t *s, double late_us)
+{
+    const double q = FILTER_NODE_LATENESS_QUANTILE, step = FILTER_NODE_LATENESS_STEP_US;
+    if (!(late_us >= 0.0)) {
+        return; /* an answer "before" its frame: a clock step; nothing to learn */
+    }
+    if (s->lateness_us <= 0.0) {
+        s->lateness_us = late_us;
+    } else {
+        s->lateness_us += late_us > s->lateness_us ? q * step : -(1.0 - q) * step;
+    }
+    if (s->lateness_us < 0.0) {
+        s->lateness_us = 0.0;
+    }
+}
+
 /* m, arrived at `arrival`, fused into its kept frame `frame` (second_model_take). */
 static int fuse(second_model_t *s, const resolved_models_t *models, second_model_frame_t *frame,
                 const hkf_head_pose_measurement_t *m, int64_t arrival, second_model_track_t *track)
@@ -231,6 +257,7 @@ static int fuse(second_model_t *s, const resolved_models_t *models, second_model
     }
     frame->paired = 1;
     frame->answered_in_time = arrival - frame->arrival <= frame->wait_us;
+    learn_lateness(s, (double)(arrival - frame->arrival));
     strncpy(frame->second_model, m->model ? m->model : "", sizeof frame->second_model - 1);
     frame->z2[0] = m->pitch;
     frame->z2[1] = m->yaw;

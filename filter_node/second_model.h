@@ -25,9 +25,15 @@ extern "C" {
 #define FILTER_NODE_PAIR_FRAMES 32 /* frames kept for a late second measurement: 0.53 s at 60 fps */
 #define FILTER_NODE_AWAIT_HYSTERESIS 5.0 /* deg: a frame after one that waited waits from this below the pair's rule */
 #define FILTER_NODE_ALIGN_FRAMES 300 /* frames both models measured that the alignment averages: 10 s at 30 fps */
-#define FILTER_NODE_AWAIT_SHARE 1.0 /* a frame waits for the second model's answer at most this share of its
-                                     * frame period after it arrived, about when the next frame comes:
-                                     * published then without it (one pose per frame, at the camera's rate) */
+/* How long a frame waits for the second model's answer (its deadline, after which it is published without it):
+ * the answers' own lateness behind the first model's measurement, its 90th percentile as the answers show it
+ * (a running quantile, FILTER_NODE_LATENESS_STEP_US a step), plus FILTER_NODE_AWAIT_MARGIN_US; at least one frame
+ * period, at most the prompt time (second_model_awaits). A slow CPU's second model (WHENet 1-2 frames behind the
+ * mesh on a 2-core AVX2 CPU) is waited for as long as it takes, in order, so that a held turn stays still; one
+ * that answers only some frames leaves the others to their deadline. */
+#define FILTER_NODE_LATENESS_QUANTILE 0.9
+#define FILTER_NODE_LATENESS_STEP_US 2000.0
+#define FILTER_NODE_AWAIT_MARGIN_US 5000LL
 #define FILTER_NODE_AWAIT_MIN_US 5000LL /* and at least this long (a first frame's period is not known) */
 
 /* One frame's filter step, kept so that a second model's measurement of it can
@@ -44,7 +50,7 @@ typedef struct {
     char second_model[NODE_MODEL_NAME_MAX];
     hkf_real_t z2[3];
     int64_t arrival;                         /* when its first measurement arrived (the receive clock) */
-    int64_t wait_us;                         /* how long it may wait for the second's answer (FILTER_NODE_AWAIT_SHARE) */
+    int64_t wait_us;                         /* how long it may wait for the second's answer (its deadline) */
     int answered_in_time;                    /* the second's answer came within wait_us */
     hkf_filter_t before;                     /* the filter before this frame's step */
     hkf_calibration_t calibration_before;    /* and the noise calibration beside it */
@@ -54,6 +60,8 @@ typedef struct {
     second_model_frame_t frames[FILTER_NODE_PAIR_FRAMES]; /* the last frames' steps, a ring */
     int frame_count, frame_newest;
     long align_frames;                      /* FILTER_NODE_ALIGN_FRAMES (0: no alignment) */
+    double lateness_us;                     /* the answers' lateness behind their first measurement: its running
+                                             * FILTER_NODE_LATENESS_QUANTILE (0: none seen) */
     model_alignment_t alignment;            /* first minus second, a curve in the angle (model_alignment.h) */
 } second_model_t;
 
@@ -74,9 +82,10 @@ int second_model_answers(const second_model_t *s, int64_t utime, int64_t prompt_
  * the second model's measurements come promptly: the newest frame kept from the last `prompt_us` that has
  * one had it within its wait (wait_us). The node then predicts, and the second's measurement makes the
  * frame's step when it comes: a pose from z would step back once it did. A frame's wait ends at its deadline
- * (second_model_overdue): it is then published from z. With prompt_us under coast_time, a second model that
+ * (second_model_deadline): it is then published from z. With prompt_us under coast_time, a second model that
  * stops or falls behind ends the waiting before the track would coast to LOST; one whose answers come later
- * than the wait is not waited for (its answers are fused when they come, into the next frame's pose). */
+ * than the wait (at most prompt_us) is not waited for (its answers are fused when they come, into the next
+ * frame's pose). */
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
                         int64_t utime, int64_t prompt_us);
 
@@ -85,15 +94,20 @@ typedef struct {
     const hkf_real_t *z; /* its measurement (NULL: no face) */
     hkf_real_t dt;
     int awaited;         /* the step was a prediction, z waiting for the second model's (second_model_awaits) */
-    int64_t arrival;     /* when it arrived: it waits until arrival + FILTER_NODE_AWAIT_SHARE of dt */
+    int64_t arrival;     /* when it arrived: it waits from then (its wait: second_model_keep_frame) */
+    int64_t prompt_us;   /* the longest wait */
 } second_model_step_t;
 
-/* Keeps the step made from `before` (and its calibration) for frame m. */
+/* Keeps the step made from `before` (and its calibration) for frame m; its wait is the second model's answers'
+ * lateness so far (FILTER_NODE_LATENESS_QUANTILE), within one frame period and prompt_us. */
 void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_t *m, const second_model_step_t *step,
                              const hkf_filter_t *before, const hkf_calibration_t *calibration_before);
 
 /* The oldest kept frame still waiting for the second's answer (awaited, none yet), or NULL. */
 const second_model_frame_t *second_model_waiting(const second_model_t *s);
+
+/* 1 when a frame older than `utime` waits (second_model_waiting). */
+int second_model_waiting_before(const second_model_t *s, int64_t utime);
 
 /* The arrival time by which the oldest waiting frame is published without its answer, or 0: none waits. */
 int64_t second_model_deadline(const second_model_t *s);

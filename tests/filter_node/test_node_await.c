@@ -60,6 +60,12 @@ typedef struct {
     int late;   /* frames after its own that its answer arrives */
 } answers_t;
 
+/* The longest a frame waits: half coast_time (filter_node.c's prompt). */
+static int64_t prompt_us_of_config(void)
+{
+    return (int64_t)(0.5e6 * (double)config.settings.coast_time);
+}
+
 /* `frames` frames of a head turned to 30-40 deg of yaw (where a frame waits for the second model), the
  * second's answers by the pattern, at 30 fps: the poses published. */
 static void play(const answers_t *pattern, int frames, published_t *p)
@@ -82,7 +88,8 @@ static void play(const answers_t *pattern, int frames, published_t *p)
             }
         }
     }
-    publish_due(&schedule, T0 + frames * FRAME_US + FIRST_LATENCY_US, p); /* a frame after the last: before a silence's LOST */
+    /* the last frame's deadline (its wait at most coast_time / 2), before a silence's LOST (coast_time) */
+    publish_due(&schedule, T0 + (frames - 1) * FRAME_US + FIRST_LATENCY_US + prompt_us_of_config(), p);
 }
 
 /* Issue 68, defect 3: a frame that waits is published by its deadline, with its answer or without it; before,
