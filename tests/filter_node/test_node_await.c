@@ -188,6 +188,27 @@ static void test_recenter_not_undone_by_a_fused_frame(void **state)
     assert_true(node.counts.paired >= 4);
 }
 
+/* The centre a RECENTER set is the player's even without a rest (rest_time 0): a change of first model, which sets
+ * the filter up anew, keeps it rather than centring on the new model's first measurement. */
+static void test_recenter_kept_over_a_model_change(void **state)
+{
+    hkf_tracker_command_t command = {0, HKF_TRACKER_COMMAND_T_RECENTER};
+    hkf_head_pose_measurement_t m;
+    hkf_head_pose_t pose;
+    int i;
+    (void)state;
+    for (i = 0; i < 20; ++i) {
+        m = measurement(T0 + i * FRAME_US, 1, 0.0, 20.0, 0.0);
+        (void)filter_node_receive(&node, &m, m.utime, &pose);
+    }
+    assert_int_equal(filter_node_command(&node, &command), 0);
+    m = measurement(T0 + i * FRAME_US, 1, 0.0, 25.0, 0.0); /* the head moves on, then another first model */
+    m.model = "hopenet";
+    assert_int_equal(filter_node_receive(&node, &m, m.utime, &pose), 1);
+    print_message("after RECENTER at 20 deg and a change of model at 25: centre %.2f deg\n", pose.center[1]);
+    assert_true(fabsf(pose.center[1] - 20.0f) < 0.5f);
+}
+
 /* Issue 68, defect 4: a curve learnt from a forged second model (its pitch 25 deg off) outlives nothing:
  * the view moves by no more than the models' plausible disagreement while it is learnt, and RESET forgets
  * it, so the pitch reads the truth again from the first frames after. Before, pitch read 14-33 deg for a
@@ -278,6 +299,7 @@ int main(void)
         cmocka_unit_test_setup(test_waiting_frame_published_at_its_deadline, setup),
         cmocka_unit_test_setup(test_recenter_not_undone_by_a_fused_frame, setup_with_rest),
         cmocka_unit_test_setup(test_reset_forgets_a_forged_curve, setup),
+        cmocka_unit_test_setup(test_recenter_kept_over_a_model_change, setup),
         cmocka_unit_test_setup(test_rest_measured_at_a_side_camera, setup_with_rest),
         cmocka_unit_test_setup(test_rest_measured_by_the_second_model_alone, setup_with_rest),
     };
