@@ -55,12 +55,10 @@ int second_model_awaits(const second_model_t *s, const resolved_models_t *models
 {
     const int awaiting = s->frame_count > 0 && s->frames[s->frame_newest].awaited;
     const double from_yaw = (double)models->second_alone_from_yaw - (awaiting ? FILTER_NODE_AWAIT_HYSTERESIS : 0.0);
-    const second_model_frame_t *answered;
     if (fabs((double)z[HKF_AXIS_YAW]) < from_yaw) {
         return 0;
     }
-    answered = newest_answered(s, utime, prompt_us);
-    return answered != NULL && answered->answered_in_time; /* answers that come later than the wait: not waited for */
+    return newest_answered(s, utime, prompt_us) != NULL;
 }
 
 /* The index of the oldest kept frame waiting for the second's answer, or -1. */
@@ -256,7 +254,6 @@ static int fuse(second_model_t *s, const resolved_models_t *models, second_model
         return 0;
     }
     frame->paired = 1;
-    frame->answered_in_time = arrival - frame->arrival <= frame->wait_us;
     learn_lateness(s, (double)(arrival - frame->arrival));
     strncpy(frame->second_model, m->model ? m->model : "", sizeof frame->second_model - 1);
     frame->z2[0] = m->pitch;

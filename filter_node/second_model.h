@@ -51,7 +51,6 @@ typedef struct {
     hkf_real_t z2[3];
     int64_t arrival;                         /* when its first measurement arrived (the receive clock) */
     int64_t wait_us;                         /* how long it may wait for the second's answer (its deadline) */
-    int answered_in_time;                    /* the second's answer came within wait_us */
     hkf_filter_t before;                     /* the filter before this frame's step */
     hkf_calibration_t calibration_before;    /* and the noise calibration beside it */
 } second_model_frame_t;
@@ -79,13 +78,11 @@ int second_model_answers(const second_model_t *s, int64_t utime, int64_t prompt_
 
 /* 1 when the first model's measurement z of a new frame at `utime` is to wait for the second model's: z
  * measures |yaw| >= the pair's pair_second_alone_from_yaw (where the frame takes the second's alone) and
- * the second model's measurements come promptly: the newest frame kept from the last `prompt_us` that has
- * one had it within its wait (wait_us). The node then predicts, and the second's measurement makes the
+ * the second model's measurements come promptly (a frame kept from the last `prompt_us` has one). The node
+ * then predicts, and the second's measurement makes the
  * frame's step when it comes: a pose from z would step back once it did. A frame's wait ends at its deadline
  * (second_model_deadline): it is then published from z. With prompt_us under coast_time, a second model that
- * stops or falls behind ends the waiting before the track would coast to LOST; one whose answers come later
- * than the wait (at most prompt_us) is not waited for (its answers are fused when they come, into the next
- * frame's pose). */
+ * stops or falls behind ends the waiting before the track would coast to LOST. */
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
                         int64_t utime, int64_t prompt_us);
 

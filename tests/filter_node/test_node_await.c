@@ -53,11 +53,13 @@ static void deliver(node_schedule_t *schedule, const hkf_head_pose_measurement_t
     }
 }
 
-/* A second model's answer: of frame `frame` (answered: 1), arriving `late` frames after the frame. */
+/* A second model's answers: every `every`-th frame's, arriving `late` frames after its frame, and `jitter_us`
+ * later still for every other answer (a worker whose time varies). */
 typedef struct {
     const char *name;
-    int every;  /* it answers every `every`-th frame (0: never) */
-    int late;   /* frames after its own that its answer arrives */
+    int every;        /* it answers every `every`-th frame (0: never) */
+    int late;         /* frames after its own that its answer arrives */
+    int64_t jitter_us;
 } answers_t;
 
 /* The longest a frame waits: half coast_time (filter_node.c's prompt). */
@@ -66,27 +68,45 @@ static int64_t prompt_us_of_config(void)
     return (int64_t)(0.5e6 * (double)config.settings.coast_time);
 }
 
+/* One message as it reaches the node. */
+typedef struct {
+    int64_t arrival;
+    hkf_head_pose_measurement_t m;
+} arriving_t;
+
+static int by_arrival(const void *a, const void *b)
+{
+    const int64_t x = ((const arriving_t *)a)->arrival, y = ((const arriving_t *)b)->arrival;
+    return x < y ? -1 : x > y;
+}
+
 /* `frames` frames of a head turned to 30-40 deg of yaw (where a frame waits for the second model), the
- * second's answers by the pattern, at 30 fps: the poses published. */
+ * second's answers by the pattern, at 30 fps, every message delivered in the order it arrives: the poses
+ * published. */
 static void play(const answers_t *pattern, int frames, published_t *p)
 {
-    static hkf_head_pose_measurement_t first[400];
+    static arriving_t arriving[800];
     node_schedule_t schedule;
-    int i, k;
+    int i, count = 0;
     node_schedule_init(&schedule, 0, 0);
     memset(p, 0, sizeof *p);
     for (i = 0; i < frames; ++i) {
         const double yaw = 35.0 + 5.0 * sin(i / 20.0);
-        first[i] = measurement(T0 + i * FRAME_US, 1, 1.0, yaw, 0.0);
-        deliver(&schedule, &first[i], first[i].utime + FIRST_LATENCY_US, p);
-        for (k = 0; k <= i; ++k) { /* the answers that arrive now: frame k's, late frames after it */
-            if (pattern->every > 0 && k % pattern->every == 0 && k + pattern->late == i) {
-                hkf_head_pose_measurement_t second = first[k];
-                second.model = "hopenet";
-                second.yaw += 6.0f;
-                deliver(&schedule, &second, first[i].utime + SECOND_LATENCY_US, p);
-            }
+        arriving[count].m = measurement(T0 + i * FRAME_US, 1, 1.0, yaw, 0.0);
+        arriving[count].arrival = arriving[count].m.utime + FIRST_LATENCY_US;
+        ++count;
+        if (pattern->every > 0 && i % pattern->every == 0) {
+            arriving[count].m = arriving[count - 1].m;
+            arriving[count].m.model = "hopenet";
+            arriving[count].m.yaw += 6.0f;
+            arriving[count].arrival = arriving[count].m.utime + pattern->late * FRAME_US + SECOND_LATENCY_US +
+                                      ((i / pattern->every) % 2 == 0 ? pattern->jitter_us : 0);
+            ++count;
         }
+    }
+    qsort(arriving, (size_t)count, sizeof arriving[0], by_arrival); /* stable enough: no two arrive at once */
+    for (i = 0; i < count; ++i) {
+        deliver(&schedule, &arriving[i].m, arriving[i].arrival, p);
     }
     /* the last frame's deadline (its wait at most coast_time / 2), before a silence's LOST (coast_time) */
     publish_due(&schedule, T0 + (frames - 1) * FRAME_US + FIRST_LATENCY_US + prompt_us_of_config(), p);
@@ -97,8 +117,9 @@ static void play(const answers_t *pattern, int frames, published_t *p)
 static void test_one_pose_per_frame_every_pattern(void **state)
 {
     static const answers_t patterns[] = {
-        {"every frame", 1, 0}, {"every 2nd", 2, 0}, {"every 3rd", 3, 0}, {"a frame late", 1, 1},
-        {"2 frames late", 1, 2}, {"3 frames late", 1, 3}, {"never", 0, 0},
+        {"every frame", 1, 0, 0},        {"every 2nd", 2, 0, 0},          {"every 3rd", 3, 0, 0},
+        {"a frame late", 1, 1, 0},       {"2 frames late", 1, 2, 0},      {"3 frames late", 1, 3, 0},
+        {"never", 0, 0, 0},              {"every 2nd, 12-52 ms", 2, 0, 40000}, /* a later answer before an earlier deadline */
     };
     published_t p;
     size_t n;
@@ -133,7 +154,7 @@ static void test_one_pose_per_frame_every_pattern(void **state)
  * arrived), from the schedule alone, as the live loop wakes for it. */
 static void test_waiting_frame_published_at_its_deadline(void **state)
 {
-    static const answers_t every = {"every frame", 1, 0};
+    static const answers_t every = {"every frame", 1, 0, 0};
     node_schedule_t schedule;
     published_t p;
     hkf_head_pose_measurement_t m;
