@@ -78,6 +78,21 @@ def fail(message):
     sys.exit(1)
 
 
+def script_folders(doc, folder):
+    """An evaluation script's command line (--build, --out; its docstring as --help) and its folders: (build,
+    out, the Python types' folder, OUT/FOLDER, OUT/FOLDER/work), made."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=doc)
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--out", default=os.path.join(ROOT, "out", "eval"))
+    args = parser.parse_args()
+    build, out = os.path.abspath(args.build), os.path.abspath(args.out)
+    out_dir = os.path.join(out, folder)
+    work = os.path.join(out_dir, "work")
+    os.makedirs(work, exist_ok=True)
+    return build, out, os.path.join(build, "lcmtypes", "python"), out_dir, work
+
+
 def clips():
     found = sorted(glob.glob(os.path.join(ROOT, "..", "shared", "data", "videos", "*.mp4")))
     for name in PYFEAT_CLIPS:

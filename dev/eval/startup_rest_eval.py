@@ -19,7 +19,6 @@ the summary row leaves those four out.
 usage: startup_rest_eval.py [--build DIR] [--out DIR]
 writes OUT/startup_rest/{startup_rest.md, startup_rest.png} and prints the table.
 """
-import argparse
 import os
 import re
 import subprocess
@@ -155,16 +154,7 @@ def plot(rows, path):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    parser.add_argument("--build", default=os.path.join(evaluate.ROOT, "build"))
-    parser.add_argument("--out", default=os.path.join(evaluate.ROOT, "out", "eval"))
-    args = parser.parse_args()
-    build, out = os.path.abspath(args.build), os.path.abspath(args.out)
-    types = os.path.join(build, "lcmtypes", "python")
-    out_dir = os.path.join(out, "startup_rest")
-    work = os.path.join(out_dir, "work")
-    os.makedirs(work, exist_ok=True)
+    build, out, types, out_dir, work = evaluate.script_folders(__doc__, "startup_rest")
     rows = []
     for path in evaluate.clips():
         started = time.time()
