@@ -141,7 +141,9 @@ int filter_node_init(filter_node_t *node, const node_config_t *config);
  * a monotonic clock live, the log's event timestamp offline), in one pass: admission (stream_admission.h;
  * a second model's measurement of a frame is told apart first), the angles (a first model's step, or a
  * second model's fused into its frame: second_model.h), the position (node_position.h), the pose.
- * Returns 1 when *pose is to be published. */
+ * Returns 1 when *pose is to be published: the first of the poses the message makes due (waiting frames settled
+ * before it go first); the others wait in the queue, for filter_node_await_next (node_schedule_next calls it),
+ * which the caller calls after each message until it returns 0. */
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
                         hkf_head_pose_t *pose);
 

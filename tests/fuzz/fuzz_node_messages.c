@@ -42,6 +42,19 @@ static void monitor_payload(track_monitor_t *monitor, uint8_t kind, const uint8_
     }
 }
 
+/* What the runners publish after each message (node_schedule.h's first part): the poses a call left queued and
+ * the waiting frames whose deadline is at `now`, each checked, in order. */
+static void drain_waiting(filter_node_t *node, int64_t now)
+{
+    hkf_head_pose_t pose;
+    int64_t due, last = INT64_MIN;
+    while (filter_node_await_next(node, now, &pose, &due)) {
+        fuzz_check_pose(&pose, "fuzz_node_messages");
+        CHECK(pose.utime >= last, "a waiting frame's pose out of order");
+        last = pose.utime;
+    }
+}
+
 /* The payload as a HEAD_POSE_RAW measurement through the node, arriving at `arrival`; every pose it would
  * publish is checked, and on kind 2 one extrapolated after it. */
 static void measurement_payload(filter_node_t *node, uint8_t kind, const uint8_t *data, size_t length, int64_t arrival)
@@ -57,13 +70,16 @@ static void measurement_payload(filter_node_t *node, uint8_t kind, const uint8_t
     if (filter_node_receive(node, &m, arrival, &pose)) {
         fuzz_check_pose(&pose, "fuzz_node_messages");
         /* at its capture time; a second model's measurement of an earlier frame at the newest frame's time
-         * (the time reference, which it leaves as it was); or moved on to the pose published before it
-         * (never earlier) */
+         * (the time reference, which it leaves as it was); moved on to the pose published before it (never
+         * earlier); or an earlier frame that waited for the second model, published first, after every pose
+         * published before */
         CHECK(pose.utime == m.utime ||
                   (pose.utime == reference && reference > m.utime && node->admission.last_utime == reference) ||
-                  (pose.utime == published && published > m.utime && pose.extrapolated),
+                  (pose.utime == published && published > m.utime && pose.extrapolated) ||
+                  (pose.utime > published && pose.utime < m.utime && !pose.extrapolated),
               "a pose published for another capture time");
     }
+    drain_waiting(node, arrival);
     CHECK(node->counts.clock_jumps == jumps || node->admission.last_utime == reference,
           "a stamp rejected as a clock jump became the time reference");
     if (kind % 4 == 2 && m.utime < INT64_MAX - 300000 &&
@@ -74,11 +90,12 @@ static void measurement_payload(filter_node_t *node, uint8_t kind, const uint8_t
 }
 
 /* The payload as a HEAD_TRACKER_CMD command to the node. */
-static void command_payload(filter_node_t *node, const uint8_t *data, size_t length)
+static void command_payload(filter_node_t *node, const uint8_t *data, size_t length, int64_t arrival)
 {
     hkf_tracker_command_t command;
     if (hkf_tracker_command_t_decode(data, 0, (int)length, &command) >= 0) {
         (void)filter_node_command(node, &command);
+        drain_waiting(node, arrival); /* a command settles the waiting frames */
     }
 }
 
@@ -111,7 +128,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         ++messages;
         monitor_payload(&monitor, kind, data, length);
         if (kind % 4 == 3) {
-            command_payload(&node, data, length);
+            command_payload(&node, data, length, arrival);
         } else {
             measurement_payload(&node, kind, data, length, arrival);
         }
