@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs a command as a slower machine would (issue 70: checks proven on a fast AVX-512 machine failed on a 2-core
+# Runs a command as a slower machine would (checks proven on a fast AVX-512 machine failed on a 2-core
 # AVX2 one): on one core (taskset), with stress-ng's CPU load beside it on that core, the estimator's layers and
 # OpenCV's own held to a lower instruction-set level (HKF_SIMD, OPENCV_CPU_DISABLE: dev/benchmarks/
 # opencv_cpu_levels.txt), and Mesa's software renderer as it is (LIBGL_ALWAYS_SOFTWARE=1).

@@ -4,6 +4,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "node_await.h"
+#include "node_pose.h"
+
 /* The filter set up for the model `model` (its settings: resolved), the calibration beside it. */
 static int setup_filter(filter_node_t *node, const char *model, const resolved_model_t *resolved)
 {
@@ -63,112 +66,12 @@ static void take_second_position(filter_node_t *node, const hkf_head_pose_measur
     count_position(node, node_position_take_second(&node->position, m, frame, model->position_r_scale));
 }
 
-/* A posterior at utime older than the pose published before it (--rate's ticks went past a late frame):
- * moved on to that pose's time (hkf_extrapolate), so that no pose is stamped earlier than the one before. */
-static void not_before_published(filter_node_t *node, const hkf_output_t **out, int64_t *utime, hkf_output_t *moved)
-{
-    if (*utime < node->published_utime &&
-        hkf_extrapolate(&node->filter, (hkf_real_t)(((double)node->published_utime - (double)*utime) * 1e-6), moved) ==
-            HKF_OK) {
-        *out = moved;
-        *utime = node->published_utime;
-    }
-}
-
-static void fill_pose(filter_node_t *node, const hkf_output_t *out, int64_t utime, hkf_head_pose_t *pose)
-{
-    hkf_real_t center[3] = {0, 0, 0};
-    hkf_output_t moved;
-    int a;
-    not_before_published(node, &out, &utime, &moved);
-    node->published_utime = utime;
-    memset(pose, 0, sizeof *pose);
-    pose->utime = utime;
-    pose->measurement_utime = node->last_measurement_utime;
-    pose->seq = ++node->seq;
-    pose->status = out->status == HKF_STATUS_TRACKING   ? HKF_HEAD_POSE_T_TRACKING
-                   : out->status == HKF_STATUS_COASTING ? HKF_HEAD_POSE_T_COASTING
-                                                        : HKF_HEAD_POSE_T_LOST;
-    pose->pitch = out->angle[HKF_AXIS_PITCH];
-    pose->yaw = out->angle[HKF_AXIS_YAW];
-    pose->roll = out->angle[HKF_AXIS_ROLL];
-    pose->pitch_rate = out->rate[HKF_AXIS_PITCH];
-    pose->yaw_rate = out->rate[HKF_AXIS_YAW];
-    pose->roll_rate = out->rate[HKF_AXIS_ROLL];
-    for (a = 0; a < 3; ++a) {
-        pose->variance[a] = out->variance[a];
-        pose->r[a] = out->r[a];
-    }
-    (void)hkf_get_center(&node->filter, center); /* set by the first measurement, so always there once posing */
-    pose->center[0] = (float)center[HKF_AXIS_PITCH];
-    pose->center[1] = (float)center[HKF_AXIS_YAW];
-    pose->center[2] = (float)center[HKF_AXIS_ROLL];
-    pose->loop_closure_active = (out->flags & HKF_FLAG_LOOP_CLOSURE) != 0;
-    pose->extrapolated = (out->flags & HKF_FLAG_EXTRAPOLATED) != 0;
-    pose->latency_us = 0;
-    node_position_fill(&node->position, utime, pose);
-    ++node->counts.published;
-}
-
-/* A pose into the queue, behind those there (FILTER_NODE_QUEUED: the kept frames and one more, never full). */
-static void queue_pose(filter_node_t *node, const hkf_head_pose_t *pose)
-{
-    if (node->queued_count < FILTER_NODE_QUEUED) {
-        node->queued[(node->queued_first + node->queued_count++) % FILTER_NODE_QUEUED] = *pose;
-    }
-}
-
-/* The queue's first pose into *pose: 1, or 0 when it is empty. */
-static int unqueue_pose(filter_node_t *node, hkf_head_pose_t *pose)
-{
-    if (node->queued_count == 0) {
-        return 0;
-    }
-    *pose = node->queued[node->queued_first];
-    node->queued_first = (node->queued_first + 1) % FILTER_NODE_QUEUED;
-    --node->queued_count;
-    return 1;
-}
-
-/* The oldest waiting frame settled without its answer (second_model_settle), its own step's pose into *pose
- * unless a later pose is out already. Returns -1 when no frame waits, else whether *pose is to be published. */
-static int settle_oldest(filter_node_t *node, hkf_head_pose_t *pose)
-{
-    const second_model_frame_t *frame;
-    second_model_track_t track;
-    track.filter = &node->filter;
-    track.calibration = &node->calibration;
-    if (!second_model_settle(&node->second, &node->models, &track, &frame)) {
-        return -1;
-    }
-    node_rest_keep(&node->rest, &node->filter); /* the frames redone from before the player's rest or RECENTER */
-    ++node->counts.awaits_expired;
-    if (frame->utime <= node->published_utime) {
-        return 0;
-    }
-    fill_pose(node, &track.posterior, frame->utime, pose);
-    pose->measurement_utime = frame->utime;
-    return 1;
-}
-
-/* Every waiting frame settled without its answer, their poses queued (a later frame came first). */
-static void settle_waiting(filter_node_t *node)
-{
-    hkf_head_pose_t pose;
-    int result;
-    while ((result = settle_oldest(node, &pose)) >= 0) {
-        if (result) {
-            queue_pose(node, &pose);
-        }
-    }
-}
-
 /* The track starts again with the next measurement (a gap longer than
  * max_dt, or a new clock): the filter reset, the restart counted, the kept
  * frames forgotten. */
 static void restart_track(filter_node_t *node)
 {
-    settle_waiting(node); /* one pose per frame: a waiting frame's is published before its step is forgotten */
+    node_await_settle_all(node); /* one pose per frame: a waiting frame's is published before its step is forgotten */
     hkf_reset(&node->filter);
     (void)hkf_calibration_reset(&node->calibration, &node->filter);
     node_position_restart(&node->position);
@@ -247,7 +150,7 @@ static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
     const second_model_step_t step = {NULL, dt, 0, arrival, prompt_us(node)};
-    settle_waiting(node); /* its prediction goes out now: the frames still waiting before it go first */
+    node_await_settle_all(node); /* its prediction goes out now: the frames still waiting before it go first */
     second_model_keep_frame(&node->second, m, &step, &node->filter, &node->calibration);
     if (hkf_predict(&node->filter, dt, out) != HKF_OK) { /* no track yet (or again, after a gap) */
         return ANGLES_NO_POSE;
@@ -282,7 +185,7 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
     node->counts.unknown_models += !model->in_table;
     const int awaits = second_model_awaits(&node->second, &node->models, z, m->utime, prompt_us(node));
     if (!awaits) {
-        settle_waiting(node); /* its pose goes out now: the frames still waiting before it go first */
+        node_await_settle_all(node); /* its pose goes out now: the frames still waiting before it go first */
     }
     before = node->filter;
     calibration_before = node->calibration;
@@ -323,7 +226,7 @@ static int measure(filter_node_t *node, const hkf_head_pose_measurement_t *m, in
     if (angles == ANGLES_NO_POSE) {
         return 0;
     }
-    fill_pose(node, &out, m->utime, pose);
+    node_pose_fill(node, &out, m->utime, pose);
     return 1;
 }
 
@@ -345,7 +248,7 @@ static void resync_clock(filter_node_t *node)
     if (hkf_get_status(&node->filter) != HKF_STATUS_UNINITIALIZED) {
         restart_track(node);
     } else {
-        settle_waiting(node);
+        node_await_settle_all(node);
         node_position_restart(&node->position);
         second_model_forget_frames(&node->second);
     }
@@ -420,7 +323,7 @@ static int pose_after_fusing(filter_node_t *node, const second_model_frame_t *fr
         if (frame->utime <= node->published_utime) {
             return 0;
         }
-        fill_pose(node, posterior, frame->utime, pose);
+        node_pose_fill(node, posterior, frame->utime, pose);
         pose->measurement_utime = frame->utime;
         return 1;
     }
@@ -428,52 +331,8 @@ static int pose_after_fusing(filter_node_t *node, const second_model_frame_t *fr
         hkf_get_status(&node->filter) == HKF_STATUS_UNINITIALIZED || hkf_get_output(&node->filter, &out) != HKF_OK) {
         return 0;
     }
-    fill_pose(node, &out, node->admission.last_utime, pose);
+    node_pose_fill(node, &out, node->admission.last_utime, pose);
     return 1;
-}
-
-/* The waiting frames whose deadline is at or before `now`, settled without their answer, their poses queued. */
-static void settle_due(filter_node_t *node, int64_t now)
-{
-    hkf_head_pose_t pose;
-    int64_t due;
-    while ((due = second_model_deadline(&node->second)) != 0 && due <= now) {
-        if (settle_oldest(node, &pose) > 0) {
-            queue_pose(node, &pose);
-        }
-    }
-}
-
-/* The frames waiting from before `utime`, settled without their answer, their poses queued: a later frame's
- * answer came first (a second model that answers some frames only). */
-static void settle_before(filter_node_t *node, int64_t utime)
-{
-    hkf_head_pose_t pose;
-    while (second_model_waiting_before(&node->second, utime)) {
-        if (settle_oldest(node, &pose) > 0) {
-            queue_pose(node, &pose);
-        }
-    }
-}
-
-int64_t filter_node_await_due(const filter_node_t *node)
-{
-    return node->queued_count > 0 ? 1 : second_model_deadline(&node->second);
-}
-
-int filter_node_await_next(filter_node_t *node, int64_t now, hkf_head_pose_t *pose, int64_t *due)
-{
-    int result;
-    if (unqueue_pose(node, pose)) {
-        *due = now;
-        return 1;
-    }
-    while ((*due = second_model_deadline(&node->second)) != 0 && *due <= now) {
-        if ((result = settle_oldest(node, pose)) != 0) {
-            return result > 0;
-        }
-    }
-    return 0;
 }
 
 /* A second model's measurement m of one of the followed publisher's frames: its angles fused into that
@@ -485,13 +344,13 @@ static int take_second(filter_node_t *node, const hkf_head_pose_measurement_t *m
     const resolved_model_t *model = resolved_models_find(&node->models, m->model); /* resolved at start */
     const second_model_frame_t *frame;
     hkf_output_t posterior;
-    settle_before(node, m->utime); /* one pose per frame, in order: the frames waiting before this one first */
+    node_await_settle(node, INT64_MIN, m->utime); /* one pose per frame, in order: the frames waiting before this one first */
     const int fused = fuse_second(node, m, model, arrival, &frame, &posterior);
     take_second_position(node, m, frame, model);
     if (fused && pose_after_fusing(node, frame, &posterior, pose)) {
-        queue_pose(node, pose);
+        node_await_queue(node, pose);
     }
-    return unqueue_pose(node, pose);
+    return node_await_unqueue(node, pose);
 }
 
 int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *m, int64_t arrival_utime,
@@ -510,11 +369,11 @@ int filter_node_receive(filter_node_t *node, const hkf_head_pose_measurement_t *
         return 0;
     }
     node->lost_published = 0; /* the estimator speaks: no silence */
-    settle_due(node, arrival_utime); /* waiting frames whose deadline passed before this one came go first */
+    node_await_settle(node, arrival_utime, INT64_MIN); /* waiting frames whose deadline passed before this one came go first */
     if (measure(node, m, arrival_utime, dt, pose)) {
-        queue_pose(node, pose);
+        node_await_queue(node, pose);
     }
-    return unqueue_pose(node, pose);
+    return node_await_unqueue(node, pose);
 }
 
 int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t *pose)
@@ -528,7 +387,7 @@ int filter_node_extrapolate(filter_node_t *node, int64_t utime, hkf_head_pose_t 
     if (hkf_extrapolate(&node->filter, (hkf_real_t)ahead, &out) != HKF_OK) {
         return 0; /* no track */
     }
-    fill_pose(node, &out, utime, pose);
+    node_pose_fill(node, &out, utime, pose);
     ++node->counts.extrapolated;
     return 1;
 }
@@ -572,7 +431,7 @@ int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pos
      * beyond the coast time) keeps its own stamp rather than be extrapolated up to coast_time */
     {
         const int64_t reference = node->published_utime;
-        fill_pose(node, &out, node->admission.last_utime + after, pose);
+        node_pose_fill(node, &out, node->admission.last_utime + after, pose);
         node->published_utime = reference;
     }
     return 1;
@@ -588,7 +447,7 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
     switch (command->command) {
     case HKF_TRACKER_COMMAND_T_RECENTER:
         ++node->counts.commands;
-        settle_waiting(node); /* the waiting frames' poses (queued) on the centre they were measured with */
+        node_await_settle_all(node); /* the waiting frames' poses (queued) on the centre they were measured with */
         second_model_forget_frames(&node->second); /* a late second measurement would redo frames on the old centre */
         (void)hkf_recenter(&node->filter); /* without a track there is nothing to centre on */
         node_rest_recentered(&node->rest, &node->filter); /* the player's centre; the rest's mean once it is measured */
@@ -598,7 +457,7 @@ int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *comman
         return 0;
     case HKF_TRACKER_COMMAND_T_RESET:
         ++node->counts.commands;
-        settle_waiting(node);
+        node_await_settle_all(node);
         second_model_forget_frames(&node->second);
         second_model_forget_alignment(&node->second); /* a curve learnt from a broken model does not outlive it */
         node_position_reset(&node->position); /* the models' offset too: nothing of before stays */

@@ -74,12 +74,6 @@ static int oldest_waiting(const second_model_t *s)
     return -1;
 }
 
-int second_model_waiting_before(const second_model_t *s, int64_t utime)
-{
-    const second_model_frame_t *frame = second_model_waiting(s);
-    return frame != NULL && frame->utime < utime;
-}
-
 const second_model_frame_t *second_model_waiting(const second_model_t *s)
 {
     const int index = oldest_waiting(s);

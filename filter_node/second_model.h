@@ -105,9 +105,6 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
 /* The oldest kept frame still waiting for the second's answer (awaited, none yet), or NULL. */
 const second_model_frame_t *second_model_waiting(const second_model_t *s);
 
-/* 1 when a frame older than `utime` waits (second_model_waiting). */
-int second_model_waiting_before(const second_model_t *s, int64_t utime);
-
 /* The arrival time by which the oldest waiting frame is published without its answer, or 0: none waits. */
 int64_t second_model_deadline(const second_model_t *s);
 

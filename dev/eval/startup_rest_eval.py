@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""What a new user's start-up rest gives (issue 68): every real clip filtered from its start with the defaults,
+"""What a new user's start-up rest gives (the heads that moved through their "rest"): every real clip filtered from its start with the defaults,
 as `hkf-estimator --second-model none` then `hkf-filter --offline` give it to someone who has just started
 hkf, whatever the head does in the first seconds; beside it the built-in wander alone (`rest_time=0`).
 
 A real clip does not begin with a rest: on most of them the first seconds are a head that moves. What the
 rest made of them is read from hkf-filter's own summary (measured or refused, the wander used). Per clip: still
 jitter as a share of raw's, lag, and the lag over the best 1 euro setting's at that jitter (its 144 settings
-swept on the clip itself: leave_one_out.py). The goals (issue 68): over the clips not used to tune the rest,
+swept on the clip itself: leave_one_out.py). The goals set for the refused rest: over the clips not used to tune the rest,
 lag <= 0.30x the 1 euro's at equal jitter and still jitter <= 20 % of raw's; on every clip where the built-in
 wander holds still jitter within 20 % of raw's, no more than half a frame (17 ms) of lag beyond it.
 
@@ -111,7 +111,7 @@ def report(rows, out_dir):
                 lines.append(f"- {label}, {setting}: {s['clips']} clips, lag {s['lag']:.1f} ms, {s['ratio']:.2f}x "
                              f"the 1 euro's, {100 * s['share']:.0f} % of raw's jitter")
     goals = summary(rows, held_out, 0)
-    lines += ["", "Goals (issue 68), the defaults on the clips not used to tune the rest:"]
+    lines += ["", "Goals (the refused rest), the defaults on the clips not used to tune the rest:"]
     if goals:
         lines.append(f"- lag <= {LAG_GOAL:.2f}x the best 1 euro's: {goals['ratio']:.2f}x "
                      f"({'met' if goals['ratio'] <= LAG_GOAL else 'NOT met'})")

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The per-level benchmark script on a CPU without AVX-512 (issue 70: on one it stopped with an empty table and
+# The per-level benchmark script on a CPU without AVX-512 (on one it stopped with an empty table and
 # exit 1): played here with HKF_PLAY_CPU_LEVEL=avx2, so the avx512 level is one the CPU cannot run. Every level
 # gets its row, the script goes on to the end and exits 0 where hkf's layers are faster than OpenCV's own; and a
 # benchmark that fails otherwise (exit 1) stops it with exit 1, never an empty table taken for a result.

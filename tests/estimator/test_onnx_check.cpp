@@ -164,32 +164,44 @@ void test_not_taken(void **)
     assert_true(problem(noise).find("not a readable ONNX model") != std::string::npos);
 }
 
+// A model whose one node holds a `value` attribute with its field `number_of_field` (5: a tensor, 6: a graph)
+// given once per entry of `fields`, which protobuf would merge.
+Bytes model_with_attribute_fields(int number_of_field, const std::vector<Bytes> &fields)
+{
+    Bytes attribute, node, graph, model;
+    bytes(attribute, 1, text("value"));
+    for (const Bytes &f : fields) bytes(attribute, number_of_field, f);
+    bytes(node, 5, attribute);
+    bytes(graph, 1, node);
+    bytes(model, 7, graph);
+    return model;
+}
+
 // Hardening round 6, item 1: a singular message field given twice is merged by protobuf (repeated fields
 // joined, scalars from the last), so each occurrence passing alone is not enough. A Constant's tensor given as
 // INT8 dims [N] with N int32_data, then FLOAT dims [1] with 4 bytes of raw_data, reads as FLOAT dims [N, 1]
 // with 4 bytes: OpenCV copied 4N bytes out of them (SIGSEGV while loading). Checked as the merge, refused.
-void test_merged_occurrences(void **)
+void test_merged_tensor_refused(void **)
 {
     const int n = 1000;
-    Bytes int8_values, int8_part, float_part, attribute, node, graph, model;
+    Bytes int8_values, int8_part;
     for (int i = 0; i < n; ++i) varint(int8_values, 1);
     number(int8_part, 1, n);
     number(int8_part, 2, 3);  // INT8
     bytes(int8_part, 5, int8_values);
-    assert_string_equal(initializer_problem(int8_part).c_str(), "");  // alone: whole
-    float_part = tensor({1}, 1, 4);
+    const Bytes float_part = tensor({1}, 1, 4);
+    assert_string_equal(initializer_problem(int8_part).c_str(), "");   // alone: whole
     assert_string_equal(initializer_problem(float_part).c_str(), "");  // alone: whole
-    bytes(attribute, 1, text("value"));
-    bytes(attribute, 5, int8_part);
-    bytes(attribute, 5, float_part);
-    bytes(node, 5, attribute);
-    bytes(graph, 1, node);
-    bytes(model, 7, graph);
-    const std::string merged = problem(model);
+    const std::string merged = problem(model_with_attribute_fields(5, {int8_part, float_part}));
     assert_true(merged.find("both raw and typed") != std::string::npos ||
                 merged.find("a field its type does not use") != std::string::npos);
-    // the same across two occurrences of the model's graph: each graph's initializer alone is whole, but a
-    // tensor is per occurrence of `initializer` (repeated), so two whole ones stay whole
+}
+
+// The model's graph, an attribute's graph and a tensor's dims, each given in two occurrences: checked as merged.
+void test_merged_occurrences(void **)
+{
+    // two occurrences of the model's graph: a tensor is per occurrence of `initializer` (repeated), so two whole
+    // ones stay whole
     Bytes first, second, split;
     bytes(first, 5, tensor({2}, 1, 8));
     bytes(second, 5, tensor({3}, 1, 12));
@@ -198,36 +210,20 @@ void test_merged_occurrences(void **)
     bytes(split, 7, second);
     assert_string_equal(problem(split).c_str(), "");
     // a graph given twice inside an attribute (g): its halves merged, and what the merge holds is checked
-    Bytes g_attribute, g_node, g_graph, g_model, half;
+    Bytes half;
     bytes(half, 5, tensor({2, 3}, 1, 20));  // short: refused in whichever half it stands
-    bytes(g_attribute, 6, first);
-    bytes(g_attribute, 6, half);
-    bytes(g_node, 5, g_attribute);
-    bytes(g_graph, 1, g_node);
-    bytes(g_model, 7, g_graph);
-    assert_true(problem(g_model).find("but holds 20 bytes") != std::string::npos);
+    assert_true(problem(model_with_attribute_fields(6, {first, half})).find("but holds 20 bytes") != std::string::npos);
     // a tensor's dims split across two occurrences: joined ([2, 3]), with the last's 24 bytes: whole
-    Bytes dims_a, dims_b, joined_attribute, joined_node, joined_graph, joined_model;
+    Bytes dims_a, dims_b;
     number(dims_a, 1, 2);
     number(dims_b, 1, 3);
     number(dims_b, 2, 1);
-    bytes(dims_b, 9, Bytes(24, 0));
-    bytes(joined_attribute, 5, dims_a);
-    bytes(joined_attribute, 5, dims_b);
-    bytes(joined_node, 5, joined_attribute);
-    bytes(joined_graph, 1, joined_node);
-    bytes(joined_model, 7, joined_graph);
-    assert_string_equal(problem(joined_model).c_str(), "");
     Bytes short_b = dims_b;  // the same with 4 bytes: [2, 3] declared, refused
-    short_b.resize(short_b.size() - 24 - 2);
+    bytes(dims_b, 9, Bytes(24, 0));
     bytes(short_b, 9, Bytes(4, 0));
-    Bytes short_attribute, short_node, short_graph, short_model;
-    bytes(short_attribute, 5, dims_a);
-    bytes(short_attribute, 5, short_b);
-    bytes(short_node, 5, short_attribute);
-    bytes(short_graph, 1, short_node);
-    bytes(short_model, 7, short_graph);
-    assert_true(problem(short_model).find("declares 6 elements (24 bytes) but holds 4 bytes") != std::string::npos);
+    assert_string_equal(problem(model_with_attribute_fields(5, {dims_a, dims_b})).c_str(), "");
+    assert_true(problem(model_with_attribute_fields(5, {dims_a, short_b}))
+                    .find("declares 6 elements (24 bytes) but holds 4 bytes") != std::string::npos);
 }
 
 // Round 6's own review: nesting. Graphs inside attributes inside graphs are checked to 16 levels and refused
@@ -262,6 +258,7 @@ int main()
         cmocka_unit_test(test_whole_tensors_taken), cmocka_unit_test(test_data_against_shape),
         cmocka_unit_test(test_shape_bounds),        cmocka_unit_test(test_integers_bounded),
         cmocka_unit_test(test_not_taken),           cmocka_unit_test(test_merged_occurrences),
+        cmocka_unit_test(test_merged_tensor_refused),
         cmocka_unit_test(test_nesting_bounded),
     };
     return cmocka_run_group_tests(tests, nullptr, nullptr);

@@ -1,6 +1,6 @@
 /*
  * test_node_await.c - hkf-filter's node (filter_node/filter_node.c) where it waits for, or fuses, a second
- * model (issue 68's four defects): one pose for every frame whatever the second model answers, RECENTER and
+ * model (four defects a hostile review found): one pose for every frame whatever the second model answers, RECENTER and
  * RESET never undone by a replayed frame, RESET forgetting the models' curve, the curve bounded, and the
  * player's rest measured at any yaw.
  */
@@ -112,7 +112,7 @@ static void play(const answers_t *pattern, int frames, published_t *p)
     publish_due(&schedule, T0 + (frames - 1) * FRAME_US + FIRST_LATENCY_US + prompt_us_of_config(), p);
 }
 
-/* Issue 68, defect 3: a frame that waits is published by its deadline, with its answer or without it; before,
+/* Defect 3 (frames dropped while waiting): a frame that waits is published by its deadline, with its answer or without it; before,
  * a frame whose answer never came was never published (150 poses for 300 frames when every 2nd was answered). */
 static void test_one_pose_per_frame_every_pattern(void **state)
 {
@@ -175,7 +175,7 @@ static void test_waiting_frame_published_at_its_deadline(void **state)
     assert_true(fabsf(pose.yaw - 35.0f) < 3.0f);
 }
 
-/* Issue 68, defect 1: a rest measured at 0, then RECENTER with the head at 20 deg of yaw; the second model's
+/* Defect 1 (a RECENTER undone): a rest measured at 0, then RECENTER with the head at 20 deg of yaw; the second model's
  * measurements fused after it must keep the centre at 20. Before, every fused frame put the rest's centre
  * back (node_rest_keep): 0 -> 20 -> 0 within two frames, the view jumping 20 deg twice. */
 static void test_recenter_not_undone_by_a_fused_frame(void **state)
@@ -230,7 +230,7 @@ static void test_recenter_kept_over_a_model_change(void **state)
     assert_true(fabsf(pose.center[1] - 20.0f) < 0.5f);
 }
 
-/* Issue 68, defect 4: a curve learnt from a forged second model (its pitch 25 deg off) outlives nothing:
+/* Defect 4 (RESET kept the models' curve): a curve learnt from a forged second model (its pitch 25 deg off) outlives nothing:
  * the view moves by no more than the models' plausible disagreement while it is learnt, and RESET forgets
  * it, so the pitch reads the truth again from the first frames after. Before, pitch read 14-33 deg for a
  * truth of 1 deg after RESET. */
@@ -270,7 +270,7 @@ static void test_reset_forgets_a_forged_curve(void **state)
     assert_true(fabsf(pose.pitch - 1.0f) < 0.5f);
 }
 
-/* Issue 68, defect 2: a camera beside the screen: the player rests at 35 deg of yaw, where each frame waits
+/* Defect 2 (no rest at a side camera): a camera beside the screen: the player rests at 35 deg of yaw, where each frame waits
  * for the second model. The rest is measured from the first model's measurements; before, the waiting
  * frames fed it nothing and it stayed RESTING at progress 0. Beyond the mesh's reach (no face for it) the
  * second model's measurements are the rest's. */

@@ -173,8 +173,8 @@ static void test_second_position_waits_for_the_offset(void **state)
     assert_true(filter_node_extrapolate(&node, utime, &pose) == 1 && fabsf(pose.z - 60.0f) < 0.1f);
 }
 
-/* Issue 73: the position's offset is a model's own. WHENet's box reads 10 cm farther than the mesh and
- * its offset is learnt; then another second model (a box that reads as the mesh does) arrives while the
+/* The position's offset is a model's own (mutant 14 of tests/mutation/mutants.txt). WHENet's box reads 10 cm
+ * farther than the mesh and its offset is learnt; then another second model (a box that reads as the mesh does) arrives while the
  * mesh has folded. Its positions wait for an offset of their own (FILTER_NODE_POSITION_MIN_ALIGN frames
  * both measured) and are never moved 10 cm by WHENet's. */
 static void second_model_frame(int64_t utime, char *second_model, int mesh_position, float second_z,

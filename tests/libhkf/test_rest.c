@@ -186,7 +186,7 @@ static void test_white_noise_keeps_onset(void **state)
     assert_true(on_measured < on_old);
 }
 
-/* Issue 68: a player who talks or settles during the countdown: the head sways 1.2 deg at 0.5 Hz, every frame
+/* A rest that is a rest: a player who talks or settles during the countdown: the head sways 1.2 deg at 0.5 Hz, every frame
  * within the reach. Its spread beyond the noise (0.72 deg^2) is a head that moved: each rest is refused at its
  * end (counted as spoiled and refused, what it measured kept for the runners to say) and asked again; none is
  * taken in 10 s, so the filter keeps its built-in wander. */

@@ -28,7 +28,7 @@ for list in groups none; do
   echo "selection_test: the broken list '$list' refused: $(tail -1 "$scratch/err")"
 done
 
-# --only takes numbers and ranges (issue 73: the closing notes' "--only 242-255" was refused), and refuses
+# --only takes numbers and ranges ("--only 242-255", as a closing note gave it, was refused before), and refuses
 # what is neither with a clear error
 PYTHONPATH=$source/tests/mutation "$python" - <<'PY'
 import argparse, run_mutants
