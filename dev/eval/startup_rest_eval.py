@@ -97,10 +97,9 @@ def report(rows, out_dir):
         own, built_in = row["results"]
         beyond = own["m"]["lag_ms"] - built_in["m"]["lag_ms"]
         tuned = " (rest tuning)" if row["name"] in REST_TUNING else ""
+        beyond_text = f"{beyond:+.0f} ms" if np.isfinite(beyond) else "-"
         lines.append(f"| {row['name']}{tuned} | {row['outcome']} | {row['wander']:.3f} | {cell(own)} | "
-                     f"{cell(built_in)} | {beyond:+.0f} ms |" if np.isfinite(beyond) else
-                     f"| {row['name']}{tuned} | {row['outcome']} | {row['wander']:.3f} | {cell(own)} | "
-                     f"{cell(built_in)} | - |")
+                     f"{cell(built_in)} | {beyond_text} |")
     held_out = [row["name"] for row in rows if row["name"] not in REST_TUNING]
     lines += ["", "Means over the clips with moving frames (lag, the 1 euro's lag at each clip's jitter, their "
                   "ratio, still jitter):", ""]
