@@ -237,7 +237,7 @@ def run_chain(build, clip, variant, work):
                          stdout=logs["filter"], stderr=subprocess.STDOUT),
         subprocess.Popen([os.path.join(build, "tools", "hkf-opentrack"), "--lcm-url", URL, "--port", str(PORT)]
                          + variant.bridge_options, stdout=logs["bridge"], stderr=subprocess.STDOUT)]
-    time.sleep(0.7)  # every subscriber listening before the first frame
+    evaluate.wait_started([(background[1], logs["filter"]), (background[2], logs["bridge"])])  # before frame 1
     estimator = subprocess.run([os.path.join(build, "estimator", "hkf-estimator"), "--source", clip.folder,
                                 "--fps", f"{clip.fps:g}", "--realtime", "--lcm-url", URL] + variant.estimator_options,
                                stdout=subprocess.PIPE, stderr=logs["estimator"], text=True)

@@ -78,6 +78,24 @@ def fail(message):
     sys.exit(1)
 
 
+def wait_started(procs_and_logs, limit_s=30.0):
+    """Waits until each live program (a Popen, its log file object) has printed its start line, which hkf-filter
+    and hkf-opentrack print once subscribed ("... -> ..."): paced by the programs, not by a fast machine's clock.
+    Fails if one exits first or says nothing within limit_s."""
+    started = time.time()
+    for proc, log_file in procs_and_logs:
+        log_file.flush()
+        while True:
+            with open(log_file.name, errors="replace") as f:
+                if " -> " in f.read():
+                    break
+            if proc.poll() is not None:
+                fail(f"{proc.args[0]} exited {proc.returncode} before it started (see {log_file.name})")
+            if time.time() - started > limit_s:
+                fail(f"{proc.args[0]} did not start within {limit_s:.0f} s (see {log_file.name})")
+            time.sleep(0.02)
+
+
 def script_folders(doc, folder):
     """An evaluation script's command line (--build, --out; its docstring as --help) and its folders: (build,
     out, the Python types' folder, OUT/FOLDER, OUT/FOLDER/work), made."""

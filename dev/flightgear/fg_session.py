@@ -43,8 +43,9 @@ def free_display():
 class Session:
     """Xvfb and fgfs for one aircraft; `with Session(...) as fg:` ends them, pass or fail."""
 
-    def __init__(self, out, aircraft, data_dirs, log):
+    def __init__(self, out, aircraft, data_dirs, log, max_fps=None):
         self.out, self.aircraft, self.data_dirs, self.log = out, aircraft, data_dirs, log
+        self.max_fps = max_fps  # FlightGear's own frame-rate throttle: a slower machine's FlightGear
         self.display = free_display()
         self.xvfb = self.fgfs = None
         self.props = self.props_file = None
@@ -66,6 +67,8 @@ class Session:
         command = [FGFS, f"--aircraft={self.aircraft}", f"--fg-scenery={scenery}"] + CHEAPEST + [
             f"--data={d}" for d in self.data_dirs] + [
             f"--generic=socket,in,60,,{INPUT_PORT},udp,hkf", f"--props=socket,bi,60,127.0.0.1,{PROPS_PORT},tcp"]
+        if self.max_fps:
+            command.append(f"--prop:/sim/frame-rate-throttle-hz={self.max_fps:g}")
         with open(self.fg_log, "w") as f:
             self.fgfs = subprocess.Popen(command, stdout=f, stderr=subprocess.STDOUT, env=env, start_new_session=True)
         return self

@@ -22,7 +22,7 @@ Steps, each timed:
 Any failure, a FlightGear that does not start or stops answering included, ends the run within its limits,
 with a screenshot and a clear message, exit 1.
 
-usage: flightgear_check.py [--build DIR] [--out DIR]
+usage: flightgear_check.py [--build DIR] [--out DIR] [--max-fps N]
 writes OUT/flightgear.md, OUT/*.png (the screenshots) and OUT/flightgear_cockpit.jpg (the figure).
 Needs root (a private network namespace) and FlightGear (./run flightgear installs it).
 """
@@ -51,7 +51,12 @@ URL = "udpm://239.255.76.67:7667?ttl=0"
 RELAY_PORT = 5551          # the bridge sends here; the relay stamps each line and passes it on
 FPS = 30.0
 HEAD = "d10"
-RUN_LIMIT_S = 170          # the whole check (after the install) ends within this, pass or fail
+# The whole check (after the install) ends within this, pass or fail: a bound for a hang, not a speed the check
+# assumes (on one core with Mesa's software renderer FlightGear's two starts alone take 2.4 min; the goal of 4 min
+# on a slower machine is reported as the total, not enforced here).
+RUN_LIMIT_S = 600
+# FlightGear's start, a bound only (its first start after the install reads its data cold: on one core, over 60 s)
+START_LIMIT_S = 120
 ANGLE_TOLERANCE = 0.05     # deg: a pose sent, read back
 POSITION_TOLERANCE = 1e-4  # m
 LATENCY_LINES = 16
@@ -100,7 +105,7 @@ class Check:
         text = ["# FlightGear moved by hkf (`./run flightgear`)", "", "| step | time (s) | what FlightGear read |",
                 "| --- | ---: | --- |"]
         text += [f"| {name} | {seconds:.1f} | {what} |" for name, seconds, what in self.steps]
-        text += ["", f"Total {time.time() - self.started:.0f} s (after the install).", ""] + self.lines + [""]
+        text += ["", f"Total {time.time() - self.started:.0f} s (after the install; the goal: at most 240 s).", ""] + self.lines + [""]
         with open(os.path.join(self.out, "flightgear.md"), "w") as f:
             f.write("\n".join(text))
         print("\n".join(text))
@@ -148,9 +153,11 @@ class Relay(threading.Thread):
             self.sent.append((time.time(), [float(v) for v in data.decode().strip().split(",")]))
 
 
-def run_chain(build, folder, eye, work, rate_hz, on_first_line=None):
+def run_chain(build, folder, eye, work, rate_hz, fg, on_first_line=None):
     """The clip through hkf-estimator -> hkf-filter -> hkf-opentrack --flightgear (--rate rate_hz, or every pose
-    when None), HEAD_POSE recorded in work/poses.lcmlog: the lines sent ((arrival s, six values));
+    when None), HEAD_POSE recorded in work/poses.lcmlog: the lines sent ((arrival s, six values)), returned, where
+    the view is read back, once FlightGear has drawn FRAMES_DRAWN frames after the last (paced by its frame rate,
+    not a clock: on one core it draws 3 fps);
     on_first_line is called with them (a list the relay goes on filling) once the first is in."""
     os.makedirs(work, exist_ok=True)
     relay = Relay()
@@ -169,7 +176,7 @@ def run_chain(build, folder, eye, work, rate_hz, on_first_line=None):
         subprocess.Popen([os.path.join(tools, "hkf-opentrack"), "--flightgear", "--lcm-url", URL, "--port",
                           str(RELAY_PORT), "--eye", ",".join(f"{v:.4f}" for v in eye)] + rate + NO_ROLL,
                          stdout=logs["bridge"], stderr=subprocess.STDOUT)]
-    time.sleep(0.7)
+    turn_truth.evaluate.wait_started([(background[1], logs["filter"]), (background[2], logs["bridge"])])  # subscribed
     estimator = subprocess.Popen([os.path.join(build, "estimator", "hkf-estimator"), "--source", folder, "--fps",
                                   f"{FPS:g}", "--realtime", "--lcm-url", URL], stdout=logs["estimator"],
                                  stderr=subprocess.STDOUT)
@@ -189,7 +196,18 @@ def run_chain(build, folder, eye, work, rate_hz, on_first_line=None):
         f.close()
     if estimator.returncode != 0:
         raise fg_session.FlightGearError(f"hkf-estimator exited {estimator.returncode} (see {work}/estimator.txt)")
+    if relay.sent and fg.reading:  # the view read back frame by frame (the ufo's steps)
+        drawn_after(fg, relay.sent[-1][0], FRAMES_DRAWN, SHOT_LIMIT_S)
     return relay.sent
+
+
+def drawn_after(fg, t, frames, limit_s):
+    """Waits until FlightGear has answered `frames` frames after time t (one answer set a frame)."""
+    started = time.time()
+    while sum(1 for ts, _ in list(fg.samples) if ts > t) < frames:
+        if time.time() - started > limit_s:
+            raise fg_session.FlightGearError(f"FlightGear drew fewer than {frames} frames in {limit_s:.0f} s")
+        time.sleep(0.05)
 
 
 def within_180(angle):
@@ -218,7 +236,7 @@ def read_back(sent, samples, frame_s):
     it was the newest and two frames after)."""
     delays = []
     for i, (t, values) in enumerate(sent):
-        end = (sent[i + 1][0] if i + 1 < len(sent) else t + 1.0) + 2 * frame_s
+        end = sent[i + 1][0] + 2 * frame_s if i + 1 < len(sent) else np.inf  # the last: newest to the end
         hit = next((ts for ts, view in samples if t < ts <= end and view_has(view, values)), None)
         delays.append(hit - t if hit is not None else np.nan)
     return np.array(delays)
@@ -301,7 +319,7 @@ def follow_step(check, build, fg, eye, frame_s, clip):
     """The chain on the ufo: every pose sent read back; the view's yaw at each hold against the truth."""
     folder, theta = clip
     started = time.time()
-    sent = run_chain(build, folder, eye, os.path.join(check.out, "chain_ufo"), FOLLOW_RATE_HZ)
+    sent = run_chain(build, folder, eye, os.path.join(check.out, "chain_ufo"), FOLLOW_RATE_HZ, fg)
     samples = list(fg.samples)
     delays = read_back(sent, samples, frame_s)
     missed = int(np.sum(np.isnan(delays)))
@@ -359,7 +377,7 @@ def capture_step(check, build, fg, clip, types):
     started = time.time()
     first = len(fg.samples)
     work = os.path.join(check.out, "chain_ufo_every_pose")
-    sent = run_chain(build, clip[0], fg.eye, work, None)
+    sent = run_chain(build, clip[0], fg.eye, work, None, fg)
     poses = [head_pose_t.decode(e.data) for e in lcm.EventLog(os.path.join(work, "poses.lcmlog"), "r")
              if e.channel == "HEAD_POSE"]
     if len(poses) != len(sent):  # the bridge sends one line a pose (a LOST one repeats the last line)
@@ -438,7 +456,7 @@ def cockpit_step(check, build, fg, eye, clip, head_frames):
         shooter.append(threading.Thread(target=lambda: (at("rest", REST_SHOT_S), at("turned", turned_t)), daemon=True))
         shooter[0].start()
     turned_t = np.flatnonzero(theta >= 30.0 - 1e-9)[0] / FPS + TURNED_SHOT_S
-    sent = run_chain(build, folder, eye, os.path.join(check.out, "chain_c172p"), 4.0, on_first_line=shoot)
+    sent = run_chain(build, folder, eye, os.path.join(check.out, "chain_c172p"), 4.0, fg, on_first_line=shoot)
     if shooter:
         shooter[0].join(timeout=2 * SHOT_LIMIT_S)
     with open(os.path.join(check.out, "chain_c172p", "read_back.txt"), "w") as f:
@@ -488,7 +506,7 @@ def cockpit_still_s(frame_rate):
     return max(COCKPIT_MIN_STILL_S, SHOT_FRAMES / rate + SHOT_SLACK_S)
 
 
-def run(check, build):
+def run(check, build, max_fps=None):
     by_name = {os.path.splitext(os.path.basename(c))[0]: c for c in turn_truth.evaluate.clips()}
     started = time.time()
     head, pose = turn_truth.make_head(build, check.out, by_name[HEAD])
@@ -496,9 +514,9 @@ def run(check, build):
     check.step("clips", time.time() - started, f"{HEAD}'s head turned: {len(follow[1])} frames")
     data = [os.path.join(ROOT, "packaging", "flightgear"), HERE]
     for aircraft in ("ufo", "c172p"):
-        with fg_session.Session(check.out, aircraft, data, log) as fg:
+        with fg_session.Session(check.out, aircraft, data, log, max_fps) as fg:
             try:
-                ready = fg.wait_ready(90.0 if aircraft == "c172p" else 60.0)
+                ready = fg.wait_ready(START_LIMIT_S)
                 eye = fg.eye = fg.eye_point()
                 check.step(f"FlightGear ({aircraft})", ready, f"property server answering; eye point "
                            f"{', '.join(f'{v:.3f}' for v in eye)} m; frame rate {fg.get('/sim/frame-rate')} fps")
@@ -527,7 +545,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "flightgear"))
+    parser.add_argument("--max-fps", type=float, default=None,
+                        help="FlightGear held to at most this frame rate (its throttle): a slower machine's FlightGear")
     args = parser.parse_args()
+    if args.max_fps is not None and not 0.5 <= args.max_fps <= 120:
+        parser.error(f"--max-fps wants 0.5 to 120 frames a second, not {args.max_fps:g}")
     if os.environ.get("HKF_IN_NETNS") != "1":
         os.environ["HKF_IN_NETNS"] = "1"
         netns = os.path.join(ROOT, "tools", "lcm-netns")
@@ -544,7 +566,7 @@ def main():
     signal.signal(signal.SIGALRM, too_long)
     signal.alarm(RUN_LIMIT_S)
     try:
-        run(check, os.path.abspath(args.build))
+        run(check, os.path.abspath(args.build), args.max_fps)
     except (fg_session.FlightGearError, subprocess.TimeoutExpired, OSError) as e:
         check.failures.append(str(e))
         check.lines.append(f"- FAILED: {e} (screenshot: {os.path.join(out, 'failure.png')})")
