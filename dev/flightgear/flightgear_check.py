@@ -157,7 +157,7 @@ def run_chain(build, folder, eye, work, rate_hz, fg, on_first_line=None):
     """The clip through hkf-estimator -> hkf-filter -> hkf-opentrack --flightgear (--rate rate_hz, or every pose
     when None), HEAD_POSE recorded in work/poses.lcmlog: the lines sent ((arrival s, six values)), returned, where
     the view is read back, once FlightGear has drawn FRAMES_DRAWN frames after the last (paced by its frame rate,
-    not a clock: on one core it draws 3 fps);
+    not a clock: played as a slower machine it draws 1.5-3 fps);
     on_first_line is called with them (a list the relay goes on filling) once the first is in."""
     os.makedirs(work, exist_ok=True)
     relay = Relay()
@@ -186,7 +186,7 @@ def run_chain(build, folder, eye, work, rate_hz, fg, on_first_line=None):
         if relay.sent:
             on_first_line(relay.sent)
     estimator.wait(timeout=120)
-    time.sleep(1.5)  # the last pose read back
+    time.sleep(1.5)  # the last frames' poses through the filter and the bridge before they stop
     for proc in reversed(background):
         proc.send_signal(signal.SIGINT)
         proc.wait(timeout=10)
