@@ -1,8 +1,20 @@
 #!/usr/bin/env bash
 # Installs every dependency of hkf on Debian 12, idempotently: apt packages
 # that are missing (apt-get update only when something is). Safe to re-run.
-# usage: setup.sh [--release]   (--release: also what ./run release needs)
+# usage: setup.sh [--release] [--system | --tools]
+#   --release: also what ./run release needs
+#   --system:  only the apt packages (what the build needs); --tools: only the rest (the Python tools, the
+#              models, CMSIS-DSP: what the tests need), which ./run test runs beside the build
 set -euo pipefail
+release=0 system=1 tools=1
+for option in "$@"; do
+  case "$option" in
+    --release) release=1 ;;
+    --system) tools=0 ;;
+    --tools) system=0 ;;
+    *) echo "setup.sh: unknown option '$option' (usage: setup.sh [--release] [--system | --tools])" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   build-essential cmake ninja-build pkg-config  # the build
@@ -22,15 +34,16 @@ packages=(
   g++-aarch64-linux-gnu qemu-user               # the estimator's layers built for aarch64 (NEON), run under qemu
   help2man                                      # the programs' man pages, from their --help
 )
-if [ "${1:-}" = --release ]; then
+if ((release)); then
   packages+=(lintian mmdebstrap)                # ./run release: Debian's checks, a clean Debian 12 root
 fi
 
 missing=()
+((system)) || packages=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-command -v npm >/dev/null || missing+=(npm)   # npm pack: the canonical face (node's own npm counts)
+((!system)) || command -v npm >/dev/null || missing+=(npm)   # npm pack: the canonical face (node's own npm counts)
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
   sudo_cmd=()
@@ -38,6 +51,7 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+((tools)) || exit 0
 # Python tools in .venv, pinned by tools/requirements.txt.
 root=$(cd "$(dirname "$0")/.." && pwd)
 if [ ! -x "$root/.venv/bin/python" ]; then

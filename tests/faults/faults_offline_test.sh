@@ -15,7 +15,9 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 check() { "$python" "$source/tests/faults/check_poses.py" --types "$types" "$@"; }
 [ -f "$video" ] || fail "missing $video (the team's shared data)"
 
-"$estimator" --source "$video" --lcm-url "file://$work/raw.lcmlog?mode=w" >"$work/clean.txt" 2>&1 \
+# the clean and the corrupt-frame runs with the face mesh alone: the faults are the decoder's, and the second
+# model's inference (seconds a run under the sanitizers) adds nothing to them; the damaged video keeps it
+"$estimator" --source "$video" --second-model none --lcm-url "file://$work/raw.lcmlog?mode=w" >"$work/clean.txt" 2>&1 \
   || fail "the estimator on the clean clip"
 # summary_field FILE N: frames (1) or frames with a face (2) from an estimator's summary
 summary_field() { sed -n "s/^hkf-estimator: \([0-9]*\) frames, \([0-9]*\) with a face, .* fps;.*/\\$2/p" "$1"; }
@@ -37,7 +39,7 @@ PY
 
 echo "== a corrupt frame: 64 bytes of noise in the middle of the video"
 corrupt_copy 64 "$work/corrupt64.mp4"
-"$estimator" --source "$work/corrupt64.mp4" --lcm-url "file://$work/corrupt64_raw.lcmlog?mode=w" >"$work/corrupt64.txt" 2>&1 \
+"$estimator" --source "$work/corrupt64.mp4" --second-model none --lcm-url "file://$work/corrupt64_raw.lcmlog?mode=w" >"$work/corrupt64.txt" 2>&1 \
   || fail "the estimator on a video with a corrupt frame: exit $?"
 frames=$(summary_field "$work/corrupt64.txt" 1) faces=$(summary_field "$work/corrupt64.txt" 2)
 [ "$frames" = "$clean_frames" ] || fail "$frames of $clean_frames frames with a corrupt frame"
