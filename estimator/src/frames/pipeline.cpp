@@ -316,12 +316,13 @@ int damaged_models(const HeadPoseEstimator &model, const HeadPoseEstimator *seco
     return damaged;
 }
 
-// 0; 1 for no frame, a failure or a publish that failed; kExitSourceEnded for a camera or
+// 0 (also for a stop asked for before the first frame: Ctrl-C as the models load); 1 for no frame, a
+// failure or a publish that failed; kExitSourceEnded for a camera or
 // stream that ended by itself; kExitDamagedFile for a file that ended well short of its
 // frame count (the decoder gave up on damage; the count can be approximate, hence the margin).
 int exit_status(const RunCounts &counts, bool failed, const FrameSource &source, const PipelineOptions &options)
 {
-    int status = counts.frames > 0 ? 0 : 1;
+    int status = counts.frames > 0 || stop_requested ? 0 : 1;
     if (counts.frames == 0 && !failed && !stop_requested)
         std::fprintf(stderr, "hkf-estimator: %s gave no frame: %s\n", source.description().c_str(),
                      source.expected_frames() == 0 ? "it holds none (an empty video or folder)"
