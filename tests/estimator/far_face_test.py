@@ -80,8 +80,8 @@ for name, width in clips.items():
     if not os.path.exists(os.path.join(videos, name)):
         print(f"SKIP: no {name} in {videos}")
         sys.exit(77)
-    if width is None:  # measure it: the default estimator on the clip as it is
-        code, out, msgs = run(os.path.join(videos, name))
+    if width is None:  # measure it: the default estimator on the clip as it is (its first 3 s: a median)
+        code, out, msgs = run(os.path.join(videos, name), "--max-frames", "90")
         width = median([m.face_box[2] - m.face_box[0] for m in msgs if m.valid])
         if code != 0 or width <= 0:
             print(out)
