@@ -126,11 +126,11 @@ typedef enum {
     ANGLES_POSE     /* taken: *out is the pose's */
 } angles_step_t;
 
-/* How recent a frame with a second model's measurement must be for the next to wait for the second's:
- * half coast_time, so that waiting never coasts the track to LOST. */
+/* How recent a frame with a second model's measurement must be for the next to wait for the second's, and
+ * the longest wait: FILTER_NODE_PROMPT_SHARE of coast_time, so that waiting never coasts the track to LOST. */
 static int64_t prompt_us(const filter_node_t *node)
 {
-    return (int64_t)(0.5e6 * (double)node->config->settings.coast_time);
+    return (int64_t)(FILTER_NODE_PROMPT_SHARE * 1e6 * (double)node->config->settings.coast_time);
 }
 
 /* One frame's measurement z (NULL: none) to the rest, with the time of the frames not given to it before. */

@@ -36,6 +36,14 @@ extern "C" {
  * same holds (d14 3 % pooled, 7 % worst; d3 5 %, 9 %; the held-out d10 3 %, 8 %); the 80th with 10 ms, or the
  * 90th with 5 ms, let d14's -40 deg hold through at 22 % of raw's jitter. */
 #define FILTER_NODE_LATENESS_QUANTILE 0.98
+/* The prompt time, as a share of coast_time: a frame waits only while a frame of the last prompt time had the
+ * second's answer, and at most that long. At the slowest level (sse2: WHENet 130-150 ms behind the mesh in the
+ * pipeline) half coast_time, 125 ms, was too short for either, and the turn truth's held yaw went out from the
+ * mesh and WHENet in turn (d10's worst hold 113 % of raw's jitter, s20's 55 %). Chosen 0.8 (200 ms at the default
+ * 0.25 s) on the tuning heads d14 and d3 at sse2, inside a plateau (0.6-0.9 give the same holds: d3's worst 12 % at
+ * 0.5, 8 % from 0.6), with a frame and a half to spare before coast_time's LOST; the held-out d10 and s20: 0.5 113 %
+ * and 55 %, 0.6 15 % and 31 %, 0.7-0.9 8 % and 28 % (dev/eval/truth_frontier.py). */
+#define FILTER_NODE_PROMPT_SHARE 0.8
 #define FILTER_NODE_LATENESS_STEP_US 2000.0
 #define FILTER_NODE_AWAIT_MARGIN_US 10000LL
 #define FILTER_NODE_AWAIT_MIN_US 5000LL /* and at least this long (a first frame's period is not known) */

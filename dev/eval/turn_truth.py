@@ -156,11 +156,14 @@ def head_pose_utime(data, types_dir):
     return head_pose_measurement_t.decode(data).utime
 
 
-def published(filter_program, log_path, work):
-    """Every pose hkf-filter --offline publishes, in order: (frame utime, pitch, yaw, roll) rows."""
+def published(filter_program, log_path, work, settings=()):
+    """Every pose hkf-filter --offline publishes, in order: (frame utime, pitch, yaw, roll) rows; settings:
+    its --set NAME=VALUE options."""
     os.makedirs(work, exist_ok=True)
     csv_path = os.path.join(work, "hkf.csv")
     command = [filter_program, "--offline", log_path, os.path.join(work, "hkf.lcmlog"), "--csv", csv_path]
+    for setting in settings:
+        command += ["--set", setting]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         evaluate.fail(f"{' '.join(command)} exited {result.returncode}: {result.stderr.strip()}")

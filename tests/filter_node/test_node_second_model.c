@@ -390,7 +390,8 @@ static void test_other_model_publisher_not_a_second(void **state)
 /* The first model's measurement waits for the second's where the frame takes the second's alone (|yaw| >=
  * 25 deg), while the second's come promptly: no pose goes out with the first's, one with the second's. A
  * frame after one that waited waits down to 20 deg (no flicker between the two rules at a hold near 25).
- * A second model that stops ends the waiting within coast_time / 2, before the track would be LOST. */
+ * A second model that stops ends the waiting within the prompt time (FILTER_NODE_PROMPT_SHARE of coast_time),
+ * before the track would be LOST. */
 static void test_second_model_first_waits_for_it(void **state)
 {
     static const struct {
@@ -400,7 +401,7 @@ static void test_second_model_first_waits_for_it(void **state)
     hkf_head_pose_measurement_t m, second;
     hkf_head_pose_t pose;
     unsigned long awaited;
-    int i, k, frame = 0;
+    int i, k, free_from, frame = 0;
     (void)state;
     for (k = 0; k < 5; ++k) {
         for (i = 0; i < 10; ++i, ++frame) {
@@ -413,29 +414,31 @@ static void test_second_model_first_waits_for_it(void **state)
         }
     }
     assert_int_equal(node.counts.awaited, 30);
-    /* the second stops: the first waits while a frame of the last 125 ms had the second's (three frames
-     * at 33 ms), then is taken again, and the track is tracking. Each waiting frame's pose goes out without
-     * its answer when the next frame comes (one pose per frame, in order): the frame before's, then, once
-     * no frame waits, the frame's own too (queued) */
+    /* the second stops: the first waits while a frame of the last prompt time had the second's (200 ms, six
+     * frames at 33 ms), then is taken again, and the track is tracking. Each waiting frame's pose goes out
+     * without its answer when the next frame comes (one pose per frame, in order): the frame before's, then,
+     * once no frame waits, the frame's own too (queued) */
     awaited = node.counts.awaited;
-    for (i = 0; i < 6; ++i, ++frame) {
+    free_from = (int)(FILTER_NODE_PROMPT_SHARE * 1e6 * (double)config.settings.coast_time / FRAME_US);
+    assert_int_equal(free_from, 6);
+    for (i = 0; i < free_from + 3; ++i, ++frame) {
         int64_t due;
         m = measurement(T0 + frame * FRAME_US, 1, 1.0, 30.0, 0.0);
         assert_int_equal(filter_node_receive(&node, &m, m.utime + 8000, &pose), i >= 1);
         if (i >= 1) {
-            assert_true(pose.utime == m.utime - FRAME_US || i > 3); /* the frame before's */
+            assert_true(pose.utime == m.utime - FRAME_US || i > free_from); /* the frame before's */
             assert_int_equal(pose.status, HKF_HEAD_POSE_T_TRACKING);
         }
-        if (i == 3) { /* the last that waited published; this frame's own queued behind it */
+        if (i == free_from) { /* the last that waited published; this frame's own queued behind it */
             assert_int_equal(filter_node_await_next(&node, m.utime + 8000, &pose, &due), 1);
             assert_true(pose.utime == m.utime);
         }
-        if (i > 3) {
+        if (i > free_from) {
             assert_true(pose.utime == m.utime);
         }
     }
-    assert_int_equal(node.counts.awaited, awaited + 3);
-    assert_int_equal(node.counts.awaits_expired, 3);
+    assert_int_equal(node.counts.awaited, awaited + (unsigned long)free_from);
+    assert_int_equal(node.counts.awaits_expired, (unsigned long)free_from);
 }
 
 /* A second model a frame late (its measurement of a frame arrives after the next frame's first, 45 ms after its
