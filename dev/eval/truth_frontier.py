@@ -18,7 +18,7 @@ The frontier: the least moving error a setting reaches at a pooled still jitter 
 And where the defaults' excess moving error is, by segment of the trajectory and by place in a move.
 
 usage: truth_frontier.py [--build DIR] [--out DIR] [--rates 30,60]
-writes OUT/frontier/{frontier.md,frontier_rows.csv}; the clips under OUT/truth*, OUT/turn* (made once, reused).
+writes OUT/frontier/{frontier.md,frontier_rows.csv,truth_frontier_axes.png}; the clips under OUT/truth*, OUT/turn* (made once, reused).
 """
 import argparse
 import csv
@@ -262,6 +262,42 @@ def write_rows(summary, path):
                         f"{s['share']:.4f}", f"{s['worst']:.4f}", f"{s['reversal']:.3f}"])
 
 
+def figure(summary, path):
+    """Per axis, held out: every setting's moving error against its still jitter, one colour per rate and timing,
+    the defaults ringed."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import matplotlib.ticker
+    axes_names = ["roll", "yaw", "pitch"]
+    fig, panels = plt.subplots(1, 3, figsize=(13, 4.2))
+    styles = {}
+    for panel, axis in zip(panels, axes_names):
+        groups = sorted({(f, t) for (a, f, t, r, _) in summary if a == axis and r == "held out"})
+        for fps, timing in groups:
+            key = f"{fps:g} fps, {timing}"
+            colour = styles.setdefault(key, f"C{len(styles)}")
+            points = [(s["share"], s["ratio"], label) for (a, f, t, r, label), s in summary.items()
+                      if (a, f, t, r) == (axis, fps, timing, "held out") and np.isfinite(s["share"])]
+            panel.scatter([100 * p[0] for p in points], [p[1] for p in points], s=14, color=colour, label=key)
+            panel.scatter([100 * p[0] for p in points if p[2] == "defaults"],
+                          [p[1] for p in points if p[2] == "defaults"], s=90, facecolors="none", edgecolors=colour)
+        panel.axvline(100 * GOALS["jitter_share"], color="grey", lw=0.8, ls=":")
+        panel.axhline(GOALS["moving_ratio"], color="grey", lw=0.8, ls=":")
+        panel.set_xscale("log")
+        panel.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        panel.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        panel.set_title(f"{axis} (held out)")
+        panel.set_xlabel("still jitter over the holds (% of raw's)")
+        panel.set_ylabel("moving error (x raw's)")
+        panel.legend(fontsize=7)
+    fig.suptitle("The frontier on the truth: start_rate x stop_rate swept, the defaults ringed; goal corner at the "
+                 "dotted lines")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=os.path.join(evaluate.ROOT, "build"))
@@ -274,6 +310,7 @@ def main():
     results, defaults = run_all(build, out, [float(r) for r in args.rates.split(",")])
     summary = {key: pooled(runs) for key, runs in results.items()}
     write_rows(summary, os.path.join(folder, "frontier_rows.csv"))
+    figure(summary, os.path.join(folder, "truth_frontier_axes.png"))
     lines = ["# The frontier on the project's own truth", "",
              "Made by `./run eval` (dev/eval/truth_frontier.py): roll, yaw and pitch truth at each rate, the second "
              "model on time and at the slowest level's timing, hkf-filter --offline with the defaults and "
