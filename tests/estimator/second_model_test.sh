@@ -19,6 +19,15 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 grep -q "^hkf-estimator: 90 frames, 90 with a face" "$work/est.txt" || fail "the mesh did not measure the 90 frames"
 grep -q "second model whenet: 90 frames asked for, 90 measured, 0 skipped" "$work/est.txt" ||
   fail "WHENet did not measure every frame asked for"
+# where WHENet's latency goes: the three parts, each a time, and together no more than the whole (p50s)
+line=$(grep "second model whenet's capture->publish, where it goes" "$work/est.txt") || fail "no breakdown of WHENet's latency"
+"$python" - "$line" "$(grep "second model whenet: 90 frames" "$work/est.txt")" <<'PY' || fail "WHENet's latency breakdown: $line"
+import re, sys
+parts = [float(a) for a, _ in re.findall(r"([\d.]+) / ([\d.]+)", sys.argv[1])]
+whole = float(re.search(r"capture->publish ms p50 ([\d.]+)", sys.argv[2]).group(1))
+assert len(parts) == 3 and all(p >= 0 for p in parts) and parts[2] > 0, parts
+assert sum(parts) <= whole * 1.2 + 2.0, (parts, whole)  # medians of parts: about the whole's, never far above
+PY
 
 # the log: per frame the mesh's message, then WHENet's with the same seq and time; the two agree on real
 # frames; and the same log without WHENet's messages, for the comparison below

@@ -155,6 +155,7 @@ struct RunCounts {
     long frames = 0, with_face = 0, publish_failures = 0;
     unsigned long published = 0;  // measurements LCM took: a file:// log must hold them all
     std::vector<double> latency_ms, inference_ms, second_latency_ms;
+    std::vector<double> second_before_ms, second_waited_ms;  // the second's latency: until it was asked, then queued
 };
 
 // What the frame loop works with: the run's parts, which run_pipeline sets up and owns.
@@ -191,8 +192,10 @@ std::unique_ptr<SecondModelWorker> start_second_model(FrameLoop &loop)
         std::lock_guard<std::mutex> lock(loop.lcm_mutex);
         if (loop.lcm.publish(loop.options.channel, &m) != 0) ++loop.counts.publish_failures;
         else ++loop.counts.published;
-        loop.counts.second_latency_ms.push_back(
-            static_cast<double>(wall_utime() - (loop.source.live() ? r.job.utime : r.job.taken_utime)) / 1000.0);
+        const int64_t from = loop.source.live() ? r.job.utime : r.job.taken_utime;
+        loop.counts.second_latency_ms.push_back(static_cast<double>(wall_utime() - from) / 1000.0);
+        loop.counts.second_before_ms.push_back(static_cast<double>(r.job.asked_utime - from) / 1000.0);
+        loop.counts.second_waited_ms.push_back(r.waited_ms);
     });
 }
 
@@ -212,6 +215,14 @@ void print_summary(const FrameLoop &loop, double seconds, const LatestFrame &slo
                     loop.second->spec().name.c_str(), loop.second_worker->asked(), loop.second_worker->done(),
                     loop.second_worker->skipped(), percentile(counts.second_latency_ms, 0.5),
                     percentile(counts.second_latency_ms, 0.99), percentile(loop.second_worker->inference_ms(), 0.5));
+    if (loop.second_worker && !counts.second_latency_ms.empty())
+        std::printf("hkf-estimator: second model %s's capture->publish, where it goes (p50 / p99 ms): until it was "
+                    "asked (the face, the first model) %.1f / %.1f, waiting for the worker %.1f / %.1f, its inference "
+                    "%.1f / %.1f\n",
+                    loop.second->spec().name.c_str(), percentile(counts.second_before_ms, 0.5),
+                    percentile(counts.second_before_ms, 0.99), percentile(counts.second_waited_ms, 0.5),
+                    percentile(counts.second_waited_ms, 0.99), percentile(loop.second_worker->inference_ms(), 0.5),
+                    percentile(loop.second_worker->inference_ms(), 0.99));
     if (!capture_hung && loop.source.skipped_images() > 0)
         std::printf("hkf-estimator: %ld images of the folder could not be read; skipped\n", loop.source.skipped_images());
     if (loop.video.resized() > 0)

@@ -1,6 +1,8 @@
 // second_model.cpp - see second_model.hpp.
 #include "second_model.hpp"
 
+#include "frame_source.hpp"
+
 #include <chrono>
 
 #include <sys/resource.h>
@@ -23,6 +25,7 @@ void SecondModelWorker::submit(SecondModelJob job, bool drop_old)
     if (stopping_) return;
     if (waiting_) ++skipped_;
     ++asked_;
+    job.asked_utime = wall_utime();
     waiting_ = std::move(job);
     changed_.notify_all();
 }
@@ -53,6 +56,7 @@ void SecondModelWorker::run()
             changed_.notify_all();  // a submit waiting for the slot may go on
         }
         SecondModelResult result;
+        result.waited_ms = static_cast<double>(wall_utime() - job.asked_utime) / 1000.0;
         const auto t0 = std::chrono::steady_clock::now();
         try {
             result.pose = model_.estimate(job.image, job.face);

@@ -29,6 +29,7 @@ struct SecondModelJob {
     Face face;
     int64_t utime = 0, seq = 0;
     int64_t taken_utime = 0;  // wall clock when the frame was taken (for its latency)
+    int64_t asked_utime = 0;  // wall clock when it was handed to the worker (submit sets it)
 };
 
 // What the second model made of a job (pose nullopt: no face there).
@@ -36,6 +37,7 @@ struct SecondModelResult {
     SecondModelJob job;
     std::optional<HeadPose> pose;
     double inference_ms = 0;
+    double waited_ms = 0;  // from the hand-over to the worker's start on it (the job before still in hand)
 };
 
 class SecondModelWorker {
