@@ -95,6 +95,7 @@ typedef struct {
     unsigned long silences;        /* the estimator fell silent for coast_time: LOST published */
     unsigned long paired;          /* second-model measurements fused into their frame */
     unsigned long unpaired;        /* second-model measurements not used: too late, no face, or a frame's third */
+    unsigned long gross_refused;   /* of the fused frames, a reading refused as a gross error (FILTER_NODE_GROSS_DEG) */
     unsigned long awaited;         /* frames whose first measurement waited for the second's (second_model_awaits) */
     unsigned long awaits_expired;  /* of those, published without it: its deadline passed, or a later frame came */
     unsigned long commands;        /* commands applied */

@@ -228,11 +228,12 @@ static void print_summary(const filter_node_t *node, FILE *to)
             "%lu clock jumps (%lu followed), %lu from another publisher; %lu track restarts, "
             "%lu with an unknown model, %lu commands; the estimator fell silent %lu times (LOST published); "
             "%lu second-model measurements fused into their frame (%lu not used; %lu frames waited for one); "
-            "positions: %lu bad values, %lu refused by the outlier gate\n",
+            "positions: %lu bad values, %lu refused by the outlier gate; "
+            "%lu frames with a reading refused as a gross error (%g deg from both the other model's and the track's)\n",
             c->received, c->without_face, c->published, c->extrapolated, c->out_of_order, c->duplicates,
             c->bad_values, c->decode_errors, c->clock_jumps, c->clock_resyncs, c->other_publisher, c->restarts,
             c->unknown_models, c->commands, c->silences, c->paired, c->unpaired, c->awaited, c->bad_positions,
-            c->positions_gated);
+            c->positions_gated, c->gross_refused, FILTER_NODE_GROSS_DEG);
     node_run_say_rest_summary(node, to);
 }
 

@@ -50,12 +50,39 @@ int second_model_answers(const second_model_t *s, int64_t utime, int64_t prompt_
     return newest_answered(s, utime, prompt_us) != NULL;
 }
 
+/* The largest difference between two readings over the axes (yaw's wrapped). */
+static double largest_difference(const hkf_real_t a[3], const hkf_real_t b[3])
+{
+    double largest = 0.0;
+    int axis;
+    for (axis = 0; axis < 3; ++axis) {
+        double d = (double)a[axis] - (double)b[axis];
+        d = fabs(axis == HKF_AXIS_YAW ? pose_angle_wrap(d) : d);
+        largest = d > largest ? d : largest;
+    }
+    return largest;
+}
+
+int second_model_prediction(const hkf_filter_t *f, hkf_real_t dt, hkf_real_t predicted[3])
+{
+    hkf_output_t out;
+    int a;
+    if (hkf_get_output(f, &out) != HKF_OK || (out.status != HKF_STATUS_TRACKING && out.status != HKF_STATUS_COASTING)) {
+        return 0;
+    }
+    for (a = 0; a < 3; ++a) {
+        predicted[a] = out.angle[a] + out.rate[a] * dt;
+    }
+    return 1;
+}
+
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
-                        int64_t utime, int64_t prompt_us)
+                        const hkf_real_t *predicted, int64_t utime, int64_t prompt_us)
 {
     const int awaiting = s->frame_count > 0 && s->frames[s->frame_newest].awaited;
     const double from_yaw = (double)models->second_alone_from_yaw - (awaiting ? FILTER_NODE_AWAIT_HYSTERESIS : 0.0);
-    if (fabs((double)z[HKF_AXIS_YAW]) < from_yaw) {
+    const int jump = predicted != NULL && largest_difference(z, predicted) >= FILTER_NODE_GROSS_DEG;
+    if (fabs((double)z[HKF_AXIS_YAW]) < from_yaw && !jump) {
         return 0;
     }
     return newest_answered(s, utime, prompt_us) != NULL;
@@ -138,14 +165,15 @@ static int first_set_aside(const resolved_models_t *models, const second_model_f
 }
 
 /* One kept frame's filter step on f, as the node made it, with the frame's second measurement if it
- * has one; *taken is the measurement the step took first (NULL: none), for the calibration. */
+ * has one (and is not a gross error); *taken is the measurement the step took first (NULL: none), for the
+ * calibration. A first measurement that waited is taken once the answer came as a gross error. */
 static int redo_filter_step(const resolved_models_t *models, hkf_filter_t *f, const second_model_frame_t *frame,
                             const hkf_real_t **taken)
 {
-    *taken = frame->valid && !frame->awaited ? frame->z : NULL;
-    if (frame->paired) {
+    *taken = frame->valid && (!frame->awaited || frame->paired) ? frame->z : NULL;
+    if (frame->paired && frame->gross != SECOND_MODEL_GROSS_SECOND) {
         const resolved_model_t *second = resolved_models_find(models, frame->second_model);
-        const int first = frame->valid && !first_set_aside(models, frame);
+        const int first = frame->valid && frame->gross != SECOND_MODEL_GROSS_FIRST && !first_set_aside(models, frame);
         *taken = first ? frame->z : frame->z2;
         return hkf_update_pair_prepared(f, first ? frame->z : NULL, frame->z2, &second->noise, frame->dt, NULL);
     }
@@ -167,13 +195,42 @@ static int redo_step(const resolved_models_t *models, hkf_filter_t *f, hkf_calib
     return result != HKF_OK ? result : hkf_calibration_update(c, f, taken, frame->dt);
 }
 
-/* The frame's second measurement (frame->z2) moved onto the first model's frame (model_alignment.h),
- * the alignment learning from this frame's difference where the first is trusted (fused with it). */
+/* Which of a paired frame's readings (z, and z2 on the first model's frame) is a gross error
+ * (FILTER_NODE_GROSS_DEG), against the track's prediction for the frame from the filter before its step. */
+static int gross_reading(const second_model_frame_t *frame)
+{
+    hkf_real_t predicted[3];
+    int first_far, second_far;
+    if (!frame->valid || !second_model_prediction(&frame->before, frame->dt, predicted) ||
+        largest_difference(frame->z, frame->z2) < FILTER_NODE_GROSS_DEG) {
+        return SECOND_MODEL_GROSS_NONE;
+    }
+    first_far = largest_difference(frame->z, predicted) >= FILTER_NODE_GROSS_DEG;
+    second_far = largest_difference(frame->z2, predicted) >= FILTER_NODE_GROSS_DEG;
+    return first_far == second_far ? SECOND_MODEL_GROSS_NONE
+           : second_far           ? SECOND_MODEL_GROSS_SECOND
+                                  : SECOND_MODEL_GROSS_FIRST;
+}
+
+/* A second model's angles moved onto the first model's frame by the curve (model_alignment.h), into z2. */
+static void aligned_by_curve(const second_model_t *s, const double second[3], hkf_real_t z2[3])
+{
+    int a;
+    for (a = 0; a < 3; ++a) {
+        double v = second[a] + model_alignment_correction(&s->alignment, a, second[a]);
+        if (a == HKF_AXIS_YAW) {
+            v = pose_angle_wrap(v);
+        }
+        z2[a] = (hkf_real_t)(v < HKF_MAX_ABS_ANGLE ? (v > -HKF_MAX_ABS_ANGLE ? v : -HKF_MAX_ABS_ANGLE) : HKF_MAX_ABS_ANGLE);
+    }
+}
+
+/* The frame's second measurement (frame->z2) moved onto the first model's frame (model_alignment.h): judged
+ * for a gross error on the curve so far (frame->gross); where neither reading is one, the curve learns from
+ * this frame's difference wherever the first measured, at a large turn too (the pose is in the first model's
+ * frame, and the curve carries it across the first's reach without a step); then moved by the curve. */
 static void align_second(second_model_t *s, second_model_frame_t *frame)
 {
-    /* learnt wherever the first measured, at a large turn too: the pose is in the first model's frame,
-     * and the curve carries it across the first's reach without a step */
-    const int learn = frame->valid;
     double difference[3], second[3];
     int a;
     for (a = 0; a < 3; ++a) {
@@ -181,15 +238,13 @@ static void align_second(second_model_t *s, second_model_frame_t *frame)
         difference[a] = (double)frame->z[a] - second[a];
     }
     difference[HKF_AXIS_YAW] = pose_angle_wrap(difference[HKF_AXIS_YAW]);
-    model_alignment_learn(&s->alignment, frame->second_model, second, learn ? difference : NULL, s->align_frames);
-    for (a = 0; a < 3; ++a) {
-        double v = second[a] + model_alignment_correction(&s->alignment, a, second[a]);
-        if (a == HKF_AXIS_YAW) {
-            v = pose_angle_wrap(v);
-        }
-        frame->z2[a] =
-            (hkf_real_t)(v < HKF_MAX_ABS_ANGLE ? (v > -HKF_MAX_ABS_ANGLE ? v : -HKF_MAX_ABS_ANGLE) : HKF_MAX_ABS_ANGLE);
+    model_alignment_learn(&s->alignment, frame->second_model, second, NULL, s->align_frames); /* its model */
+    aligned_by_curve(s, second, frame->z2);
+    frame->gross = gross_reading(frame);
+    if (frame->valid && frame->gross == SECOND_MODEL_GROSS_NONE) {
+        model_alignment_learn(&s->alignment, frame->second_model, second, difference, s->align_frames);
     }
+    aligned_by_curve(s, second, frame->z2);
 }
 
 /* The kept frames' steps made again from `frame` on (its own step first) into `track`, with what each holds

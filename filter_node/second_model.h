@@ -44,6 +44,13 @@ extern "C" {
  * 0.5, 8 % from 0.6), with a frame and a half to spare before coast_time's LOST; the held-out d10 and s20: 0.5 113 %
  * and 55 %, 0.6 15 % and 31 %, 0.7-0.9 8 % and 28 % (dev/eval/truth_frontier.py). */
 #define FILTER_NODE_PROMPT_SHARE 0.8
+
+/* A gross error: a model's reading of a frame FILTER_NODE_GROSS_DEG or more (on any axis) from both the other
+ * model's reading and the track's prediction for the frame, while those two agree within it. That reading is
+ * refused, the frame's step taken from the other alone. A true move is in both models' readings, and the
+ * prediction carries the track's rate: one model's misreading is refused, never a move. */
+#define FILTER_NODE_GROSS_DEG 20.0
+enum { SECOND_MODEL_GROSS_NONE = 0, SECOND_MODEL_GROSS_FIRST = 1, SECOND_MODEL_GROSS_SECOND = 2 };
 #define FILTER_NODE_LATENESS_STEP_US 2000.0
 #define FILTER_NODE_AWAIT_MARGIN_US 10000LL
 #define FILTER_NODE_AWAIT_MIN_US 5000LL /* and at least this long (a first frame's period is not known) */
@@ -59,6 +66,7 @@ typedef struct {
     hkf_real_t z[3], dt;
     float xyz[3];                            /* its position as measured (node_position.h reads it) */
     int paired;                              /* a second model measured z2: */
+    int gross;                               /* SECOND_MODEL_GROSS_*: a reading refused (second_model_take) */
     char second_model[NODE_MODEL_NAME_MAX];
     hkf_real_t z2[3];
     int64_t arrival;                         /* when its first measurement arrived (the receive clock) */
@@ -89,14 +97,20 @@ void second_model_forget_alignment(second_model_t *s);
 int second_model_answers(const second_model_t *s, int64_t utime, int64_t prompt_us);
 
 /* 1 when the first model's measurement z of a new frame at `utime` is to wait for the second model's: z
- * measures |yaw| >= the pair's pair_second_alone_from_yaw (where the frame takes the second's alone) and
+ * measures |yaw| >= the pair's pair_second_alone_from_yaw (where the frame takes the second's alone), or z
+ * is FILTER_NODE_GROSS_DEG or more from the track's prediction `predicted` (NULL: no track; a reading that
+ * would move the view that far in a frame waits for the other model's word: a gross error is refused before
+ * its pose goes out, a true move costs the wait), and
  * the second model's measurements come promptly (a frame kept from the last `prompt_us` has one). The node
  * then predicts, and the second's measurement makes the
  * frame's step when it comes: a pose from z would step back once it did. A frame's wait ends at its deadline
  * (second_model_deadline): it is then published from z. With prompt_us under coast_time, a second model that
  * stops or falls behind ends the waiting before the track would coast to LOST. */
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
-                        int64_t utime, int64_t prompt_us);
+                        const hkf_real_t *predicted, int64_t utime, int64_t prompt_us);
+
+/* The track's prediction for a step of dt from f (its angles, plus its rates times dt): 0 without a track. */
+int second_model_prediction(const hkf_filter_t *f, hkf_real_t dt, hkf_real_t predicted[3]);
 
 /* A first model's frame as the node stepped it. */
 typedef struct {

@@ -387,6 +387,69 @@ static void test_other_model_publisher_not_a_second(void **state)
     assert_true(fabsf(pose.yaw - 10.0f) < 0.5f);
 }
 
+/* One frame of a held 30 deg turn: the first reads `first`, the second `second` (its own frame: 6 deg beyond the
+ * first's, as the curve has learnt), answered 12 ms after the first; the pose published for the frame's yaw. */
+static float held_frame(int frame, double first, double second)
+{
+    hkf_head_pose_measurement_t m = measurement(T0 + frame * FRAME_US, 1, 1.0, first, 0.0), s = m;
+    hkf_head_pose_t pose;
+    int published;
+    s.model = "hopenet";
+    s.yaw = (float)second;
+    published = filter_node_receive(&node, &m, m.utime + 8000, &pose);
+    published += filter_node_receive(&node, &s, m.utime + 20000, &pose);
+    assert_int_equal(published, 1); /* one pose per frame */
+    return pose.yaw;
+}
+
+/* A gross error is refused before it reaches the filter: a reading 20 deg or more from both the other model's
+ * and the track's, while those two agree. A held 30 deg turn; then one frame whose second reading is 40 deg off
+ * (the frame takes the second alone at this turn: before, the pose jumped toward it), and a true move of 25 deg in
+ * one frame, which both models read and which is followed, not refused. */
+static void test_second_model_gross_error_refused(void **state)
+{
+    float yaw = 0.0f;
+    int frame;
+    (void)state;
+    for (frame = 0; frame < 60; ++frame) {
+        yaw = held_frame(frame, 30.0, 36.0);
+    }
+    assert_true(fabsf(yaw - 30.0f) < 1.0f);
+    assert_int_equal(node.counts.gross_refused, 0);
+    yaw = held_frame(frame++, 30.0, 76.0);
+    print_message("a second reading 40 deg off: the pose %.2f\n", yaw);
+    assert_true(fabsf(yaw - 30.0f) < 1.0f);
+    assert_int_equal(node.counts.gross_refused, 1);
+    for (; frame < 70; ++frame) {
+        yaw = held_frame(frame, 30.0, 36.0);
+    }
+    yaw = held_frame(frame++, 55.0, 61.0); /* a move: both models read it */
+    print_message("a 25 deg move read by both: the pose %.2f\n", yaw);
+    assert_int_equal(node.counts.gross_refused, 1);
+    assert_true(yaw > 45.0f);
+}
+
+/* Below 25 deg a frame does not wait, but a first reading 20 deg or more from the track's prediction waits for
+ * the second's answer: a gross one is refused before its pose goes out (before: the view jumped 37 deg for
+ * the frame), and the track stays on the hold. */
+static void test_second_model_gross_first_refused_after_its_frame(void **state)
+{
+    float yaw = 0.0f;
+    int frame;
+    (void)state;
+    for (frame = 0; frame < 60; ++frame) {
+        yaw = held_frame(frame, 15.0, 21.0);
+    }
+    assert_true(fabsf(yaw - 15.0f) < 1.0f);
+    yaw = held_frame(frame++, -22.0, 21.0);
+    print_message("a first reading 37 deg off: its own frame's pose %.2f\n", yaw);
+    assert_true(fabsf(yaw - 15.0f) < 1.0f);
+    yaw = held_frame(frame++, 15.0, 21.0);
+    print_message("the frame after: %.2f\n", yaw);
+    assert_int_equal(node.counts.gross_refused, 1);
+    assert_true(fabsf(yaw - 15.0f) < 1.0f);
+}
+
 /* The first model's measurement waits for the second's where the frame takes the second's alone (|yaw| >=
  * 25 deg), while the second's come promptly: no pose goes out with the first's, one with the second's. A
  * frame after one that waited waits down to 20 deg (no flicker between the two rules at a hold near 25).
@@ -486,6 +549,8 @@ int main(void)
         cmocka_unit_test_setup(test_second_model_alone_at_large_yaw, setup),
         cmocka_unit_test_setup(test_other_model_publisher_not_a_second, setup),
         cmocka_unit_test_setup(test_second_model_first_waits_for_it, setup),
+        cmocka_unit_test_setup(test_second_model_gross_error_refused, setup),
+        cmocka_unit_test_setup(test_second_model_gross_first_refused_after_its_frame, setup),
         cmocka_unit_test_setup(test_second_model_late_publishes_its_frame, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
