@@ -183,10 +183,7 @@ static angles_step_t update(filter_node_t *node, const hkf_head_pose_measurement
         second_model_forget_frames(&node->second);
     }
     node->counts.unknown_models += !model->in_table;
-    hkf_real_t predicted[3];
-    const int tracked = second_model_prediction(&node->filter, dt, predicted);
-    const int awaits =
-        second_model_awaits(&node->second, &node->models, z, tracked ? predicted : NULL, m->utime, prompt_us(node));
+    const int awaits = second_model_awaits(&node->second, &node->models, z, &node->filter, dt, m->utime, prompt_us(node));
     if (!awaits) {
         node_await_settle_all(node); /* its pose goes out now: the frames still waiting before it go first */
     }

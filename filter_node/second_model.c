@@ -77,15 +77,16 @@ int second_model_prediction(const hkf_filter_t *f, hkf_real_t dt, hkf_real_t pre
 }
 
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
-                        const hkf_real_t *predicted, int64_t utime, int64_t prompt_us)
+                        const hkf_filter_t *track, hkf_real_t dt, int64_t utime, int64_t prompt_us)
 {
     const int awaiting = s->frame_count > 0 && s->frames[s->frame_newest].awaited;
     const double from_yaw = (double)models->second_alone_from_yaw - (awaiting ? FILTER_NODE_AWAIT_HYSTERESIS : 0.0);
-    const int jump = predicted != NULL && largest_difference(z, predicted) >= FILTER_NODE_GROSS_DEG;
-    if (fabs((double)z[HKF_AXIS_YAW]) < from_yaw && !jump) {
+    hkf_real_t predicted[3];
+    if (newest_answered(s, utime, prompt_us) == NULL) {
         return 0;
     }
-    return newest_answered(s, utime, prompt_us) != NULL;
+    return fabs((double)z[HKF_AXIS_YAW]) >= from_yaw ||
+           (second_model_prediction(track, dt, predicted) && largest_difference(z, predicted) >= FILTER_NODE_GROSS_DEG);
 }
 
 /* The index of the oldest kept frame waiting for the second's answer, or -1. */

@@ -36,6 +36,10 @@ extern "C" {
  * same holds (d14 3 % pooled, 7 % worst; d3 5 %, 9 %; the held-out d10 3 %, 8 %); the 80th with 10 ms, or the
  * 90th with 5 ms, let d14's -40 deg hold through at 22 % of raw's jitter. */
 #define FILTER_NODE_LATENESS_QUANTILE 0.98
+#define FILTER_NODE_LATENESS_STEP_US 2000.0
+#define FILTER_NODE_AWAIT_MARGIN_US 10000LL
+#define FILTER_NODE_AWAIT_MIN_US 5000LL /* and at least this long (a first frame's period is not known) */
+
 /* The prompt time, as a share of coast_time: a frame waits only while a frame of the last prompt time had the
  * second's answer, and at most that long. At the slowest level (sse2: WHENet 130-150 ms behind the mesh in the
  * pipeline) half coast_time, 125 ms, was too short for either, and the turn truth's held yaw went out from the
@@ -51,9 +55,6 @@ extern "C" {
  * prediction carries the track's rate: one model's misreading is refused, never a move. */
 #define FILTER_NODE_GROSS_DEG 20.0
 enum { SECOND_MODEL_GROSS_NONE = 0, SECOND_MODEL_GROSS_FIRST = 1, SECOND_MODEL_GROSS_SECOND = 2 };
-#define FILTER_NODE_LATENESS_STEP_US 2000.0
-#define FILTER_NODE_AWAIT_MARGIN_US 10000LL
-#define FILTER_NODE_AWAIT_MIN_US 5000LL /* and at least this long (a first frame's period is not known) */
 
 /* One frame's filter step, kept so that a second model's measurement of it can
  * be fused afterwards. */
@@ -98,16 +99,16 @@ int second_model_answers(const second_model_t *s, int64_t utime, int64_t prompt_
 
 /* 1 when the first model's measurement z of a new frame at `utime` is to wait for the second model's: z
  * measures |yaw| >= the pair's pair_second_alone_from_yaw (where the frame takes the second's alone), or z
- * is FILTER_NODE_GROSS_DEG or more from the track's prediction `predicted` (NULL: no track; a reading that
- * would move the view that far in a frame waits for the other model's word: a gross error is refused before
- * its pose goes out, a true move costs the wait), and
+ * is FILTER_NODE_GROSS_DEG or more from the prediction of `track` for a step of dt (a reading that would
+ * move the view that far in a frame waits for the other model's word: a gross error is refused before its
+ * pose goes out, a true move costs the wait), and
  * the second model's measurements come promptly (a frame kept from the last `prompt_us` has one). The node
  * then predicts, and the second's measurement makes the
  * frame's step when it comes: a pose from z would step back once it did. A frame's wait ends at its deadline
  * (second_model_deadline): it is then published from z. With prompt_us under coast_time, a second model that
  * stops or falls behind ends the waiting before the track would coast to LOST. */
 int second_model_awaits(const second_model_t *s, const resolved_models_t *models, const hkf_real_t z[3],
-                        const hkf_real_t *predicted, int64_t utime, int64_t prompt_us);
+                        const hkf_filter_t *track, hkf_real_t dt, int64_t utime, int64_t prompt_us);
 
 /* The track's prediction for a step of dt from f (its angles, plus its rates times dt): 0 without a track. */
 int second_model_prediction(const hkf_filter_t *f, hkf_real_t dt, hkf_real_t predicted[3]);

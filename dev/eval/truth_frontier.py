@@ -83,14 +83,14 @@ def turn_clips(build, out, fps):
     return turn_truth.make_clips(build, folder, turn_truth.HEADS)[0]
 
 
-def sse2_log(log_path, fps):
+def sse2_log(build, log_path, fps):
     """The estimator again on the clip's frames with every layer at sse2 (dev/slower_machine.sh), made once."""
     path = log_path.replace(".lcmlog", ".sse2.lcmlog")
     if not os.path.exists(path):
         started = time.time()
         cores = f"0-{os.cpu_count() - 1}"
         command = [os.path.join(evaluate.ROOT, "dev", "slower_machine.sh"), "--level", "sse2", "--core", cores,
-                   "--load", "0", os.path.join(evaluate.ROOT, "build", "estimator", "hkf-estimator"),
+                   "--load", "0", os.path.join(build, "estimator", "hkf-estimator"),
                    "--source", log_path[:-len(".lcmlog")], "--fps", f"{fps:g}", "--lcm-url", f"file://{path}.part?mode=w"]
         result = subprocess.run(command, capture_output=True, text=True)
         if result.returncode != 0:
@@ -107,7 +107,7 @@ def timings(clip, build, fps):
     types_dir = os.path.join(build, "lcmtypes", "python")
     if clip.axis_name == "roll":
         return [("mesh alone", clip, clip.log)]
-    slow_log = sse2_log(clip.log, fps)
+    slow_log = sse2_log(build, clip.log, fps)
     slow = turn_truth.TurnClip(clip.head, clip.axis_name, clip.trajectory, slow_log,
                                turn_truth.read_measurements(slow_log, types_dir)[0])
     return [("WHENet on time", clip, turn_truth.retimed(clip.log, types_dir, turn_truth.FAST_LATE_US)),

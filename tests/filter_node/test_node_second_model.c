@@ -402,27 +402,32 @@ static float held_frame(int frame, double first, double second)
     return pose.yaw;
 }
 
+/* Frames *frame up to `until` of a hold (held_frame); the last one's pose yaw. */
+static float held_until(int *frame, int until, double first, double second)
+{
+    float yaw = 0.0f;
+    for (; *frame < until; ++*frame) {
+        yaw = held_frame(*frame, first, second);
+    }
+    return yaw;
+}
+
 /* A gross error is refused before it reaches the filter: a reading 20 deg or more from both the other model's
  * and the track's, while those two agree. A held 30 deg turn; then one frame whose second reading is 40 deg off
  * (the frame takes the second alone at this turn: before, the pose jumped toward it), and a true move of 25 deg in
  * one frame, which both models read and which is followed, not refused. */
 static void test_second_model_gross_error_refused(void **state)
 {
-    float yaw = 0.0f;
-    int frame;
+    int frame = 0;
+    float yaw = held_until(&frame, 60, 30.0, 36.0);
     (void)state;
-    for (frame = 0; frame < 60; ++frame) {
-        yaw = held_frame(frame, 30.0, 36.0);
-    }
     assert_true(fabsf(yaw - 30.0f) < 1.0f);
     assert_int_equal(node.counts.gross_refused, 0);
     yaw = held_frame(frame++, 30.0, 76.0);
     print_message("a second reading 40 deg off: the pose %.2f\n", yaw);
     assert_true(fabsf(yaw - 30.0f) < 1.0f);
     assert_int_equal(node.counts.gross_refused, 1);
-    for (; frame < 70; ++frame) {
-        yaw = held_frame(frame, 30.0, 36.0);
-    }
+    held_until(&frame, 70, 30.0, 36.0);
     yaw = held_frame(frame++, 55.0, 61.0); /* a move: both models read it */
     print_message("a 25 deg move read by both: the pose %.2f\n", yaw);
     assert_int_equal(node.counts.gross_refused, 1);
@@ -432,14 +437,11 @@ static void test_second_model_gross_error_refused(void **state)
 /* Below 25 deg a frame does not wait, but a first reading 20 deg or more from the track's prediction waits for
  * the second's answer: a gross one is refused before its pose goes out (before: the view jumped 37 deg for
  * the frame), and the track stays on the hold. */
-static void test_second_model_gross_first_refused_after_its_frame(void **state)
+static void test_second_model_gross_first_refused_before_its_pose(void **state)
 {
-    float yaw = 0.0f;
-    int frame;
+    int frame = 0;
+    float yaw = held_until(&frame, 60, 15.0, 21.0);
     (void)state;
-    for (frame = 0; frame < 60; ++frame) {
-        yaw = held_frame(frame, 15.0, 21.0);
-    }
     assert_true(fabsf(yaw - 15.0f) < 1.0f);
     yaw = held_frame(frame++, -22.0, 21.0);
     print_message("a first reading 37 deg off: its own frame's pose %.2f\n", yaw);
@@ -550,7 +552,7 @@ int main(void)
         cmocka_unit_test_setup(test_other_model_publisher_not_a_second, setup),
         cmocka_unit_test_setup(test_second_model_first_waits_for_it, setup),
         cmocka_unit_test_setup(test_second_model_gross_error_refused, setup),
-        cmocka_unit_test_setup(test_second_model_gross_first_refused_after_its_frame, setup),
+        cmocka_unit_test_setup(test_second_model_gross_first_refused_before_its_pose, setup),
         cmocka_unit_test_setup(test_second_model_late_publishes_its_frame, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
