@@ -34,8 +34,8 @@ import evaluate  # noqa: E402
 import truth_eval  # noqa: E402
 import turn_truth  # noqa: E402
 
-START_RATES = [0.05, 0.3, 2.0]   # 1/s: the defaults' 0.05 and up (the jitter headroom is spent on starting sooner)
-STOP_RATES = [4.0, 16.0, 64.0]   # 1/s: the defaults' 16 and a factor of 4 either way
+START_RATES = [0.002, 0.01, 0.05, 0.3, 2.0, 8.0]  # 1/s: the defaults' 0.05, widened both ways until the best sat inside
+STOP_RATES = [0.25, 1.0, 4.0, 16.0, 64.0, 256.0]  # 1/s: the defaults' 16, by factors of 4, widened the same way
 GRID = [("defaults", ())] + [(f"start_rate {a:g}, stop_rate {b:g}", (f"start_rate={a:g}", f"stop_rate={b:g}"))
                              for a in START_RATES for b in STOP_RATES]
 SHARES = [0.05, 0.10, 0.20]      # still jitter as a share of raw's
