@@ -19,6 +19,7 @@ done
 packages=(
   build-essential cmake ninja-build pkg-config  # the build
   libcmocka-dev                                 # C unit tests
+  libmicrohttpd-dev                             # hkf-view: the live view's HTTP server
   libeigen3-dev                                 # the 6x6 reference filter (tests, benchmark)
   libopencv-dev                                 # cv::KalmanFilter (benchmark); the estimator
   valgrind                                      # instruction counts (benchmark)

@@ -19,6 +19,7 @@
 #include "track_monitor.h"
 #include "track_options.h"
 #include "track_programs.h"
+#include "view_listen.h"
 
 static const char *signal_name(int signal_number)
 {
@@ -88,6 +89,17 @@ static int refused_arguments(const track_programs_t *programs)
     return 0;
 }
 
+/* With --view: where to open the live view (hkf-view's log says it too). */
+static void say_view(const track_options_t *o)
+{
+    char host[64], reason[256];
+    unsigned port;
+    if (o->view == NULL || view_listen_parse(o->view, host, sizeof host, &port, reason, sizeof reason) != 0) return;
+    printf("hkf-track: the live view: open http://%s:%u/ in a browser%s\n",
+           strcmp(host, "0.0.0.0") == 0 ? "<this computer's address>" : host, port,
+           strcmp(host, "0.0.0.0") == 0 ? " (open to every network this computer is on)" : "");
+}
+
 static int run(const track_options_t *o, track_programs_t *programs)
 {
     static track_monitor_t monitor;
@@ -108,6 +120,7 @@ static int run(const track_options_t *o, track_programs_t *programs)
         return 1;
     }
     printf("hkf-track: logs in %s; Ctrl-C stops\n", o->logs);
+    say_view(o);
     printf("hkf-track: when your face is found, look at the screen's centre and keep still while the line "
            "counts down: hkf-filter measures how your resting head pose wanders, to hold the view still at rest "
            "(again after each recentre)\n");

@@ -10,6 +10,7 @@
 
 #include "arguments.h"
 #include "lcm_file_url.h"
+#include "view_listen.h"
 
 enum option_kind { OPTION_FLAG, OPTION_TEXT };
 
@@ -31,6 +32,7 @@ static const option_t options[] = {
     FLAG("--opentrack", opentrack),     TEXT("--opentrack-host", opentrack_host),
     TEXT("--opentrack-port", opentrack_port), TEXT("--opentrack-args", opentrack_args),
     TEXT("--flightgear", flightgear),   TEXT("--flightgear-args", flightgear_args),
+    TEXT("--view", view),
     TEXT("--lcm-url", lcm_url),         TEXT("--build", build),
     TEXT("--logs", logs),
 };
@@ -82,6 +84,9 @@ static void usage(FILE *to)
             "                         --data=/usr/share/hkf/flightgear --generic=socket,in,60,,PORT,udp,hkf\n"
             "  --flightgear-args ARGS more options for it, e.g. '--eye -0.2,0.6,-3.5' (the aircraft's\n"
             "                         eye point, m) or '--invert yaw'\n"
+            "  --view [HOST:]PORT     also run hkf-view: the live view in a browser at http://HOST:PORT/\n"
+            "                         (HOST default 127.0.0.1: this computer only; 0.0.0.0 opens it to\n"
+            "                         its networks, e.g. a phone beside it)\n"
             "  --lcm-url URL          LCM provider for all of them (default %s)\n"
             "  --seconds S            stop after this long (default: Ctrl-C, or the source's end)\n"
             "  --build DIR            where the programs were built (default: beside hkf-track)\n"
@@ -143,6 +148,8 @@ static int check(const track_options_t *o)
     struct stat info;
     double rate;
     long port;
+    char host[64], reason[256];
+    unsigned view_port;
     if ((o->camera == NULL) == (o->source == NULL)) return bad("give one of --camera N and --source FILE", NULL);
     if (o->source != NULL && stat(o->source, &info) != 0) {
         return bad("--source: no such file or folder: ", o->source);
@@ -162,6 +169,9 @@ static int check(const track_options_t *o)
     }
     if (o->flightgear != NULL && !argument_port(o->flightgear_port, 1, &port)) {
         return bad("--flightgear wants [HOST:]PORT, a UDP port from 1 to 65535 (digits alone), not ", o->flightgear);
+    }
+    if (o->view != NULL && view_listen_parse(o->view, host, sizeof host, &view_port, reason, sizeof reason) != 0) {
+        return bad("--view: ", reason);
     }
     if (strncmp(o->lcm_url, "file://", 7) == 0) {
         return bad("--lcm-url: hkf-track runs live programs; a file:// log is for hkf-estimator and "

@@ -27,6 +27,7 @@ typedef struct {
     char flightgear_host[256];  /* its HOST (default 127.0.0.1) */
     const char *flightgear_port;/* its PORT */
     const char *flightgear_args;/* more options for the bridge to FlightGear (e.g. --eye X,Y,Z) */
+    const char *view;           /* --view [HOST:]PORT as given, or NULL: no live view */
     const char *lcm_url;
     double seconds;             /* stop after this long; 0: on Ctrl-C or at the source's end */
     const char *build;          /* where the programs were built, or NULL: beside hkf-track */
