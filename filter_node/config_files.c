@@ -30,3 +30,18 @@ void config_files_find(config_files_t *found)
         add_if_present(found, home, "/.config/hkf");
     }
 }
+
+int config_files_user_path(char *path, int size)
+{
+    const char *xdg = getenv("XDG_CONFIG_HOME");
+    const char *home = getenv("HOME");
+    int n;
+    if (xdg != NULL && xdg[0] == '/') {
+        n = snprintf(path, (size_t)size, "%s/hkf/%s", xdg, CONFIG_FILES_NAME);
+    } else if (home != NULL && home[0] != '\0') {
+        n = snprintf(path, (size_t)size, "%s/.config/hkf/%s", home, CONFIG_FILES_NAME);
+    } else {
+        return -1;
+    }
+    return n > 0 && n < size ? 0 : -1;
+}

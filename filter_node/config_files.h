@@ -25,6 +25,10 @@ typedef struct {
 /* The files of the search that exist, in the order to read them. */
 void config_files_find(config_files_t *found);
 
+/* The user's file's path, whether it exists or not: 0, or -1 when neither XDG_CONFIG_HOME (absolute) nor HOME
+ * is set or the path does not fit. */
+int config_files_user_path(char *path, int size);
+
 #ifdef __cplusplus
 }
 #endif

@@ -441,6 +441,9 @@ int filter_node_silence(filter_node_t *node, int64_t arrival_utime, hkf_head_pos
 void filter_node_status(const filter_node_t *node, const hkf_head_pose_t *pose, hkf_tracker_status_t *status)
 {
     node_rest_status(&node->rest, &node->filter, pose->utime, pose->seq, status);
+    status->commands = (int32_t)node->counts.commands;
+    status->settings_saved = (int32_t)node->counts.settings_saved;
+    status->settings_unsaved = (int32_t)node->counts.settings_unsaved;
 }
 
 int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command)

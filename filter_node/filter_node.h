@@ -98,7 +98,9 @@ typedef struct {
     unsigned long gross_refused;   /* of the fused frames, a reading refused as a gross error (FILTER_NODE_GROSS_DEG) */
     unsigned long awaited;         /* frames whose first measurement waited for the second's (second_model_awaits) */
     unsigned long awaits_expired;  /* of those, published without it: its deadline passed, or a later frame came */
-    unsigned long commands;        /* commands applied */
+    unsigned long commands;        /* commands and live settings applied */
+    unsigned long settings_saved;  /* SAVE_SETTINGS that wrote the user's config file (the live runner's) */
+    unsigned long settings_unsaved; /* SAVE_SETTINGS that failed */
 } filter_node_counts_t;
 
 #define FILTER_NODE_QUEUED (FILTER_NODE_PAIR_FRAMES + 1) /* waiting frames settled at once, and the frame after them */
@@ -190,7 +192,8 @@ int64_t filter_node_silence_due(const filter_node_t *node);
 /* The status that goes with the last pose (tracker_status_t): the player's rest (node_rest.h). */
 void filter_node_status(const filter_node_t *node, const hkf_head_pose_t *pose, hkf_tracker_status_t *status);
 
-/* RECENTER or RESET (each asks for a rest: node_rest.h); returns 0, or -1 for an unknown command. */
+/* RECENTER or RESET (each asks for a rest: node_rest.h); returns 0, or -1 for an unknown command.
+ * SAVE_SETTINGS is the live runner's (it writes a file: node_settings_live.h): -1 here. */
 int filter_node_command(filter_node_t *node, const hkf_tracker_command_t *command);
 
 #ifdef __cplusplus

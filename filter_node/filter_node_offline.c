@@ -2,6 +2,7 @@
  * filter_node_offline.c - hkf-filter --offline (see filter_node_offline.h).
  */
 #include "filter_node_offline.h"
+#include "node_settings_live.h"
 
 #include <string.h>
 
@@ -49,8 +50,15 @@ static void write_pose(output_t *output, const filter_node_t *node, int64_t time
 static void handle_command(filter_node_t *node, output_t *output, const void *data, int size)
 {
     hkf_tracker_command_t command;
+    char error[512];
     if (hkf_tracker_command_t_decode(data, 0, size, &command) < 0) {
-        ++node->counts.decode_errors;
+        const int taken = output->options->config != NULL
+                              ? node_setting_take_message(node, output->options->config, data, size, error, sizeof error)
+                              : -1;
+        node->counts.decode_errors += taken < 0;
+        output->report->unknown_commands += taken == 0;
+    } else if (command.command == HKF_TRACKER_COMMAND_T_SAVE_SETTINGS) {
+        ++node->counts.commands; /* a replay writes no file */
     } else if (filter_node_command(node, &command) != 0) {
         ++output->report->unknown_commands;
     }

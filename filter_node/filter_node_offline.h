@@ -24,6 +24,9 @@ typedef struct {
     int64_t tick_us; /* > 0: also poses extrapolated every tick_us of capture time (--rate) */
     FILE *csv;       /* NULL, or every pose written as CSV too */
     int (*stop_requested)(void); /* NULL, or polled between events: nonzero stops (a signal) */
+    node_config_t *config; /* the run's settings, which a live setting in the log (tracker_setting_t) changes as it
+                            * did live (NULL: such a setting is counted as an unknown command); SAVE_SETTINGS
+                            * writes no file in a replay */
 } filter_node_offline_t;
 
 typedef struct {

@@ -112,6 +112,7 @@ static int settings_option(node_options_t *o, const char *arg, const char *value
         return 0;
     }
     if (strcmp(arg, "--config") == 0) {
+        o->config_given = 1;
         if (o->config_count < (int)(sizeof o->config_paths / sizeof o->config_paths[0])) {
             o->config_paths[o->config_count++] = value;
         }

@@ -37,6 +37,16 @@ void node_rest_keep(const node_rest_t *r, hkf_filter_t *f)
     }
 }
 
+int node_rest_set_stillness(node_rest_t *r, hkf_filter_t *f, hkf_real_t stillness)
+{
+    const int result = hkf_rest_set_stillness(&r->rest, stillness);
+    if (result == HKF_OK && r->measured) {
+        (void)hkf_rest_get_result(&r->rest, &r->result); /* the measured rest's, its wander rescaled */
+        node_rest_keep(r, f);
+    }
+    return result;
+}
+
 void node_rest_describe_measured(const node_rest_t *r, char *text, size_t size)
 {
     const hkf_rest_result_t *m = &r->result;

@@ -52,6 +52,10 @@ void node_rest_take(node_rest_t *r, hkf_filter_t *f, const hkf_real_t *z, hkf_re
  * Nothing of what was never set. */
 void node_rest_keep(const node_rest_t *r, hkf_filter_t *f);
 
+/* The player's stillness turned while tracking (node_settings_live.h): the rest takes it, and a measured
+ * rest's wander, stillness x its measured one, goes to f at once. A hkf_result_t. */
+int node_rest_set_stillness(node_rest_t *r, hkf_filter_t *f, hkf_real_t stillness);
+
 /* What a runner says of a rest measured (the wander, the spread, noise and drift per axis, the centre) or
  * spoiled, into text. */
 void node_rest_describe_measured(const node_rest_t *r, char *text, size_t size);

@@ -26,6 +26,7 @@ typedef struct {
     const char *config_paths[8]; /* inputs too: never written over */
     char found_config[CONFIG_FILES_MAX][CONFIG_FILES_PATH_MAX]; /* the system's and the user's, where found */
     int config_count;
+    int config_given;            /* --config: the user's file (where SAVE_SETTINGS writes) is not read */
     double rate_hz;
     int print_config;
     node_config_t config;

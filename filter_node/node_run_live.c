@@ -13,6 +13,7 @@
 #include "lcm_wait.h"
 #include "message_decode.h"
 #include "node_run.h"
+#include "node_settings_live.h"
 #include "node_schedule.h"
 #include "pose_csv.h"
 
@@ -75,15 +76,49 @@ static void on_measurement(const lcm_recv_buf_t *rbuf, const char *channel, void
     hkf_head_pose_measurement_t_decode_cleanup(&m);
 }
 
+/* SAVE_SETTINGS: the live settings into the user's config file (node_settings_live.h), said and counted. */
+static void save_settings(node_run_t *run)
+{
+    char path[CONFIG_FILES_PATH_MAX], error[CONFIG_FILES_PATH_MAX + 256];
+    ++run->node.counts.commands;
+    if (node_settings_save(&run->options->config, path, sizeof path, error, sizeof error) != 0) {
+        ++run->node.counts.settings_unsaved;
+        fprintf(stderr, "hkf-filter: the settings were not saved: %s\n", error);
+        return;
+    }
+    ++run->node.counts.settings_saved;
+    fprintf(stderr, "hkf-filter: the settings saved in %s (stillness %.3g)%s\n", path,
+            (double)run->options->config.rest.stillness,
+            run->options->config_given ? "; this run reads --config instead, so a run without --config "
+                                                    "takes them" : "");
+}
+
+/* A setting changed live (tracker_setting_t), said; -1 when the payload is not one. */
+static int take_setting(node_run_t *run, const lcm_recv_buf_t *rbuf)
+{
+    char error[512];
+    const int taken = node_setting_take_message(&run->node, &run->options->config, rbuf->data, (int)rbuf->data_size,
+                                                error, sizeof error);
+    if (taken == 1) {
+        fprintf(stderr, "hkf-filter: stillness %.3g taken live; HOLD's wander now %.3f deg^2\n",
+                (double)run->options->config.rest.stillness, (double)run->node.rest.result.wander);
+    } else if (taken == 0) {
+        fprintf(stderr, "hkf-filter: a live setting refused: %s\n", error);
+    }
+    return taken;
+}
+
 static void on_command(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     node_run_t *run = user;
     hkf_tracker_command_t command;
     if (hkf_tracker_command_t_decode(rbuf->data, 0, (int)rbuf->data_size, &command) < 0) {
-        node_run_report_decode_error(run, channel, "");
+        if (take_setting(run, rbuf) < 0) node_run_report_decode_error(run, channel, "");
         return;
     }
-    if (filter_node_command(&run->node, &command) != 0) {
+    if (command.command == HKF_TRACKER_COMMAND_T_SAVE_SETTINGS) {
+        save_settings(run);
+    } else if (filter_node_command(&run->node, &command) != 0) {
         ++run->unknown_commands;
         if (run->reported_unknown_commands++ < 5) { /* a flood must not flood the terminal */
             fprintf(stderr, "hkf-filter: unknown command %d on %s ignored%s\n", command.command, channel,

@@ -85,6 +85,7 @@ int node_run_offline(node_run_t *run)
     offline.tick_us = o->rate_hz > 0.0 ? (int64_t)(1e6 / o->rate_hz) : 0;
     offline.csv = run->csv;
     offline.stop_requested = lcm_wait_stop_requested;
+    offline.config = &run->options->config;
     lcm_wait_stop_on_signals(); /* SIGINT / SIGTERM / SIGHUP: stop between events, close the output whole */
     status = filter_node_offline(&run->node, &offline, in, &out, &report);
     say_offline_report(run, &report, status);

@@ -173,16 +173,28 @@ static void take(hkf_rest_t *r, const hkf_real_t x[3], hkf_real_t dt)
     r->history += r->history < HKF_REST_LAGS ? 1u : 0u;
 }
 
+/* HOLD's wander of a measured rest: w = stillness max over the axes of (V - n), that largest V - n (into
+ * *excess) bounded at HKF_REST_MAX_WANDER. */
+static hkf_real_t wander_of(const hkf_rest_result_t *m, hkf_real_t stillness, hkf_real_t *excess)
+{
+    int a;
+    *excess = 0;
+    for (a = 0; a < HKF_AXES; ++a) {
+        const hkf_real_t beyond = hkf_sub(m->spread[a], m->noise[a]);
+        *excess = beyond > *excess ? beyond : *excess;
+    }
+    return hkf_mul(stillness, *excess < HKF_REAL_FROM(HKF_REST_MAX_WANDER) ? *excess : HKF_REAL_FROM(HKF_REST_MAX_WANDER));
+}
+
 /* The line gamma(L) = 2 n + q dt L through the rest's variogram (least squares): n and q per axis; the
- * rest's spread V about its mean; and HOLD's wander, w = stillness max over the axes of (V - n), into out.
- * Returns that largest V - n. */
+ * rest's spread V about its mean; and HOLD's wander (wander_of), into out. Returns the largest V - n. */
 static hkf_real_t fit(const hkf_rest_t *r, hkf_rest_result_t *out)
 {
-    hkf_real_t excess = 0;
+    hkf_real_t excess;
     int l, a;
     out->period = r->period;
     for (a = 0; a < HKF_AXES; ++a) {
-        hkf_real_t slope = 0, level = 0, n, beyond;
+        hkf_real_t slope = 0, level = 0, n;
         for (l = 0; l < HKF_REST_LAGS; ++l) {
             slope = hkf_add(slope, hkf_mul(slope_weight[l], r->gamma[l][a]));
             level = hkf_add(level, r->gamma[l][a]);
@@ -193,13 +205,28 @@ static hkf_real_t fit(const hkf_rest_t *r, hkf_rest_result_t *out)
         out->drift[a] = hkf_divide(slope > 0 ? slope : 0, hkf_divisor(r->period)); /* q = (q dt) / dt */
         out->spread[a] = hkf_sub(r->square[a], hkf_mul(r->mean[a], r->mean[a]));
         out->spread[a] = out->spread[a] > 0 ? out->spread[a] : 0;
-        beyond = hkf_sub(out->spread[a], out->noise[a]);
-        excess = beyond > excess ? beyond : excess;
         out->center[a] = hkf_add(r->origin[a], r->mean[a]);
     }
     out->center[HKF_AXIS_YAW] = hkf_wrap180(out->center[HKF_AXIS_YAW]);
-    out->wander = hkf_mul(r->settings.stillness, excess < HKF_REAL_FROM(HKF_REST_MAX_WANDER) ? excess : HKF_REAL_FROM(HKF_REST_MAX_WANDER));
+    out->wander = wander_of(out, r->settings.stillness, &excess);
     return excess;
+}
+
+int hkf_rest_set_stillness(hkf_rest_t *r, hkf_real_t stillness)
+{
+    hkf_real_t excess;
+    if (r == 0) {
+        return HKF_ERROR_NULL_ARGUMENT;
+    }
+    if (!hkf_is_finite(stillness)) {
+        return HKF_ERROR_SETTING_NON_FINITE;
+    }
+    if (!(stillness >= 0 && stillness <= HKF_REAL_FROM(HKF_MAX_STILLNESS))) {
+        return HKF_ERROR_SETTING_REST;
+    }
+    r->settings.stillness = stillness;
+    r->result.wander = wander_of(&r->result, stillness, &excess); /* a result not yet held gets its own at its end */
+    return HKF_OK;
 }
 
 /* 1 when a rest that ended, fitted as `found` with the spread `excess` beyond its noise, was a head that moved:

@@ -114,6 +114,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     options.tick_us = (data[0] & 1) ? 1000 + 1000 * (int64_t)(data[0] >> 1) : 0;
     options.csv = NULL;
     options.stop_requested = NULL;
+    options.config = &config; /* a live setting in the log applied, as the live node does */
     in = size > 1 ? fmemopen((void *)(data + 1), size - 1, "rb") : fopen("/dev/null", "rb");
     out_file = open_memstream(&written, &written_size);
     CHECK(in != NULL && out_file != NULL, "cannot open the in-memory files");

@@ -43,15 +43,14 @@ static double mean_of(const double *v, int count)
 /* One synthetic rest on every axis: a rest angle at `base` drifting as a random walk of q deg^2/s, plus
  * white noise of n deg^2; measured until hkf_rest_update says it is done (a walk that strays beyond the
  * reach spoils it, and it is measured again). The result, and the frames the last rest took. */
-static int measure_rest_with(const hkf_rest_settings_t *settings, double n, double q, const double base[3],
-                             unsigned seed, hkf_rest_result_t *found)
+static int measure_rest_into(hkf_rest_t *r, const hkf_rest_settings_t *settings, double n, double q,
+                             const double base[3], unsigned seed, hkf_rest_result_t *found)
 {
-    hkf_rest_t rest;
     sim_rng_t rng;
     double level[3];
     int frame, a, first = 0;
-    assert_int_equal(hkf_rest_init(&rest, settings), HKF_OK);
-    assert_int_equal(hkf_rest_start(&rest), HKF_OK);
+    assert_int_equal(hkf_rest_init(r, settings), HKF_OK);
+    assert_int_equal(hkf_rest_start(r), HKF_OK);
     sim_rng_seed(&rng, seed);
     memcpy(level, base, sizeof level);
     for (frame = 0; frame < 10 * REST_FRAMES; ++frame) {
@@ -64,16 +63,23 @@ static int measure_rest_with(const hkf_rest_settings_t *settings, double n, doub
         if (fabs(D(z[1])) > 180.0) {
             z[1] = R(D(z[1]) - copysign(360.0, D(z[1]))); /* yaw as an estimator gives it, in [-180, 180) */
         }
-        event = hkf_rest_update(&rest, z, R(frame_s));
+        event = hkf_rest_update(r, z, R(frame_s));
         assert_true(event == HKF_REST_MEASURING || event == HKF_REST_MEASURED || event == HKF_REST_SPOILED);
         first = event == HKF_REST_SPOILED ? frame : first;
         if (event == HKF_REST_MEASURED) {
-            assert_int_equal(hkf_rest_get_result(&rest, found), HKF_OK);
+            assert_int_equal(hkf_rest_get_result(r, found), HKF_OK);
             return frame + 1 - first;
         }
     }
     fail_msg("a rest of white noise and a small random walk was never measured");
     return 0;
+}
+
+static int measure_rest_with(const hkf_rest_settings_t *settings, double n, double q, const double base[3],
+                             unsigned seed, hkf_rest_result_t *found)
+{
+    hkf_rest_t rest;
+    return measure_rest_into(&rest, settings, n, q, base, seed, found);
 }
 
 static int measure_rest(double n, double q, const double base[3], unsigned seed, hkf_rest_result_t *found)
@@ -95,6 +101,33 @@ static void test_stillness_scales_the_wander(void **state)
     assert_true(D(one.wander) > 0.05);
     assert_near_at(D(two.wander), 2.0 * D(one.wander), 1e-3, "stillness 2", __FILE__, __LINE__);
     assert_true(D(two.noise[0]) == D(one.noise[0]) && D(two.center[1]) == D(one.center[1]));
+}
+
+/* The stillness turned while tracking: the held rest's wander becomes what a rest measured with it from the
+ * start gives; a value the config would refuse changes nothing. */
+static void test_stillness_turned_while_tracking(void **state)
+{
+    hkf_rest_settings_t stiller = hkf_default_rest_settings;
+    hkf_rest_t rest;
+    hkf_rest_result_t before, turned, from_start;
+    const double base[3] = {0.0, 0.0, 0.0};
+    (void)state;
+    stiller.stillness = R(2.0);
+    measure_rest_into(&rest, &hkf_default_rest_settings, 0.05, 1.0, base, 21u, &before);
+    measure_rest_with(&stiller, 0.05, 1.0, base, 21u, &from_start);
+    assert_int_equal(hkf_rest_set_stillness(&rest, R(2.0)), HKF_OK);
+    assert_int_equal(hkf_rest_get_result(&rest, &turned), HKF_OK);
+    assert_true(D(turned.wander) == D(from_start.wander));
+    assert_true(D(turned.wander) > 1.9 * D(before.wander));
+    assert_true(D(turned.noise[0]) == D(before.noise[0]) && D(turned.center[1]) == D(before.center[1]));
+    assert_int_equal(hkf_rest_set_stillness(&rest, R(-0.5)), HKF_ERROR_SETTING_REST);
+    assert_int_equal(hkf_rest_set_stillness(&rest, R(HKF_MAX_STILLNESS + 1.0)), HKF_ERROR_SETTING_REST);
+    assert_int_equal(hkf_rest_set_stillness(NULL, R(1.0)), HKF_ERROR_NULL_ARGUMENT);
+    assert_int_equal(hkf_rest_get_result(&rest, &turned), HKF_OK);
+    assert_true(D(turned.wander) == D(from_start.wander) && D(rest.settings.stillness) == 2.0);
+    assert_int_equal(hkf_rest_set_stillness(&rest, R(0.0)), HKF_OK); /* 0: the view follows every wander */
+    assert_int_equal(hkf_rest_get_result(&rest, &turned), HKF_OK);
+    assert_true(D(turned.wander) == 0.0);
 }
 
 /* The issue's goal: 2 s at 30 fps give the wander's rate q within 30 % (median over seeds), on rests of
@@ -500,6 +533,7 @@ int main(void)
         cmocka_unit_test(test_slow_turn_is_not_a_rest),
         cmocka_unit_test(test_rest_at_the_yaw_seam),
         cmocka_unit_test(test_set_wander),
+        cmocka_unit_test(test_stillness_turned_while_tracking),
         cmocka_unit_test(test_rest_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

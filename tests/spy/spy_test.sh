@@ -29,7 +29,7 @@ if [ "$(id -u)" = 0 ] && command -v Xvfb >/dev/null && unshare --net true 2>/dev
     wait_until 60 "the types found by lcm-spy" has_line "$2" "Found [0-9]+ LCM types"
     kill $spy $xvfb 2>/dev/null; wait 2>/dev/null' _ "$spy" "$out" "$(dirname "$0")/../lib/wait_until.sh" || true
   cat "$out"
-  grep -q "Found 7 LCM types" "$out" || { echo "FAIL: lcm-spy did not find the 7 hkf types (4, hkf 0.1's two and 0.2's pose)" >&2; rm -f "$out"; exit 1; }
+  grep -q "Found 10 LCM types" "$out" || { echo "FAIL: lcm-spy did not find the 10 hkf types (7, hkf 0.1's two and 0.2's pose)" >&2; rm -f "$out"; exit 1; }
   rm -f "$out"
 else
   echo "(lcm-spy start-up not checked: needs root, unshare and Xvfb)"

@@ -19,7 +19,7 @@
 #include "track_monitor.h"
 #include "track_options.h"
 #include "track_programs.h"
-#include "view_listen.h"
+#include "view_tracker.h"
 
 static const char *signal_name(int signal_number)
 {
@@ -27,7 +27,8 @@ static const char *signal_name(int signal_number)
 }
 
 /* Status lines until a stop request, --seconds, or a program's end; the index of the program that ended, or -1. */
-static int watch(const track_options_t *o, lcm_t *lcm, track_monitor_t *monitor, track_programs_t *programs)
+static int watch(const track_options_t *o, lcm_t *lcm, track_monitor_t *monitor, track_programs_t *programs,
+                 view_tracker_t *view)
 {
     const int64_t started = clock_monotonic_us();
     int64_t last_line = started, next_line = started + 1000000;
@@ -41,9 +42,11 @@ static int watch(const track_options_t *o, lcm_t *lcm, track_monitor_t *monitor,
             track_monitor_line(monitor, (double)(at - started) / 1e6, (double)(at - last_line) / 1e6, line, sizeof line);
             printf("%s\n", line);
             fflush(stdout);
+            if (view != NULL) view_tracker_line(view, line); /* the page shows this very line */
             last_line = at;
             next_line += track_monitor_resting(monitor) ? 500000 : 1000000;
         }
+        if (view != NULL) view_tracker_tick(view, clock_monotonic_us());
         int ended = track_programs_reap(programs);
         if (ended >= 0) return ended;
     }
@@ -89,20 +92,28 @@ static int refused_arguments(const track_programs_t *programs)
     return 0;
 }
 
-/* With --view: where to open the live view (hkf-view's log says it too). */
-static void say_view(const track_options_t *o)
+/* With --view: the live view in this process (view_tracker.h), on the programs' LCM. NULL without --view;
+ * view itself once started; NULL with *failed set when it could not start (said). */
+static view_tracker_t *start_view(const track_options_t *o, lcm_t *lcm, view_tracker_t *view, int *failed)
 {
-    char host[64], reason[256];
-    unsigned port;
-    if (o->view == NULL || view_listen_parse(o->view, host, sizeof host, &port, reason, sizeof reason) != 0) return;
-    printf("hkf-track: the live view: open http://%s:%u/ in a browser%s\n",
-           strcmp(host, "0.0.0.0") == 0 ? "<this computer's address>" : host, port,
-           strcmp(host, "0.0.0.0") == 0 ? " (open to every network this computer is on)" : "");
+    view_settings_t settings = VIEW_DEFAULT_SETTINGS;
+    *failed = 0;
+    if (o->view == NULL) return NULL;
+    settings.listen = o->view;
+    if (view_tracker_start(view, lcm, &settings) != 0) {
+        view_tracker_stop(view);
+        *failed = 1;
+        return NULL;
+    }
+    return view;
 }
 
 static int run(const track_options_t *o, track_programs_t *programs)
 {
     static track_monitor_t monitor;
+    static view_tracker_t view_storage;
+    view_tracker_t *view;
+    int view_failed;
     track_exclusive_t exclusive;
     if (track_programs_make_log_folder(o->logs) != 0) return 1;
     if (track_programs_check_inputs(programs, o, o->logs) != 0) return 1; /* no log over an input: nothing started */
@@ -113,22 +124,24 @@ static int run(const track_options_t *o, track_programs_t *programs)
         track_exclusive_release(&exclusive);
         return 1;
     }
-    if (track_monitor_start(&monitor, lcm, o->camera != NULL || o->realtime) != 0 ||
+    view = start_view(o, lcm, &view_storage, &view_failed);
+    if (view_failed || track_monitor_start(&monitor, lcm, o->camera != NULL || o->realtime) != 0 ||
         track_programs_start(programs, o->logs) != 0) {
+        if (view != NULL) view_tracker_stop(view);
         lcm_destroy(lcm);
         track_exclusive_release(&exclusive);
         return 1;
     }
     printf("hkf-track: logs in %s; Ctrl-C stops\n", o->logs);
-    say_view(o);
     printf("hkf-track: when your face is found, look at the screen's centre and keep still while the line "
            "counts down: hkf-filter measures how your resting head pose wanders, to hold the view still at rest "
            "(again after each recentre)\n");
     fflush(stdout);
     const int64_t started = clock_monotonic_us();
-    int ended = watch(o, lcm, &monitor, programs);
+    int ended = watch(o, lcm, &monitor, programs, view);
     int status = report_end(programs, ended);
     track_programs_stop(programs);
+    if (view != NULL) view_tracker_stop(view);
     int lost = track_programs_summaries(programs);
     status |= report_failures(programs, ended);
     printf("hkf-track: %ld filtered poses in %.1f s\n", monitor.total_poses,

@@ -84,7 +84,7 @@ static void usage(FILE *to)
             "                         --data=/usr/share/hkf/flightgear --generic=socket,in,60,,PORT,udp,hkf\n"
             "  --flightgear-args ARGS more options for it, e.g. '--eye -0.2,0.6,-3.5' (the aircraft's\n"
             "                         eye point, m) or '--invert yaw'\n"
-            "  --view [HOST:]PORT     also run hkf-view: the live view in a browser at http://HOST:PORT/\n"
+            "  --view [HOST:]PORT     also serve the live view (as hkf-view does) at http://HOST:PORT/\n"
             "                         (HOST default 127.0.0.1: this computer only; 0.0.0.0 opens it to\n"
             "                         its networks, e.g. a phone beside it)\n"
             "  --lcm-url URL          LCM provider for all of them (default %s)\n"

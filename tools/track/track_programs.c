@@ -148,13 +148,6 @@ static int plan_filter_and_estimator(track_programs_t *p, const track_options_t 
     return failed;
 }
 
-/* --view [HOST:]PORT: the live view, on the same LCM provider. */
-static int plan_view(track_programs_t *p, const track_options_t *o, const char *tools)
-{
-    track_program_t *view = next_program(p, "hkf-view", "hkf-view", tools);
-    return add_option(p, view, "--listen", o->view) | add_option(p, view, "--lcm-url", o->lcm_url);
-}
-
 int track_programs_plan(track_programs_t *p, const track_options_t *o)
 {
     char tools[TRACK_PATH_SIZE], estimator[TRACK_PATH_SIZE];
@@ -163,7 +156,7 @@ int track_programs_plan(track_programs_t *p, const track_options_t *o)
         fprintf(stderr, "hkf-track: the programs' folder is too long a path\n");
         return 2;
     }
-    if ((o->view != NULL && plan_view(p, o, tools) != 0) || (o->opentrack && plan_opentrack(p, o, tools) != 0) || (o->flightgear != NULL && plan_flightgear(p, o, tools) != 0) ||
+    if ((o->opentrack && plan_opentrack(p, o, tools) != 0) || (o->flightgear != NULL && plan_flightgear(p, o, tools) != 0) ||
         plan_filter_and_estimator(p, o, tools, estimator) != 0) {
         fprintf(stderr, "hkf-track: the programs' arguments are too long, or --opentrack-args or --flightgear-args "
                         "has an open quote\n");

@@ -15,7 +15,7 @@
 extern "C" {
 #endif
 
-#define TRACK_PROGRAMS 5      /* hkf-view, hkf-opentrack (to opentrack, to FlightGear), hkf-filter, hkf-estimator */
+#define TRACK_PROGRAMS 4      /* hkf-opentrack (to opentrack, to FlightGear), hkf-filter, hkf-estimator */
 #define TRACK_MAX_ARGS 64
 #define TRACK_TEXT_SIZE 16384 /* the characters of all arguments */
 #define TRACK_PATH_SIZE 4096

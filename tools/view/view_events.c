@@ -132,6 +132,10 @@ size_t view_event_status(const hkf_tracker_status_t *s, char *out, size_t size)
     put(&j, ",\"spoiled\":%ld,\"wander_measured\":%s", (long)s->rests_spoiled, s->wander_measured ? "true" : "false");
     number(&j, "stillness", s->stillness);
     number(&j, "wander", s->wander);
+    numbers(&j, "rest_spread", s->rest_spread, 3);
+    numbers(&j, "rest_noise", s->rest_noise, 3);
+    put(&j, ",\"commands\":%ld,\"settings_saved\":%ld,\"settings_unsaved\":%ld", (long)s->commands,
+        (long)s->settings_saved, (long)s->settings_unsaved);
     return finish(&j);
 }
 

@@ -26,7 +26,7 @@ size_t view_event_raw(const hkf_head_pose_measurement_t *m, char *out, size_t si
 size_t view_event_pose(const hkf_head_pose_t *p, char *out, size_t size);
 
 /* {"t":"status","rest":"NO_REST|RESTING|MEASURED","progress":..,"rest_time":..,"spoiled":..,
- *  "wander_measured":..,"stillness":..,"wander":..} */
+ *  "wander_measured":..,"stillness":..,"wander":..,"rest_spread":[3],"rest_noise":[3],"commands":..,"settings_saved":..,"settings_unsaved":..} */
 size_t view_event_status(const hkf_tracker_status_t *s, char *out, size_t size);
 
 /* {"t":"line","text":".."}: hkf-track's status line, as its terminal shows it */

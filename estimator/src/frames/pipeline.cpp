@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -21,6 +22,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "camera_pictures.hpp"
 #include "frame_capture.hpp"
 #include "frame_source.hpp"
 #include "hkf/head_pose_measurement_t.hpp"
@@ -172,6 +174,7 @@ struct FrameLoop {
     FilteredPose &filtered;
     bool show, drop_old;
     std::unique_ptr<SecondModelWorker> second_worker;
+    std::unique_ptr<CameraPictures> pictures;  // nullptr where the output is a log file (no view listens there)
     int64_t seq = 0;
 };
 
@@ -248,10 +251,6 @@ void publish_measurement(FrameLoop &loop, const hkf::head_pose_measurement_t &m)
 // The frame drawn with its face, pose and the latest filtered pose, into the --annotate video and the window.
 void annotate(FrameLoop &loop, const Frame &frame, const std::optional<Face> &face, const HeadPose &pose)
 {
-    {
-        std::lock_guard<std::mutex> lock(loop.lcm_mutex);
-        loop.lcm.handleTimeout(0);  // filtered poses that have arrived
-    }
     const cv::Mat image = annotated_frame(frame.image, face, pose, loop.filtered);
     if (!loop.options.annotate_path.empty()) loop.video.write(image, loop.source.fps());
     if (loop.show) {
@@ -284,7 +283,15 @@ void process_frame(FrameLoop &loop, const Frame &frame)
     loop.counts.inference_ms.push_back(inference);
     ++loop.counts.frames;
     loop.counts.with_face += face.has_value();
-    if (!loop.options.annotate_path.empty() || loop.show) annotate(loop, frame, face, pose);
+    const bool annotating = !loop.options.annotate_path.empty() || loop.show;
+    if (annotating || loop.pictures) {
+        std::lock_guard<std::mutex> lock(loop.lcm_mutex);
+        loop.lcm.handleTimeout(0);  // filtered poses (for the annotation) and a view's requests that have arrived
+    }
+    if (loop.pictures && loop.pictures->due())
+        loop.pictures->offer(PictureFrame{frame.image, face, face ? loop.model.landmarks() : std::vector<cv::Point2f>{},
+                                          estimate, m.utime, m.seq});
+    if (annotating) annotate(loop, frame, face, pose);
     if (loop.counts.frames % 100 == 0)
         std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", loop.counts.frames, loop.counts.with_face);
     if (loop.second_worker && !loop.second_worker->error().empty()) throw EstimatorError(loop.second_worker->error());
@@ -420,8 +427,11 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
     std::mutex lcm_mutex;
     RunCounts counts;
     FrameLoop loop{options, model, second, source, *lcm_owner, lcm_mutex, counts, tracker, video, filtered, show, drop_old,
-                   nullptr};
+                   nullptr, nullptr};
     loop.second_worker = start_second_model(loop);
+    if (std::strncmp(lcm_url_resolve(options.lcm_url.c_str()), "file://", 7) != 0)
+        loop.pictures = std::make_unique<CameraPictures>(*lcm_owner, lcm_mutex, "HEAD_POSE_PICTURE",
+                                                         "HEAD_POSE_PICTURE_REQUEST");
     const auto started = std::chrono::steady_clock::now();
     StallWatch stall;
     const std::string loop_error = frame_loop(loop, slot, stall);
@@ -437,6 +447,7 @@ int run_pipeline(HeadPoseEstimator &model, TrackerDetectors detectors, const Pip
     }
     const bool failed = capture.failed() || !loop_error.empty();
     loop.second_worker.reset();  // it publishes on lcm: gone first
+    loop.pictures.reset();
     lcm_owner.reset();           // closes a file:// log, which is then read back
     const int status = finish_status(loop, failed, log_file);
     if (capture_hung) {

@@ -33,11 +33,30 @@ HeadPose AngleBinsModel::estimate_input(const cv::Mat &input)
     return pose;
 }
 
+HeadPose AngleBinsModel::estimate_crop(const cv::Mat &bgr_crop)
+{
+    HeadPose pose = estimate_input(make_input(bgr_crop));
+    if (!spec_.flip_average) return pose;
+    cv::Mat mirrored;
+    cv::flip(bgr_crop, mirrored, 1);
+    const HeadPose m = estimate_input(make_input(mirrored));
+    pose.pitch = 0.5f * (pose.pitch + m.pitch);
+    pose.yaw = 0.5f * (pose.yaw - m.yaw);
+    pose.roll = 0.5f * (pose.roll - m.roll);
+    return pose;
+}
+
 std::optional<HeadPose> AngleBinsModel::estimate(const cv::Mat &frame, const Face &face)
 {
     const cv::Rect crop = face_crop_rect(face.box, spec_.crop_margin, frame.size());
     if (crop.empty()) return std::nullopt;
     HeadPose pose = estimate_crop(frame(crop));
+    if (spec_.profile_from_deg > 0.f && std::fabs(pose.yaw) >= spec_.profile_from_deg) {
+        cv::Rect2f box = face.box;
+        box.x += (pose.yaw < 0.f ? -spec_.profile_shift : spec_.profile_shift) * box.width;
+        const cv::Rect profile = face_crop_rect(box, spec_.profile_margin, frame.size());
+        if (!profile.empty()) pose = estimate_crop(frame(profile));
+    }
     if (!std::isfinite(pose.pitch) || !std::isfinite(pose.yaw) || !std::isfinite(pose.roll)) return std::nullopt;
     // no landmarks: the position from the box and an average face (head_position.hpp)
     const cv::Vec3d nose = rotation_from_pose(pose) * cv::Vec3d(0.0, 0.0, -1.0);

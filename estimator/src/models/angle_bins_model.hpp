@@ -29,7 +29,8 @@ public:
     // order, scale, mean and std applied; NCHW float.
     cv::Mat make_input(const cv::Mat &bgr_crop) const;
 
-    HeadPose estimate_crop(const cv::Mat &bgr_crop) { return estimate_input(make_input(bgr_crop)); }
+    // A crop's reading; with flip_average, averaged with its mirror's (yaw and roll negated).
+    HeadPose estimate_crop(const cv::Mat &bgr_crop);
     HeadPose estimate_input(const cv::Mat &input);
 
 private:

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -27,6 +28,8 @@ public:
     virtual bool follows_faces() const { return false; }
     // The pose of the face in frame (BGR); nullopt when the model finds no face there.
     virtual std::optional<HeadPose> estimate(const cv::Mat &frame, const Face &face) = 0;
+    // The landmarks the last estimate was fitted to, px in the frame (none for a model without any).
+    virtual std::vector<cv::Point2f> landmarks() const { return {}; }
 
     // The camera and head the position is measured with (--fov, --pivot).
     void set_position_settings(const PositionSettings &settings) { position_settings_ = settings; }

@@ -31,6 +31,7 @@ public:
     bool needs_keypoints() const override { return true; }
     bool follows_faces() const override { return spec_.roi_face_cm > 0.f; }
     std::optional<HeadPose> estimate(const cv::Mat &frame, const Face &face) override;
+    std::vector<cv::Point2f> landmarks() const override { return landmarks_; }
 
 private:
     // The mesh in the square region of side px about centre, turned by angle deg, into landmarks_;

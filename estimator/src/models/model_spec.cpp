@@ -1,6 +1,7 @@
 // model_spec.cpp - see model_spec.hpp.
 #include "model_spec.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -89,7 +90,8 @@ bool read_output_key(ModelSpec &spec, const std::string &key, std::istringstream
     return true;
 }
 
-// The keys of the face's crop: roi_scale, focal_scale, roi_face_cm, crop_margin. False for another key.
+// The keys of the face's crop: roi_scale, focal_scale, roi_face_cm, crop_margin, and the tried variants
+// (flip_average, profile_from, profile_margin, profile_shift). False for another key.
 bool read_crop_key(ModelSpec &spec, const std::string &key, std::istringstream &in, const std::string &where)
 {
     if (key == "roi_scale" || key == "focal_scale") {
@@ -100,9 +102,18 @@ bool read_crop_key(ModelSpec &spec, const std::string &key, std::istringstream &
     } else if (key == "roi_face_cm") {
         spec.roi_face_cm = parse_one<float>(in, where);
         if (!(spec.roi_face_cm >= 0.f && spec.roi_face_cm < 1000.f)) throw EstimatorError(where + ": roi_face_cm 0..1000");
-    } else if (key == "crop_margin") {
-        spec.crop_margin = parse_one<float>(in, where);
-        if (!(spec.crop_margin >= 0.f && spec.crop_margin <= 2.f)) throw EstimatorError(where + ": crop_margin 0..2");
+    } else if (key == "crop_margin" || key == "profile_margin") {
+        float &target = key == "crop_margin" ? spec.crop_margin : spec.profile_margin;
+        target = parse_one<float>(in, where);
+        if (!(target >= 0.f && target <= 2.f)) throw EstimatorError(where + ": " + key + " 0..2");
+    } else if (key == "profile_from" || key == "profile_shift") {
+        float &target = key == "profile_from" ? spec.profile_from_deg : spec.profile_shift;
+        target = parse_one<float>(in, where);
+        if (!(std::fabs(target) <= 180.f)) throw EstimatorError(where + ": " + key + " -180..180");
+    } else if (key == "flip_average") {
+        const auto v = parse_one<std::string>(in, where);
+        if (v != "yes" && v != "no") throw EstimatorError(where + ": flip_average is yes or no");
+        spec.flip_average = v == "yes";
     } else {
         return false;
     }

@@ -45,6 +45,11 @@ struct ModelSpec {
     float focal_scale = 1.0f;      // focal length in px = this * the frame's long side
     std::array<float, 3> signs{1.f, 1.f, 1.f};  // model -> hkf convention, pitch yaw roll
     float crop_margin = 0.2f;
+    // angle_bins, tried by dev/eval/crop_variants.py (off unless a description turns them on):
+    bool flip_average = false;     // also the mirrored crop, its yaw and roll negated; the two averaged
+    float profile_from_deg = 0.f;  // where the first reading's |yaw| is at least this (0: never), read again
+    float profile_margin = 0.2f;   //   from a crop with this margin
+    float profile_shift = 0.f;     //   moved by this share of the box's width toward the yaw's sign
 };
 
 // Reads SPEC_DIR/NAME.model; the model file is looked up in MODELS_DIR.

@@ -138,6 +138,12 @@ int hkf_rest_get_progress(const hkf_rest_t *r, int *measuring, hkf_real_t *progr
 /* The last completed rest's result: HKF_ERROR_NOT_INITIALIZED before any. */
 int hkf_rest_get_result(const hkf_rest_t *r, hkf_rest_result_t *result);
 
+/* The player's stillness changed while tracking (libhkf 1.3): the settings take it, and the held result's
+ * wander becomes stillness x its measured one, as if the rest had ended with it (give it to hkf_set_wander).
+ * HKF_ERROR_SETTING_REST (outside [0, HKF_MAX_STILLNESS]), HKF_ERROR_SETTING_NON_FINITE or
+ * HKF_ERROR_NULL_ARGUMENT change nothing. */
+int hkf_rest_set_stillness(hkf_rest_t *r, hkf_real_t stillness);
+
 #ifdef __cplusplus
 }
 #endif

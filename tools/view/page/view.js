@@ -8,6 +8,7 @@ const COLOURS = { filtered: "#ffffff", mesh_pnp: "#4fc3f7", whenet: "#ffb74d" };
 const traces = { filtered: [] }; // per source: [t_s, pitch, yaw, roll]
 let newest = 0; // s: the newest sample's time
 let lastStatus = null;
+let knobTouched = false; // the knob shows the node's value until the player turns it
 
 const $ = (id) => document.getElementById(id);
 const fixed = (v, digits, unit) => (v === null || v === undefined ? "-" : v.toFixed(digits) + unit);
@@ -51,6 +52,12 @@ function onStatus(e) {
   }
   $("wander-text").textContent = "Wander in use " + fixed(e.wander, 3, " deg\u00b2") +
     (e.wander_measured ? " (measured on the rest, \u00d7 stillness " + fixed(e.stillness, 2, "") + ")" : " (the built-in: no rest measured yet)");
+  if (!knobTouched && e.stillness !== null) {
+    $("stillness").value = e.stillness;
+    $("stillness-value").textContent = e.stillness.toFixed(2);
+  }
+  $("commands").textContent = "hkf-filter took " + e.commands + " commands; settings saved " + e.settings_saved +
+    " times" + (e.settings_unsaved ? ", " + e.settings_unsaved + " saves failed (see hkf-filter's log)" : "");
   if (!lastStatus || e.rest !== "RESTING" || e.spoiled !== lastStatus.spoiled) lastStatus = e;
 }
 
@@ -119,5 +126,11 @@ function connect() {
 
 $("recenter").addEventListener("click", () => command("recenter"));
 $("reset").addEventListener("click", () => command("reset"));
+$("save").addEventListener("click", () => command("save"));
+$("stillness").addEventListener("input", () => {
+  knobTouched = true;
+  $("stillness-value").textContent = Number($("stillness").value).toFixed(2);
+});
+$("stillness").addEventListener("change", () => command("stillness?value=" + $("stillness").value));
 connect();
 requestAnimationFrame(draw);

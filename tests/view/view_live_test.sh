@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# The live view of a running tracker, end to end over udpm in a private network namespace: hkf-track --view
+# plays a real face video as the camera; a client reads the page's event stream as a browser does. Checked:
+# the raw and filtered poses, the rest's status and hkf-track's own line reach the page (the line the very
+# text the terminal shows); camera pictures come at >= 10 fps within 200 ms of capture, a JPEG with the face;
+# the page's recentre makes the node recentre (its command count and centre); the stillness knob changes the
+# wander in use; saving writes the user's config file, which hkf-filter then reads.
+# Needs root (unshare --net); exits 77 (skipped) otherwise.
+# usage: view_live_test.sh BUILD_DIR SOURCE_DIR PYTHON VIDEO_DIR
+set -euo pipefail
+trap 'echo "view_live_test: line $LINENO failed" >&2' ERR
+build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) python=$3 videos=$4
+if [ "${HKF_IN_NETNS:-}" != 1 ]; then
+  HKF_IN_NETNS=1 exec "$source/tools/lcm-netns" "$0" "$@"
+fi
+work=$(mktemp -d)
+track_pid=
+cleanup() { [ -z "$track_pid" ] || kill "$track_pid" 2>/dev/null || true; rm -rf "$work"; }
+trap cleanup EXIT
+fail() { echo "FAIL: $*" >&2; cat "$work/track.txt" >&2 2>/dev/null || true; exit 1; }
+. "$source/tests/lib/wait_until.sh"
+export HOME="$work/home" XDG_CONFIG_HOME=  # the save goes here, never to the user running the test
+mkdir -p "$HOME"
+port=$((20000 + RANDOM % 20000))
+base="http://127.0.0.1:$port"
+
+"$build/tools/hkf-track" --source "$videos/d14.mp4" --realtime --view "$port" --logs "$work/logs" >"$work/track.txt" 2>&1 &
+track_pid=$!
+wait_until 60 "the view" curl -s -o /dev/null "$base/view.css" || fail "the view did not open"
+token=$(curl -s "$base/" | sed -n 's/.*name="hkf-token" content="\([0-9a-f]\{32\}\)".*/\1/p')
+post() { curl -s -o /dev/null -w '%{http_code}' -X POST -H "X-HKF-Token: $token" "$base/command/$1"; }
+"$python" "$source/tests/view/sse_client.py" "$base" 5 "$work/events1.jsonl" "$work/picture.jpg"
+[ "$(post recenter)" = 200 ] || fail "the page's recentre was refused"
+sleep 1
+[ "$(post 'stillness?value=3')" = 200 ] || fail "the stillness knob was refused"
+[ "$(post save)" = 200 ] || fail "save was refused"
+"$python" "$source/tests/view/sse_client.py" "$base" 3 "$work/events2.jsonl" "$work/picture2.jpg"
+kill -INT "$track_pid"
+wait "$track_pid" || fail "hkf-track did not stop cleanly"
+track_pid=
+"$python" "$source/tests/view/check_live_events.py" "$work/events1.jsonl" "$work/events2.jsonl" "$work/track.txt" \
+  "$work/picture.jpg" || fail "what the page was sent"
+grep -q "^stillness = 3 " "$HOME/.config/hkf/hkf-filter.conf" || fail "the save did not write stillness 3"
+HKF_SYSTEM_CONFIG_DIR="$work/none" "$build/tools/hkf-filter" --print-config | grep -q "^stillness *= 3 .*hkf-filter.conf:1" ||
+  fail "hkf-filter does not read the saved stillness back"
+echo "view_live_test: ok"
