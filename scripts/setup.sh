@@ -28,6 +28,7 @@ packages=(
   default-jdk-headless                          # javac for the Java message types
   iproute2 util-linux                           # private network namespaces for the LCM tests
   xvfb unzip file                               # hkf-spy test: lcm-spy on a virtual display; file(1)
+  chromium                                      # the live view's test in a real browser (headless)
   python3 python3-venv python3-pip              # Python tools (.venv, from tools/requirements.txt)
   clang libclang-rt-14-dev                      # the fuzz targets (libFuzzer, tests/fuzz)
   gcc-arm-none-eabi libnewlib-arm-none-eabi     # libhkf for Cortex-M (cmake/arm-none-eabi.cmake)

@@ -158,6 +158,10 @@ static void events_are_json_without_nan(void **state)
     assert_true(view_event_pose(&p, out, sizeof out) > 0);
     assert_non_null(strstr(out, "\"status\":\"COASTING\""));
     assert_non_null(strstr(out, "\"latency_ms\":23.5"));
+    p.yaw = 15.0f;
+    p.center[1] = 10.0f;
+    assert_true(view_event_pose(&p, out, sizeof out) > 0);
+    assert_non_null(strstr(out, "\"from_center\":[0,5,0]")); /* as hkf-track's line and opentrack take it */
     assert_true(view_event_line("a\tb\n", out, sizeof out) > 0);
     assert_string_equal(out, "{\"t\":\"line\",\"text\":\"a\\u0009b\\u000a\"}");
     assert_int_equal(view_event_line("too long", out, 10), 0); /* cut short: nothing half-written is sent */

@@ -3,6 +3,8 @@
 
 #include "view_events.h"
 
+#include "pose_angles.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -103,6 +105,9 @@ static const char *pose_status(int8_t status)
 size_t view_event_pose(const hkf_head_pose_t *p, char *out, size_t size)
 {
     json_t j = {out, size, 0, 0};
+    double from_center[3], position[3];
+    float angles[3], offsets[3];
+    int a;
     put(&j, "{\"t\":\"pose\",\"utime\":%lld,\"seq\":%lld", (long long)p->utime, (long long)p->seq);
     text(&j, "status", pose_status(p->status));
     number(&j, "pitch", p->pitch);
@@ -113,6 +118,13 @@ size_t view_event_pose(const hkf_head_pose_t *p, char *out, size_t size)
     number(&j, "z", p->z);
     number(&j, "latency_ms", (double)p->latency_us / 1000.0);
     numbers(&j, "center", p->center, 3);
+    pose_from_center(p, from_center, position);
+    for (a = 0; a < 3; ++a) {
+        angles[a] = (float)from_center[a];
+        offsets[a] = (float)position[a];
+    }
+    numbers(&j, "from_center", angles, 3); /* as hkf-track's line and opentrack take it (pose_angles.h) */
+    numbers(&j, "position_from_center", offsets, 3);
     put(&j, ",\"extrapolated\":%s", p->extrapolated ? "true" : "false");
     return finish(&j);
 }

@@ -22,7 +22,8 @@ extern "C" {
 size_t view_event_raw(const hkf_head_pose_measurement_t *m, char *out, size_t size);
 
 /* {"t":"pose","utime":..,"seq":..,"status":"TRACKING"..,"pitch":..,..,"x":..,"y":..,"z":..,"latency_ms":..,
- *  "center":[3],"extrapolated":..} */
+ *  "center":[3],"from_center":[3],"position_from_center":[3],"extrapolated":..}: from_center as hkf-track's line
+ *  and opentrack take the pose (pose_angles.h) */
 size_t view_event_pose(const hkf_head_pose_t *p, char *out, size_t size);
 
 /* {"t":"status","rest":"NO_REST|RESTING|MEASURED","progress":..,"rest_time":..,"spoiled":..,

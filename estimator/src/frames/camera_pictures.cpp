@@ -105,7 +105,7 @@ void CameraPictures::send(const PictureFrame &frame, int width)
     if (frame.face) {
         const cv::Rect2f &b = frame.face->box;
         const cv::Rect2f box(b.x * scale, b.y * scale, b.width * scale, b.height * scale);
-        cv::rectangle(small, box, cv::Scalar(0, 255, 255), 1, cv::LINE_AA);
+        cv::rectangle(small, box, cv::Scalar(0, 255, 255), 2, cv::LINE_AA);
         const cv::Rect inside(0, 0, small.cols, small.rows);
         for (const cv::Point2f &p : frame.landmarks) {
             const cv::Point at(p * scale);

@@ -31,12 +31,13 @@ function onPose(e) {
   keep("filtered", e.utime, e.pitch, e.yaw, e.roll);
   $("state").textContent = e.status;
   $("state").className = e.status;
-  for (const a of AXES) $(a).textContent = fixed(e[a] - e.center[AXES.indexOf(a)], 1, "\u00b0");
-  for (const a of ["x", "y", "z"]) $(a).textContent = e.z > 0 ? fixed(e[a], 1, " cm") : "-";
+  AXES.forEach((a, i) => { $(a).textContent = fixed(e.from_center[i], 1, "\u00b0"); });
+  ["x", "y", "z"].forEach((a, i) => { $(a).textContent = e.z > 0 ? fixed(e.position_from_center[i], 1, " cm") : "-"; });
   $("latency").textContent = fixed(e.latency_ms, 0, " ms");
 }
 
 function onStatus(e) {
+  window.latestStatus = e; // for a look from the browser's console (and the browser test)
   const bar = $("rest-fill"), text = $("rest-text");
   bar.style.width = (100 * (e.progress || 0)).toFixed(0) + "%";
   if (e.rest === "RESTING") {
@@ -63,7 +64,7 @@ function onStatus(e) {
 
 function onLine(e) {
   $("line").textContent = e.text;
-  const rate = /camera ([0-9.]+) fps/.exec(e.text);
+  const rate = /camera +([0-9.]+) fps/.exec(e.text);
   $("rate").textContent = rate ? rate[1] + " fps" : "-";
 }
 
@@ -107,9 +108,9 @@ function draw() {
 async function command(verb) {
   try {
     const answer = await fetch("command/" + verb, { method: "POST", headers: { "X-HKF-Token": token } });
-    $("answer").textContent = verb + ": " + (await answer.text()).trim();
+    $("answer").textContent = verb.split("?")[0] + ": " + (await answer.text()).trim();
   } catch (err) {
-    $("answer").textContent = verb + ": " + err;
+    $("answer").textContent = verb.split("?")[0] + ": " + err;
   }
 }
 
