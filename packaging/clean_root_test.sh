@@ -5,7 +5,7 @@
 #   - every program answers --version and --help, with no Python module beyond Debian's;
 #   - the filter's settings come from the conffile /etc/hkf/hkf-filter.conf (--print-config says so);
 #   - `hkf-track --source clip.mp4 --opentrack` runs the whole tracker on a clip and a UDP receiver
-#     (opentrack's stand-in) gets its datagrams;
+#     (opentrack's stand-in) gets its datagrams, and with --view its live view serves the page (curl);
 #   - hkf-spy's class path resolves to files that exist.
 # Needs root (chroot, mounts, unshare) and Debian's mirror; exits 77 (skipped) without them.
 # usage: clean_root_test.sh DEB CLIP ROOT_DIR
@@ -42,7 +42,7 @@ echo "apt-get install ./$(basename "$deb"): $((SECONDS - start)) s, $(in_root dp
 
 python_modules=$(in_root sh -c 'command -v python3 >/dev/null && python3 -c "import lcm" 2>/dev/null && echo lcm || true')
 [ -z "$python_modules" ] || fail "the root has Python's lcm module: the test would not show hkf-track needs none"
-programs=(hkf-estimator hkf-annotate hkf-filter hkf-opentrack hkf-track hkf-cmd hkf-demo hkf-simlog hkf-spy)
+programs=(hkf-estimator hkf-annotate hkf-filter hkf-opentrack hkf-track hkf-cmd hkf-demo hkf-simlog hkf-spy hkf-view)
 for p in "${programs[@]}"; do
   in_root "$p" --version >"$root/tmp/version.txt" 2>&1 || fail "$p --version: $(cat "$root/tmp/version.txt")"
   grep -q "^$p " "$root/tmp/version.txt" || fail "$p --version printed $(cat "$root/tmp/version.txt")"
@@ -71,13 +71,19 @@ unshare --net bash -c '
   python3 "$1/../tests/opentrack/udp_receiver.py" "$2/udp.hex" --port 4242 --seconds 300 2>"$2/receiver.txt" &
   receiver=$!
   for _ in $(seq 50); do [ -e "$2/udp.hex.ready" ] && break; sleep 0.1; done
-  chroot "$3" /usr/bin/env -i PATH=/usr/bin:/bin HOME=/root sh -c "cd /tmp && hkf-track --source /tmp/$4 --opentrack" \
+  # the live view too: its page fetched with curl while the clip plays (the .deb installs it)
+  ( for _ in $(seq 600); do curl -sf -o "$2/view.html" http://127.0.0.1:7670/ && break; sleep 0.05; done ) &
+  fetch=$!
+  chroot "$3" /usr/bin/env -i PATH=/usr/bin:/bin HOME=/root sh -c "cd /tmp && hkf-track --source /tmp/$4 --opentrack --view 7670" \
     >"$2/track.txt" 2>&1 || { cat "$2/track.txt"; exit 1; }
+  wait "$fetch" || true
   kill -TERM "$receiver"; wait "$receiver" || true
 ' _ "$here" "$work" "$root" "$(basename "$clip")" || fail "hkf-track in the clean root"
 tail -5 "$work/track.txt"
 grep -q "the source ended" "$work/track.txt" || fail "hkf-track did not run to the clip's end"
 received=$(wc -l <"$work/udp.hex")
+grep -q 'name="hkf-token" content="[0-9a-f]\{32\}"' "$work/view.html" 2>/dev/null ||
+  { rm -rf "$work"; fail "the live view's page (share/hkf/view) was not served from the installed package"; }
 rm -rf "$work"
 [ "$received" -ge 100 ] || fail "only $received datagrams reached the UDP receiver"
-echo "clean_root_test: passed (hkf-track in the clean root sent $received datagrams to the UDP receiver)"
+echo "clean_root_test: passed (hkf-track in the clean root sent $received datagrams to the UDP receiver; its live view served the page)"

@@ -35,10 +35,19 @@ fi
 
 cd "$work"  # neither the source nor the build tree
 # (each output to a file first: grep -q may stop reading early, and under pipefail the writer's SIGPIPE would fail)
-for program in hkf-estimator hkf-filter hkf-opentrack hkf-cmd hkf-demo hkf-simlog hkf-annotate hkf-spy hkf-track; do
+for program in hkf-estimator hkf-filter hkf-opentrack hkf-cmd hkf-demo hkf-simlog hkf-annotate hkf-spy hkf-track hkf-view; do
   "$root/bin/$program" --version >"$work/version.txt" || fail "$program --version"
   grep -q "^$program " "$work/version.txt" || fail "$program --version: $(cat "$work/version.txt")"
 done
+# the installed hkf-view serves the installed page (share/hkf/view), not the source tree's
+port=$((20000 + RANDOM % 20000))
+"$root/bin/hkf-view" --lcm-url memq:// --listen "127.0.0.1:$port" --seconds 20 >"$work/view.txt" 2>&1 &
+view=$!
+for _ in $(seq 100); do curl -sf -o "$work/view.html" "http://127.0.0.1:$port/" && break; sleep 0.1; done
+kill -INT "$view" 2>/dev/null; wait "$view" || true
+grep -q 'name="hkf-token" content="[0-9a-f]\{32\}"' "$work/view.html" 2>/dev/null || fail "the installed hkf-view served no page"
+grep -q "^hkf-view: the page's files from $root/bin/../share/hkf/view$" "$work/view.txt" ||
+  fail "the installed hkf-view does not serve the installed page: $(cat "$work/view.txt")"
 "$root/bin/hkf-spy" --print-class-path >"$work/class_path.txt" || fail "hkf-spy --print-class-path"
 grep -q "$root/bin/../share/hkf/java/hkf_lcmtypes.jar" "$work/class_path.txt" || fail "hkf-spy does not use the installed jar"
 "$root/bin/hkf-estimator" --help >"$work/help.txt" || fail "hkf-estimator --help"

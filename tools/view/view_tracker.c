@@ -159,6 +159,8 @@ int view_tracker_start(view_tracker_t *v, lcm_t *lcm, const view_settings_t *set
         return -1;
     }
     say_where(&v->server.door);
+    printf("hkf-view: the page's files from %s\n", assets);
+    fflush(stdout);
     return 0;
 }
 
