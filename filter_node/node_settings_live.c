@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "config_files.h"
+#include "message_decode.h"
 #include "node_config_parts.h"
 
 #define SAVED_FILE_MAX (1024 * 1024) /* a user's config file larger than this is not rewritten */
@@ -62,9 +63,7 @@ int node_setting_take_message(filter_node_t *node, node_config_t *config, const 
 {
     hkf_tracker_setting_t setting;
     int taken;
-    /* the layout checked before anything is allocated: each string at most TEXT_MAX bytes */
-    if (size > 8 + 8 + 2 * (4 + HKF_TRACKER_SETTING_T_TEXT_MAX + 1) ||
-        hkf_tracker_setting_t_decode(data, 0, size, &setting) < 0) {
+    if (message_decode_setting(data, size, &setting) != 0) { /* its layout checked before anything is allocated */
         return -1;
     }
     taken = node_setting_apply(node, config, setting.key, setting.value, error, error_size) == 0;

@@ -131,3 +131,50 @@ int message_decode_pose(const void *data, int size, hkf_head_pose_t *pose)
     COPY_ANGLE_FIELDS(pose, old);
     return 0;
 }
+
+/* A big-endian int32 field as LCM writes it, read as a non-negative length; -1 when it is negative. */
+static long length_at(const unsigned char *bytes)
+{
+    const unsigned long value = ((unsigned long)bytes[0] << 24) | ((unsigned long)bytes[1] << 16) |
+                                ((unsigned long)bytes[2] << 8) | bytes[3];
+    return value > 0x7fffffffUL ? -1 : (long)value;
+}
+
+int message_decode_setting(const void *data, int size, hkf_tracker_setting_t *s)
+{
+    const unsigned char *bytes = data;
+    long at = 16; /* hash, utime */
+    int i;
+    for (i = 0; i < 2 && data != NULL; ++i) { /* the key, then the value: a length with its NUL, the bytes */
+        long length;
+        if (at + 4 > size) return -1;
+        length = length_at(bytes + at);
+        if (length < 2 || length > HKF_TRACKER_SETTING_T_TEXT_MAX + 1 || at + 4 + length > size ||
+            bytes[at + 4 + length - 1] != '\0') {
+            return -1;
+        }
+        at += 4 + length;
+    }
+    if (data == NULL || at != size) return -1;
+    memset(s, 0, sizeof *s);
+    if (hkf_tracker_setting_t_decode(data, 0, size, s) != size) { /* another type's hash */
+        hkf_tracker_setting_t_decode_cleanup(s);
+        return -1;
+    }
+    return 0;
+}
+
+int message_decode_picture(const void *data, int size, hkf_camera_picture_t *p)
+{
+    enum { JPEG_SIZE_AT = 28, JPEG_AT = 32 }; /* hash, utime, seq (8 each), width, height (2 each), jpeg_size (4) */
+    long length;
+    if (data == NULL || size < JPEG_AT) return -1;
+    length = length_at((const unsigned char *)data + JPEG_SIZE_AT);
+    if (length < 0 || length > HKF_CAMERA_PICTURE_T_MAX_JPEG_SIZE || JPEG_AT + length != size) return -1;
+    memset(p, 0, sizeof *p);
+    if (hkf_camera_picture_t_decode(data, 0, size, p) != size) {
+        hkf_camera_picture_t_decode_cleanup(p);
+        return -1;
+    }
+    return 0;
+}

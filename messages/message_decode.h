@@ -9,8 +9,10 @@
 #ifndef MESSAGE_DECODE_H
 #define MESSAGE_DECODE_H
 
+#include "hkf_camera_picture_t.h"
 #include "hkf_head_pose_measurement_t.h"
 #include "hkf_head_pose_t.h"
+#include "hkf_tracker_setting_t.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -31,6 +33,16 @@ int message_model_id_too_long(const void *data, int size);
  * else 0) or 0.1's (which carries no position: x, y, z and their rates, variances, centre and
  * status are 0). Returns 0 with *pose decoded, or -1. */
 int message_decode_pose(const void *data, int size, hkf_head_pose_t *pose);
+
+/* A live setting on the command channel (hkf 0.4), its layout checked first: the key and the value each
+ * 1 to TEXT_MAX bytes and their NUL, and nothing after. Returns 0 with *s decoded (free with
+ * hkf_tracker_setting_t_decode_cleanup), or -1 with nothing allocated (e.g. a tracker_command_t). */
+int message_decode_setting(const void *data, int size, hkf_tracker_setting_t *s);
+
+/* A camera picture (hkf 0.4), its layout checked first: jpeg_size from 0 to MAX_JPEG_SIZE and exactly that
+ * many bytes after it. Returns 0 with *p decoded (free with hkf_camera_picture_t_decode_cleanup), or -1 with
+ * nothing allocated. */
+int message_decode_picture(const void *data, int size, hkf_camera_picture_t *p);
 
 #ifdef __cplusplus
 }

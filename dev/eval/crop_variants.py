@@ -6,7 +6,7 @@
 - a crop moved toward the back of the head by the sign of the first reading's yaw.
 
 Each variant is a model description (whenet.model with the keys of model_spec.hpp's tried variants) in a
-scratch folder given to --spec-dir. Per labelled |yaw| bin, the mean of the three axes' MAE on the even images
+scratch folder given to --spec-dir; its predictions are made once (delete OUT to make them again: ~100 s each). Per labelled |yaw| bin, the mean of the three axes' MAE on the even images
 (tuning) and on the odd ones (held out), and WHENet's cost per image; a variant is kept only where both halves
 gain at 30-60 or 60-99 and neither loses elsewhere.
 
@@ -37,7 +37,7 @@ BINS = [(0, 30), (30, 60), (60, 99)]
 
 def run_variant(args, name, keys, spec_root):
     """The default pipeline's predictions with this variant's whenet.model; (csv path, ms per image)."""
-    slug = re.sub(r"[^a-z0-9]+", "_", name).strip("_")
+    slug = re.sub(r"[^a-z0-9]+", "_", name.replace("+", "plus").replace("-", "minus")).strip("_")
     spec_dir = os.path.join(spec_root, slug)
     os.makedirs(spec_dir, exist_ok=True)
     for model in ("mesh_pnp", "whenet"):
@@ -45,13 +45,18 @@ def run_variant(args, name, keys, spec_root):
             text = f.read()
         with open(os.path.join(spec_dir, model + ".model"), "w") as f:
             f.write(text + ("\n" + keys + "\n" if model == "whenet" and keys else ""))
-    predictions = os.path.join(args.out, slug + ".csv")
-    command = [os.path.join(args.build, "estimator", "hkf-estimator"), "--dataset", args.dataset, "--spec-dir",
-               spec_dir, "--predictions", predictions] + (["--limit", str(args.limit)] if args.limit else [])
-    done = subprocess.run(command, capture_output=True, text=True)
-    if done.returncode != 0:
-        sys.exit(f"crop_variants: {name}: hkf-estimator failed:\n{done.stderr[-2000:]}")
-    cost = re.search(r"([0-9.]+) ms per image", done.stdout + done.stderr)
+    predictions, summary = os.path.join(args.out, slug + ".csv"), os.path.join(args.out, slug + ".txt")
+    if not (os.path.getsize(predictions) > 0 if os.path.exists(predictions) else False):  # made once
+        command = [os.path.join(args.build, "estimator", "hkf-estimator"), "--dataset", args.dataset, "--spec-dir",
+                   spec_dir, "--predictions", predictions + ".part"] + (["--limit", str(args.limit)] if args.limit else [])
+        done = subprocess.run(command, capture_output=True, text=True)
+        if done.returncode != 0:
+            sys.exit(f"crop_variants: {name}: hkf-estimator failed:\n{done.stderr[-2000:]}")
+        with open(summary, "w") as f:
+            f.write(done.stdout + done.stderr)
+        os.replace(predictions + ".part", predictions)
+    with open(summary) as f:
+        cost = re.search(r"([0-9.]+) ms per image", f.read())
     return predictions, float(cost.group(1)) if cost else float("nan")
 
 

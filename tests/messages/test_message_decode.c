@@ -13,6 +13,7 @@
 #include "hkf_head_pose_measurement_v1_t.h"
 #include "hkf_head_pose_v1_t.h"
 #include "hkf_head_pose_v2_t.h"
+#include "hkf_tracker_command_t.h"
 #include "message_decode.h"
 
 #define T0 1700000000000000LL
@@ -60,6 +61,66 @@ static void test_decode_checks_layout(void **state)
     spoiled[0] ^= 0x5a; /* another type's hash */
     assert_int_equal(message_decode_measurement(spoiled, size, &back), -1);
     assert_int_equal(message_decode_measurement(buffer, 3, &back), -1);
+}
+
+/* A live setting (hkf 0.4) decodes whole; a claimed 2 GB or negative string, a key without its NUL, one longer than
+ * TEXT_MAX, a byte too many or too few, and a tracker_command_t on the same channel are refused unallocated. */
+static void test_setting_layout_checked(void **state)
+{
+    hkf_tracker_setting_t setting = {T0, (char *)"stillness", (char *)"2.5"}, back;
+    hkf_tracker_command_t command = {T0, HKF_TRACKER_COMMAND_T_RECENTER};
+    char long_key[HKF_TRACKER_SETTING_T_TEXT_MAX + 2];
+    unsigned char buffer[256], spoiled[256];
+    const int size = hkf_tracker_setting_t_encoded_size(&setting);
+    (void)state;
+    assert_int_equal(hkf_tracker_setting_t_encode(buffer, 0, size, &setting), size);
+    assert_int_equal(message_decode_setting(buffer, size, &back), 0);
+    assert_string_equal(back.key, "stillness");
+    assert_string_equal(back.value, "2.5");
+    hkf_tracker_setting_t_decode_cleanup(&back);
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[16] = 0x7f; /* the key's length: 2 GB */
+    assert_int_equal(message_decode_setting(spoiled, size, &back), -1);
+    spoiled[16] = 0xff; /* negative */
+    assert_int_equal(message_decode_setting(spoiled, size, &back), -1);
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[16 + 4 + 9] = 'x'; /* "stillness" loses its NUL */
+    assert_int_equal(message_decode_setting(spoiled, size, &back), -1);
+    assert_int_equal(message_decode_setting(buffer, size - 1, &back), -1);
+    assert_int_equal(message_decode_setting(buffer, size + 1, &back), -1);
+    assert_int_equal(message_decode_setting(buffer, 10, &back), -1);
+    memset(long_key, 'k', sizeof long_key - 1);
+    long_key[sizeof long_key - 1] = '\0';
+    setting.key = long_key;
+    assert_int_equal(hkf_tracker_setting_t_encode(spoiled, 0, (int)sizeof spoiled, &setting),
+                     hkf_tracker_setting_t_encoded_size(&setting));
+    assert_int_equal(message_decode_setting(spoiled, hkf_tracker_setting_t_encoded_size(&setting), &back), -1);
+    assert_int_equal(hkf_tracker_command_t_encode(spoiled, 0, (int)sizeof spoiled, &command),
+                     hkf_tracker_command_t_encoded_size(&command));
+    assert_int_equal(message_decode_setting(spoiled, hkf_tracker_command_t_encoded_size(&command), &back), -1);
+}
+
+/* A camera picture decodes whole; a jpeg_size that is negative, beyond MAX_JPEG_SIZE or not the bytes that follow
+ * is refused unallocated. */
+static void test_picture_layout_checked(void **state)
+{
+    uint8_t jpeg[100];
+    hkf_camera_picture_t picture = {T0, 7, 320, 240, (int32_t)sizeof jpeg, jpeg}, back;
+    unsigned char buffer[256], spoiled[256];
+    const int size = hkf_camera_picture_t_encoded_size(&picture);
+    (void)state;
+    memset(jpeg, 0xd8, sizeof jpeg);
+    assert_int_equal(hkf_camera_picture_t_encode(buffer, 0, size, &picture), size);
+    assert_int_equal(message_decode_picture(buffer, size, &back), 0);
+    assert_true(back.seq == 7 && back.jpeg_size == 100 && back.jpeg[99] == 0xd8);
+    hkf_camera_picture_t_decode_cleanup(&back);
+    memcpy(spoiled, buffer, (size_t)size);
+    spoiled[28] = 0xff; /* negative */
+    assert_int_equal(message_decode_picture(spoiled, size, &back), -1);
+    spoiled[28] = 0x00, spoiled[29] = 0x10; /* 1 MiB: beyond MAX_JPEG_SIZE */
+    assert_int_equal(message_decode_picture(spoiled, size, &back), -1);
+    assert_int_equal(message_decode_picture(buffer, size - 1, &back), -1);
+    assert_int_equal(message_decode_picture(buffer, 20, &back), -1);
 }
 
 /* hkf 0.1's message (head_pose_measurement_v1_t, no position) decodes as a 0.2 one with z = 0. */
@@ -160,6 +221,8 @@ int main(void)
         cmocka_unit_test(test_decode_reads_v1),
         cmocka_unit_test(test_decode_every_version),
         cmocka_unit_test(test_long_model_id_named),
+        cmocka_unit_test(test_setting_layout_checked),
+        cmocka_unit_test(test_picture_layout_checked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -65,9 +65,7 @@ static void on_picture(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     hkf_camera_picture_t p;
     char json[VIEW_FEED_EVENT_SIZE];
     (void)channel;
-    /* the size is checked before decoding: a picture message is never larger than its largest JPEG and fields */
-    if (rbuf->data_size > HKF_CAMERA_PICTURE_T_MAX_JPEG_SIZE + 64 ||
-        hkf_camera_picture_t_decode(rbuf->data, 0, (int)rbuf->data_size, &p) < 0) {
+    if (rbuf->data_size > INT32_MAX || message_decode_picture(rbuf->data, (int)rbuf->data_size, &p) != 0) {
         ++view->decode_errors;
         return;
     }
