@@ -75,7 +75,7 @@ def check_controls(page):
     if abs(status["wander"] - 2.5 * measured) > 1e-3:
         raise SystemExit(f"browser_test: the wander in use {status['wander']} is not 2.5 x {measured:.4f}")
     shown = page.js("document.getElementById('wander-text').textContent")
-    if "stillness 2.50" not in shown:
+    if "stillness 2.50" not in shown or f"the rest's {measured:.3f}" not in shown:
         raise SystemExit(f"browser_test: the page does not show the knob's stillness: {shown!r}")
     print(f"browser_test: recentre took (commands {before} -> {before + 1}; yaw from centre {centre}); "
           f"stillness 2.5: wander {status['wander']:.3f} = 2.5 x {measured:.3f} deg^2")

@@ -65,6 +65,17 @@ static void origin_must_be_the_view_itself(void **state)
     assert_false(view_door_origin_ok(&d, "http://127.0.0.1:7670/x"));
 }
 
+static void another_sites_subresource_is_refused(void **state)
+{
+    (void)state;
+    assert_true(view_door_fetch_site_ok(NULL));
+    assert_true(view_door_fetch_site_ok("same-origin"));
+    assert_true(view_door_fetch_site_ok("none"));
+    assert_false(view_door_fetch_site_ok("cross-site")); /* <img src=http://127.0.0.1:7670/picture.jpg> elsewhere */
+    assert_false(view_door_fetch_site_ok("same-site"));
+    assert_false(view_door_fetch_site_ok(""));
+}
+
 static void token_is_random_and_exact(void **state)
 {
     view_door_t a, b;
@@ -173,6 +184,7 @@ int main(void)
         cmocka_unit_test(loopback_view_serves_only_its_own_host),
         cmocka_unit_test(every_address_view_takes_literals_not_names),
         cmocka_unit_test(origin_must_be_the_view_itself),
+        cmocka_unit_test(another_sites_subresource_is_refused),
         cmocka_unit_test(token_is_random_and_exact),
         cmocka_unit_test(listen_text_is_read_as_documented),
         cmocka_unit_test(slow_viewer_skips_ahead_and_never_blocks_the_writer),

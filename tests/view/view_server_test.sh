@@ -41,6 +41,7 @@ curl -s -D - -o /dev/null "$base/" | grep -qi "^content-security-policy: default
 [ "$(code -H "Host: evil.example:$port" "$base/")" = 421 ] || fail "a foreign Host (DNS rebinding) was served"
 [ "$(code -H "Host: 127.0.0.1" "$base/")" = 421 ] || fail "a Host without the view's port was served"
 [ "$(code -H "Origin: http://evil.example" "$base/")" = 403 ] || fail "a foreign Origin was served"
+[ "$(code -H "Sec-Fetch-Site: cross-site" "$base/view.css")" = 403 ] || fail "another site's <img> or <script> was served"
 [ "$(code -X POST -H "Origin: http://evil.example" -H "X-HKF-Token: $token" "$base/command/recenter")" = 403 ] ||
   fail "a command from a foreign page was taken, token or not"
 [ "$(code -X POST "$base/command/recenter")" = 403 ] || fail "a command without the token was taken"
@@ -72,5 +73,5 @@ grep -q '"t":"line"' "$work/after.txt" || fail "a viewer after the 100 got nothi
 kill -INT "$pid"
 wait "$pid" || fail "hkf-view did not stop cleanly on SIGINT"
 pid=
-grep -q "hkf-view: 1 commands, 6 requests refused" "$work/view.txt" || fail "the summary's counts"
+grep -q "hkf-view: 1 commands, 7 requests refused" "$work/view.txt" || fail "the summary's counts"
 echo "view_server_test: ok"

@@ -94,6 +94,11 @@ int view_door_origin_ok(const view_door_t *door, const char *origin)
     return strncmp(origin, "http://", 7) == 0 && view_door_host_ok(door, origin + 7);
 }
 
+int view_door_fetch_site_ok(const char *site)
+{
+    return site == NULL || strcmp(site, "same-origin") == 0 || strcmp(site, "none") == 0;
+}
+
 int view_door_token_ok(const view_door_t *door, const char *given)
 {
     unsigned char differ = 0;

@@ -5,6 +5,8 @@
  *   address, localhost or an address literal, with the view's port (a DNS name that rebinds to this host
  *   names neither);
  * - its Origin, if it has one, is http:// and such a Host (no other site's page may read or command it);
+ * - its Sec-Fetch-Site, if the browser sends one, says the page's own or the user's (an <img> on another site
+ *   sends no Origin, but says cross-site here: it may not show the camera's picture);
  * - for a command, it carries the run's token, which only the served page has;
  * - it asks for one of the page's own assets, by exact name.
  * Pure functions over the request's text: no sockets, so each rule is tested alone.
@@ -35,6 +37,10 @@ int view_door_host_ok(const view_door_t *door, const char *host);
 
 /* 1 when origin (NULL: the request has none, as a page's own GET) is the view's own; 0 otherwise. */
 int view_door_origin_ok(const view_door_t *door, const char *origin);
+
+/* 1 when site (the Sec-Fetch-Site header, NULL: none, as from curl or an older browser) is "same-origin" or
+ * "none" (typed into the address bar); 0 for "same-site", "cross-site" or anything else. */
+int view_door_fetch_site_ok(const char *site);
 
 /* 1 when given (NULL when missing) is the run's token, compared in constant time; 0 otherwise. */
 int view_door_token_ok(const view_door_t *door, const char *given);

@@ -95,6 +95,7 @@ static enum MHD_Result answer(struct MHD_Connection *c, unsigned code, const cha
     (void)MHD_add_response_header(r, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
     (void)MHD_add_response_header(r, "X-Content-Type-Options", "nosniff");
     (void)MHD_add_response_header(r, "X-Frame-Options", "DENY");
+    (void)MHD_add_response_header(r, "Cross-Origin-Resource-Policy", "same-origin");
     (void)MHD_add_response_header(r, "Content-Security-Policy",
                                   "default-src 'self'; img-src 'self'; connect-src 'self'; frame-ancestors 'none'");
     result = MHD_queue_response(c, code, r);
@@ -239,7 +240,8 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         count(s, &s->refused, NULL, 1);
         return say(c, 421, "hkf-view: this Host is not the view's own\n");
     }
-    if (!view_door_origin_ok(&s->door, MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Origin"))) {
+    if (!view_door_origin_ok(&s->door, MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Origin")) ||
+        !view_door_fetch_site_ok(MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Sec-Fetch-Site"))) {
         count(s, &s->refused, NULL, 1);
         return say(c, MHD_HTTP_FORBIDDEN, "hkf-view: requests from another site's page are refused\n");
     }

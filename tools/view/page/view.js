@@ -51,8 +51,11 @@ function onStatus(e) {
   } else {
     text.textContent = "No rest asked for.";
   }
-  $("wander-text").textContent = "Wander in use " + fixed(e.wander, 3, " deg\u00b2") +
-    (e.wander_measured ? " (measured on the rest, \u00d7 stillness " + fixed(e.stillness, 2, "") + ")" : " (the built-in: no rest measured yet)");
+  // the rest's own wander, before the stillness scales it: its largest spread beyond noise, bounded (hkf_rest.h)
+  const measured = Math.min(0.3, Math.max(0, ...e.rest_spread.map((v, i) => v - e.rest_noise[i])));
+  $("wander-text").textContent = "Wander in use " + fixed(e.wander, 3, " deg\u00b2") + (e.wander_measured
+    ? " = the rest's " + fixed(measured, 3, " deg\u00b2") + " \u00d7 stillness " + fixed(e.stillness, 2, "")
+    : " (the built-in: no rest measured yet)");
   if (!knobTouched && e.stillness !== null) {
     $("stillness").value = e.stillness;
     $("stillness-value").textContent = e.stillness.toFixed(2);
