@@ -173,6 +173,27 @@ static void events_are_json_without_nan(void **state)
     p.center[1] = 10.0f;
     assert_true(view_event_pose(&p, out, sizeof out) > 0);
     assert_non_null(strstr(out, "\"from_center\":[0,5,0]")); /* as hkf-track's line and opentrack take it */
+    /* the longest each event can be still fits one slot of the feed: every number at its widest */
+    p.utime = p.seq = p.latency_us = INT64_MIN;
+    p.pitch = p.yaw = p.roll = p.x = p.y = p.z = -1.2345e-38f;
+    p.center[0] = p.center[1] = p.center[2] = -1.2345e-38f;
+    assert_true(view_event_pose(&p, out, sizeof out) > 0);
+    m.model = (char *)"\x01\x02\x03\x04\x05\x06\x07\x08\x01\x02\x03\x04\x05\x06\x07\x08"
+                      "\x01\x02\x03\x04\x05\x06\x07\x08\x01\x02\x03\x04\x05\x06\x07"; /* 31: MODEL_NAME_MAX */
+    m.utime = m.seq = INT64_MIN;
+    m.pitch = m.yaw = m.roll = m.z = -1.2345e-38f;
+    m.face_box[0] = m.face_box[1] = m.face_box[2] = m.face_box[3] = -1.2345e-38f;
+    assert_true(view_event_raw(&m, out, sizeof out) > 0);
+    {
+        hkf_tracker_status_t s;
+        memset(&s, 0, sizeof s);
+        s.rest = HKF_TRACKER_STATUS_T_MEASURED;
+        s.rest_progress = s.rest_time = s.stillness = s.wander = -1.2345e-38f;
+        s.rests_spoiled = s.commands = s.settings_saved = s.settings_unsaved = INT32_MIN;
+        s.rest_spread[0] = s.rest_spread[1] = s.rest_spread[2] = -1.2345e-38f;
+        s.rest_noise[0] = s.rest_noise[1] = s.rest_noise[2] = -1.2345e-38f;
+        assert_true(view_event_status(&s, out, sizeof out) > 0);
+    }
     assert_true(view_event_line("a\tb\n", out, sizeof out) > 0);
     assert_string_equal(out, "{\"t\":\"line\",\"text\":\"a\\u0009b\\u000a\"}");
     assert_int_equal(view_event_line("too long", out, 10), 0); /* cut short: nothing half-written is sent */
