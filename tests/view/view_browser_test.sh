@@ -11,21 +11,9 @@ chromium=$(command -v chromium || true)
 if [ "${HKF_IN_NETNS:-}" != 1 ]; then
   HKF_IN_NETNS=1 exec "$source/tools/lcm-netns" "$0" "$@"
 fi
-work=$(mktemp -d)
-track_pid=
-cleanup() { [ -z "$track_pid" ] || kill "$track_pid" 2>/dev/null || true; rm -rf "$work"; }
-trap cleanup EXIT
-fail() { echo "FAIL: $*" >&2; tail -5 "$work/track.txt" >&2 2>/dev/null || true; exit 1; }
-. "$source/tests/lib/wait_until.sh"
-export HOME="$work/home" XDG_CONFIG_HOME=
-mkdir -p "$HOME"
-port=$((20000 + RANDOM % 20000))
-"$build/tools/hkf-track" --source "$videos/d14.mp4" --realtime --view "$port" --logs "$work/logs" >"$work/track.txt" 2>&1 &
-track_pid=$!
-wait_until 60 "the view" curl -s -o /dev/null "http://127.0.0.1:$port/view.css" || fail "the view did not open"
-"$python" "$source/tests/view/browser_test.py" "$chromium" "http://127.0.0.1:$port" "$work/track.txt" \
-  "${shot:-$work/view.png}" || fail "the page in Chromium"
-kill -INT "$track_pid"
-wait "$track_pid" || fail "hkf-track did not stop cleanly"
-track_pid=
+. "$source/tests/view/tracker_with_view.sh"
+start_tracker_with_view "$videos/d14.mp4"
+"$python" "$source/tests/view/browser_test.py" "$chromium" "$base" "$work/track.txt" "${shot:-$work/view.png}" ||
+  fail "the page in Chromium"
+stop_tracker
 echo "view_browser_test: ok"

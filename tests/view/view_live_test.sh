@@ -13,20 +13,8 @@ build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) python=$3 videos=$4
 if [ "${HKF_IN_NETNS:-}" != 1 ]; then
   HKF_IN_NETNS=1 exec "$source/tools/lcm-netns" "$0" "$@"
 fi
-work=$(mktemp -d)
-track_pid=
-cleanup() { [ -z "$track_pid" ] || kill "$track_pid" 2>/dev/null || true; rm -rf "$work"; }
-trap cleanup EXIT
-fail() { echo "FAIL: $*" >&2; cat "$work/track.txt" >&2 2>/dev/null || true; exit 1; }
-. "$source/tests/lib/wait_until.sh"
-export HOME="$work/home" XDG_CONFIG_HOME=  # the save goes here, never to the user running the test
-mkdir -p "$HOME"
-port=$((20000 + RANDOM % 20000))
-base="http://127.0.0.1:$port"
-
-"$build/tools/hkf-track" --source "$videos/d14.mp4" --realtime --view "$port" --logs "$work/logs" >"$work/track.txt" 2>&1 &
-track_pid=$!
-wait_until 60 "the view" curl -s -o /dev/null "$base/view.css" || fail "the view did not open"
+. "$source/tests/view/tracker_with_view.sh"
+start_tracker_with_view "$videos/d14.mp4"
 token=$(curl -s "$base/" | sed -n 's/.*name="hkf-token" content="\([0-9a-f]\{32\}\)".*/\1/p')
 post() { curl -s -o /dev/null -w '%{http_code}' -X POST -H "X-HKF-Token: $token" "$base/command/$1"; }
 "$python" "$source/tests/view/sse_client.py" "$base" 5 "$work/events1.jsonl" "$work/picture.jpg"
@@ -35,9 +23,7 @@ sleep 1
 [ "$(post 'stillness?value=3')" = 200 ] || fail "the stillness knob was refused"
 [ "$(post save)" = 200 ] || fail "save was refused"
 "$python" "$source/tests/view/sse_client.py" "$base" 3 "$work/events2.jsonl" "$work/picture2.jpg"
-kill -INT "$track_pid"
-wait "$track_pid" || fail "hkf-track did not stop cleanly"
-track_pid=
+stop_tracker
 "$python" "$source/tests/view/check_live_events.py" "$work/events1.jsonl" "$work/events2.jsonl" "$work/track.txt" \
   "$work/picture.jpg" || fail "what the page was sent"
 grep -q "^stillness = 3 " "$HOME/.config/hkf/hkf-filter.conf" || fail "the save did not write stillness 3"
