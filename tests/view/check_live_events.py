@@ -36,7 +36,10 @@ def main():
     check(len(shown) == len(lines), f"{len(lines) - len(shown)} of the page's lines are not hkf-track's: {lines[:2]}")
 
     # pictures: the rate, and capture -> page (the picture's capture stamp against the event's arrival)
-    pictures = kinds(before, "picture")[1:]  # the first: the stream's start, before the estimator was asked
+    # live pictures only: a new stream first replays the feed's last events (an earlier viewer's pictures among
+    # them), and the first live one may come before the estimator was asked
+    start = before[0]["arrived"]
+    pictures = [p for p in kinds(before, "picture") if p["arrived"] > start + 0.5]
     span = pictures[-1]["arrived"] - pictures[0]["arrived"] if len(pictures) > 1 else 0
     rate = (len(pictures) - 1) / span if span > 0 else 0
     delays = [1000 * (p["arrived"] - p["event"]["utime"] / 1e6) for p in pictures]

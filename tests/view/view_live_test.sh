@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The live view of a running tracker, end to end over udpm in a private network namespace: hkf-track --view
-# plays a real face video as the camera; a client reads the page's event stream as a browser does. Checked:
+# plays a real face video as the camera; a client reads the page's event stream as a browser does (and that
+# of an hkf-view started beside it, as for a tracker started otherwise: every kind of event). Checked:
 # the raw and filtered poses, the rest's status and hkf-track's own line reach the page (the line the very
 # text the terminal shows); camera pictures come at >= 10 fps within 200 ms of capture, a JPEG with the face;
 # the page's recentre makes the node recentre (its command count and centre); the stillness knob changes the
@@ -14,7 +15,16 @@ if [ "${HKF_IN_NETNS:-}" != 1 ]; then
   HKF_IN_NETNS=1 exec "$source/tools/lcm-netns" "$0" "$@"
 fi
 . "$source/tests/view/tracker_with_view.sh"
+# hkf-view beside it, as for a tracker started otherwise: the same channels, its own line
+"$build/tools/hkf-view" --listen "127.0.0.1:$((port + 1))" --seconds 60 >"$work/view.txt" 2>&1 &
+view_pid=$!
 start_tracker_with_view "$videos/d14.mp4"
+"$python" "$source/tests/view/sse_client.py" "http://127.0.0.1:$((port + 1))" 3 "$work/beside.jsonl" "$work/beside.jpg"
+kill -INT "$view_pid"
+wait "$view_pid" || fail "hkf-view did not stop cleanly"
+for kind in raw pose status line picture; do
+  grep -q "\"t\": \"$kind\"" "$work/beside.jsonl" || fail "hkf-view beside the tracker sent no $kind event"
+done
 token=$(curl -s "$base/" | sed -n 's/.*name="hkf-token" content="\([0-9a-f]\{32\}\)".*/\1/p')
 post() { curl -s -o /dev/null -w '%{http_code}' -X POST -H "X-HKF-Token: $token" "$base/command/$1"; }
 "$python" "$source/tests/view/sse_client.py" "$base" 5 "$work/events1.jsonl" "$work/picture.jpg"

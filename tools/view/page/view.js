@@ -71,8 +71,28 @@ function onLine(e) {
   $("rate").textContent = rate ? rate[1] + " fps" : "-";
 }
 
+// One picture fetched at a time: while one loads, only the newest announced is kept to fetch next (a slow
+// phone, or the burst of a new stream's replay, never queues up requests).
+let pictureLoading = false, pictureNext = null;
+function fetchPicture(n) {
+  if (pictureLoading) {
+    pictureNext = n;
+    return;
+  }
+  pictureLoading = true;
+  $("camera").src = "picture.jpg?n=" + n;
+}
+function pictureDone() {
+  pictureLoading = false;
+  if (pictureNext !== null) {
+    const n = pictureNext;
+    pictureNext = null;
+    fetchPicture(n);
+  }
+}
+
 function onPicture(e) {
-  $("camera").src = "picture.jpg?n=" + e.n;
+  fetchPicture(e.n);
   $("camera-note").textContent = "frame " + e.seq;
 }
 
@@ -128,6 +148,8 @@ function connect() {
   };
 }
 
+$("camera").addEventListener("load", pictureDone);
+$("camera").addEventListener("error", pictureDone);
 $("recenter").addEventListener("click", () => command("recenter"));
 $("reset").addEventListener("click", () => command("reset"));
 $("save").addEventListener("click", () => command("save"));
