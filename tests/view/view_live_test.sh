@@ -19,7 +19,8 @@ fi
 "$build/tools/hkf-view" --listen "127.0.0.1:$((port + 1))" --seconds 60 >"$work/view.txt" 2>&1 &
 view_pid=$!
 start_tracker_with_view "$videos/d14.mp4"
-"$python" "$source/tests/view/sse_client.py" "http://127.0.0.1:$((port + 1))" 3 "$work/beside.jsonl" "$work/beside.jpg"
+"$python" "$source/tests/view/sse_client.py" "http://127.0.0.1:$((port + 1))" 60 "$work/beside.jsonl" "$work/beside.jpg" \
+  --pictures 3 --line || fail "hkf-view beside the tracker"
 kill -INT "$view_pid"
 wait "$view_pid" || fail "hkf-view did not stop cleanly"
 for kind in raw pose status line picture; do
@@ -27,12 +28,14 @@ for kind in raw pose status line picture; do
 done
 token=$(curl -s "$base/" | sed -n 's/.*name="hkf-token" content="\([0-9a-f]\{32\}\)".*/\1/p')
 post() { curl -s -o /dev/null -w '%{http_code}' -X POST -H "X-HKF-Token: $token" "$base/command/$1"; }
-"$python" "$source/tests/view/sse_client.py" "$base" 5 "$work/events1.jsonl" "$work/picture.jpg"
+"$python" "$source/tests/view/sse_client.py" "$base" 60 "$work/events1.jsonl" "$work/picture.jpg" --pictures 40 --line \
+  --measured ||
+  fail "the page's events"
 [ "$(post recenter)" = 200 ] || fail "the page's recentre was refused"
-sleep 1
 [ "$(post 'stillness?value=3')" = 200 ] || fail "the stillness knob was refused"
 [ "$(post save)" = 200 ] || fail "save was refused"
-"$python" "$source/tests/view/sse_client.py" "$base" 3 "$work/events2.jsonl" "$work/picture2.jpg"
+"$python" "$source/tests/view/sse_client.py" "$base" 60 "$work/events2.jsonl" "$work/picture2.jpg" --commands 3 --line ||
+  fail "the commands' effect on the page"
 stop_tracker
 "$python" "$source/tests/view/check_live_events.py" "$work/events1.jsonl" "$work/events2.jsonl" "$work/track.txt" \
   "$work/picture.jpg" || fail "what the page was sent"
