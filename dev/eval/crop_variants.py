@@ -24,12 +24,16 @@ import numpy as np
 VARIANTS = [  # name, the keys added to whenet.model
     ("default", ""),
     ("flip", "flip_average = yes"),
+    ("margin 0.1", "crop_margin = 0.1"),
+    ("margin 0.15", "crop_margin = 0.15"),
     ("margin 0.3", "crop_margin = 0.3"),
     ("margin 0.4", "crop_margin = 0.4"),
     ("profile 30: margin 0.35", "profile_from = 30\nprofile_margin = 0.35"),
     ("profile 30: margin 0.5", "profile_from = 30\nprofile_margin = 0.5"),
     ("profile 30: back +0.1", "profile_from = 30\nprofile_shift = 0.1"),
+    ("profile 30: back -0.05", "profile_from = 30\nprofile_shift = -0.05"),
     ("profile 30: back -0.1", "profile_from = 30\nprofile_shift = -0.1"),
+    ("profile 30: back -0.2", "profile_from = 30\nprofile_shift = -0.2"),
     ("flip + profile 30: margin 0.35", "flip_average = yes\nprofile_from = 30\nprofile_margin = 0.35"),
 ]
 BINS = [(0, 30), (30, 60), (60, 99)]
