@@ -45,7 +45,9 @@ curl -s -D - -o /dev/null "$base/" | grep -qi "^content-security-policy: default
 [ "$(code -X POST -H "Origin: http://evil.example" -H "X-HKF-Token: $token" "$base/command/recenter")" = 403 ] ||
   fail "a command from a foreign page was taken, token or not"
 [ "$(code -X POST "$base/command/recenter")" = 403 ] || fail "a command without the token was taken"
-[ "$(code -X POST -H "X-HKF-Token: ${token%?}0" "$base/command/recenter")" = 403 ] || fail "a wrong token was taken"
+# a wrong token: the right one with its last digit changed (to 1 if it was 0, else to 0)
+wrong="${token%?}0"; [ "$wrong" != "$token" ] || wrong="${token%?}1"
+[ "$(code -X POST -H "X-HKF-Token: $wrong" "$base/command/recenter")" = 403 ] || fail "a wrong token was taken"
 [ "$(code -X POST -H "X-HKF-Token: $token" "$base/command/format")" = 400 ] || fail "an unknown command was taken"
 for path in /../../etc/passwd /index.html /view.js/ /etc/passwd /%2e%2e/%2e%2e/etc/passwd /.git/config; do
   [ "$(code --path-as-is "$base$path")" = 404 ] || fail "$path is served (only the page's assets may be)"
