@@ -33,28 +33,32 @@ std::vector<float> noise(size_t n, unsigned seed, float spread)
     return v;
 }
 
-// One tile: cin input channels; the packed weights [cin][rows], the bias, an input of `pitch` floats a row.
-void check_tile(const LayerKernels &k, int cin)
+// One tile: cin input channels; the packed weights [cin][rows], the bias, an input of `pitch` floats a row;
+// with swish, the sum x comes out as x / (1 + exp(-x)).
+void check_tile(const LayerKernels &k, int cin, bool swish)
 {
     const int rows = k.tile_rows, pixels = k.tile_pixels;
     const long pitch = pixels + 7;  // a plane wider than the tile: the tile reads its own pixels only
     const std::vector<float> weights = noise(static_cast<size_t>(cin) * rows, 1, 0.3f), bias = noise(rows, 2, 0.5f);
     const std::vector<float> in = noise(static_cast<size_t>(cin) * pitch, 3, 1.0f);
     std::vector<float> out(static_cast<size_t>(rows) * (pixels + 3), -7.0f);
-    k.pointwise_tile(hkf_estimator::PointwiseTile{weights.data(), cin, in.data(), pitch, bias.data(), out.data(), pixels + 3});
+    k.pointwise_tile(hkf_estimator::PointwiseTile{weights.data(), cin, in.data(), pitch, bias.data(), out.data(), pixels + 3,
+                                                    swish});
     double worst = 0.0, scale = 1e-6;
     bool outside = true;
     for (int r = 0; r < rows; ++r) {
         for (int p = 0; p < pixels; ++p) {
             double sum = bias[r];
             for (int c = 0; c < cin; ++c) sum += static_cast<double>(weights[static_cast<size_t>(c) * rows + r]) * in[c * pitch + p];
+            if (swish) sum /= 1.0 + std::exp(-sum);
             worst = std::fmax(worst, std::fabs(out[static_cast<size_t>(r) * (pixels + 3) + p] - sum));
             scale = std::fmax(scale, std::fabs(sum));
         }
         for (int p = pixels; p < pixels + 3; ++p) outside = outside && out[static_cast<size_t>(r) * (pixels + 3) + p] == -7.0f;
     }
     char what[80];
-    std::snprintf(what, sizeof what, "pointwise tile %d x %d, %d input channels", rows, pixels, cin);
+    std::snprintf(what, sizeof what, "pointwise tile %d x %d, %d input channels%s", rows, pixels, cin,
+                  swish ? ", swish" : "");
     expect(worst / scale < 1e-5 && outside, k.name, what, worst / scale);
 }
 
@@ -126,7 +130,8 @@ int main(int argc, char **argv)
             std::printf("%-7s skipped: this CPU cannot run it\n", k->name);
             continue;
         }
-        for (int cin : {1, 3, 16, 240}) check_tile(*k, cin);
+        for (int cin : {1, 3, 16, 240}) check_tile(*k, cin, false);
+        for (int cin : {3, 240}) check_tile(*k, cin, true);
         check_taps(*k, 3, 1, k->taps_3x3_stride1);
         check_taps(*k, 3, 2, k->taps_3x3_stride2);
         check_taps(*k, 5, 1, k->taps_5x5_stride1);

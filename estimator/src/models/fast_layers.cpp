@@ -321,16 +321,14 @@ private:
             float *tile_out = m.dst + static_cast<size_t>(t) * rows_ * pixels + pixel;
             const float *weights = m.weights + static_cast<size_t>(t) * in_channels_ * rows_;
             if (count == pixels_ && rows == rows_) {
-                kernels_.pointwise_tile(PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], tile_out, pixels});
+                kernels_.pointwise_tile(
+                    PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], tile_out, pixels, swish_});
             } else {
-                kernels_.pointwise_tile(PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], scratch, pixels_});
+                kernels_.pointwise_tile(
+                    PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], scratch, pixels_, swish_});
                 for (int r = 0; r < rows; ++r)
                     std::memcpy(tile_out + static_cast<size_t>(r) * pixels, scratch + r * pixels_, sizeof(float) * count);
             }
-            if (swish_)
-                for (int r = 0; r < rows; ++r)
-                    kernels_.swish(tile_out + static_cast<size_t>(r) * pixels, tile_out + static_cast<size_t>(r) * pixels,
-                                   count);
         }
     }
 

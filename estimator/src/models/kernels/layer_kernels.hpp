@@ -11,7 +11,7 @@ namespace hkf_estimator {
 enum class SimdLevel { baseline, avx2, avx512 };  // baseline: SSE2 on x86-64, NEON on aarch64
 
 // One tile of a 1x1 convolution: tile_rows output channels x tile_pixels pixels, summed over cin input
-// channels.
+// channels, and the swish after it if asked.
 struct PointwiseTile {
     const float *weights;  // packed [cin][tile_rows]
     int cin;
@@ -20,6 +20,7 @@ struct PointwiseTile {
     const float *bias;     // tile_rows
     float *out;            // tile_rows rows of out_pitch floats
     long out_pitch;
+    bool swish;            // the output x / (1 + exp(-x)) of the sum x
 };
 
 // A depthwise convolution's "extended" outputs sum[j], j < count: bias plus every K x K tap at

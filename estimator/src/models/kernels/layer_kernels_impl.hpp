@@ -24,35 +24,59 @@ namespace {
 typedef float Vector __attribute__((vector_size(HKF_LANES * sizeof(float))));
 constexpr int kRows = HKF_TILE_ROWS, kVectors = HKF_TILE_VECTORS, kPixels = HKF_TILE_VECTORS * HKF_LANES;
 
-// exp(t) for t in [-87, 88] (clamped outside), written so that a compiler vectorises a loop of it: the
-// clamp as t + relu(-87 - t) and t - relu(t - 88), relu(d) = (d + |d|) / 2, which leave a t inside
-// exactly as it is (a comparison would be a branch GCC does not if-convert); t = k ln2 + r with
-// |r| <= ln2 / 2 (Cody-Waite), exp(r) by its Taylor series to r^6 (relative error below 2e-7 there),
-// 2^k by the float's exponent bits; k from the round-to-nearest trick (adding 1.5 * 2^23 leaves k in
-// the low mantissa bits), so no float-to-int conversion is made.
-inline float exp_approx(float t)
+typedef std::uint32_t Bits __attribute__((vector_size(HKF_LANES * sizeof(float))));
+
+// A float's bits, or a vector's lane by lane: for exp_approx, which is written once for both.
+template <typename T> struct BitsOf { typedef std::uint32_t type; };
+template <> struct BitsOf<Vector> { typedef Bits type; };
+
+template <typename T>
+T absolute(T v)
 {
-    const float below = -87.0f - t;
-    t += 0.5f * (below + __builtin_fabsf(below));  // max(t, -87)
-    const float above = t - 88.0f;
-    t -= 0.5f * (above + __builtin_fabsf(above));  // min(t, 88)
+    typename BitsOf<T>::type bits;
+    __builtin_memcpy(&bits, &v, sizeof bits);
+    bits &= 0x7FFFFFFFu;
+    __builtin_memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
+// exp(t) for t in [-87, 88] (clamped outside), of a float or lane by lane: the clamp as t + relu(-87 - t)
+// and t - relu(t - 88), relu(d) = (d + |d|) / 2, which leave a t inside exactly as it is (a comparison
+// would be a branch GCC does not if-convert); t = k ln2 + r with |r| <= ln2 / 2 (Cody-Waite), exp(r) by
+// its Taylor series to r^6 (relative error below 2e-7 there), 2^k by the float's exponent bits; k from
+// the round-to-nearest trick (adding 1.5 * 2^23 leaves k in the low mantissa bits), so no float-to-int
+// conversion is made.
+template <typename T>
+T exp_approx(T t)
+{
+    const T below = -87.0f - t;
+    t += 0.5f * (below + absolute(below));  // max(t, -87)
+    const T above = t - 88.0f;
+    t -= 0.5f * (above + absolute(above));  // min(t, 88)
     const float magic = 12582912.0f;  // 1.5 * 2^23
-    const float shifted = t * 1.44269504088896341f + magic;
-    const float k = shifted - magic;
-    const float r = (t - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
-    const float p =
-        1.0f + r * (1.0f + r * (0.5f + r * (1.0f / 6 + r * (1.0f / 24 + r * (1.0f / 120 + r * (1.0f / 720))))));
-    std::uint32_t shifted_bits, p_bits;
+    const T shifted = t * 1.44269504088896341f + magic;
+    const T k = shifted - magic;
+    const T r = (t - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
+    const T p = 1.0f + r * (1.0f + r * (0.5f + r * (1.0f / 6 + r * (1.0f / 24 + r * (1.0f / 120 + r * (1.0f / 720))))));
+    typename BitsOf<T>::type shifted_bits, p_bits;
     __builtin_memcpy(&shifted_bits, &shifted, sizeof shifted_bits);
     __builtin_memcpy(&p_bits, &p, sizeof p_bits);
     p_bits += (shifted_bits - 0x4B400000u) << 23;  // times 2^k: k added to the exponent
-    float out;
+    T out;
     __builtin_memcpy(&out, &p_bits, sizeof out);
     return out;
 }
 
+// x / (1 + exp(-x)), of a float or of a vector's lanes. (A reciprocal estimate and a Newton step instead
+// of the division ran 20 % slower on Zen 4: the divide is not what bounds it.)
+template <typename T>
+T swish_of(T x)
+{
+    return x / (1.0f + exp_approx(-x));
+}
+
 // The tile: kRows x kVectors vector registers of running sums, one broadcast weight per row and input
-// channel (a fused multiply-add where the level has one).
+// channel (a fused multiply-add where the level has one); the swish, if asked, on the sums.
 void pointwise_tile(const PointwiseTile &t)
 {
     // Every loop over rows and vectors unrolled, so that the sums stay in registers (GCC keeps an array it
@@ -71,6 +95,12 @@ void pointwise_tile(const PointwiseTile &t)
         for (int r = 0; r < kRows; ++r)
 #pragma GCC unroll 4
             for (int v = 0; v < kVectors; ++v) sum[r][v] += x[v] * w[r];  // w[r] broadcast
+    }
+    if (t.swish) {  // in registers, before the store: no second pass over the output
+#pragma GCC unroll 16
+        for (int r = 0; r < kRows; ++r)
+#pragma GCC unroll 4
+            for (int v = 0; v < kVectors; ++v) sum[r][v] = swish_of(sum[r][v]);
     }
 #pragma GCC unroll 16
     for (int r = 0; r < kRows; ++r)
@@ -94,12 +124,10 @@ void taps(const float *padded, int pitch, const float *weights, float bias, floa
     }
 }
 
+// A loop the compiler vectorises, its own way with the last floats.
 void swish(const float *src, float *dst, long n)
 {
-    for (long i = 0; i < n; ++i) {
-        const float x = src[i];
-        dst[i] = x / (1.0f + exp_approx(-x));
-    }
+    for (long i = 0; i < n; ++i) dst[i] = swish_of(src[i]);
 }
 
 // 16 running sums (a loop the compiler vectorises; one sum would be a chain of dependent additions),
