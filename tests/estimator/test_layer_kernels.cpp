@@ -65,16 +65,18 @@ void check_tile(const LayerKernels &k, int cin, bool swish)
 void check_taps(const LayerKernels &k, int kernel, int stride, hkf_estimator::DepthwiseTaps *taps)
 {
     const int pitch = 23, count = 5 * pitch;
-    const std::vector<float> padded = noise(static_cast<size_t>(stride) * count + kernel * (pitch + 1), 4, 1.0f);
+    const long phase_size = static_cast<long>(pitch) * (5 + (kernel - 1) / stride + 1);
+    const std::vector<float> phases = noise(static_cast<size_t>(stride) * stride * phase_size, 4, 1.0f);
     const std::vector<float> weights = noise(static_cast<size_t>(kernel) * kernel, 5, 0.3f);
     std::vector<float> sum(count);
-    taps(padded.data(), pitch, weights.data(), 0.25f, sum.data(), count);
+    taps(phases.data(), phase_size, pitch, weights.data(), 0.25f, sum.data(), count);
     double worst = 0.0;
     for (int j = 0; j < count; ++j) {
         double expected = 0.25;
         for (int ky = 0; ky < kernel; ++ky)
             for (int kx = 0; kx < kernel; ++kx)
-                expected += static_cast<double>(weights[ky * kernel + kx]) * padded[static_cast<size_t>(stride) * j + ky * pitch + kx];
+                expected += static_cast<double>(weights[ky * kernel + kx]) *
+                            phases[((ky % stride) * stride + kx % stride) * phase_size + (ky / stride) * pitch + kx / stride + j];
         worst = std::fmax(worst, std::fabs(sum[j] - expected));
     }
     char what[80];

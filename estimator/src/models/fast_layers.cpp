@@ -73,6 +73,12 @@ private:
     const LayerKernels &kernels_;  // the level in use when the layer was made
 };
 
+// dst[i] = src[2 i], i < n: with the stride known, a loop the compiler vectorises.
+void every_second(const float *__restrict src, float *__restrict dst, int n)
+{
+    for (int i = 0; i < n; ++i) dst[i] = src[2 * i];
+}
+
 // "hkf.DepthwiseConv": input N x C x H x W, blobs[0] the kernels C x 1 x k x k, blobs[1] the bias
 // (C); attributes kernel, stride, pad_top, pad_left, pad_bottom, pad_right, swish (0 or 1), means (0 or
 // 1): with means 1 a second output, each output plane's mean, N x C x 1 x 1 (the global average pooling
@@ -127,66 +133,102 @@ public:
         cv::Mat &out = t.out[0];
         const int planes = in.size[0] * in.size[1];
         float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
+        const Phases shape = phases_of(in.size[3], out.size[2]);
         cv::parallel_for_(cv::Range(0, planes), [&](const cv::Range &range) {
-            std::vector<float> padded, extended;
+            // zeroed once: each plane then writes the input's places only, the padding's stay zero
+            std::vector<float> phases(static_cast<size_t>(stride_) * stride_ * shape.size, 0.0f), extended(shape.count);
             const long plane = static_cast<long>(out.size[2]) * out.size[3];
             for (int p = range.start; p < range.end; ++p) {
-                convolve_plane(in, out, p, padded, extended);
+                convolve_plane(in, out, p, shape, phases.data(), extended.data());
                 if (means != nullptr) means[p] = kernels_.plane_mean(out.ptr<float>() + plane * p, plane);
             }
         });
     }
 
 private:
+    // The zero-padded plane P (the input with pad_top rows above it, pad_left columns before it) split into
+    // stride^2 phases: phase (py, px) holds P[r stride + py][c stride + px] at r pitch + c, pitch =
+    // ceil(padded width / stride), `rows` rows (the last tap's, and one for the columns beyond the
+    // output's), zero beyond P; `count` extended outputs (convolve_plane). At stride 1 the phase is P.
+    struct Phases {
+        int pitch, rows;
+        long size;     // floats in one phase
+        size_t count;  // out_h pitch
+    };
+
+    Phases phases_of(int in_w, int out_h) const
+    {
+        const int pitch = (in_w + pad_left_ + pad_right_ + stride_ - 1) / stride_;
+        const int rows = out_h + (kernel_ - 1) / stride_ + 1;
+        return Phases{pitch, rows, static_cast<long>(pitch) * rows, static_cast<size_t>(out_h) * pitch};
+    }
+
+    // The input plane's floats written to their places in the phases (whose padding is zero already).
+    void split_into_phases(const float *src, int h, int w, const Phases &shape, float *phases) const
+    {
+        for (int px = 0; px < stride_; ++px) {
+            // the columns c whose input column x = c stride + px - pad_left is inside [0, w)
+            const int first = std::min(shape.pitch, (pad_left_ - px + stride_ - 1) / stride_);
+            const int last = w - 1 + pad_left_ - px;  // over stride: the last such c, if >= 0
+            const int end = last < 0 ? first : std::max(first, std::min(shape.pitch, last / stride_ + 1));
+            for (int py = 0; py < stride_; ++py) {
+                float *dst = phases + (py * stride_ + px) * shape.size + first;
+                for (int r = 0; r < shape.rows; ++r, dst += shape.pitch) {
+                    const int y = r * stride_ + py - pad_top_;  // the input's row
+                    if (y < 0 || y >= h) continue;
+                    const float *row = src + static_cast<long>(y) * w + first * stride_ + px - pad_left_;
+                    if (stride_ == 1)
+                        std::memcpy(dst, row, sizeof(float) * (end - first));
+                    else if (stride_ == 2)
+                        every_second(row, dst, end - first);
+                    else
+                        for (int c = 0; c < end - first; ++c) dst[c] = row[c * stride_];
+                }
+            }
+        }
+    }
+
     // The extended outputs for a kernel size or stride without a loop of the level's own (none in WHENet):
     // as LayerKernels' taps.
-    void any_taps(const float *padded, int pitch, const float *weights, float bias, float *__restrict sum,
-                  size_t count) const
+    void any_taps(const float *phases, long phase_size, int pitch, const float *weights, float bias,
+                  float *__restrict sum, size_t count) const
     {
         for (size_t j = 0; j < count; ++j) {
-            const float *at = padded + j * stride_;
             float acc = bias;
             for (int ky = 0; ky < kernel_; ++ky)
-                for (int kx = 0; kx < kernel_; ++kx) acc += weights[ky * kernel_ + kx] * at[ky * pitch + kx];
+                for (int kx = 0; kx < kernel_; ++kx)
+                    acc += weights[ky * kernel_ + kx] * phases[((ky % stride_) * stride_ + kx % stride_) * phase_size +
+                                                               (ky / stride_) * pitch + kx / stride_ + j];
             sum[j] = acc;
         }
     }
 
-    // One channel's plane: copied into a zero-padded buffer P of row pitch Wp, then the bias and all
-    // kernel taps summed for each "extended" output j = oy Wp + ox, ox < Wp, which reads
-    // P[stride j + ky Wp + kx], in one long loop over j: the compiler vectorises it whatever the plane's
-    // width (on 7 x 7 planes a loop per output row would be as short as the vector). The columns
-    // ox >= the output's width are then dropped; last the swish.
-    void convolve_plane(const cv::Mat &in, cv::Mat &out, int plane, std::vector<float> &padded,
-                        std::vector<float> &extended) const
+    // One channel's plane: split into phases (above), then the bias and all kernel taps summed for each
+    // "extended" output j = oy pitch + ox, ox < pitch, which reads the phase of (ky, kx) at
+    // j + (ky / stride) pitch + kx / stride, in one long loop over j: the compiler vectorises it whatever
+    // the plane's width (on 7 x 7 planes a loop per output row would be as short as the vector), with
+    // contiguous loads at any stride. The columns ox >= the output's width are then dropped; last the swish.
+    void convolve_plane(const cv::Mat &in, cv::Mat &out, int plane, const Phases &shape, float *phases,
+                        float *extended) const
     {
         const int channel = plane % in.size[1];
         const int h = in.size[2], w = in.size[3], out_h = out.size[2], out_w = out.size[3];
-        const int pitch = w + pad_left_ + pad_right_;
-        const size_t count = static_cast<size_t>(out_h) * pitch;
-        padded.assign(stride_ * count + static_cast<size_t>(kernel_) * (pitch + 1), 0.0f);
-        const float *src = in.ptr<float>() + static_cast<size_t>(plane) * h * w;
-        for (int y = 0; y < h; ++y)
-            std::memcpy(&padded[static_cast<size_t>(y + pad_top_) * pitch + pad_left_], src + static_cast<size_t>(y) * w,
-                        sizeof(float) * w);
+        split_into_phases(in.ptr<float>() + static_cast<size_t>(plane) * h * w, h, w, shape, phases);
         const float *weights = blobs[0].ptr<float>() + static_cast<size_t>(channel) * kernel_ * kernel_;
         const float bias = blobs[1].ptr<float>()[channel];
-        extended.resize(count);
-        if (kernel_ == 3 && stride_ == 1) {
-            kernels_.taps_3x3_stride1(padded.data(), pitch, weights, bias, extended.data(), count);
-        } else if (kernel_ == 3 && stride_ == 2) {
-            kernels_.taps_3x3_stride2(padded.data(), pitch, weights, bias, extended.data(), count);
-        } else if (kernel_ == 5 && stride_ == 1) {
-            kernels_.taps_5x5_stride1(padded.data(), pitch, weights, bias, extended.data(), count);
-        } else if (kernel_ == 5 && stride_ == 2) {
-            kernels_.taps_5x5_stride2(padded.data(), pitch, weights, bias, extended.data(), count);
-        } else {
-            any_taps(padded.data(), pitch, weights, bias, extended.data(), count);
-        }
-        const float *sum = extended.data();
+        DepthwiseTaps *taps = kernel_ == 3 && stride_ == 1   ? kernels_.taps_3x3_stride1
+                              : kernel_ == 3 && stride_ == 2 ? kernels_.taps_3x3_stride2
+                              : kernel_ == 5 && stride_ == 1 ? kernels_.taps_5x5_stride1
+                              : kernel_ == 5 && stride_ == 2 ? kernels_.taps_5x5_stride2
+                                                             : nullptr;
+        if (taps != nullptr)
+            taps(phases, shape.size, shape.pitch, weights, bias, extended, shape.count);
+        else
+            any_taps(phases, shape.size, shape.pitch, weights, bias, extended, shape.count);
         float *dst = out.ptr<float>() + static_cast<size_t>(plane) * out_h * out_w;
         for (int oy = 0; oy < out_h; ++oy)
-            std::memcpy(dst + static_cast<size_t>(oy) * out_w, sum + static_cast<size_t>(oy) * pitch, sizeof(float) * out_w);
+            std::memcpy(dst + static_cast<size_t>(oy) * out_w, extended + static_cast<size_t>(oy) * shape.pitch,
+                        sizeof(float) * out_w);
         if (swish_) kernels_.swish(dst, dst, static_cast<long>(out_h) * out_w);
     }
 

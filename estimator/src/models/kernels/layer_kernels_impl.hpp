@@ -109,17 +109,20 @@ void pointwise_tile(const PointwiseTile &t)
             __builtin_memcpy(t.out + r * t.out_pitch + v * HKF_LANES, &sum[r][v], sizeof sum[r][v]);
 }
 
-// All K^2 taps of one output summed in registers (one store per output), the loop over j vectorised.
+// All K^2 taps of one output summed in registers (one store per output), the loop over j vectorised:
+// every tap reads its phase at j plus a fixed offset, so the loads are contiguous at any stride.
 template <int K, int STRIDE>
-void taps(const float *padded, int pitch, const float *weights, float bias, float *__restrict sum, std::size_t count)
+void taps(const float *phases, long phase_size, int pitch, const float *weights, float bias, float *__restrict sum,
+          std::size_t count)
 {
     float w[K * K];
     __builtin_memcpy(w, weights, sizeof w);
     for (std::size_t j = 0; j < count; ++j) {
-        const float *at = padded + j * STRIDE;
+        const float *at = phases + j;
         float acc = bias;
         for (int ky = 0; ky < K; ++ky)
-            for (int kx = 0; kx < K; ++kx) acc += w[ky * K + kx] * at[ky * pitch + kx];
+            for (int kx = 0; kx < K; ++kx)
+                acc += w[ky * K + kx] * at[((ky % STRIDE) * STRIDE + kx % STRIDE) * phase_size + (ky / STRIDE) * pitch + kx / STRIDE];
         sum[j] = acc;
     }
 }
