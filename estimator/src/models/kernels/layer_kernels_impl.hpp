@@ -31,7 +31,7 @@ template <typename T> struct BitsOf { typedef std::uint32_t type; };
 template <> struct BitsOf<Vector> { typedef Bits type; };
 
 template <typename T>
-T absolute(T v)
+inline T absolute(T v)
 {
     typename BitsOf<T>::type bits;
     __builtin_memcpy(&bits, &v, sizeof bits);
@@ -40,24 +40,40 @@ T absolute(T v)
     return v;
 }
 
-// exp(t) for t in [-87, 88] (clamped outside), of a float or lane by lane: the clamp as t + relu(-87 - t)
-// and t - relu(t - 88), relu(d) = (d + |d|) / 2, which leave a t inside exactly as it is (a comparison
-// would be a branch GCC does not if-convert); t = k ln2 + r with |r| <= ln2 / 2 (Cody-Waite), exp(r) by
-// its Taylor series to r^6 (relative error below 2e-7 there), 2^k by the float's exponent bits; k from
-// the round-to-nearest trick (adding 1.5 * 2^23 leaves k in the low mantissa bits), so no float-to-int
-// conversion is made.
+// t clamped to [-87, 88]. A float's as t + relu(-87 - t) and t - relu(t - 88), relu(d) = (d + |d|) / 2,
+// which leave a t inside exactly as it is (a comparison would be a branch GCC does not if-convert in a
+// loop over floats); a vector's by comparisons, which the compiler makes a max and a min (4 operations
+// fewer).
+inline float clamp_exponent(float t)
+{
+    const float below = -87.0f - t;
+    t += 0.5f * (below + absolute(below));
+    const float above = t - 88.0f;
+    return t - 0.5f * (above + absolute(above));
+}
+
+inline Vector clamp_exponent(Vector t)
+{
+    t = t < -87.0f ? Vector{} - 87.0f : t;
+    return t > 88.0f ? Vector{} + 88.0f : t;
+}
+
+// exp(t) for t in [-87, 88] (clamped outside), of a float or lane by lane: t = k ln2 + r with
+// |r| <= ln2 / 2 (Cody-Waite), exp(r) by a degree-5 polynomial of least relative error there
+// (dev/fit/exp_polynomial.py: 2.1e-7 in float arithmetic, as the Taylor series to r^6 with one
+// multiply-add more), 2^k by the float's exponent bits; k from the round-to-nearest trick (adding
+// 1.5 * 2^23 leaves k in the low mantissa bits), so no float-to-int conversion is made.
 template <typename T>
 T exp_approx(T t)
 {
-    const T below = -87.0f - t;
-    t += 0.5f * (below + absolute(below));  // max(t, -87)
-    const T above = t - 88.0f;
-    t -= 0.5f * (above + absolute(above));  // min(t, 88)
+    t = clamp_exponent(t);
     const float magic = 12582912.0f;  // 1.5 * 2^23
     const T shifted = t * 1.44269504088896341f + magic;
     const T k = shifted - magic;
     const T r = (t - k * 0.693145751953125f) - k * 1.428606765330187e-06f;
-    const T p = 1.0f + r * (1.0f + r * (0.5f + r * (1.0f / 6 + r * (1.0f / 24 + r * (1.0f / 120 + r * (1.0f / 720))))));
+    const T p = 1.000000119e+00f +
+                r * (9.999997020e-01f +
+                     r * (4.999889433e-01f + r * (1.666757464e-01f + r * (4.191538319e-02f + r * 8.297652006e-03f))));
     typename BitsOf<T>::type shifted_bits, p_bits;
     __builtin_memcpy(&shifted_bits, &shifted, sizeof shifted_bits);
     __builtin_memcpy(&p_bits, &p, sizeof p_bits);
@@ -127,10 +143,17 @@ void taps(const float *phases, long phase_size, int pitch, const float *weights,
     }
 }
 
-// A loop the compiler vectorises, its own way with the last floats.
+// Vector by vector; the last floats, fewer than a vector, one by one.
 void swish(const float *src, float *dst, long n)
 {
-    for (long i = 0; i < n; ++i) dst[i] = swish_of(src[i]);
+    long i = 0;
+    for (; i + HKF_LANES <= n; i += HKF_LANES) {
+        Vector x;
+        __builtin_memcpy(&x, src + i, sizeof x);
+        x = swish_of(x);
+        __builtin_memcpy(dst + i, &x, sizeof x);
+    }
+    for (; i < n; ++i) dst[i] = swish_of(src[i]);
 }
 
 // 16 running sums (a loop the compiler vectorises; one sum would be a chain of dependent additions),
