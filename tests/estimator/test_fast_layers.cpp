@@ -3,7 +3,8 @@
 // them, against plain loops in double written here: the depthwise convolution at WHENet's
 // kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112, with its
 // planes' means; the pointwise convolution on planes that end in part of a tile, with output
-// channels that end in part of one, gated (the weights scaled, or the input), without a bias;
+// channels that end in part of one, gated (the weights scaled, or the input), without a bias; the
+// k x k convolution unfolded onto it, at WHENet's first layer's shape and at odd strides and paddings;
 // the swish alone, fused by OpenCV into a convolution before it, and over its whole range; bad
 // attributes and weights refused when the layer is made. All of it once per instruction-set level this
 // CPU runs (simd_level.hpp), each level's layers against the same loops; and HKF_SIMD's values read.
@@ -288,6 +289,65 @@ void test_pointwise_matches_the_loops(void **)
     }
 }
 
+// hkf.UnfoldedConv: a k x k convolution of every input channel (Case's channels: the input's; out_c
+// outputs) against the loops, relative to the output's largest magnitude.
+double unfolded_error(const Case &c, int out_c)
+{
+    const cv::Mat input = random_blob({1, c.channels, c.height, c.width}, 18, 1.0f);
+    const cv::Mat weights = random_blob({out_c, c.channels, c.kernel, c.kernel}, 19, 0.3f);
+    const cv::Mat bias = random_blob({out_c}, 20, 0.5f);
+    cv::dnn::LayerParams p = depthwise_params(c, weights, bias);
+    p.name = "unfolded";
+    p.type = "hkf.UnfoldedConv";
+    cv::dnn::Net net;
+    net.addLayerToPrev(p.name, p.type, p);
+    net.setInput(input);
+    const cv::Mat out = net.forward();
+    const int out_h = (c.height + c.top + c.bottom - c.kernel) / c.stride + 1;
+    const int out_w = (c.width + c.left + c.right - c.kernel) / c.stride + 1;
+    assert_int_equal(out.size[1], out_c);
+    assert_int_equal(out.size[2], out_h);
+    assert_int_equal(out.size[3], out_w);
+    double worst = 0.0, scale = 1e-6;
+    for (int o = 0; o < out_c; ++o)
+        for (int oy = 0; oy < out_h; ++oy)
+            for (int ox = 0; ox < out_w; ++ox) {
+                double sum = bias.ptr<float>()[o];
+                for (int ch = 0; ch < c.channels; ++ch)
+                    for (int ky = 0; ky < c.kernel; ++ky)
+                        for (int kx = 0; kx < c.kernel; ++kx) {
+                            const int y = oy * c.stride + ky - c.top, x = ox * c.stride + kx - c.left;
+                            if (y < 0 || y >= c.height || x < 0 || x >= c.width) continue;  // the zero padding
+                            sum += static_cast<double>(weights.ptr<float>()[((o * c.channels + ch) * c.kernel + ky) * c.kernel + kx]) *
+                                   input.ptr<float>()[(ch * c.height + y) * c.width + x];
+                        }
+                const double expected = c.swish ? swish_reference(sum) : sum;
+                worst = std::max(worst, std::fabs(out.ptr<float>()[(o * out_h + oy) * out_w + ox] - expected));
+                scale = std::max(scale, std::fabs(expected));
+            }
+    return worst / scale;
+}
+
+void test_unfolded_matches_the_loops(void **)
+{
+    const struct {
+        Case c;
+        int out_c;
+    } cases[] = {
+        {{3, 224, 224, 3, 2, 0, 0, 1, 1, 1}, 32},  // WHENet's first convolution, TF's "same" at stride 2
+        {{5, 9, 11, 3, 1, 1, 1, 1, 1, 0}, 7},      // stride 1; outputs that end in part of a tile
+        {{2, 13, 10, 5, 3, 2, 0, 1, 4, 1}, 9},     // a stride of 3, every side padded differently
+        {{4, 1, 1, 3, 1, 1, 1, 1, 1, 0}, 6},       // a 1 x 1 image: every tap but the centre padding
+    };
+    for (const auto &u : cases) {
+        const double error = unfolded_error(u.c, u.out_c);
+        print_message("unfolded %d -> %d on %dx%d, k %d, stride %d, pads %d %d %d %d, swish %d: relative error %.2e\n",
+                      u.c.channels, u.out_c, u.c.height, u.c.width, u.c.kernel, u.c.stride, u.c.top, u.c.left, u.c.bottom,
+                      u.c.right, u.c.swish, error);
+        assert_true(error < 1e-5);
+    }
+}
+
 bool refused(Case c, int weight_kernel, int bias_size)
 {
     const cv::Mat weights = random_blob({c.channels, 1, weight_kernel, weight_kernel}, 7, 1.0f);
@@ -329,6 +389,17 @@ void test_bad_layers_refused(void **)
         pointwise_refused = true;
     }
     assert_true(pointwise_refused);
+    p = depthwise_params(good, random_blob({4, 3, 3, 3}, 21, 1.0f), random_blob({4}, 22, 1.0f));
+    p.type = "hkf.UnfoldedConv";
+    (void)cv::dnn::LayerFactory::createLayerInstance(p.type, p);  // good: taken
+    p.set("pad_left", 3);  // a padding as wide as the kernel
+    bool unfolded_refused = false;
+    try {
+        (void)cv::dnn::LayerFactory::createLayerInstance(p.type, p);
+    } catch (const cv::Exception &) {
+        unfolded_refused = true;
+    }
+    assert_true(unfolded_refused);
 }
 
 // The levels this CPU runs, best first, down to the baseline, which can always be chosen.
@@ -359,6 +430,7 @@ int main()
         cmocka_unit_test(test_depthwise_matches_the_loops),
         cmocka_unit_test(test_depthwise_means),
         cmocka_unit_test(test_pointwise_matches_the_loops),
+        cmocka_unit_test(test_unfolded_matches_the_loops),
         cmocka_unit_test(test_swish_over_its_range),
         cmocka_unit_test(test_swish_fused_into_a_convolution),
         cmocka_unit_test(test_swish_as_a_layer),

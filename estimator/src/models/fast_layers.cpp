@@ -246,6 +246,10 @@ constexpr int kLargestTile = 256;  // floats in the largest level's pointwise ti
 // blobs[1] the bias (Cout; none: 0); attribute swish (0 or 1). The weights are packed into tiles once,
 // when the layer is made, for the tile of the level in use. A plane's last pixels, fewer than a tile, are
 // copied into a zero-padded tile.
+// "hkf.UnfoldedConv": a k x k convolution (attributes kernel, stride, pad_top, pad_left, pad_bottom,
+// pad_right, as hkf.DepthwiseConv's; blobs[0] Cout x Cin x k x k) as the same product over its unfolded
+// input, Cin k^2 rows of the output's pixels (im2col), made for each image; no gate (WHENet's first
+// convolution, 3 -> 32 channels at stride 2, which OpenCV 4.6 runs at a third of the tile's speed).
 
 class PointwiseConvLayer : public cv::dnn::Layer {
 public:
@@ -254,13 +258,17 @@ public:
     {
         setParamsFrom(params);
         swish_ = params.get<int>("swish", 0) != 0;
-        if (blobs.empty() || blobs.size() > 2 || blobs[0].dims != 4 || blobs[0].size[2] != 1 || blobs[0].size[3] != 1 ||
+        read_unfolding(params);
+        const int k = unfold_.kernel;
+        if (blobs.empty() || blobs.size() > 2 || blobs[0].dims != 4 || blobs[0].size[2] != k || blobs[0].size[3] != k ||
             blobs[0].type() != CV_32F || (blobs.size() == 2 && (blobs[1].type() != CV_32F ||
                                                                  static_cast<int>(blobs[1].total()) != blobs[0].size[0])))
-            CV_Error(cv::Error::StsBadArg, "hkf.PointwiseConv: wants a Cout x Cin x 1 x 1 kernel and a bias of Cout");
+            CV_Error(cv::Error::StsBadArg, "hkf.PointwiseConv: wants a Cout x Cin x k x k kernel (k = 1 unless "
+                                           "unfolded) and a bias of Cout");
         CV_Assert(rows_ * pixels_ <= kLargestTile);
         out_channels_ = blobs[0].size[0];
-        in_channels_ = blobs[0].size[1];
+        image_channels_ = blobs[0].size[1];
+        in_channels_ = image_channels_ * k * k;  // the rows of the product's input: (c, ky, kx) when unfolded
         const int tiles = (out_channels_ + rows_ - 1) / rows_;
         packed_.assign(static_cast<size_t>(tiles) * in_channels_ * rows_, 0.0f);
         bias_.assign(static_cast<size_t>(tiles) * rows_, 0.0f);
@@ -281,11 +289,14 @@ public:
     bool getMemoryShapes(const std::vector<cv::dnn::MatShape> &inputs, const int,
                          std::vector<cv::dnn::MatShape> &outputs, std::vector<cv::dnn::MatShape> &) const override
     {
-        CV_Assert((inputs.size() == 1 || inputs.size() == 2) && inputs[0].size() == 4 && inputs[0][1] == in_channels_);
+        CV_Assert((inputs.size() == 1 || inputs.size() == 2) && inputs[0].size() == 4 && inputs[0][1] == image_channels_);
         if (inputs.size() == 2)  // the gate: one value per image and input channel
-            CV_Assert(inputs[1].size() >= 2 && inputs[1][0] == inputs[0][0] && inputs[1][1] == in_channels_ &&
-                      cv::dnn::total(inputs[1]) == inputs[0][0] * in_channels_);
-        outputs.assign(1, cv::dnn::MatShape{inputs[0][0], out_channels_, inputs[0][2], inputs[0][3]});
+            CV_Assert(unfold_.kernel == 1 && inputs[1].size() >= 2 && inputs[1][0] == inputs[0][0] &&
+                      inputs[1][1] == in_channels_ && cv::dnn::total(inputs[1]) == inputs[0][0] * in_channels_);
+        const int padded_h = inputs[0][2] + unfold_.top + unfold_.bottom, padded_w = inputs[0][3] + unfold_.left + unfold_.right;
+        CV_Assert(padded_h >= unfold_.kernel && padded_w >= unfold_.kernel);
+        outputs.assign(1, cv::dnn::MatShape{inputs[0][0], out_channels_, (padded_h - unfold_.kernel) / unfold_.stride + 1,
+                                            (padded_w - unfold_.kernel) / unfold_.stride + 1});
         return false;
     }
 
@@ -295,14 +306,15 @@ public:
         Tensors t(inputs_arr, outputs_arr);
         const cv::Mat &in = t.in[0];
         cv::Mat &out = t.out[0];
-        const int pixels = in.size[2] * in.size[3], batch = in.size[0];
+        const int pixels = out.size[2] * out.size[3], batch = in.size[0];
         const int pixel_tiles = (pixels + pixels_ - 1) / pixels_, row_tiles = (out_channels_ + rows_ - 1) / rows_;
         // tasks: every pixel tile, its output rows split so that there are at least 8 tasks to share
         const int groups = std::min(row_tiles, std::max(1, (8 + pixel_tiles - 1) / pixel_tiles));
         const int rows_per_group = (row_tiles + groups - 1) / groups;
         for (int image = 0; image < batch; ++image) {
-            Image m{packed_.data(), in.ptr<float>() + static_cast<size_t>(image) * in_channels_ * pixels,
-                    out.ptr<float>() + static_cast<size_t>(image) * out_channels_ * pixels, pixels};
+            const float *src = in.ptr<float>() + static_cast<size_t>(image) * image_channels_ * in.size[2] * in.size[3];
+            if (unfold_.kernel > 1) src = unfold(src, in.size[2], in.size[3], out.size[2], out.size[3]);
+            Image m{packed_.data(), src, out.ptr<float>() + static_cast<size_t>(image) * out_channels_ * pixels, pixels};
             if (t.in.size() == 2) apply_gate(t.in[1].ptr<float>() + static_cast<size_t>(image) * in_channels_, &m);
             cv::parallel_for_(cv::Range(0, pixel_tiles * groups), [&](const cv::Range &range) {
                 std::vector<float> tail;
@@ -322,6 +334,48 @@ private:
         float *dst;
         int pixels;
     };
+
+    // hkf.UnfoldedConv's attributes (hkf.PointwiseConv: kernel 1, stride 1, no padding).
+    void read_unfolding(const cv::dnn::LayerParams &params)
+    {
+        if (params.type != "hkf.UnfoldedConv") return;
+        unfold_ = Unfolding{int_param(params, "kernel"), int_param(params, "stride"), int_param(params, "pad_top"),
+                            int_param(params, "pad_left"), int_param(params, "pad_bottom"), int_param(params, "pad_right")};
+        const Unfolding &u = unfold_;
+        if (u.kernel < 1 || u.kernel > 15 || u.stride < 1 || u.stride > 4 || std::min({u.top, u.left, u.bottom, u.right}) < 0 ||
+            std::max({u.top, u.left, u.bottom, u.right}) >= u.kernel)
+            CV_Error(cv::Error::StsBadArg, "hkf.UnfoldedConv: kernel, stride or padding out of range");
+    }
+
+    // One image's input unfolded into unfolded_: row (c, ky, kx) holds, at output pixel (oy, ox), the input
+    // at (oy stride + ky - pad_top, ox stride + kx - pad_left), zero outside it. Returns the rows.
+    const float *unfold(const float *src, int h, int w, int out_h, int out_w)
+    {
+        const Unfolding u = unfold_;
+        const long out_pixels = static_cast<long>(out_h) * out_w;
+        unfolded_.assign(static_cast<size_t>(in_channels_) * out_pixels, 0.0f);
+        cv::parallel_for_(cv::Range(0, in_channels_), [&](const cv::Range &range) {
+            for (int row = range.start; row < range.end; ++row) {
+                const int c = row / (u.kernel * u.kernel), ky = row / u.kernel % u.kernel, kx = row % u.kernel;
+                // the output columns whose input column ox stride + kx - pad_left is inside [0, w)
+                const int before = u.left - kx;  // input columns of padding before ox = 0 reads the first
+                const int first = before <= 0 ? 0 : std::min(out_w, (before + u.stride - 1) / u.stride);
+                const int last = w - 1 + u.left - kx;  // over stride: the last such ox, if >= 0
+                const int end = last < 0 ? first : std::max(first, std::min(out_w, last / u.stride + 1));
+                for (int oy = 0; oy < out_h; ++oy) {
+                    const int y = oy * u.stride + ky - u.top;
+                    if (y < 0 || y >= h) continue;
+                    const float *from = src + (static_cast<long>(c) * h + y) * w + first * u.stride + kx - u.left;
+                    float *to = &unfolded_[static_cast<size_t>(row) * out_pixels + static_cast<size_t>(oy) * out_w + first];
+                    if (u.stride == 2)
+                        every_second(from, to, end - first);
+                    else
+                        for (int i = 0; i < end - first; ++i) to[i] = from[i * u.stride];
+                }
+            }
+        });
+        return unfolded_.data();
+    }
 
     // The gate g (Cin values) applied: to a copy of the weights (Cout x Cin products) or of the input
     // (Cin x pixels), whichever is fewer; m's weights or src then point at the copy.
@@ -376,10 +430,15 @@ private:
 
     const LayerKernels &kernels_;  // the level in use when the layer was made
     const int rows_, pixels_;      // its tile's shape
-    int out_channels_ = 0, in_channels_ = 0;
+    struct Unfolding {
+        int kernel, stride, top, left, bottom, right;
+    };
+    Unfolding unfold_{1, 1, 0, 0, 0, 0};  // hkf.PointwiseConv's: none
+    int out_channels_ = 0, in_channels_ = 0, image_channels_ = 0;  // in_channels_: image_channels_ k^2
     bool swish_ = false;
     std::vector<float> packed_, bias_;  // weights as [tile][Cin][rows_]; the bias padded to whole tiles
     std::vector<float> gated_;          // the gated weights or input of the image being run
+    std::vector<float> unfolded_;       // hkf.UnfoldedConv's input of the image being run
 };
 
 }  // namespace
@@ -395,6 +454,7 @@ void register_fast_layers()
         cv::dnn::LayerFactory::registerLayer("hkf.Swish", SwishLayer::create);
         cv::dnn::LayerFactory::registerLayer("hkf.DepthwiseConv", DepthwiseConvLayer::create);
         cv::dnn::LayerFactory::registerLayer("hkf.PointwiseConv", PointwiseConvLayer::create);
+        cv::dnn::LayerFactory::registerLayer("hkf.UnfoldedConv", PointwiseConvLayer::create);
     });
 }
 

@@ -1,4 +1,4 @@
-// fast_layers.hpp - three layers hkf gives OpenCV's DNN module, for the networks whose graphs
+// fast_layers.hpp - the layers hkf gives OpenCV's DNN module, for the networks whose graphs
 // dev/models/fast_layers.py rewrites at conversion time (WHENet's EfficientNet-B0):
 // - "hkf.Swish": x * sigmoid(x) as one vectorised activation, which OpenCV fuses into the
 //   convolution before it (OpenCV 4.6 runs a swish as a scalar Sigmoid layer and a product);
@@ -7,8 +7,10 @@
 //   (OpenCV 4.6's fast depthwise path takes only 3x3 kernels on planes at least 18 wide; the rest go
 //   through im2row one channel at a time, and an asymmetric padding is a layer of its own);
 // - "hkf.PointwiseConv": a 1x1 convolution in register tiles, with an optional swish and a
-//   squeeze-and-excitation's gate (OpenCV 4.6's runs at about a third of the tile's speed here).
-// The network still runs in cv::dnn::Net; these are its layer implementations for three op types.
+//   squeeze-and-excitation's gate (OpenCV 4.6's runs at about a third of the tile's speed here);
+// - "hkf.UnfoldedConv": a dense k x k convolution as the same tiles over its unfolded input (im2col),
+//   with its padding and an optional swish (WHENet's first layer: OpenCV's took 1 ms of 16).
+// The network still runs in cv::dnn::Net; these are its layer implementations for four op types.
 #pragma once
 
 namespace hkf_estimator {
