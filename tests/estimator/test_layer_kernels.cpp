@@ -34,16 +34,16 @@ std::vector<float> noise(size_t n, unsigned seed, float spread)
 }
 
 // One tile: cin input channels; the packed weights [cin][rows], the bias, an input of `pitch` floats a row;
-// with swish, the sum x comes out as x / (1 + exp(-x)).
-void check_tile(const LayerKernels &k, int cin, bool swish)
+// with swish, the sum x comes out as x / (1 + exp(-x)); narrow: the one-vector tile.
+void check_tile(const LayerKernels &k, int cin, bool swish, bool narrow = false)
 {
-    const int rows = k.tile_rows, pixels = k.tile_pixels;
+    const int rows = k.tile_rows, pixels = narrow ? k.narrow_pixels : k.tile_pixels;
     const long pitch = pixels + 7;  // a plane wider than the tile: the tile reads its own pixels only
     const std::vector<float> weights = noise(static_cast<size_t>(cin) * rows, 1, 0.3f), bias = noise(rows, 2, 0.5f);
     const std::vector<float> in = noise(static_cast<size_t>(cin) * pitch, 3, 1.0f);
     std::vector<float> out(static_cast<size_t>(rows) * (pixels + 3), -7.0f);
-    k.pointwise_tile(hkf_estimator::PointwiseTile{weights.data(), cin, in.data(), pitch, bias.data(), out.data(), pixels + 3,
-                                                    swish});
+    const hkf_estimator::PointwiseTile tile{weights.data(), cin, in.data(), pitch, bias.data(), out.data(), pixels + 3, swish};
+    (narrow ? k.pointwise_tile_narrow : k.pointwise_tile)(tile);
     double worst = 0.0, scale = 1e-6;
     bool outside = true;
     for (int r = 0; r < rows; ++r) {
@@ -134,6 +134,7 @@ int main(int argc, char **argv)
         }
         for (int cin : {1, 3, 16, 240}) check_tile(*k, cin, false);
         for (int cin : {3, 240}) check_tile(*k, cin, true);
+        for (int cin : {1, 240}) check_tile(*k, cin, cin > 1, true);
         check_taps(*k, 3, 1, k->taps_3x3_stride1);
         check_taps(*k, 3, 2, k->taps_3x3_stride2);
         check_taps(*k, 5, 1, k->taps_5x5_stride1);

@@ -401,29 +401,32 @@ private:
     void multiply_tiles(const Image &m, int pixel, int first, int last, std::vector<float> &tail) const
     {
         const int pixels = m.pixels, count = std::min(pixels_, pixels - pixel);
+        // a last piece that a narrow tile holds goes through one (7 x 7 = 49 pixels: 3 tiles of 16 and
+        // a narrow one of 8 on AVX2, not 4 tiles)
+        const bool narrow = count <= kernels_.narrow_pixels;
+        const int width = narrow ? kernels_.narrow_pixels : pixels_;
+        void (*const tile)(const PointwiseTile &) = narrow ? kernels_.pointwise_tile_narrow : kernels_.pointwise_tile;
         const float *tile_in = m.src + pixel;
         long pitch = pixels;
-        if (count < pixels_) {
-            tail.assign(static_cast<size_t>(in_channels_) * pixels_, 0.0f);
+        if (count < width) {
+            tail.assign(static_cast<size_t>(in_channels_) * width, 0.0f);
             for (int c = 0; c < in_channels_; ++c)
-                std::memcpy(&tail[static_cast<size_t>(c) * pixels_], m.src + static_cast<size_t>(c) * pixels + pixel,
+                std::memcpy(&tail[static_cast<size_t>(c) * width], m.src + static_cast<size_t>(c) * pixels + pixel,
                             sizeof(float) * count);
             tile_in = tail.data();
-            pitch = pixels_;
+            pitch = width;
         }
         float scratch[kLargestTile];  // a tile that ends past the plane or the output channels
         for (int t = first; t < last; ++t) {
             const int rows = std::min(rows_, out_channels_ - t * rows_);
             float *tile_out = m.dst + static_cast<size_t>(t) * rows_ * pixels + pixel;
             const float *weights = m.weights + static_cast<size_t>(t) * in_channels_ * rows_;
-            if (count == pixels_ && rows == rows_) {
-                kernels_.pointwise_tile(
-                    PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], tile_out, pixels, swish_});
+            if (count == width && rows == rows_) {
+                tile(PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], tile_out, pixels, swish_});
             } else {
-                kernels_.pointwise_tile(
-                    PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], scratch, pixels_, swish_});
+                tile(PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], scratch, width, swish_});
                 for (int r = 0; r < rows; ++r)
-                    std::memcpy(tile_out + static_cast<size_t>(r) * pixels, scratch + r * pixels_, sizeof(float) * count);
+                    std::memcpy(tile_out + static_cast<size_t>(r) * pixels, scratch + r * width, sizeof(float) * count);
             }
         }
     }

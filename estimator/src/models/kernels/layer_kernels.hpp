@@ -34,7 +34,9 @@ struct LayerKernels {
     SimdLevel level;
     const char *name;            // as HKF_SIMD spells it: avx512, avx2, sse2 or neon
     int tile_rows, tile_pixels;  // the pointwise tile: output channels x pixels
+    int narrow_pixels;           // the narrow tile's pixels: one vector
     void (*pointwise_tile)(const PointwiseTile &tile);
+    void (*pointwise_tile_narrow)(const PointwiseTile &tile);  // tile_rows x narrow_pixels
     DepthwiseTaps *taps_3x3_stride1, *taps_3x3_stride2, *taps_5x5_stride1, *taps_5x5_stride2;
     void (*swish)(const float *src, float *dst, long n);  // x / (1 + exp(-x)); dst may be src
     float (*plane_mean)(const float *plane, long n);      // n > 0

@@ -91,37 +91,39 @@ T swish_of(T x)
     return x / (1.0f + exp_approx(-x));
 }
 
-// The tile: kRows x kVectors vector registers of running sums, one broadcast weight per row and input
-// channel (a fused multiply-add where the level has one); the swish, if asked, on the sums.
+// The tile: kRows x VECTORS vector registers of running sums, one broadcast weight per row and input
+// channel (a fused multiply-add where the level has one); the swish, if asked, on the sums. VECTORS is
+// kVectors, or 1 for a plane's last few pixels (a narrow tile).
+template <int VECTORS>
 void pointwise_tile(const PointwiseTile &t)
 {
     // Every loop over rows and vectors unrolled, so that the sums stay in registers (GCC keeps an array it
     // indexes in a loop in memory).
-    Vector sum[kRows][kVectors];
+    Vector sum[kRows][VECTORS];
 #pragma GCC unroll 16
     for (int r = 0; r < kRows; ++r)
 #pragma GCC unroll 4
-        for (int v = 0; v < kVectors; ++v) sum[r][v] = Vector{} + t.bias[r];
+        for (int v = 0; v < VECTORS; ++v) sum[r][v] = Vector{} + t.bias[r];
     for (int c = 0; c < t.cin; ++c) {
-        Vector x[kVectors];
+        Vector x[VECTORS];
 #pragma GCC unroll 4
-        for (int v = 0; v < kVectors; ++v) __builtin_memcpy(&x[v], t.in + c * t.in_pitch + v * HKF_LANES, sizeof x[v]);
+        for (int v = 0; v < VECTORS; ++v) __builtin_memcpy(&x[v], t.in + c * t.in_pitch + v * HKF_LANES, sizeof x[v]);
         const float *w = t.weights + static_cast<long>(c) * kRows;
 #pragma GCC unroll 16
         for (int r = 0; r < kRows; ++r)
 #pragma GCC unroll 4
-            for (int v = 0; v < kVectors; ++v) sum[r][v] += x[v] * w[r];  // w[r] broadcast
+            for (int v = 0; v < VECTORS; ++v) sum[r][v] += x[v] * w[r];  // w[r] broadcast
     }
     if (t.swish) {  // in registers, before the store: no second pass over the output
 #pragma GCC unroll 16
         for (int r = 0; r < kRows; ++r)
 #pragma GCC unroll 4
-            for (int v = 0; v < kVectors; ++v) sum[r][v] = swish_of(sum[r][v]);
+            for (int v = 0; v < VECTORS; ++v) sum[r][v] = swish_of(sum[r][v]);
     }
 #pragma GCC unroll 16
     for (int r = 0; r < kRows; ++r)
 #pragma GCC unroll 4
-        for (int v = 0; v < kVectors; ++v)
+        for (int v = 0; v < VECTORS; ++v)
             __builtin_memcpy(t.out + r * t.out_pitch + v * HKF_LANES, &sum[r][v], sizeof sum[r][v]);
 }
 
@@ -178,7 +180,9 @@ extern const LayerKernels HKF_KERNELS_TABLE = {
     HKF_KERNELS_NAME,
     HKF_KERNELS_NAMESPACE::kRows,
     HKF_KERNELS_NAMESPACE::kPixels,
-    HKF_KERNELS_NAMESPACE::pointwise_tile,
+    HKF_LANES,
+    HKF_KERNELS_NAMESPACE::pointwise_tile<HKF_KERNELS_NAMESPACE::kVectors>,
+    HKF_KERNELS_NAMESPACE::pointwise_tile<1>,
     HKF_KERNELS_NAMESPACE::taps<3, 1>,
     HKF_KERNELS_NAMESPACE::taps<3, 2>,
     HKF_KERNELS_NAMESPACE::taps<5, 1>,
