@@ -69,7 +69,7 @@ void check_taps(const LayerKernels &k, int kernel, int stride, hkf_estimator::De
     const std::vector<float> phases = noise(static_cast<size_t>(stride) * stride * phase_size, 4, 1.0f);
     const std::vector<float> weights = noise(static_cast<size_t>(kernel) * kernel, 5, 0.3f);
     std::vector<float> sum(count);
-    taps(phases.data(), phase_size, pitch, weights.data(), 0.25f, sum.data(), count);
+    taps(hkf_estimator::PhasePlanes{phases.data(), phase_size, pitch}, weights.data(), 0.25f, sum.data(), count);
     double worst = 0.0;
     for (int j = 0; j < count; ++j) {
         double expected = 0.25;

@@ -190,15 +190,14 @@ private:
 
     // The extended outputs for a kernel size or stride without a loop of the level's own (none in WHENet):
     // as LayerKernels' taps.
-    void any_taps(const float *phases, long phase_size, int pitch, const float *weights, float bias,
-                  float *__restrict sum, size_t count) const
+    void any_taps(const PhasePlanes &in, const float *weights, float bias, float *__restrict sum, size_t count) const
     {
         for (size_t j = 0; j < count; ++j) {
             float acc = bias;
             for (int ky = 0; ky < kernel_; ++ky)
                 for (int kx = 0; kx < kernel_; ++kx)
-                    acc += weights[ky * kernel_ + kx] * phases[((ky % stride_) * stride_ + kx % stride_) * phase_size +
-                                                               (ky / stride_) * pitch + kx / stride_ + j];
+                    acc += weights[ky * kernel_ + kx] * in.phases[((ky % stride_) * stride_ + kx % stride_) * in.size +
+                                                                  (ky / stride_) * in.pitch + kx / stride_ + j];
             sum[j] = acc;
         }
     }
@@ -221,10 +220,11 @@ private:
                               : kernel_ == 5 && stride_ == 1 ? kernels_.taps_5x5_stride1
                               : kernel_ == 5 && stride_ == 2 ? kernels_.taps_5x5_stride2
                                                              : nullptr;
+        const PhasePlanes planes{phases, shape.size, shape.pitch};
         if (taps != nullptr)
-            taps(phases, shape.size, shape.pitch, weights, bias, extended, shape.count);
+            taps(planes, weights, bias, extended, shape.count);
         else
-            any_taps(phases, shape.size, shape.pitch, weights, bias, extended, shape.count);
+            any_taps(planes, weights, bias, extended, shape.count);
         float *dst = out.ptr<float>() + static_cast<size_t>(plane) * out_h * out_w;
         for (int oy = 0; oy < out_h; ++oy)
             std::memcpy(dst + static_cast<size_t>(oy) * out_w, extended + static_cast<size_t>(oy) * shape.pitch,

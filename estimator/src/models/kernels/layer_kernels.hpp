@@ -23,12 +23,18 @@ struct PointwiseTile {
     bool swish;            // the output x / (1 + exp(-x)) of the sum x
 };
 
-// A depthwise convolution's "extended" outputs sum[j], j < count: bias plus every K x K tap (ky, kx) at
-// phase (ky % STRIDE) STRIDE + kx % STRIDE, index j + (ky / STRIDE) pitch + kx / STRIDE; the phases are
-// planes of phase_size floats one after the other (fast_layers.cpp, convolve_plane: the zero-padded input
-// split by row and column modulo the stride; at stride 1 the padded plane itself).
-typedef void DepthwiseTaps(const float *phases, long phase_size, int pitch, const float *weights, float bias,
-                           float *sum, std::size_t count);
+// A depthwise convolution's input plane, zero-padded and split by row and column modulo the stride
+// (fast_layers.cpp, convolve_plane; at stride 1 the padded plane itself): stride^2 phases of `size`
+// floats one after the other, rows of `pitch` floats.
+struct PhasePlanes {
+    const float *phases;
+    long size;
+    int pitch;
+};
+
+// Its "extended" outputs sum[j], j < count: bias plus every K x K tap (ky, kx) at phase
+// (ky % STRIDE) STRIDE + kx % STRIDE, index j + (ky / STRIDE) pitch + kx / STRIDE.
+typedef void DepthwiseTaps(const PhasePlanes &in, const float *weights, float bias, float *sum, std::size_t count);
 
 struct LayerKernels {
     SimdLevel level;

@@ -130,17 +130,17 @@ void pointwise_tile(const PointwiseTile &t)
 // All K^2 taps of one output summed in registers (one store per output), the loop over j vectorised:
 // every tap reads its phase at j plus a fixed offset, so the loads are contiguous at any stride.
 template <int K, int STRIDE>
-void taps(const float *phases, long phase_size, int pitch, const float *weights, float bias, float *__restrict sum,
-          std::size_t count)
+void taps(const PhasePlanes &in, const float *weights, float bias, float *__restrict sum, std::size_t count)
 {
     float w[K * K];
     __builtin_memcpy(w, weights, sizeof w);
+    const long size = in.size, pitch = in.pitch;
     for (std::size_t j = 0; j < count; ++j) {
-        const float *at = phases + j;
+        const float *at = in.phases + j;
         float acc = bias;
         for (int ky = 0; ky < K; ++ky)
             for (int kx = 0; kx < K; ++kx)
-                acc += w[ky * K + kx] * at[((ky % STRIDE) * STRIDE + kx % STRIDE) * phase_size + (ky / STRIDE) * pitch + kx / STRIDE];
+                acc += w[ky * K + kx] * at[((ky % STRIDE) * STRIDE + kx % STRIDE) * size + (ky / STRIDE) * pitch + kx / STRIDE];
         sum[j] = acc;
     }
 }
