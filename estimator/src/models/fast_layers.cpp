@@ -21,7 +21,7 @@ namespace {
 
 int int_param(const cv::dnn::LayerParams &params, const char *name)
 {
-    if (!params.has(name)) CV_Error(cv::Error::StsBadArg, std::string("hkf.DepthwiseConv: no attribute ") + name);
+    if (!params.has(name)) CV_Error(cv::Error::StsBadArg, params.type + ": no attribute " + name);
     return params.get<int>(name);
 }
 
