@@ -10,6 +10,8 @@ gives OpenCV's DNN module (estimator/src/models/fast_layers.hpp), with onnx alon
 - every other dense Conv (one group, a square kernel, one stride; WHENet's first, 3x3 at stride 2) on
   such planes becomes hkf.UnfoldedConv, the same product over its unfolded input, its padding and a
   swish after it taken in likewise;
+- a squeeze-and-excitation's two 1x1 convolutions on its means (Conv, swish, Conv, Sigmoid) become one
+  hkf.SqueezeExcite (sixty tiny OpenCV layers fewer, each a parallel region of its own);
 - a squeeze-and-excitation's gate, Mul(x, Sigmoid(s)) read only by such a pointwise convolution, becomes
   that convolution's second input (it scales the weights); its global average pooling of a depthwise
   convolution's output becomes that convolution's second output.
@@ -177,6 +179,36 @@ def fuse_gates(nodes):
     return [n for n in nodes if id(n) not in drop], count
 
 
+def fuse_excitations(nodes, weights):
+    """A squeeze-and-excitation's two 1x1 convolutions on its means, Conv -> hkf.Swish -> Conv -> Sigmoid,
+    each read only by the next -> one hkf.SqueezeExcite (its four weights as inputs); returns the nodes
+    and how many."""
+    producers, consumers = producers_of(nodes), consumers_of(nodes)
+
+    def only_reader(node, op_type):
+        readers = consumers.get(node.output[0], [])
+        return readers[0] if len(readers) == 1 and readers[0].op_type == op_type else None
+
+    def on_one_pixel(conv):  # a 1x1 convolution with weights and a bias, one group
+        return (conv is not None and conv.op_type == "Conv" and len(conv.input) == 3 and conv.input[1] in weights and
+                conv.input[2] in weights and weights[conv.input[1]].ndim == 4 and
+                weights[conv.input[1]].shape[2:] == (1, 1) and attribute(conv, "group", 1) == 1)
+
+    drop, replaced, count = set(), {}, 0
+    for reduce in nodes:
+        swish = only_reader(reduce, "Swish") if on_one_pixel(reduce) else None
+        expand = only_reader(swish, "Conv") if swish is not None else None
+        sigmoid = only_reader(expand, "Sigmoid") if on_one_pixel(expand) else None
+        if sigmoid is None or producers.get(reduce.input[0]) is None:
+            continue
+        replaced[id(reduce)] = helper.make_node(
+            "SqueezeExcite", [reduce.input[0], reduce.input[1], reduce.input[2], expand.input[1], expand.input[2]],
+            list(sigmoid.output), name=reduce.name, domain=DOMAIN)
+        drop.update((id(swish), id(expand), id(sigmoid)))
+        count += 1
+    return [replaced.get(id(n), n) for n in nodes if id(n) not in drop], count
+
+
 def fuse_means(nodes):
     """GlobalAveragePool of an hkf.DepthwiseConv's output -> that convolution's second output."""
     producers = producers_of(nodes)
@@ -201,6 +233,7 @@ def rewrite(model):
     nodes, counts = fuse_convolutions(nodes, weights, pixels)
     nodes, counts["gates"] = fuse_gates(nodes)
     nodes, counts["means"] = fuse_means(nodes)
+    nodes, counts["excitations"] = fuse_excitations(nodes, weights)
     del model.graph.node[:]
     model.graph.node.extend(nodes)
     model.opset_import.append(helper.make_opsetid(DOMAIN, 1))
@@ -221,7 +254,8 @@ def main():
         print(f"fast_layers: {e}", file=sys.stderr)
         return 1
     print(f"fast_layers: wrote {args.target}: {swishes} swishes, {counts['DepthwiseConv']} depthwise, "
-          f"{counts['PointwiseConv']} pointwise and {counts['UnfoldedConv']} unfolded convolutions, {counts['gates']} gates and {counts['means']} means "
+          f"{counts['PointwiseConv']} pointwise and {counts['UnfoldedConv']} unfolded convolutions, {counts['gates']} gates, "
+          f"{counts['means']} means and {counts['excitations']} excitations "
           f"taken in ({len(model.graph.node)} nodes)")
     return 0
 

@@ -4,7 +4,8 @@
 // kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112, with its
 // planes' means; the pointwise convolution on planes that end in part of a tile, with output
 // channels that end in part of one, gated (the weights scaled, or the input), without a bias; the
-// k x k convolution unfolded onto it, at WHENet's first layer's shape and at odd strides and paddings;
+// k x k convolution unfolded onto it, at WHENet's first layer's shape and at odd strides and paddings; a
+// squeeze-and-excitation's gate from its means;
 // the swish alone, fused by OpenCV into a convolution before it, and over its whole range; bad
 // attributes and weights refused when the layer is made. All of it once per instruction-set level this
 // CPU runs (simd_level.hpp), each level's layers against the same loops; and HKF_SIMD's values read.
@@ -348,6 +349,40 @@ void test_unfolded_matches_the_loops(void **)
     }
 }
 
+// hkf.SqueezeExcite: the gate sigmoid(W2 swish(W1 m + b1) + b2) of two images' means, against the loops.
+void test_squeeze_excite_matches_the_loops(void **)
+{
+    const int channels = 1152, reduced = 48, images = 2;  // WHENet's widest; two images: each its own gate
+    const cv::Mat means = random_blob({images, channels, 1, 1}, 23, 1.0f);
+    cv::dnn::LayerParams p;
+    p.name = "se";
+    p.type = "hkf.SqueezeExcite";
+    p.blobs = {random_blob({reduced, channels, 1, 1}, 24, 0.1f), random_blob({reduced}, 25, 0.5f),
+               random_blob({channels, reduced, 1, 1}, 26, 0.3f), random_blob({channels}, 27, 0.5f)};
+    cv::dnn::Net net;
+    net.addLayerToPrev(p.name, p.type, p);
+    net.setInput(means);
+    const cv::Mat gate = net.forward();
+    assert_int_equal(static_cast<int>(gate.total()), images * channels);
+    double worst = 0.0;
+    for (int image = 0; image < images; ++image) {
+        std::vector<double> hidden(reduced);
+        for (int r = 0; r < reduced; ++r) {
+            double sum = p.blobs[1].ptr<float>()[r];
+            for (int c = 0; c < channels; ++c)
+                sum += static_cast<double>(p.blobs[0].ptr<float>()[r * channels + c]) * means.ptr<float>()[image * channels + c];
+            hidden[r] = swish_reference(sum);
+        }
+        for (int c = 0; c < channels; ++c) {
+            double sum = p.blobs[3].ptr<float>()[c];
+            for (int r = 0; r < reduced; ++r) sum += static_cast<double>(p.blobs[2].ptr<float>()[c * reduced + r]) * hidden[r];
+            worst = std::max(worst, std::fabs(gate.ptr<float>()[image * channels + c] - 1.0 / (1.0 + std::exp(-sum))));
+        }
+    }
+    print_message("squeeze-and-excitation %d -> %d -> %d, 2 images: largest |error| %.2e\n", channels, reduced, channels, worst);
+    assert_true(worst < 1e-5);
+}
+
 // The layer refused when it is made (its constructor throws).
 bool creation_refused(cv::dnn::LayerParams p)
 {
@@ -393,6 +428,15 @@ void test_bad_layers_refused(void **)
     assert_false(creation_refused(p));  // good: taken
     p.set("pad_left", 3);  // a padding as wide as the kernel
     assert_true(creation_refused(p));
+    cv::dnn::LayerParams se;
+    se.type = "hkf.SqueezeExcite";
+    se.blobs = {random_blob({4, 8, 1, 1}, 28, 1.0f), random_blob({4}, 29, 1.0f), random_blob({8, 4, 1, 1}, 30, 1.0f),
+                random_blob({8}, 31, 1.0f)};
+    assert_false(creation_refused(se));  // good: taken
+    se.blobs[2] = random_blob({8, 5, 1, 1}, 32, 1.0f);  // W2 reads 5 values where W1 makes 4
+    assert_true(creation_refused(se));
+    se.blobs.pop_back();  // no b2
+    assert_true(creation_refused(se));
 }
 
 // The levels this CPU runs, best first, down to the baseline, which can always be chosen.
@@ -424,6 +468,7 @@ int main()
         cmocka_unit_test(test_depthwise_means),
         cmocka_unit_test(test_pointwise_matches_the_loops),
         cmocka_unit_test(test_unfolded_matches_the_loops),
+        cmocka_unit_test(test_squeeze_excite_matches_the_loops),
         cmocka_unit_test(test_swish_over_its_range),
         cmocka_unit_test(test_swish_fused_into_a_convolution),
         cmocka_unit_test(test_swish_as_a_layer),

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Small ONNX graphs for fuzz_onnx_model's corpus, beside the shipped models: a convolution with a bias,
-the estimator's own layer types (hkf.DepthwiseConv, hkf.PointwiseConv, hkf.UnfoldedConv, hkf.Swish) and a Constant
+the estimator's own layer types (hkf.DepthwiseConv, hkf.PointwiseConv, hkf.UnfoldedConv, hkf.SqueezeExcite,
+hkf.Swish) and a Constant
 node, typed (not raw) data, an int64 shape and a graph inside an attribute (If); and three whose singular
 messages are given more than once, which protobuf merges (hardening round 6): the model's graph in two
 occurrences, a Constant's tensor whose dims and data come in two, an If's branch graph in two.
@@ -37,10 +38,14 @@ hkf = helper.make_graph(
      helper.make_node("UnfoldedConv", ["p", "uw", "ub"], ["u"], domain="hkf", kernel=3, stride=2, pad_top=0,
                       pad_left=0, pad_bottom=1, pad_right=1, swish=0),
      helper.make_node("Swish", ["u"], ["s"], domain="hkf"),
+     helper.make_node("GlobalAveragePool", ["s"], ["m"]),
+     helper.make_node("SqueezeExcite", ["m", "sw1", "sb1", "sw2", "sb2"], ["g"], domain="hkf"),
+     helper.make_node("Mul", ["s", "g"], ["sg"]),
      helper.make_node("Constant", [], ["k"], value=helper.make_tensor("kv", TensorProto.FLOAT, [1], [0.5])),
-     helper.make_node("Mul", ["s", "k"], ["y"])],
+     helper.make_node("Mul", ["sg", "k"], ["y"])],
     "hkf", [x], [y], [tensor("dw", (4, 1, 3, 3)), tensor("db", (4,)), tensor("pw", (8, 4, 1, 1)), tensor("pb", (8,)),
-                tensor("uw", (6, 8, 3, 3)), tensor("ub", (6,))])
+                tensor("uw", (6, 8, 3, 3)), tensor("ub", (6,)), tensor("sw1", (2, 6, 1, 1)), tensor("sb1", (2,)),
+                tensor("sw2", (6, 2, 1, 1)), tensor("sb2", (6,))])
 shape = helper.make_tensor("shape", TensorProto.INT64, [2], [1, 256])
 typed = helper.make_graph(
     [helper.make_node("Reshape", ["x", "shape"], ["r"]),
