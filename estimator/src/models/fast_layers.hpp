@@ -9,8 +9,10 @@
 // - "hkf.PointwiseConv": a 1x1 convolution in register tiles, with an optional swish and a
 //   squeeze-and-excitation's gate (OpenCV 4.6's runs at about a third of the tile's speed here);
 // - "hkf.UnfoldedConv": a dense k x k convolution as the same tiles over its unfolded input (im2col),
-//   with its padding and an optional swish (WHENet's first layer: OpenCV's took 1 ms of 16).
-// The network still runs in cv::dnn::Net; these are its layer implementations for four op types.
+//   with its padding and an optional swish (WHENet's first layer: OpenCV's took 1 ms of 16);
+// - "hkf.SqueezeExcite": a squeeze-and-excitation's gate from its means in one layer (OpenCV ran two 1x1
+//   convolutions and two activations, each a parallel region).
+// The network still runs in cv::dnn::Net; these are its layer implementations for five op types.
 #pragma once
 
 namespace hkf_estimator {
