@@ -42,8 +42,8 @@ inline T absolute(T v)
 
 // t clamped to [-87, 88]. A float's as t + relu(-87 - t) and t - relu(t - 88), relu(d) = (d + |d|) / 2,
 // which leave a t inside exactly as it is (a comparison would be a branch GCC does not if-convert in a
-// loop over floats); a vector's by comparisons, which the compiler makes a max and a min (4 operations
-// fewer).
+// loop over floats); a vector's by comparisons, each a compare and a blend (four operations where the
+// relu form takes eight).
 inline float clamp_exponent(float t)
 {
     const float below = -87.0f - t;
