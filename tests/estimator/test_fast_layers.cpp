@@ -1,5 +1,5 @@
 // test_fast_layers.cpp - the layers the estimator gives OpenCV's DNN module
-// (estimator/src/models/fast_layers.cpp), run inside cv::dnn::Net as a rewritten graph runs
+// (estimator/src/models/layers/, registered by fast_layers.cpp), run inside cv::dnn::Net as a rewritten graph runs
 // them, against plain loops in double written here: the depthwise convolution at WHENet's
 // kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112, with its
 // planes' means; the pointwise convolution on planes that end in part of a tile, with output

@@ -1,4 +1,4 @@
-// layer_kernels.hpp - the inner loops of the estimator's own layers (fast_layers.cpp), one table per
+// layer_kernels.hpp - the inner loops of the estimator's own layers (models/layers/), one table per
 // instruction-set level. Each level's table is the same source (layer_kernels_impl.hpp) built by its own
 // file with that level's compiler flags and a tile shaped for its registers; the layers take the table
 // that simd_level.hpp chose. Nothing here depends on OpenCV.
@@ -24,7 +24,7 @@ struct PointwiseTile {
 };
 
 // A depthwise convolution's input plane, zero-padded and split by row and column modulo the stride
-// (fast_layers.cpp, convolve_plane; at stride 1 the padded plane itself): stride^2 phases of `size`
+// (layers/depthwise_conv_layer.cpp, convolve_plane; at stride 1 the padded plane itself): stride^2 phases of `size`
 // floats one after the other, rows of `pitch` floats.
 struct PhasePlanes {
     const float *phases;

@@ -1,0 +1,163 @@
+// depthwise_conv_layer.cpp - "hkf.DepthwiseConv" (see fast_layers.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/dnn.hpp>
+#include <opencv2/dnn/all_layers.hpp>
+#include <opencv2/dnn/shape_utils.hpp>
+
+#include "layer_support.hpp"
+#include "simd_level.hpp"
+
+namespace hkf_estimator {
+
+namespace {
+
+// "hkf.DepthwiseConv": input N x C x H x W, blobs[0] the kernels C x 1 x k x k, blobs[1] the bias
+// (C); attributes kernel, stride, pad_top, pad_left, pad_bottom, pad_right, swish (0 or 1), means (0 or
+// 1): with means 1 a second output, each output plane's mean, N x C x 1 x 1 (the global average pooling
+// of the squeeze-and-excitation that reads it, taken while the plane is in cache).
+class DepthwiseConvLayer : public cv::dnn::Layer {
+public:
+    explicit DepthwiseConvLayer(const cv::dnn::LayerParams &params) : kernels_(layer_kernels_in_use())
+    {
+        setParamsFrom(params);
+        window_ = ConvWindow::read(params);
+        swish_ = params.get<int>("swish", 0) != 0;
+        means_ = params.get<int>("means", 0) != 0;
+        if (blobs.size() != 2 || blobs[0].dims != 4 || blobs[0].size[1] != 1 || blobs[0].size[2] != window_.kernel ||
+            blobs[0].size[3] != window_.kernel || static_cast<int>(blobs[1].total()) != blobs[0].size[0] ||
+            blobs[0].type() != CV_32F || blobs[1].type() != CV_32F)
+            CV_Error(cv::Error::StsBadArg, "hkf.DepthwiseConv: wants a C x 1 x k x k kernel and a bias of C");
+        blobs[0] = blobs[0].clone();  // continuous, owned
+        blobs[1] = blobs[1].clone();
+    }
+
+
+    bool getMemoryShapes(const std::vector<cv::dnn::MatShape> &inputs, const int,
+                         std::vector<cv::dnn::MatShape> &outputs, std::vector<cv::dnn::MatShape> &) const override
+    {
+        CV_Assert(inputs.size() == 1 && inputs[0].size() == 4 && inputs[0][1] == blobs[0].size[0]);
+        outputs.assign(1, window_.output_shape(inputs[0], inputs[0][1]));
+        if (means_) outputs.push_back(cv::dnn::MatShape{inputs[0][0], inputs[0][1], 1, 1});
+        return false;
+    }
+
+    void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
+                 cv::OutputArrayOfArrays) override
+    {
+        Tensors t(inputs_arr, outputs_arr);
+        const cv::Mat &in = t.in[0];
+        cv::Mat &out = t.out[0];
+        const int planes = in.size[0] * in.size[1];
+        float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
+        const Phases shape = phases_of(in.size[3], out.size[2]);
+        cv::parallel_for_(cv::Range(0, planes), [&](const cv::Range &range) {
+            // zeroed once: each plane then writes the input's places only, the padding's stay zero
+            std::vector<float> phases(static_cast<size_t>(window_.stride) * window_.stride * shape.size, 0.0f), extended(shape.count);
+            const long plane = static_cast<long>(out.size[2]) * out.size[3];
+            for (int p = range.start; p < range.end; ++p) {
+                convolve_plane(in, out, p, shape, phases.data(), extended.data());
+                if (means != nullptr) means[p] = kernels_.plane_mean(out.ptr<float>() + plane * p, plane);
+            }
+        });
+    }
+
+private:
+    // The zero-padded plane P (the input with pad_top rows above it, pad_left columns before it) split into
+    // stride^2 phases: phase (py, px) holds P[r stride + py][c stride + px] at r pitch + c, pitch =
+    // ceil(padded width / stride), `rows` rows (the last tap's, and one for the columns beyond the
+    // output's), zero beyond P; `count` extended outputs (convolve_plane). At stride 1 the phase is P.
+    struct Phases {
+        int pitch, rows;
+        long size;     // floats in one phase
+        size_t count;  // out_h pitch
+    };
+
+    Phases phases_of(int in_w, int out_h) const
+    {
+        const int pitch = (in_w + window_.left + window_.right + window_.stride - 1) / window_.stride;
+        const int rows = out_h + (window_.kernel - 1) / window_.stride + 1;
+        return Phases{pitch, rows, static_cast<long>(pitch) * rows, static_cast<size_t>(out_h) * pitch};
+    }
+
+    // The input plane's floats written to their places in the phases (whose padding is zero already).
+    void split_into_phases(const float *src, int h, int w, const Phases &shape, float *phases) const
+    {
+        for (int px = 0; px < window_.stride; ++px) {
+            int first, end;  // the columns c whose input column c stride + px - pad_left is inside [0, w)
+            columns_inside(px - window_.left, w, window_.stride, shape.pitch, &first, &end);
+            for (int py = 0; py < window_.stride; ++py) {
+                float *dst = phases + (py * window_.stride + px) * shape.size + first;
+                for (int r = 0; r < shape.rows; ++r, dst += shape.pitch) {
+                    const int y = r * window_.stride + py - window_.top;  // the input's row
+                    if (y < 0 || y >= h) continue;
+                    const float *row = src + static_cast<long>(y) * w + first * window_.stride + px - window_.left;
+                    if (window_.stride == 1)
+                        std::memcpy(dst, row, sizeof(float) * (end - first));
+                    else if (window_.stride == 2)
+                        every_second(row, dst, end - first);
+                    else
+                        for (int c = 0; c < end - first; ++c) dst[c] = row[c * window_.stride];
+                }
+            }
+        }
+    }
+
+    // The extended outputs for a kernel size or stride without a loop of the level's own (none in WHENet):
+    // as LayerKernels' taps.
+    void any_taps(const PhasePlanes &in, const float *weights, float bias, float *__restrict sum, size_t count) const
+    {
+        for (size_t j = 0; j < count; ++j) {
+            float acc = bias;
+            for (int ky = 0; ky < window_.kernel; ++ky)
+                for (int kx = 0; kx < window_.kernel; ++kx)
+                    acc += weights[ky * window_.kernel + kx] * in.phases[((ky % window_.stride) * window_.stride + kx % window_.stride) * in.size +
+                                                                  (ky / window_.stride) * in.pitch + kx / window_.stride + j];
+            sum[j] = acc;
+        }
+    }
+
+    // One channel's plane: split into phases (above), then the bias and all kernel taps summed for each
+    // "extended" output j = oy pitch + ox, ox < pitch, which reads the phase of (ky, kx) at
+    // j + (ky / stride) pitch + kx / stride, in one long loop over j: the compiler vectorises it whatever
+    // the plane's width (on 7 x 7 planes a loop per output row would be as short as the vector), with
+    // contiguous loads at any stride. The columns ox >= the output's width are then dropped; last the swish.
+    void convolve_plane(const cv::Mat &in, cv::Mat &out, int plane, const Phases &shape, float *phases,
+                        float *extended) const
+    {
+        const int channel = plane % in.size[1];
+        const int h = in.size[2], w = in.size[3], out_h = out.size[2], out_w = out.size[3];
+        split_into_phases(in.ptr<float>() + static_cast<size_t>(plane) * h * w, h, w, shape, phases);
+        const float *weights = blobs[0].ptr<float>() + static_cast<size_t>(channel) * window_.kernel * window_.kernel;
+        const float bias = blobs[1].ptr<float>()[channel];
+        DepthwiseTaps *taps = window_.kernel == 3 && window_.stride == 1   ? kernels_.taps_3x3_stride1
+                              : window_.kernel == 3 && window_.stride == 2 ? kernels_.taps_3x3_stride2
+                              : window_.kernel == 5 && window_.stride == 1 ? kernels_.taps_5x5_stride1
+                              : window_.kernel == 5 && window_.stride == 2 ? kernels_.taps_5x5_stride2
+                                                             : nullptr;
+        const PhasePlanes planes{phases, shape.size, shape.pitch};
+        if (taps != nullptr)
+            taps(planes, weights, bias, extended, shape.count);
+        else
+            any_taps(planes, weights, bias, extended, shape.count);
+        float *dst = out.ptr<float>() + static_cast<size_t>(plane) * out_h * out_w;
+        for (int oy = 0; oy < out_h; ++oy)
+            std::memcpy(dst + static_cast<size_t>(oy) * out_w, extended + static_cast<size_t>(oy) * shape.pitch,
+                        sizeof(float) * out_w);
+        if (swish_) kernels_.swish(dst, dst, static_cast<long>(out_h) * out_w);
+    }
+
+    const LayerKernels &kernels_;  // the level in use when the layer was made
+    ConvWindow window_;
+    bool swish_ = false, means_ = false;
+};
+
+}  // namespace
+
+cv::Ptr<cv::dnn::Layer> make_depthwise_conv_layer(cv::dnn::LayerParams &params) { return cv::makePtr<DepthwiseConvLayer>(params); }
+
+}  // namespace hkf_estimator

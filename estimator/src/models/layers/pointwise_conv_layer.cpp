@@ -1,0 +1,205 @@
+// pointwise_conv_layer.cpp - "hkf.PointwiseConv" and "hkf.UnfoldedConv" (see fast_layers.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/dnn.hpp>
+#include <opencv2/dnn/all_layers.hpp>
+#include <opencv2/dnn/shape_utils.hpp>
+
+#include "layer_support.hpp"
+#include "simd_level.hpp"
+
+namespace hkf_estimator {
+
+namespace {
+
+constexpr int kLargestTile = 256;  // floats in the largest level's pointwise tile (8 x 32)
+
+// "hkf.PointwiseConv": a 1x1 convolution (stride 1, no padding) as a matrix product in the level's
+// tiles (LayerKernels::pointwise_tile); input N x Cin x H x W, and optionally a second one, a gate N x Cin x 1 x 1 that
+// multiplies each input channel first (squeeze-and-excitation's: W (g x) = (W diag g) x, so it scales
+// the weights, or the input where that is fewer products); blobs[0] the weights Cout x Cin x 1 x 1,
+// blobs[1] the bias (Cout; none: 0); attribute swish (0 or 1). The weights are packed into tiles once,
+// when the layer is made, for the tile of the level in use. A plane's last pixels, fewer than a tile, are
+// copied into a zero-padded tile.
+// "hkf.UnfoldedConv": a k x k convolution (attributes kernel, stride, pad_top, pad_left, pad_bottom,
+// pad_right, as hkf.DepthwiseConv's; blobs[0] Cout x Cin x k x k) as the same product over its unfolded
+// input, Cin k^2 rows of the output's pixels (im2col), made for each image; no gate (WHENet's first
+// convolution, 3 -> 32 channels at stride 2, which OpenCV 4.6 runs at a third of the tile's speed).
+
+class PointwiseConvLayer : public cv::dnn::Layer {
+public:
+    explicit PointwiseConvLayer(const cv::dnn::LayerParams &params)
+        : kernels_(layer_kernels_in_use()), rows_(kernels_.tile_rows), pixels_(kernels_.tile_pixels)
+    {
+        setParamsFrom(params);
+        swish_ = params.get<int>("swish", 0) != 0;
+        if (params.type == "hkf.UnfoldedConv") unfold_ = ConvWindow::read(params);  // else 1 x 1, no padding
+        const int k = unfold_.kernel;
+        if (blobs.empty() || blobs.size() > 2 || blobs[0].dims != 4 || blobs[0].size[2] != k || blobs[0].size[3] != k ||
+            blobs[0].type() != CV_32F || (blobs.size() == 2 && (blobs[1].type() != CV_32F ||
+                                                                 static_cast<int>(blobs[1].total()) != blobs[0].size[0])))
+            CV_Error(cv::Error::StsBadArg, "hkf.PointwiseConv: wants a Cout x Cin x k x k kernel (k = 1 unless "
+                                           "unfolded) and a bias of Cout");
+        CV_Assert(rows_ * pixels_ <= kLargestTile);
+        out_channels_ = blobs[0].size[0];
+        image_channels_ = blobs[0].size[1];
+        in_channels_ = image_channels_ * k * k;  // the rows of the product's input: (c, ky, kx) when unfolded
+        const int tiles = (out_channels_ + rows_ - 1) / rows_;
+        packed_.assign(static_cast<size_t>(tiles) * in_channels_ * rows_, 0.0f);
+        bias_.assign(static_cast<size_t>(tiles) * rows_, 0.0f);
+        const cv::Mat weights = blobs[0].isContinuous() ? blobs[0] : blobs[0].clone();
+        for (int o = 0; o < out_channels_; ++o) {
+            for (int c = 0; c < in_channels_; ++c)
+                packed_[(static_cast<size_t>(o / rows_) * in_channels_ + c) * rows_ + o % rows_] =
+                    weights.ptr<float>()[static_cast<size_t>(o) * in_channels_ + c];
+            if (blobs.size() == 2) bias_[o] = blobs[1].ptr<float>()[o];
+        }
+    }
+
+
+    bool getMemoryShapes(const std::vector<cv::dnn::MatShape> &inputs, const int,
+                         std::vector<cv::dnn::MatShape> &outputs, std::vector<cv::dnn::MatShape> &) const override
+    {
+        CV_Assert((inputs.size() == 1 || inputs.size() == 2) && inputs[0].size() == 4 && inputs[0][1] == image_channels_);
+        if (inputs.size() == 2)  // the gate: one value per image and input channel
+            CV_Assert(unfold_.kernel == 1 && inputs[1].size() >= 2 && inputs[1][0] == inputs[0][0] &&
+                      inputs[1][1] == in_channels_ && cv::dnn::total(inputs[1]) == inputs[0][0] * in_channels_);
+        outputs.assign(1, unfold_.output_shape(inputs[0], out_channels_));
+        return false;
+    }
+
+    void forward(cv::InputArrayOfArrays inputs_arr, cv::OutputArrayOfArrays outputs_arr,
+                 cv::OutputArrayOfArrays) override
+    {
+        Tensors t(inputs_arr, outputs_arr);
+        const cv::Mat &in = t.in[0];
+        cv::Mat &out = t.out[0];
+        const int pixels = out.size[2] * out.size[3], batch = in.size[0];
+        const int pixel_tiles = (pixels + pixels_ - 1) / pixels_, row_tiles = (out_channels_ + rows_ - 1) / rows_;
+        // tasks: every pixel tile, its output rows split so that there are at least 8 tasks to share
+        const int groups = std::min(row_tiles, std::max(1, (8 + pixel_tiles - 1) / pixel_tiles));
+        const int rows_per_group = (row_tiles + groups - 1) / groups;
+        for (int image = 0; image < batch; ++image) {
+            const float *src = in.ptr<float>() + static_cast<size_t>(image) * image_channels_ * in.size[2] * in.size[3];
+            if (unfold_.kernel > 1) src = unfold(src, in.size[2], in.size[3], out.size[2], out.size[3]);
+            Image m{packed_.data(), src, out.ptr<float>() + static_cast<size_t>(image) * out_channels_ * pixels, pixels};
+            if (t.in.size() == 2) apply_gate(t.in[1].ptr<float>() + static_cast<size_t>(image) * in_channels_, &m);
+            cv::parallel_for_(cv::Range(0, pixel_tiles * groups), [&](const cv::Range &range) {
+                std::vector<float> tail;
+                for (int task = range.start; task < range.end; ++task) {
+                    const int first_row_tile = task % groups * rows_per_group;
+                    multiply_tiles(m, task / groups * pixels_, first_row_tile,
+                                   std::min(row_tiles, first_row_tile + rows_per_group), tail);
+                }
+            });
+        }
+    }
+
+private:
+    // One image's product: the packed weights, its input and output planes of `pixels` floats.
+    struct Image {
+        const float *weights, *src;
+        float *dst;
+        int pixels;
+    };
+
+    // One image's input unfolded into unfolded_: row (c, ky, kx) holds, at output pixel (oy, ox), the input
+    // at (oy stride + ky - pad_top, ox stride + kx - pad_left), zero outside it. Returns the rows.
+    const float *unfold(const float *src, int h, int w, int out_h, int out_w)
+    {
+        const ConvWindow u = unfold_;
+        const long out_pixels = static_cast<long>(out_h) * out_w;
+        unfolded_.assign(static_cast<size_t>(in_channels_) * out_pixels, 0.0f);
+        cv::parallel_for_(cv::Range(0, in_channels_), [&](const cv::Range &range) {
+            for (int row = range.start; row < range.end; ++row) {
+                const int c = row / (u.kernel * u.kernel), ky = row / u.kernel % u.kernel, kx = row % u.kernel;
+                int first, end;  // the output columns whose input column ox stride + kx - pad_left is inside [0, w)
+                columns_inside(kx - u.left, w, u.stride, out_w, &first, &end);
+                for (int oy = 0; oy < out_h; ++oy) {
+                    const int y = oy * u.stride + ky - u.top;
+                    if (y < 0 || y >= h) continue;
+                    const float *from = src + (static_cast<long>(c) * h + y) * w + first * u.stride + kx - u.left;
+                    float *to = &unfolded_[static_cast<size_t>(row) * out_pixels + static_cast<size_t>(oy) * out_w + first];
+                    if (u.stride == 2)
+                        every_second(from, to, end - first);
+                    else
+                        for (int i = 0; i < end - first; ++i) to[i] = from[i * u.stride];
+                }
+            }
+        });
+        return unfolded_.data();
+    }
+
+    // The gate g (Cin values) applied: to a copy of the weights (Cout x Cin products) or of the input
+    // (Cin x pixels), whichever is fewer; m's weights or src then point at the copy.
+    void apply_gate(const float *gate, Image *m)
+    {
+        const int pixels = m->pixels;
+        if (static_cast<long>(pixels) <= out_channels_) {
+            gated_.resize(static_cast<size_t>(in_channels_) * pixels);
+            for (int c = 0; c < in_channels_; ++c)
+                for (int i = 0; i < pixels; ++i)
+                    gated_[static_cast<size_t>(c) * pixels + i] = m->src[static_cast<size_t>(c) * pixels + i] * gate[c];
+            m->src = gated_.data();
+        } else {
+            gated_.resize(packed_.size());
+            const size_t tiles = packed_.size() / (static_cast<size_t>(in_channels_) * rows_);
+            for (size_t i = 0; i < tiles * in_channels_; ++i)  // [tile][Cin][rows_]: row i's input channel i % Cin
+                for (int r = 0; r < rows_; ++r) gated_[i * rows_ + r] = packed_[i * rows_ + r] * gate[i % in_channels_];
+            m->weights = gated_.data();
+        }
+    }
+
+    // The output rows of tiles [first, last) at the pixels from `pixel` (a tile's, or what is left).
+    void multiply_tiles(const Image &m, int pixel, int first, int last, std::vector<float> &tail) const
+    {
+        const int pixels = m.pixels, count = std::min(pixels_, pixels - pixel);
+        // a last piece that a narrow tile holds goes through one (7 x 7 = 49 pixels: 3 tiles of 16 and
+        // a narrow one of 8 on AVX2, not 4 tiles)
+        const bool narrow = count <= kernels_.narrow_pixels;
+        const int width = narrow ? kernels_.narrow_pixels : pixels_;
+        void (*const tile)(const PointwiseTile &) = narrow ? kernels_.pointwise_tile_narrow : kernels_.pointwise_tile;
+        const float *tile_in = m.src + pixel;
+        long pitch = pixels;
+        if (count < width) {
+            tail.assign(static_cast<size_t>(in_channels_) * width, 0.0f);
+            for (int c = 0; c < in_channels_; ++c)
+                std::memcpy(&tail[static_cast<size_t>(c) * width], m.src + static_cast<size_t>(c) * pixels + pixel,
+                            sizeof(float) * count);
+            tile_in = tail.data();
+            pitch = width;
+        }
+        float scratch[kLargestTile];  // a tile that ends past the plane or the output channels
+        for (int t = first; t < last; ++t) {
+            const int rows = std::min(rows_, out_channels_ - t * rows_);
+            float *tile_out = m.dst + static_cast<size_t>(t) * rows_ * pixels + pixel;
+            const float *weights = m.weights + static_cast<size_t>(t) * in_channels_ * rows_;
+            if (count == width && rows == rows_) {
+                tile(PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], tile_out, pixels, swish_});
+            } else {
+                tile(PointwiseTile{weights, in_channels_, tile_in, pitch, &bias_[t * rows_], scratch, width, swish_});
+                for (int r = 0; r < rows; ++r)
+                    std::memcpy(tile_out + static_cast<size_t>(r) * pixels, scratch + r * width, sizeof(float) * count);
+            }
+        }
+    }
+
+    const LayerKernels &kernels_;  // the level in use when the layer was made
+    const int rows_, pixels_;      // its tile's shape
+    ConvWindow unfold_;  // hkf.PointwiseConv's: 1 x 1, no padding
+    int out_channels_ = 0, in_channels_ = 0, image_channels_ = 0;  // in_channels_: image_channels_ k^2
+    bool swish_ = false;
+    std::vector<float> packed_, bias_;  // weights as [tile][Cin][rows_]; the bias padded to whole tiles
+    std::vector<float> gated_;          // the gated weights or input of the image being run
+    std::vector<float> unfolded_;       // hkf.UnfoldedConv's input of the image being run
+};
+
+}  // namespace
+
+cv::Ptr<cv::dnn::Layer> make_pointwise_conv_layer(cv::dnn::LayerParams &params) { return cv::makePtr<PointwiseConvLayer>(params); }
+
+}  // namespace hkf_estimator
