@@ -122,7 +122,7 @@ static int values_ok(const hkf_head_pose_measurement_t *m)
 /* What the angles made of a first model's measurement (update, coast). */
 typedef enum {
     ANGLES_REFUSED, /* its step failed: nothing of it is taken */
-    ANGLES_NO_POSE, /* taken, no track to pose yet */
+    ANGLES_NO_POSE, /* taken, no track to pose yet, or its pose awaits the second model's answer */
     ANGLES_POSE     /* taken: *out is the pose's */
 } angles_step_t;
 
@@ -140,7 +140,20 @@ static void feed_rest(filter_node_t *node, const hkf_real_t *z, hkf_real_t dt)
     node->rest_dt = 0;
 }
 
-/* A frame without a face: the filter coasts (hkf_predict). */
+/* 1 when a frame without the first model's pose waits for the second's: the track is predicted at a turn
+ * where the frame would take the second's alone (second_model_awaits on the prediction), and the second
+ * answers promptly. There the first model is weak or set aside (hkf-estimator does not run it where the
+ * second's newest answer reads a large turn, --skip-first-from-yaw): a pose predicted now would be
+ * corrected a frame later, so the frame's pose is the second's step, as for a first reading set aside. */
+static int coast_awaits(const filter_node_t *node, hkf_real_t dt, int64_t utime)
+{
+    hkf_real_t predicted[3];
+    return second_model_prediction(&node->filter, dt, predicted) &&
+           second_model_awaits(&node->second, &node->models, predicted, &node->filter, dt, utime, prompt_us(node));
+}
+
+/* A frame without a face: the filter coasts (hkf_predict), now or, where the second model is awaited
+ * (coast_awaits), when its answer comes or at the frame's deadline. */
 static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_t *m, const resolved_model_t *model,
                            int64_t arrival, hkf_real_t dt, hkf_output_t *out)
 {
@@ -149,20 +162,24 @@ static angles_step_t coast(filter_node_t *node, const hkf_head_pose_measurement_
         strncmp(m->model, node->model, sizeof node->model) != 0 && setup_filter(node, m->model, model) == HKF_OK) {
         second_model_forget_frames(&node->second); /* no track yet: the filter is this model's, should a second model start one here */
     }
-    const second_model_step_t step = {NULL, dt, 0, arrival, prompt_us(node)};
-    node_await_settle_all(node); /* its prediction goes out now: the frames still waiting before it go first */
+    const int awaits = coast_awaits(node, dt, m->utime);
+    const second_model_step_t step = {NULL, dt, awaits, arrival, prompt_us(node)};
+    if (!awaits) {
+        node_await_settle_all(node); /* its prediction goes out now: the frames still waiting before it go first */
+    }
     second_model_keep_frame(&node->second, m, &step, &node->filter, &node->calibration);
     if (hkf_predict(&node->filter, dt, out) != HKF_OK) { /* no track yet (or again, after a gap) */
         return ANGLES_NO_POSE;
     }
     (void)hkf_calibration_update(&node->calibration, &node->filter, NULL, dt);
+    node->counts.awaited += awaits;
     if (second_model_answers(&node->second, m->utime, prompt_us(node))) {
         node->rest_dt += dt; /* the second model may see the face: its measurement goes to the rest (take_second) */
     } else {
         node_rest_take(&node->rest, &node->filter, NULL, dt);
         node->rest_dt = 0;
     }
-    return ANGLES_POSE;
+    return awaits ? ANGLES_NO_POSE : ANGLES_POSE; /* waiting: its pose when the answer comes (take_second) */
 }
 
 /* A measurement: the filter set up for its model (a change of model restarts

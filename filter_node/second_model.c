@@ -131,7 +131,7 @@ void second_model_keep_frame(second_model_t *s, const hkf_head_pose_measurement_
     frame->utime = m->utime;
     strncpy(frame->model, m->model ? m->model : "", sizeof frame->model - 1);
     frame->valid = z != NULL;
-    frame->awaited = z != NULL && step->awaited;
+    frame->awaited = step->awaited;
     if (z != NULL) {
         memcpy(frame->z, z, sizeof frame->z);
     }

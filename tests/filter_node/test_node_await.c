@@ -234,6 +234,58 @@ static void test_waiting_frame_published_at_its_deadline(void **state)
     assert_true(fabsf(pose.yaw - 35.0f) < 3.0f);
 }
 
+/* Beyond the first model's reach (or where hkf-estimator does not run it, its reading set aside anyway) the first
+ * message of a frame has no pose: at a turn where the frame would take the second's alone, the frame waits for
+ * the second's answer, and its pose is that answer's step. Before, it went out at once as the track's prediction
+ * and the answer came a frame late into the next one: a move the second saw reached the view a frame later (here
+ * a 10 deg step: the step's frame published at the hold's yaw). At the centre a frame without a face still
+ * coasts at once. */
+static void test_no_first_pose_at_a_big_turn_waits_for_the_second(void **state)
+{
+    node_schedule_t schedule;
+    published_t p;
+    hkf_head_pose_measurement_t m, second;
+    hkf_head_pose_t pose;
+    int i;
+    (void)state;
+    node_schedule_init(&schedule, 0, 0);
+    memset(&p, 0, sizeof p);
+    for (i = 0; i < 90; ++i) {
+        m = measurement(T0 + i * FRAME_US, i < 30, 1.0, 40.0, 0.0); /* from frame 30 the first sees no pose */
+        second = m;
+        second.valid = 1;
+        second.model = "hopenet";
+        second.yaw = i < 60 ? 46.0f : 56.0f; /* the second's reading: a 10 deg move at frame 60 */
+        deliver(&schedule, &m, m.utime + FIRST_LATENCY_US, &p);
+        if (i >= 31) {
+            assert_true(p.count == i); /* the frame waits: its pose is not out yet */
+        }
+        deliver(&schedule, &second, m.utime + SECOND_LATENCY_US, &p);
+    }
+    publish_due(&schedule, T0 + 90 * FRAME_US + prompt_us_of_config(), &p);
+    print_message("no first pose at 40 deg: %d poses for 90 frames, %lu waited; the move's frame %.2f deg from the "
+                  "frame before\n", p.count, node.counts.awaited, (double)(p.yaw[60] - p.yaw[59]));
+    assert_int_equal(p.count, 90);
+    for (i = 0; i < 90; ++i) {
+        assert_true(p.utime[i] == T0 + i * FRAME_US); /* each frame's own pose, once, in order */
+    }
+    assert_true(node.counts.awaited >= 85);
+    assert_true(p.yaw[60] - p.yaw[59] > 2.0f); /* the move in its own frame's pose */
+
+    setup(NULL); /* at the centre: a frame without a face coasts at once */
+    for (i = 0; i < 10; ++i) {
+        m = measurement(T0 + i * FRAME_US, i < 9, 1.0, 0.0, 0.0);
+        second = m;
+        second.valid = 1;
+        second.model = "hopenet";
+        (void)filter_node_receive(&node, &m, m.utime + FIRST_LATENCY_US, &pose);
+        (void)filter_node_receive(&node, &second, m.utime + SECOND_LATENCY_US, &pose);
+    }
+    m = measurement(T0 + 10 * FRAME_US, 0, 0.0, 0.0, 0.0);
+    assert_int_equal(filter_node_receive(&node, &m, m.utime + FIRST_LATENCY_US, &pose), 1);
+    assert_true(pose.utime == m.utime);
+}
+
 /* Defect 1 (a RECENTER undone): a rest measured at 0, then RECENTER with the head at 20 deg of yaw; the second model's
  * measurements fused after it must keep the centre at 20. Before, every fused frame put the rest's centre
  * back (node_rest_keep): 0 -> 20 -> 0 within two frames, the view jumping 20 deg twice. */
@@ -378,6 +430,7 @@ int main(void)
         cmocka_unit_test_setup(test_one_pose_per_frame_every_pattern, setup),
         cmocka_unit_test_setup(test_waiting_frame_published_at_its_deadline, setup),
         cmocka_unit_test_setup(test_slow_second_model_keeps_a_held_turn_still, setup),
+        cmocka_unit_test_setup(test_no_first_pose_at_a_big_turn_waits_for_the_second, setup),
         cmocka_unit_test_setup(test_recenter_not_undone_by_a_fused_frame, setup_with_rest),
         cmocka_unit_test_setup(test_reset_forgets_a_forged_curve, setup),
         cmocka_unit_test_setup(test_recenter_kept_over_a_model_change, setup),

@@ -138,7 +138,8 @@ static void test_second_model_late_or_repeated_not_used(void **state)
 }
 
 /* A face only the second model sees (a profile the mesh gives up on): the
- * track starts from it, and the first model's empty frames coast on it. */
+ * track starts from it, and the first model's empty frames wait for its answers
+ * (at 70 deg a frame takes the second's alone): each frame's one pose is its answer's. */
 static void test_second_model_alone_starts_and_keeps_track(void **state)
 {
     hkf_head_pose_measurement_t m, second;
@@ -148,10 +149,6 @@ static void test_second_model_alone_starts_and_keeps_track(void **state)
     for (i = 0; i < 30; ++i) {
         m = measurement(T0 + i * FRAME_US, 0, 0, 0, 0);
         published += filter_node_receive(&node, &m, m.utime + 2000, &pose);
-        if (i > 0) {
-            assert_int_equal(pose.status == HKF_HEAD_POSE_T_LOST, 0);
-            assert_true(fabsf(pose.yaw - 70.0f) < 1.0f);
-        }
         second = m;
         second.model = "hopenet";
         second.valid = 1;
@@ -161,7 +158,8 @@ static void test_second_model_alone_starts_and_keeps_track(void **state)
         assert_int_equal(filter_node_receive(&node, &second, m.utime + 30000, &pose), 1);
         assert_true(fabsf(pose.yaw - 70.0f) < 1.0f && pose.status == HKF_HEAD_POSE_T_TRACKING);
     }
-    assert_int_equal(published, 29);
+    assert_int_equal(published, 0);
+    assert_int_equal(node.counts.awaited, 29);
     assert_int_equal(node.counts.paired, 30);
     assert_string_equal(node.model, "fsanet");
 }
