@@ -12,13 +12,14 @@ frame with fresh sensor noise and JPEG on every frame. The clip is played as a c
 Every frame of the clip has |yaw| >= 60 deg, so every figure is "while the head is turned":
   WHENet /s         WHENet's measurements per second of clip
   measured          frames with a measurement (either model) whose yaw is within 20 deg of
-                    the label, as a share of the frames captured (goal: >= 95 % at 30 fps,
-                    >= 90 % at 60 fps)
+                    the label, as a share of the frames captured (goal: >= 95 % at 30 and
+                    60 fps)
   capture->publish  WHENet's measurements: the frame's capture to lcm-logger's arrival stamp,
                     p50 / p99 (goal at 30 fps: <= 25 / 40 ms)
   capture->datagram WHENet's measurements: the frame's capture to the first datagram of the first
                     pose the node published after the measurement reached it
   dropped           frames the estimator dropped (its own count)
+  mesh not run      frames left to WHENet alone (--second-alone-from-yaw: its newest answer at a big turn)
 and, for the defaults, where WHENet's capture->publish goes (the estimator's summary: until it was asked, waiting
 for the worker, its inference).
 
@@ -32,6 +33,7 @@ Needs root (a private network namespace: nothing leaves the machine); exit 77 ot
 import argparse
 import csv
 import os
+import re
 import sys
 
 import numpy as np
@@ -47,8 +49,10 @@ FACES, HOLD_S, MIN_YAW, YAW_WITHIN = 12, 1.0, 60.0, 20.0
 FRAME_W, FRAME_H = 640, 480
 RATES = [30.0, 60.0]
 VARIANTS = [e2e.Variant("defaults"),  # the mesh, WHENet beside it where the mesh's |yaw| >= 10 deg or no pose
+            e2e.Variant("--second-alone-from-yaw 0 (the mesh on every frame)",
+                        estimator_options=["--second-alone-from-yaw", "0"]),
             e2e.Variant("--second-model none (the mesh alone)", estimator_options=["--second-model", "none"])]
-GOALS = {30.0: (0.95, 25.0, 40.0), 60.0: (0.90, None, None)}  # measured share, capture->publish p50, p99
+GOALS = {30.0: (0.95, 25.0, 40.0), 60.0: (0.95, None, None)}  # measured share, capture->publish p50, p99
 
 
 def turned_faces(count):
@@ -137,7 +141,13 @@ def measure(clip, datagrams, raw, poses, summary):
     return {"whenet_per_s": len(whenet) / (frames / clip.fps), "measured": len(good) / frames,
             "publish": (percentile(publish, 50), percentile(publish, 99)),
             "datagram": (percentile(to_datagram, 50), percentile(to_datagram, 99)),
-            "dropped": e2e.parse_dropped(summary), "frames": frames}
+            "dropped": e2e.parse_dropped(summary), "frames": frames, "set_aside": set_aside_frames(summary)}
+
+
+def set_aside_frames(summary):
+    """The frames the estimator did not run the mesh on (--second-alone-from-yaw), as text ("-": not counted)."""
+    found = re.search(r"not run on (\d+) frames", summary)
+    return found.group(1) if found else "-"
 
 
 def verdict(fps, m):
@@ -175,7 +185,7 @@ def main():
              f"{HOLD_S:g} s, played as a camera through the live chain (big_turns.py); hkf's layers at "
              f"{os.environ.get('HKF_SIMD') or 'the best this CPU runs'}.\n",
              "| estimator | fps | frames | dropped | WHENet /s | measured (yaw within 20 deg) | capture->publish p50 / p99 "
-             "| capture->datagram p50 / p99 |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+             "| capture->datagram p50 / p99 | mesh not run |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     verdicts, breakdown = [], []
     for fps in RATES:
         clip = make_clip(out, faces, fps)
@@ -187,7 +197,7 @@ def main():
             m = measure(clip, datagrams, raw, poses, summary)
             lines.append(f"| {variant.name} | {fps:g} | {m['frames']} | {m['dropped']} | {m['whenet_per_s']:.1f} | "
                          f"{m['measured']:.0%} | {m['publish'][0]:.0f} / {m['publish'][1]:.0f} ms | "
-                         f"{m['datagram'][0]:.0f} / {m['datagram'][1]:.0f} ms |")
+                         f"{m['datagram'][0]:.0f} / {m['datagram'][1]:.0f} ms | {m['set_aside']} |")
             if variant is VARIANTS[0]:
                 verdicts.append(f"- the defaults at {fps:g} fps: {verdict(fps, m)}.")
                 where = [line.split("(p50 / p99 ms): ", 1)[-1] for line in summary.splitlines()

@@ -137,7 +137,10 @@ void usage(std::ostream &out)
            "                     none: the first model alone); its measurements go on the same\n"
            "                     channel with the frame's seq and time, and hkf-filter fuses both\n"
            "                     (docs/programs.md: \"Two models on one channel\")\n"
-           "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 10; 0: every frame)\n"           "  --fov DEG          the camera's diagonal field of view, for the head's position (default\n"
+           "  --second-from-yaw DEG  where the second model runs: |yaw| >= DEG (default 10; 0: every frame)\n"
+           "  --second-alone-from-yaw DEG  from a camera or --realtime: where the second model's newest\n"
+           "                     answer (of a frame within 200 ms) read |yaw| >= DEG, the first model is\n"
+           "                     not run and the second measures the frame alone (default 60; 0: never)\n"           "  --fov DEG          the camera's diagonal field of view, for the head's position (default\n"
            "                     56; unknown: a gain on the distance, docs/estimator.md \"Head position\")\n"
            "  --pivot CM         the point the head turns about, CM behind the nose tip (default 10)\n"
            "--dataset mode evaluates what the tracker runs (with no --model: the mesh, and WHENet where\n"
@@ -218,6 +221,8 @@ const OptionSpec kOptions[] = {
      [](Options &o, const std::string &, double n) { o.pipeline.max_frames = static_cast<long>(n); }},
     {"--second-from-yaw", Takes::Number, 0.0, 180.0, nullptr, "degrees from 0 to 180",
      [](Options &o, const std::string &, double n) { o.pipeline.second_from_yaw = static_cast<float>(n); }},
+    {"--second-alone-from-yaw", Takes::Number, 0.0, 180.0, nullptr, "degrees from 0 to 180",
+     [](Options &o, const std::string &, double n) { o.pipeline.second_alone_from_yaw = static_cast<float>(n); }},
     {"--fov", Takes::Number, 10.0, 170.0, nullptr, "the camera's diagonal field of view, 10 to 170 deg",
      [](Options &o, const std::string &, double n) { o.position.fov_deg = n; }},
     {"--pivot", Takes::Number, 0.0, 30.0, nullptr, "cm behind the nose tip, 0 to 30",

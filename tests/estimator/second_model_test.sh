@@ -3,10 +3,11 @@
 # the face mesh (--second-model), both measurements of a frame go on
 # HEAD_POSE_RAW with the frame's seq and time, and hkf-filter --offline fuses
 # every one into its frame; the fused track is surer (smaller posterior
-# variance) than the mesh's alone. Also the option's error paths.
-# usage: second_model_test.sh BUILD_DIR PYTHON VIDEO_DIR
+# variance) than the mesh's alone. A held big turn as a camera: the mesh set aside where WHENet reads
+# one (--second-alone-from-yaw). Also the options' error paths.
+# usage: second_model_test.sh BUILD_DIR PYTHON VIDEO_DIR AFLW2000_DIR
 set -euo pipefail
-build=$1 python=$2 videos=$3
+build=$1 python=$2 videos=$3 aflw=$4
 est=$build/estimator/hkf-estimator
 filter=$build/tools/hkf-filter
 work=$(mktemp -d)
@@ -96,6 +97,49 @@ PY
 "$est" --source "$videos/d10.mp4" --max-frames 30 --second-model whenet --lcm-url memq:// | tee "$work/default.txt"
 grep -q "second model whenet: 0 frames asked for" "$work/default.txt" || fail "WHENet ran on a frontal face"
 
+# a held big turn played as a camera (--realtime, 15 fps): where WHENet's newest answer, of a frame within 200 ms,
+# reads |yaw| >= 60 deg the mesh is not run and the frame is WHENet's alone - the mesh's message without a pose;
+# with --second-alone-from-yaw 0 the mesh runs on every frame. An AFLW2000 face at 72 deg of yaw (the mesh reads
+# 60, WHENet 66), 30 frames. Which frames qualify depends on when WHENet's answers come (a busy machine's are
+# late), so the rule is checked against the log's own order: an answer published before frame k-1's message was
+# in hand when frame k was decided, and one published after frame k's was not.
+mkdir "$work/turn"
+for i in $(seq -w 1 30); do ln -s "$aflw/images/image00022.jpg" "$work/turn/frame$i.jpg"; done
+for from in 60 0; do
+  "$est" --source "$work/turn" --fps 15 --realtime --second-model whenet --second-alone-from-yaw "$from" \
+    --lcm-url "file://$work/turn$from.lcmlog?mode=w" >"$work/turn$from.txt"
+  PYTHONPATH=$build/lcmtypes/python "$python" - "$work/turn$from.lcmlog" "$from" "$(cat "$work/turn$from.txt")" <<'PY' ||
+import re, sys, lcm
+from hkf import head_pose_measurement_t
+log, alone_from, summary = sys.argv[1], float(sys.argv[2]), sys.argv[3]
+RECENT_US = 200000
+events = [head_pose_measurement_t.decode(e.data) for e in lcm.EventLog(log, "r")]
+mesh = [(i, m) for i, m in enumerate(events) if m.model == "mesh_pnp"]
+answers = [(i, m) for i, m in enumerate(events) if m.model == "whenet"]
+said = re.search(r"first model mesh_pnp not run on (\d+) frames", summary)
+assert (said is not None) == (alone_from > 0), summary  # said where the rule is on
+set_aside = [m.seq for _, m in mesh if not m.valid]  # the mesh gives this face a pose wherever it runs
+def qualifies(answer, frame):
+    return answer.valid and abs(answer.yaw) >= alone_from > 0 and 0 <= frame.utime - answer.utime <= RECENT_US
+certain = 0
+for k, (i, frame) in enumerate(mesh):
+    before = [a for j, a in answers if j < i]  # published before this frame's message
+    if not frame.valid:  # set aside: the newest answer out by then qualified
+        assert before and qualifies(before[-1], frame), (frame.seq, before[-1:])
+    if k > 0:
+        in_hand = [a for j, a in answers if j < mesh[k - 1][0]]
+        since = [a for j, a in answers if mesh[k - 1][0] < j < i]
+        if in_hand and all(qualifies(a, frame) for a in in_hand[-1:] + since):
+            certain += 1
+            assert not frame.valid, ("not set aside", frame.seq)
+print(f"--second-alone-from-yaw {alone_from:g}: {len(mesh)} frames, the mesh not run on {len(set_aside)} "
+      f"({certain} with a qualifying answer surely in hand); {len(answers)} answers")
+assert len(mesh) >= 25 and int(said.group(1) if said else 0) == len(set_aside)
+assert alone_from > 0 or (not set_aside and all(m.valid for _, m in mesh))
+PY
+    fail "--second-alone-from-yaw $from on a held big turn"
+done
+
 # error paths: clear message, non-zero exit
 expect() { # expected-status message-pattern args...
   local want=$1 pattern=$2 status=0
@@ -105,6 +149,7 @@ expect() { # expected-status message-pattern args...
   grep -q -- "$pattern" "$work/err.txt" || fail "$*: no message '$pattern'"
 }
 expect 2 "wants degrees from 0 to 180" --source "$videos/d10.mp4" --second-model whenet --second-from-yaw -5
+expect 2 "wants degrees from 0 to 180" --source "$videos/d10.mp4" --second-alone-from-yaw 200
 expect 2 "must differ from --model" --source "$videos/d10.mp4" --second-model mesh_pnp
 expect 2 "must differ from --model" --dataset /nonexistent --predictions "$work/p.csv" --second-model mesh_pnp
 expect 1 "nosuch" --source "$videos/d10.mp4" --second-model nosuch --lcm-url memq://

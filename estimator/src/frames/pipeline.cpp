@@ -155,6 +155,7 @@ private:
 // What the run counted, for the summary and the exit status.
 struct RunCounts {
     long frames = 0, with_face = 0, publish_failures = 0;
+    long first_set_aside = 0;  // frames left to the second model alone (first_model_set_aside)
     unsigned long published = 0;  // measurements LCM took: a file:// log must hold them all
     std::vector<double> latency_ms, inference_ms, second_latency_ms;
     std::vector<double> second_before_ms, second_waited_ms;  // the second's latency: until it was asked, then queued
@@ -218,6 +219,11 @@ void print_summary(const FrameLoop &loop, double seconds, const LatestFrame &slo
                     loop.second->spec().name.c_str(), loop.second_worker->asked(), loop.second_worker->done(),
                     loop.second_worker->skipped(), percentile(counts.second_latency_ms, 0.5),
                     percentile(counts.second_latency_ms, 0.99), percentile(loop.second_worker->inference_ms(), 0.5));
+    if (loop.second_worker && loop.drop_old && loop.options.second_alone_from_yaw > 0.f)
+        std::printf("hkf-estimator: first model %s not run on %ld frames: the second's newest answer read |yaw| >= "
+                    "%.0f deg (--second-alone-from-yaw)\n",
+                    loop.model.spec().name.c_str(), counts.first_set_aside,
+                    static_cast<double>(loop.options.second_alone_from_yaw));
     if (loop.second_worker && !counts.second_latency_ms.empty())
         std::printf("hkf-estimator: second model %s's capture->publish, where it goes (p50 / p99 ms): until it was "
                     "asked (the face, the first model) %.1f / %.1f, waiting for the worker %.1f / %.1f, its inference "
@@ -267,8 +273,12 @@ void process_frame(FrameLoop &loop, const Frame &frame)
     const auto t0 = std::chrono::steady_clock::now();
     std::optional<Face> face = loop.tracker.track(frame.image, frame.utime);
     const std::optional<Face> tracked = face;
-    std::optional<HeadPose> estimate = face ? loop.model.estimate(frame.image, *face) : std::nullopt;
-    if (!estimate) face.reset();  // the pose model saw no face there either
+    const bool set_aside = tracked && loop.second_worker && loop.drop_old &&
+                           first_model_set_aside(loop.second_worker->newest_answer(), frame.utime,
+                                                 loop.options.second_alone_from_yaw);
+    std::optional<HeadPose> estimate = face && !set_aside ? loop.model.estimate(frame.image, *face) : std::nullopt;
+    if (!estimate) face.reset();  // the pose model saw no face there either, or was not run (set aside)
+    loop.counts.first_set_aside += set_aside;
     const HeadPose pose = estimate.value_or(HeadPose{});
     const double inference = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const hkf::head_pose_measurement_t m =
@@ -289,8 +299,9 @@ void process_frame(FrameLoop &loop, const Frame &frame)
         loop.lcm.handleTimeout(0);  // filtered poses (for the annotation) and a view's requests that have arrived
     }
     if (loop.pictures && loop.pictures->due())
-        loop.pictures->offer(PictureFrame{frame.image, face, face ? loop.model.landmarks() : std::vector<cv::Point2f>{},
-                                          estimate, m.utime, m.seq});
+        loop.pictures->offer(PictureFrame{frame.image, set_aside ? tracked : face,
+                                          face ? loop.model.landmarks() : std::vector<cv::Point2f>{}, estimate, m.utime,
+                                          m.seq});
     if (annotating) annotate(loop, frame, face, pose);
     if (loop.counts.frames % 100 == 0)
         std::fprintf(stderr, "hkf-estimator: %ld frames, %ld with a face\n", loop.counts.frames, loop.counts.with_face);

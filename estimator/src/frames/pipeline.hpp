@@ -30,6 +30,9 @@ struct PipelineOptions {
     // first finds no pose on the tracked face or measures |yaw| >= this (deg;
     // 0: every frame), on its own thread (second_model.hpp).
     float second_from_yaw = 10.f;  // chosen on AFLW2000's even images (docs/programs.md: "Two models on one channel")
+    // From a camera or a --realtime file, the first model is not run on a frame where the second's newest
+    // answer reads |yaw| >= this (deg; 0: never): the second measures it alone (first_model_set_aside).
+    float second_alone_from_yaw = 60.f;
 };
 
 // The estimator's exit statuses beyond 0 (ran), 1 (an error) and 2 (bad arguments).

@@ -4,6 +4,7 @@
 #include "frame_source.hpp"
 
 #include <chrono>
+#include <cmath>
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
@@ -70,6 +71,11 @@ void SecondModelWorker::run()
         }
         result.inference_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         result.job = std::move(job);
+        {
+            std::lock_guard<std::mutex> lock(mutex_);  // before its publish: an answer out is an answer in hand
+            newest_.reset();
+            if (result.pose) newest_ = SecondAnswer{result.job.utime, result.pose->yaw};
+        }
         publish_(result);
         std::lock_guard<std::mutex> lock(mutex_);
         inference_ms_.push_back(result.inference_ms);
@@ -98,6 +104,18 @@ long SecondModelWorker::done() const
 {
     std::lock_guard<std::mutex> lock(mutex_);
     return static_cast<long>(inference_ms_.size());
+}
+
+std::optional<SecondAnswer> SecondModelWorker::newest_answer() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    return newest_;
+}
+
+bool first_model_set_aside(const std::optional<SecondAnswer> &newest, int64_t frame_utime, float from_yaw)
+{
+    return from_yaw > 0.f && newest && frame_utime - newest->utime <= kSetAsideRecentUs &&
+           std::fabs(newest->yaw) >= from_yaw;
 }
 
 std::vector<double> SecondModelWorker::inference_ms() const

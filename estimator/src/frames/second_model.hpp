@@ -40,6 +40,24 @@ struct SecondModelResult {
     double waited_ms = 0;  // from the hand-over to the worker's start on it (the job before still in hand)
 };
 
+// The second model's newest answer with a pose: its frame's capture time and the yaw it read.
+struct SecondAnswer {
+    int64_t utime = 0;
+    float yaw = 0.f;
+};
+
+// How recent (us before a frame's capture) the second's newest answer must be of for the frame's first
+// model to be set aside on it: hkf-filter's prompt time (0.8 of its default coast_time), within which an
+// answered frame makes the next ones wait for the second's answers. A fast CPU's answers are a frame or two
+// old; a slow one's (WHENet at sse2: 130-150 ms behind) are where leaving the cores to the second helps most.
+constexpr int64_t kSetAsideRecentUs = 200000;
+
+// true where a frame captured at frame_utime is left to the second model alone: its newest answer, of a
+// frame at most kSetAsideRecentUs before, read |yaw| >= from_yaw (> 0; 0: never). There the first model's
+// reading would be set aside by hkf-filter (pair_second_alone_from_yaw), or it has none (beyond its reach);
+// not running it leaves the cores to the second, which then keeps up with a 60 fps camera.
+bool first_model_set_aside(const std::optional<SecondAnswer> &newest, int64_t frame_utime, float from_yaw);
+
 class SecondModelWorker {
 public:
     // publish is called on the worker's thread for every job done.
@@ -61,6 +79,7 @@ public:
     long skipped() const;
     long done() const;
     std::vector<double> inference_ms() const;
+    std::optional<SecondAnswer> newest_answer() const;  // nullopt: none yet, or the newest found no pose
 
 private:
     static constexpr int kNiceness = 10;  // the worker thread's nice value (the frame loop's: 0)
@@ -75,6 +94,7 @@ private:
     long asked_ = 0, skipped_ = 0;
     std::string error_;
     std::vector<double> inference_ms_;  // one per job done
+    std::optional<SecondAnswer> newest_;
     std::thread thread_;
 };
 
