@@ -30,8 +30,11 @@
  *   the first measures |yaw| >= pair_second_alone_from_yaw (its measurement set aside once the
  *   second's comes) and the second's measurements come promptly, the first's waits
  *   (second_model_awaits): the node predicts and publishes the posterior when the second's is fused.
- *   Where the first model found no face (its pose was a prediction) and the frame is the newest, the
- *   posterior with the second's is published at once too, at that frame's time. A second measurement
+ *   A frame where the first model gave no pose waits the same way where the track is predicted at |yaw| >=
+ *   pair_second_alone_from_yaw (beyond the first's reach, or hkf-estimator did not run it there:
+ *   --second-alone-from-yaw); its deadline publishes the prediction. Where the first model found no face
+ *   elsewhere (its pose was a prediction) and the frame is the newest, the posterior with the second's is
+ *   published at once too, at that frame's time. A second measurement
  *   older than the kept frames (its seq and utime are one of the followed publisher's last frames)
  *   is counted, not used. A restart, a command or a clock resync forgets the kept frames. Two models
  *   disagree by an amount that changes with the turn (docs/evaluation.md): the second's angles are
