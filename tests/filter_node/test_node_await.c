@@ -236,7 +236,8 @@ static void test_waiting_frame_published_at_its_deadline(void **state)
 
 /* Beyond the first model's reach (or where hkf-estimator does not run it, its reading set aside anyway) the first
  * message of a frame has no pose: at a turn where the frame would take the second's alone, the frame waits for
- * the second's answer, and its pose is that answer's step. Before, it went out at once as the track's prediction
+ * the second's answer, and its pose is that answer's step (or, where no answer comes, the prediction at its
+ * deadline). Before, it went out at once as the track's prediction
  * and the answer came a frame late into the next one: a move the second saw reached the view a frame later (here
  * a 10 deg step: the step's frame published at the hold's yaw). At the centre a frame without a face still
  * coasts at once. */
@@ -262,11 +263,13 @@ static void test_no_first_pose_at_a_big_turn_waits_for_the_second(void **state)
         }
         deliver(&schedule, &second, m.utime + SECOND_LATENCY_US, &p);
     }
-    publish_due(&schedule, T0 + 90 * FRAME_US + prompt_us_of_config(), &p);
-    print_message("no first pose at 40 deg: %d poses for 90 frames, %lu waited; the move's frame %.2f deg from the "
+    m = measurement(T0 + 90 * FRAME_US, 0, 0.0, 0.0, 0.0); /* and one whose answer never comes: by its deadline */
+    deliver(&schedule, &m, m.utime + FIRST_LATENCY_US, &p);
+    publish_due(&schedule, T0 + 91 * FRAME_US + prompt_us_of_config(), &p);
+    print_message("no first pose at 40 deg: %d poses for 91 frames, %lu waited; the move's frame %.2f deg from the "
                   "frame before\n", p.count, node.counts.awaited, (double)(p.yaw[60] - p.yaw[59]));
-    assert_int_equal(p.count, 90);
-    for (i = 0; i < 90; ++i) {
+    assert_int_equal(p.count, 91);
+    for (i = 0; i < 91; ++i) {
         assert_true(p.utime[i] == T0 + i * FRAME_US); /* each frame's own pose, once, in order */
     }
     assert_true(node.counts.awaited >= 85);
