@@ -143,7 +143,7 @@ static void feed_rest(filter_node_t *node, const hkf_real_t *z, hkf_real_t dt)
 /* 1 when a frame without the first model's pose waits for the second's: the track is predicted at a turn
  * where the frame would take the second's alone (second_model_awaits on the prediction), and the second
  * answers promptly. There the first model is weak or set aside (hkf-estimator does not run it where the
- * second's newest answer reads a large turn, --skip-first-from-yaw): a pose predicted now would be
+ * second's newest answer reads a large turn, --second-alone-from-yaw): a pose predicted now would be
  * corrected a frame later, so the frame's pose is the second's step, as for a first reading set aside. */
 static int coast_awaits(const filter_node_t *node, hkf_real_t dt, int64_t utime)
 {

@@ -292,7 +292,7 @@ void process_frame(FrameLoop &loop, const Frame &frame)
     loop.counts.latency_ms.push_back(static_cast<double>(wall_utime() - (loop.source.live() ? frame.utime : taken)) / 1000.0);
     loop.counts.inference_ms.push_back(inference);
     ++loop.counts.frames;
-    loop.counts.with_face += face.has_value();
+    loop.counts.with_face += face.has_value() || set_aside;  // a frame left to the second model has one too
     const bool annotating = !loop.options.annotate_path.empty() || loop.show;
     if (annotating || loop.pictures) {
         std::lock_guard<std::mutex> lock(loop.lcm_mutex);
