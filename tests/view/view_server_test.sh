@@ -60,12 +60,16 @@ done
 
 # viewers: three streams open, a fourth refused; then 100 that connect and drop
 streams=()
-for i in 1 2 3; do curl -s -N --max-time 6 "$base/events" >"$work/stream$i.txt" & streams+=($!); done
+for i in 1 2 3; do curl -s -N --max-time 8 "$base/events" >"$work/stream$i.txt" & streams+=($!); done
+# each of the three in first (a stream's first bytes, an event or a keep-alive, come within 250 ms): a probe
+# that came before one of them would take its place (on a loaded machine curl starts late)
+for _ in $(seq 50); do [ -s "$work/stream1.txt" ] && [ -s "$work/stream2.txt" ] && [ -s "$work/stream3.txt" ] && break
+  sleep 0.1; done
 refused=0  # once the three are in, a fourth is refused (probed until then: a slow machine takes a while)
 for _ in $(seq 20); do [ "$(code --max-time 0.5 "$base/events")" = 503 ] && { refused=1; break; }; sleep 0.1; done
 [ "$refused" = 1 ] || fail "a fourth viewer beyond --max-viewers 3 was taken"
 wait "${streams[@]}" || true  # curl ends them at --max-time
-grep -q '^data: {"t":"line"' "$work/stream1.txt" || fail "a viewer got no status line in 6 s"
+grep -q '^data: {"t":"line"' "$work/stream1.txt" || fail "a viewer got no status line in 8 s"
 for _ in $(seq 100); do curl -s -N --max-time 0.05 "$base/events" >/dev/null || true; done
 [ "$(code "$base/view.css")" = 200 ] || fail "100 viewers that dropped left it unanswering"
 # their streams end once a keep-alive finds each one gone (within a second); a new viewer is then taken
