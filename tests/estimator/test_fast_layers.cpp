@@ -122,6 +122,8 @@ void test_depthwise_matches_the_loops(void **)
         {3, 1, 1, 3, 1, 1, 1, 1, 1, 1},       // round 6's review: a 1 x 1 image (every tap but the centre padding)
         {5, 1, 7, 3, 2, 1, 1, 1, 1, 0},       // one row
         {2, 1024, 1536, 3, 2, 1, 1, 1, 1, 1}, // a large image
+        {3, 37, 70, 3, 1, 1, 1, 1, 1, 1},     // wide rows two at a time, and an odd row left over
+        {3, 73, 90, 5, 2, 2, 2, 2, 2, 0},     // the same at stride 2
     };
     for (const Case &c : cases) {
         const double error = depthwise_error(c);
