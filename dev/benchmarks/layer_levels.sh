@@ -2,9 +2,13 @@
 # The second model's forward pass (WHENet, 224x224) at every instruction-set level this CPU runs: hkf's
 # layers (.models/whenet_fast.onnx, HKF_SIMD forcing the level) beside OpenCV's own layers on the plain
 # graph (.models/whenet.onnx) with OpenCV held to the same level (OPENCV_CPU_DISABLE: the features above
-# it), so that each row is what a CPU of that level would run; then onnxruntime on the plain graph at this
-# CPU's full level, for scale. Medians of RUNS passes (default 40), on 1 and 2 threads, one level after
-# another in one run; the CPU's name and flags first.
+# it), and onnxruntime on the plain graph held to the same level, so that each row is what a CPU of that level
+# would run. onnxruntime's kernels ask the CPU itself (CPUID), so it is held by cpu_level_mask.c (preloaded; the
+# kernel's CPUID faulting, flag cpuid_fault): at avx2 the CPU reports no AVX-512; at sse2, no AVX (x86-64-v2:
+# NumPy's wheels refuse a CPU below it, so onnxruntime's Python cannot be played lower), and each figure is
+# checked against the features the process reported. Where it cannot be held (no faulting, no library), the row
+# says so. Medians of RUNS passes (default 40), on 1 and 2 threads, one level after another in one run, the
+# three back to back in each row; the CPU's name and flags first.
 # A level this CPU lacks gets its row ("this CPU cannot run it") and the script goes on; it exits 0 when hkf's
 # layers are faster than OpenCV's own at every level the CPU runs. HKF_PLAY_CPU_LEVEL=avx2 (or sse2) plays a CPU
 # of that level: OpenCV is told the features above it are missing, and hkf's layers ask OpenCV what the CPU has,
@@ -31,6 +35,31 @@ forward_ms() { # forward_ms LEVEL GRAPH THREADS: the median pass, or nothing whe
   sed -n '1s/.*forward pass \([0-9.]*\) ms.*/\1/p' <<<"$text"  # exit 2: the CPU cannot run the level: nothing
 }
 
+mask=$build/dev/benchmarks/libhkf-cpu-level-mask.so
+python=$root/.venv/bin/python
+onnxruntime_ms() { # onnxruntime_ms LEVEL THREADS: the median pass held to LEVEL, or why it cannot be
+  local played=off want
+  case $1 in
+    avx512) want="1 1 1" ;;
+    avx2) played=avx2 want="1 1 0" ;;
+    sse2) played=sse4_2 want="0 0 0" ;;
+  esac
+  # a CPU without the features above the level is that level already
+  [ "$1" = avx2 ] && ! grep -qw avx512f /proc/cpuinfo && played=off
+  [ "$1" = sse2 ] && ! grep -qw avx /proc/cpuinfo && played=off
+  [ -x "$python" ] || { echo "(no .venv: ./run setup)"; return; }
+  if [ "$played" != off ] && { [ ! -f "$mask" ] || ! grep -qw cpuid_fault /proc/cpuinfo; }; then
+    echo "(cannot be held to this level here)"
+    return
+  fi
+  local line
+  line=$(HKF_PLAY_CPUID_LEVEL=$played LD_PRELOAD=$([ "$played" != off ] && echo "$mask") \
+    "$python" "$root/dev/benchmarks/onnxruntime_pass.py" "$models/whenet.onnx" "$2" "$runs") ||
+    { echo "layer_levels: onnxruntime failed at $1" >&2; exit 1; }
+  [ "${line#* }" = "$want" ] || { echo "layer_levels: onnxruntime saw CPU features '${line#* }' at $1, not '$want'" >&2; exit 1; }
+  echo "${line%% *} ms"
+}
+
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)
 flags=$(grep -m1 '^flags' /proc/cpuinfo | tr ' ' '\n' | grep -E '^(sse2|sse4_2|avx|avx2|fma|avx512f|avx512bw|avx512vl|asimd)$' | tr '\n' ' ')
 echo "## The second model's forward pass per instruction-set level"
@@ -39,8 +68,8 @@ played=""
 [ -n "${HKF_PLAY_CPU_LEVEL:-}" ] && played=" Played as a CPU of level $HKF_PLAY_CPU_LEVEL (OpenCV told the features above it are missing)."
 echo "CPU: ${cpu:-$(uname -m)}, $(nproc) cores; flags: ${flags:-none of the vector ones}.$played WHENet 224x224, median of $runs passes."
 echo
-echo "| level | threads | hkf's layers | OpenCV's own layers, same level | hkf / OpenCV |"
-echo "| --- | ---: | ---: | ---: | ---: |"
+echo "| level | threads | hkf's layers | OpenCV's own layers, same level | hkf / OpenCV | onnxruntime, same level | hkf / onnxruntime |"
+echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"
 slower=0
 machine=$(uname -m)
 levels="sse2"
@@ -50,37 +79,21 @@ for level in $levels; do
   for threads in 1 2; do
     ours=$(forward_ms "$level" whenet_fast "$threads")
     if [ -z "$ours" ]; then
-      echo "| $level | $threads | (this CPU cannot run it) | | |"
+      echo "| $level | $threads | (this CPU cannot run it) | | | | |"
       break
     fi
     theirs=$(forward_ms "$level" whenet "$threads")
     ratio=$(awk -v a="$ours" -v b="$theirs" 'BEGIN { printf "%.2f", a / b }')
     awk -v r="$ratio" 'BEGIN { exit !(r >= 1) }' && slower=1
-    echo "| $level | $threads | $ours ms | $theirs ms | ${ratio}× |"
+    peer=$(onnxruntime_ms "$level" "$threads")
+    peer_ratio=""
+    [[ $peer == *" ms" ]] && peer_ratio=$(awk -v a="$ours" -v b="${peer% ms}" 'BEGIN { printf "%.2f×", a / b }')
+    echo "| $level | $threads | $ours ms | $theirs ms | ${ratio}× | $peer | $peer_ratio |"
   done
 done
 echo
-if [ -x "$root/.venv/bin/python" ]; then
-  "$root/.venv/bin/python" - "$models/whenet.onnx" "$runs" <<'PY'
-import statistics, sys, time
-import numpy as np
-import onnxruntime
-options = onnxruntime.SessionOptions()
-options.intra_op_num_threads = 2
-session = onnxruntime.InferenceSession(sys.argv[1], options, providers=["CPUExecutionProvider"])
-spec = session.get_inputs()[0]
-x = np.random.RandomState(0).rand(*spec.shape).astype(np.float32)
-for _ in range(5):
-    session.run(None, {spec.name: x})
-times = []
-for _ in range(int(sys.argv[2])):
-    t0 = time.perf_counter()
-    session.run(None, {spec.name: x})
-    times.append(1000 * (time.perf_counter() - t0))
-print(f"onnxruntime {onnxruntime.__version__} on whenet.onnx, 2 threads, this CPU's full level: "
-      f"{statistics.median(times):.2f} ms (median of {len(times)})")
-PY
-fi
+ort=$("$python" -c 'import onnxruntime; print(onnxruntime.__version__)' 2>/dev/null || echo "?")
+echo "onnxruntime $ort on whenet.onnx; its sse2 row is x86-64-v2 (SSE4.2, no AVX), the lowest its Python runs on."
 if [ "$slower" = 1 ]; then
   echo "layer_levels: hkf's layers are not faster than OpenCV's own at some level above" >&2
   exit 1
