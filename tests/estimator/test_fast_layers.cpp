@@ -283,6 +283,8 @@ void test_pointwise_matches_the_loops(void **)
         {1152, 320, 7, 7, 0, 1, 1},   // gated, fewer pixels than outputs: the input scaled
         {20, 21, 5, 4, 1, 0, 0},      // no bias; 21 outputs end in part of a tile, 20 pixels in part of one
         {9, 3, 33, 1, 0, 0, 1},
+        {64, 13, 37, 37, 1, 1, 0},    // few inputs: blocks of pixel tiles, the last block ending in part of a tile
+        {64, 6, 41, 41, 0, 1, 0},     // the last block ending in one pixel (AVX2's narrow tile)
     };
     for (const PointwiseCase &c : cases) {
         const double error = pointwise_error(c);
