@@ -70,9 +70,9 @@ cv::dnn::LayerParams depthwise_params(const Case &c, const cv::Mat &weights, con
 }
 
 // The largest |layer - reference| over the output, relative to the output's largest magnitude.
-double depthwise_error(const Case &c)
+double depthwise_error(const Case &c, int images = 1)
 {
-    const cv::Mat input = random_blob({1, c.channels, c.height, c.width}, 1, 1.0f);
+    const cv::Mat input = random_blob({images, c.channels, c.height, c.width}, 1, 1.0f);
     const cv::Mat weights = random_blob({c.channels, 1, c.kernel, c.kernel}, 2, 0.3f);
     const cv::Mat bias = random_blob({c.channels}, 3, 0.5f);
     cv::dnn::Net net;
@@ -83,11 +83,13 @@ double depthwise_error(const Case &c)
     const int out_h = (c.height + c.top + c.bottom - c.kernel) / c.stride + 1;
     const int out_w = (c.width + c.left + c.right - c.kernel) / c.stride + 1;
     assert_int_equal(out.dims, 4);
+    assert_int_equal(out.size[0], images);
     assert_int_equal(out.size[1], c.channels);
     assert_int_equal(out.size[2], out_h);
     assert_int_equal(out.size[3], out_w);
     double worst = 0.0, scale = 1e-6;
-    for (int ch = 0; ch < c.channels; ++ch) {
+    for (int p = 0; p < images * c.channels; ++p) {
+        const int ch = p % c.channels;
         for (int oy = 0; oy < out_h; ++oy) {
             for (int ox = 0; ox < out_w; ++ox) {
                 double sum = bias.ptr<float>()[ch];
@@ -96,11 +98,11 @@ double depthwise_error(const Case &c)
                         const int y = oy * c.stride + ky - c.top, x = ox * c.stride + kx - c.left;
                         if (y < 0 || y >= c.height || x < 0 || x >= c.width) continue;  // the zero padding
                         sum += static_cast<double>(weights.ptr<float>()[(ch * c.kernel + ky) * c.kernel + kx]) *
-                               input.ptr<float>()[(ch * c.height + y) * c.width + x];
+                               input.ptr<float>()[(p * c.height + y) * c.width + x];
                     }
                 }
                 const double expected = c.swish ? swish_reference(sum) : sum;
-                const double got = out.ptr<float>()[(ch * out_h + oy) * out_w + ox];
+                const double got = out.ptr<float>()[(p * out_h + oy) * out_w + ox];
                 worst = std::max(worst, std::fabs(got - expected));
                 scale = std::max(scale, std::fabs(expected));
             }
@@ -131,6 +133,10 @@ void test_depthwise_matches_the_loops(void **)
                       c.width, c.kernel, c.stride, c.top, c.left, c.bottom, c.right, c.swish, error);
         assert_true(error < 1e-5);
     }
+    // two images of small planes, a vector's channels at once, 19 channels (a block ends part way at every level)
+    const double error = depthwise_error(Case{19, 7, 7, 5, 1, 2, 2, 2, 2, 1}, 2);
+    print_message("depthwise 2 images of 19 x 7 x 7, k 5: relative error %.2e\n", error);
+    assert_true(error < 1e-5);
 }
 
 void test_swish_over_its_range(void **)
@@ -203,11 +209,11 @@ void test_swish_as_a_layer(void **)
         assert_true(std::fabs(out.ptr<float>()[i] - swish_reference(input.ptr<float>()[i])) < 1e-5);
 }
 
-// The depthwise layer's second output (means = 1): each output plane's mean.
-void test_depthwise_means(void **)
+// The depthwise layer's second output (means = 1): each output plane's mean, plane by plane (14 x 14) and a
+// vector's channels at once (7 x 7: two images, 11 channels, so that a block ends part way).
+void check_depthwise_means(const Case &c, int images)
 {
-    const Case c = {6, 14, 14, 5, 1, 2, 2, 2, 2, 1};
-    const cv::Mat input = random_blob({1, c.channels, c.height, c.width}, 10, 1.0f);
+    const cv::Mat input = random_blob({images, c.channels, c.height, c.width}, 10, 1.0f);
     cv::dnn::LayerParams params =
         depthwise_params(c, random_blob({c.channels, 1, c.kernel, c.kernel}, 11, 0.3f), random_blob({c.channels}, 12, 0.5f));
     params.set("means", 1);
@@ -218,13 +224,19 @@ void test_depthwise_means(void **)
     net.forward(outputs, std::vector<cv::String>{"dw"});
     assert_int_equal(static_cast<int>(outputs[0].size()), 2);
     const cv::Mat &planes = outputs[0][0], &means = outputs[0][1];
-    assert_int_equal(static_cast<int>(means.total()), c.channels);
+    assert_int_equal(static_cast<int>(means.total()), images * c.channels);
     const int plane = planes.size[2] * planes.size[3];
-    for (int ch = 0; ch < c.channels; ++ch) {
+    for (int p = 0; p < images * c.channels; ++p) {
         double sum = 0.0;
-        for (int i = 0; i < plane; ++i) sum += planes.ptr<float>()[ch * plane + i];
-        assert_true(std::fabs(means.ptr<float>()[ch] - sum / plane) < 1e-5);
+        for (int i = 0; i < plane; ++i) sum += planes.ptr<float>()[p * plane + i];
+        assert_true(std::fabs(means.ptr<float>()[p] - sum / plane) < 1e-5);
     }
+}
+
+void test_depthwise_means(void **)
+{
+    check_depthwise_means(Case{6, 14, 14, 5, 1, 2, 2, 2, 2, 1}, 1);
+    check_depthwise_means(Case{11, 7, 7, 3, 1, 1, 1, 1, 1, 1}, 2);
 }
 
 struct PointwiseCase {

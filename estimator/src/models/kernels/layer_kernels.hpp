@@ -36,6 +36,20 @@ struct PhasePlanes {
 // (ky % STRIDE) STRIDE + kx % STRIDE, index j + (ky / STRIDE) pitch + kx / STRIDE.
 typedef void DepthwiseTaps(const PhasePlanes &in, const float *weights, float bias, float *sum, std::size_t count);
 
+// A depthwise convolution of one vector's channels at once (the estimator's small planes, where a plane's own
+// loop is mostly overhead): the zero-padded input with the channels interleaved, pixel (y, x)'s channel c at
+// (y pitch + x) lanes + c; tap (ky, kx)'s weights at (ky kernel + kx) lanes; the output pixels (oy, ox),
+// out_h x out_w, interleaved alike, each the bias plus the taps at (oy stride + ky, ox stride + kx), the swish
+// on it if asked; each channel's sum over its output pixels into sums.
+struct InterleavedPlanes {
+    const float *in;
+    int pitch;  // pixels in a padded row
+    const float *weights, *bias;
+    int kernel, stride, out_h, out_w;
+    bool swish;
+    float *out, *sums;
+};
+
 struct LayerKernels {
     SimdLevel level;
     const char *name;            // as HKF_SIMD spells it: avx512, avx2, sse2 or neon
@@ -44,6 +58,7 @@ struct LayerKernels {
     void (*pointwise_tile)(const PointwiseTile &tile);
     void (*pointwise_tile_narrow)(const PointwiseTile &tile);  // tile_rows x narrow_pixels
     DepthwiseTaps *taps_3x3_stride1, *taps_3x3_stride2, *taps_5x5_stride1, *taps_5x5_stride2;
+    void (*depthwise_interleaved)(const InterleavedPlanes &planes);  // narrow_pixels (one vector's) channels
     void (*swish)(const float *src, float *dst, long n);  // x / (1 + exp(-x)); dst may be src
     float (*plane_mean)(const float *plane, long n);      // n > 0
 };

@@ -145,6 +145,53 @@ void taps(const PhasePlanes &in, const float *weights, float bias, float *__rest
     }
 }
 
+// One vector of channels, output pixel by output pixel: every tap a vector load of the input and one of the
+// weights (no plane split by phases, no copies: the row's few outputs need no long loop over j); then the
+// swish and the sums in a pass of their own (inside the loop, each output's exp and division waited on the
+// taps before it). K and STRIDE 0: the plane's own, at run time.
+template <int K, int STRIDE>
+void interleaved_taps(const InterleavedPlanes &p)
+{
+    const int k = K != 0 ? K : p.kernel, stride = STRIDE != 0 ? STRIDE : p.stride;
+    Vector bias;
+    __builtin_memcpy(&bias, p.bias, sizeof bias);
+    float *out = p.out;
+    for (int oy = 0; oy < p.out_h; ++oy) {
+        for (int ox = 0; ox < p.out_w; ++ox, out += HKF_LANES) {
+            const float *at = p.in + (static_cast<long>(oy) * stride * p.pitch + static_cast<long>(ox) * stride) * HKF_LANES;
+            Vector acc = bias;
+            for (int ky = 0; ky < k; ++ky)
+                for (int kx = 0; kx < k; ++kx) {
+                    Vector x, w;
+                    __builtin_memcpy(&x, at + (static_cast<long>(ky) * p.pitch + kx) * HKF_LANES, sizeof x);
+                    __builtin_memcpy(&w, p.weights + (ky * k + kx) * HKF_LANES, sizeof w);
+                    acc += x * w;
+                }
+            __builtin_memcpy(out, &acc, sizeof acc);
+        }
+    }
+    Vector total = Vector{};
+    for (float *v = p.out; v < out; v += HKF_LANES) {
+        Vector x;
+        __builtin_memcpy(&x, v, sizeof x);
+        if (p.swish) {
+            x = swish_of(x);
+            __builtin_memcpy(v, &x, sizeof x);
+        }
+        total += x;
+    }
+    __builtin_memcpy(p.sums, &total, sizeof total);
+}
+
+void depthwise_interleaved(const InterleavedPlanes &p)
+{
+    if (p.kernel == 3 && p.stride == 1) return interleaved_taps<3, 1>(p);
+    if (p.kernel == 3 && p.stride == 2) return interleaved_taps<3, 2>(p);
+    if (p.kernel == 5 && p.stride == 1) return interleaved_taps<5, 1>(p);
+    if (p.kernel == 5 && p.stride == 2) return interleaved_taps<5, 2>(p);
+    interleaved_taps<0, 0>(p);
+}
+
 // Vector by vector; the last floats, fewer than a vector, one by one.
 void swish(const float *src, float *dst, long n)
 {
@@ -187,6 +234,7 @@ extern const LayerKernels HKF_KERNELS_TABLE = {
     HKF_KERNELS_NAMESPACE::taps<3, 2>,
     HKF_KERNELS_NAMESPACE::taps<5, 1>,
     HKF_KERNELS_NAMESPACE::taps<5, 2>,
+    HKF_KERNELS_NAMESPACE::depthwise_interleaved,
     HKF_KERNELS_NAMESPACE::swish,
     HKF_KERNELS_NAMESPACE::plane_mean,
 };

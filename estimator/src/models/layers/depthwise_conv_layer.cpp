@@ -34,6 +34,7 @@ public:
             CV_Error(cv::Error::StsBadArg, "hkf.DepthwiseConv: wants a C x 1 x k x k kernel and a bias of C");
         blobs[0] = blobs[0].clone();  // continuous, owned
         blobs[1] = blobs[1].clone();
+        interleave_weights();
     }
 
 
@@ -54,6 +55,7 @@ public:
         cv::Mat &out = t.out[0];
         const int planes = in.size[0] * in.size[1];
         float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
+        if (static_cast<long>(out.size[2]) * out.size[3] <= kInterleavedPixels) return forward_interleaved(in, out, means);
         const Phases shape = phases_of(in.size[3], out.size[2]);
         cv::parallel_for_(cv::Range(0, planes), [&](const cv::Range &range) {
             // zeroed once: each plane then writes the input's places only, the padding's stay zero
@@ -67,6 +69,56 @@ public:
     }
 
 private:
+    // Planes of up to this many output pixels (7 x 7) go through depthwise_interleaved, a vector's channels at
+    // once: plane by plane, their split, copies and short loops cost more than their taps.
+    static constexpr long kInterleavedPixels = 7 * 7;
+
+    // The kernels and bias as depthwise_interleaved reads them: per block of `lanes` channels, each tap's
+    // weights of the block's channels, then the block's bias (zero for channels past the last).
+    void interleave_weights()
+    {
+        const int lanes = kernels_.narrow_pixels, channels = blobs[0].size[0], taps = window_.kernel * window_.kernel;
+        const int blocks = (channels + lanes - 1) / lanes;
+        interleaved_.assign(static_cast<size_t>(blocks) * (taps + 1) * lanes, 0.0f);
+        for (int c = 0; c < channels; ++c) {
+            float *block = &interleaved_[static_cast<size_t>(c / lanes) * (taps + 1) * lanes];
+            for (int t = 0; t < taps; ++t) block[t * lanes + c % lanes] = blobs[0].ptr<float>()[static_cast<size_t>(c) * taps + t];
+            block[taps * lanes + c % lanes] = blobs[1].ptr<float>()[c];
+        }
+    }
+
+    // Every image's planes, a block of `lanes` channels a task: interleaved into a zero-padded buffer (the
+    // padding zeroed once per thread), convolved, and written back plane by plane with their means.
+    void forward_interleaved(const cv::Mat &in, cv::Mat &out, float *means) const
+    {
+        const int lanes = kernels_.narrow_pixels, channels = in.size[1], blocks = (channels + lanes - 1) / lanes;
+        const int h = in.size[2], w = in.size[3], out_h = out.size[2], out_w = out.size[3], taps = window_.kernel * window_.kernel;
+        const int pitch = std::max(w + window_.left + window_.right, (out_w - 1) * window_.stride + window_.kernel);
+        const int rows = std::max(h + window_.top + window_.bottom, (out_h - 1) * window_.stride + window_.kernel);
+        const long out_pixels = static_cast<long>(out_h) * out_w;
+        cv::parallel_for_(cv::Range(0, in.size[0] * blocks), [&](const cv::Range &range) {
+            std::vector<float> padded(static_cast<size_t>(rows) * pitch * lanes, 0.0f), result(out_pixels * lanes), sums(lanes);
+            for (int task = range.start; task < range.end; ++task) {
+                const int first = task % blocks * lanes, count = std::min(lanes, channels - first);
+                const long plane = static_cast<long>(task / blocks) * channels + first;  // the block's first plane
+                for (int c = 0; c < count; ++c) {
+                    const float *src = in.ptr<float>() + (plane + c) * h * w;
+                    for (int y = 0; y < h; ++y)
+                        for (int x = 0; x < w; ++x)
+                            padded[((static_cast<size_t>(y) + window_.top) * pitch + x + window_.left) * lanes + c] = src[y * w + x];
+                }
+                const float *block = &interleaved_[static_cast<size_t>(task % blocks) * (taps + 1) * lanes];
+                kernels_.depthwise_interleaved(InterleavedPlanes{padded.data(), pitch, block, block + taps * lanes, window_.kernel,
+                                                                 window_.stride, out_h, out_w, swish_, result.data(), sums.data()});
+                for (int c = 0; c < count; ++c) {
+                    float *dst = out.ptr<float>() + (plane + c) * out_pixels;
+                    for (long i = 0; i < out_pixels; ++i) dst[i] = result[i * lanes + c];
+                    if (means != nullptr) means[plane + c] = sums[c] / static_cast<float>(out_pixels);
+                }
+            }
+        });
+    }
+
     // The zero-padded plane P (the input with pad_top rows above it, pad_left columns before it) split into
     // stride^2 phases: phase (py, px) holds P[r stride + py][c stride + px] at r pitch + c, pitch =
     // ceil(padded width / stride), `rows` rows (the last tap's, and one for the columns beyond the
@@ -154,6 +206,7 @@ private:
     const LayerKernels &kernels_;  // the level in use when the layer was made
     ConvWindow window_;
     bool swish_ = false, means_ = false;
+    std::vector<float> interleaved_;  // interleave_weights()
 };
 
 }  // namespace
