@@ -126,6 +126,8 @@ void test_depthwise_matches_the_loops(void **)
         {2, 1024, 1536, 3, 2, 1, 1, 1, 1, 1}, // a large image
         {3, 37, 70, 3, 1, 1, 1, 1, 1, 1},     // wide rows two at a time, and an odd row left over
         {3, 73, 90, 5, 2, 2, 2, 2, 2, 0},     // the same at stride 2
+        {2, 120, 100, 5, 1, 2, 2, 2, 2, 1},   // planes over 56 x 56 go plane by plane: 5 x 5 there
+        {3, 150, 130, 5, 2, 2, 2, 2, 2, 0},
     };
     for (const Case &c : cases) {
         const double error = depthwise_error(c);
@@ -209,8 +211,8 @@ void test_swish_as_a_layer(void **)
         assert_true(std::fabs(out.ptr<float>()[i] - swish_reference(input.ptr<float>()[i])) < 1e-5);
 }
 
-// The depthwise layer's second output (means = 1): each output plane's mean, plane by plane (14 x 14) and a
-// vector's channels at once (7 x 7: two images, 11 channels, so that a block ends part way).
+// The depthwise layer's second output (means = 1): each output plane's mean, plane by plane (60 x 60) and a
+// vector's channels at once (14 x 14; 7 x 7 in two images of 11 channels, so that a block ends part way).
 void check_depthwise_means(const Case &c, int images)
 {
     const cv::Mat input = random_blob({images, c.channels, c.height, c.width}, 10, 1.0f);
@@ -235,6 +237,7 @@ void check_depthwise_means(const Case &c, int images)
 
 void test_depthwise_means(void **)
 {
+    check_depthwise_means(Case{3, 60, 60, 3, 1, 1, 1, 1, 1, 1}, 1);
     check_depthwise_means(Case{6, 14, 14, 5, 1, 2, 2, 2, 2, 1}, 1);
     check_depthwise_means(Case{11, 7, 7, 3, 1, 1, 1, 1, 1, 1}, 2);
 }

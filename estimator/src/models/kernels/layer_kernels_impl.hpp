@@ -145,8 +145,32 @@ void taps(const PhasePlanes &in, const float *weights, float bias, float *__rest
     }
 }
 
-// One vector of channels, output pixel by output pixel: every tap a vector load of the input and one of the
-// weights (no plane split by phases, no copies: the row's few outputs need no long loop over j); then the
+// Outputs [ox, ox + R) of row oy: each tap's weights loaded once for the R outputs.
+template <int R, int K, int STRIDE>
+inline void interleaved_outputs(const InterleavedPlanes &p, int k, int stride, int oy, int ox, Vector bias, float *out)
+{
+    const float *at = p.in + (static_cast<long>(oy) * stride * p.pitch + static_cast<long>(ox) * stride) * HKF_LANES;
+    Vector acc[R];
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) acc[r] = bias;
+    for (int ky = 0; ky < k; ++ky)
+        for (int kx = 0; kx < k; ++kx) {
+            Vector w;
+            __builtin_memcpy(&w, p.weights + (ky * k + kx) * HKF_LANES, sizeof w);
+            const float *tap = at + (static_cast<long>(ky) * p.pitch + kx) * HKF_LANES;
+#pragma GCC unroll 8
+            for (int r = 0; r < R; ++r) {
+                Vector x;
+                __builtin_memcpy(&x, tap + r * stride * HKF_LANES, sizeof x);
+                acc[r] += x * w;
+            }
+        }
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) __builtin_memcpy(out + r * HKF_LANES, &acc[r], sizeof acc[r]);
+}
+
+// One vector of channels, four output pixels of a row at a time: every tap a load of its weights and one of
+// the input per output (no plane split by phases, no copies: the row's few outputs need no long loop over j); then the
 // swish and the sums in a pass of their own (inside the loop, each output's exp and division waited on the
 // taps before it). K and STRIDE 0: the plane's own, at run time.
 template <int K, int STRIDE>
@@ -157,18 +181,9 @@ void interleaved_taps(const InterleavedPlanes &p)
     __builtin_memcpy(&bias, p.bias, sizeof bias);
     float *out = p.out;
     for (int oy = 0; oy < p.out_h; ++oy) {
-        for (int ox = 0; ox < p.out_w; ++ox, out += HKF_LANES) {
-            const float *at = p.in + (static_cast<long>(oy) * stride * p.pitch + static_cast<long>(ox) * stride) * HKF_LANES;
-            Vector acc = bias;
-            for (int ky = 0; ky < k; ++ky)
-                for (int kx = 0; kx < k; ++kx) {
-                    Vector x, w;
-                    __builtin_memcpy(&x, at + (static_cast<long>(ky) * p.pitch + kx) * HKF_LANES, sizeof x);
-                    __builtin_memcpy(&w, p.weights + (ky * k + kx) * HKF_LANES, sizeof w);
-                    acc += x * w;
-                }
-            __builtin_memcpy(out, &acc, sizeof acc);
-        }
+        int ox = 0;
+        for (; ox + 4 <= p.out_w; ox += 4, out += 4 * HKF_LANES) interleaved_outputs<4, K, STRIDE>(p, k, stride, oy, ox, bias, out);
+        for (; ox < p.out_w; ++ox, out += HKF_LANES) interleaved_outputs<1, K, STRIDE>(p, k, stride, oy, ox, bias, out);
     }
     Vector total = Vector{};
     for (float *v = p.out; v < out; v += HKF_LANES) {
@@ -181,6 +196,66 @@ void interleaved_taps(const InterleavedPlanes &p)
         total += x;
     }
     __builtin_memcpy(p.sums, &total, sizeof total);
+}
+
+typedef std::int32_t Lanes __attribute__((vector_size(HKF_LANES * sizeof(float))));
+
+// The butterfly's step H on a pair of rows (a, b) of a lanes x lanes block: the H-wide pieces at odd places
+// of a and at even places of b swapped, each row one two-input shuffle; the steps H = lanes / 2, ..., 1
+// transpose the block.
+template <int H>
+inline void swap_pieces(Vector &a, Vector &b)
+{
+    Lanes low, high;
+#pragma GCC unroll 16
+    for (int i = 0; i < HKF_LANES; ++i) {
+        low[i] = (i & H) != 0 ? HKF_LANES + i - H : i;
+        high[i] = (i & H) != 0 ? HKF_LANES + i : i + H;
+    }
+    const Vector x = __builtin_shuffle(a, b, low), y = __builtin_shuffle(a, b, high);
+    a = x;
+    b = y;
+}
+
+template <int H>
+inline void butterfly(Vector (&rows)[HKF_LANES])
+{
+#pragma GCC unroll 16
+    for (int r = 0; r < HKF_LANES; ++r)
+        if ((r & H) == 0) swap_pieces<H>(rows[r], rows[r + H]);
+    if constexpr (H > 1) butterfly<H / 2>(rows);
+}
+
+// dst[i lanes + c] = planes[c][i], i < n: lanes planes' pixels interleaved, a lanes x lanes block at a time.
+void interleave(const float *const *planes, float *dst, long n)
+{
+    long i = 0;
+    for (; i + HKF_LANES <= n; i += HKF_LANES) {
+        Vector rows[HKF_LANES];
+#pragma GCC unroll 16
+        for (int c = 0; c < HKF_LANES; ++c) __builtin_memcpy(&rows[c], planes[c] + i, sizeof rows[c]);
+        butterfly<HKF_LANES / 2>(rows);
+#pragma GCC unroll 16
+        for (int k = 0; k < HKF_LANES; ++k) __builtin_memcpy(dst + (i + k) * HKF_LANES, &rows[k], sizeof rows[k]);
+    }
+    for (; i < n; ++i)
+        for (int c = 0; c < HKF_LANES; ++c) dst[i * HKF_LANES + c] = planes[c][i];
+}
+
+// planes[c][i] = src[i lanes + c], i < n: the other way.
+void deinterleave(const float *src, float *const *planes, long n)
+{
+    long i = 0;
+    for (; i + HKF_LANES <= n; i += HKF_LANES) {
+        Vector rows[HKF_LANES];
+#pragma GCC unroll 16
+        for (int k = 0; k < HKF_LANES; ++k) __builtin_memcpy(&rows[k], src + (i + k) * HKF_LANES, sizeof rows[k]);
+        butterfly<HKF_LANES / 2>(rows);
+#pragma GCC unroll 16
+        for (int c = 0; c < HKF_LANES; ++c) __builtin_memcpy(planes[c] + i, &rows[c], sizeof rows[c]);
+    }
+    for (; i < n; ++i)
+        for (int c = 0; c < HKF_LANES; ++c) planes[c][i] = src[i * HKF_LANES + c];
 }
 
 void depthwise_interleaved(const InterleavedPlanes &p)
@@ -235,6 +310,8 @@ extern const LayerKernels HKF_KERNELS_TABLE = {
     HKF_KERNELS_NAMESPACE::taps<5, 1>,
     HKF_KERNELS_NAMESPACE::taps<5, 2>,
     HKF_KERNELS_NAMESPACE::depthwise_interleaved,
+    HKF_KERNELS_NAMESPACE::interleave,
+    HKF_KERNELS_NAMESPACE::deinterleave,
     HKF_KERNELS_NAMESPACE::swish,
     HKF_KERNELS_NAMESPACE::plane_mean,
 };
