@@ -70,11 +70,11 @@ public:
     }
 
 private:
-    // Planes of up to this many output pixels (56 x 56) go through depthwise_interleaved, a vector's channels at
+    // Planes of up to this many output pixels (28 x 28) go through depthwise_interleaved, a vector's channels at
     // once: plane by plane, the split, the copies and the short loops of the smaller planes cost more than their
-    // taps (per-layer medians against the plane path: 7 x 7 and 14 x 14 planes 0.7x, 28 x 28 0.8x, 56 x 56 0.9x
-    // at AVX2; 112 x 112 1.1x, so those stay plane by plane).
-    static constexpr long kInterleavedPixels = 56 * 56;
+    // taps (per-layer minima against the plane path at AVX2, one thread: 7 x 7 and 14 x 14 planes 0.7x, 28 x 28
+    // 0.8x; 56 x 56 0.9x on one thread but 1.1x on two, 112 x 112 1.1x: those stay plane by plane).
+    static constexpr long kInterleavedPixels = 28 * 28;
     static constexpr int kMaxLanes = 16;  // AVX-512's
 
     // The kernels and bias as depthwise_interleaved reads them: per block of `lanes` channels, each tap's
