@@ -124,9 +124,9 @@ void test_depthwise_matches_the_loops(void **)
         {3, 1, 1, 3, 1, 1, 1, 1, 1, 1},       // round 6's review: a 1 x 1 image (every tap but the centre padding)
         {5, 1, 7, 3, 2, 1, 1, 1, 1, 0},       // one row
         {2, 1024, 1536, 3, 2, 1, 1, 1, 1, 1}, // a large image
-        {3, 37, 70, 3, 1, 1, 1, 1, 1, 1},     // wide rows two at a time, and an odd row left over
+        {3, 37, 70, 3, 1, 1, 1, 1, 1, 1},     // wide rows interleaved row by row, each ending part way through a block
         {3, 73, 90, 5, 2, 2, 2, 2, 2, 0},     // the same at stride 2
-        {2, 120, 100, 5, 1, 2, 2, 2, 2, 1},   // planes over 28 x 28 go plane by plane: 5 x 5 there
+        {2, 120, 100, 5, 1, 2, 2, 2, 2, 1},   // planes over 56 x 56 go plane by plane: 5 x 5 there
         {3, 150, 130, 5, 2, 2, 2, 2, 2, 0},
     };
     for (const Case &c : cases) {

@@ -70,11 +70,11 @@ public:
     }
 
 private:
-    // Planes of up to this many output pixels (28 x 28) go through depthwise_interleaved, a vector's channels at
+    // Planes of up to this many output pixels (56 x 56) go through depthwise_interleaved, a vector's channels at
     // once: plane by plane, the split, the copies and the short loops of the smaller planes cost more than their
-    // taps (per-layer minima against the plane path at AVX2, one thread: 7 x 7 and 14 x 14 planes 0.7x, 28 x 28
-    // 0.8x; 56 x 56 0.9x on one thread but 1.1x on two, 112 x 112 1.1x: those stay plane by plane).
-    static constexpr long kInterleavedPixels = 28 * 28;
+    // taps (WHENet's layers against the plane path, per-layer minima at AVX2 on one and two threads: 7 x 7 planes
+    // 0.43-0.51x, 14 x 14 0.7x, 28 x 28 0.7x, 56 x 56 0.77x; 112 x 112 1.0x and 1.2x, so those stay plane by plane).
+    static constexpr long kInterleavedPixels = 56 * 56;
     static constexpr int kMaxLanes = 16;  // AVX-512's
 
     // The kernels and bias as depthwise_interleaved reads them: per block of `lanes` channels, each tap's
@@ -101,7 +101,8 @@ private:
         const int rows = std::max(h + window_.top + window_.bottom, (out_h - 1) * window_.stride + window_.kernel);
         const long out_pixels = static_cast<long>(out_h) * out_w;
         cv::parallel_for_(cv::Range(0, in.size[0] * blocks), [&](const cv::Range &range) {
-            std::vector<float> padded(static_cast<size_t>(rows) * pitch * lanes, 0.0f), flat(static_cast<size_t>(h) * w * lanes),
+            std::vector<float> padded(static_cast<size_t>(rows) * pitch * lanes, 0.0f),
+                flat(w >= 2 * lanes ? 0 : static_cast<size_t>(h) * w * lanes),
                 result(out_pixels * lanes), sums(lanes), unused(out_pixels);
             const float *from[kMaxLanes];
             float *to[kMaxLanes];
@@ -112,10 +113,7 @@ private:
                     from[c] = in.ptr<float>() + (plane + std::min(c, count - 1)) * h * w;
                     to[c] = c < count ? out.ptr<float>() + (plane + c) * out_pixels : unused.data();
                 }
-                kernels_.interleave(from, flat.data(), static_cast<long>(h) * w);
-                for (int y = 0; y < h; ++y)
-                    std::memcpy(&padded[((static_cast<size_t>(y) + window_.top) * pitch + window_.left) * lanes],
-                                &flat[static_cast<size_t>(y) * w * lanes], sizeof(float) * w * lanes);
+                interleave_into_padding(from, h, w, pitch, flat.data(), padded.data());
                 const float *block = &interleaved_[static_cast<size_t>(task % blocks) * (taps + 1) * lanes];
                 kernels_.depthwise_interleaved(InterleavedPlanes{padded.data(), pitch, block, block + taps * lanes, window_.kernel,
                                                                  window_.stride, out_h, out_w, swish_, result.data(), sums.data()});
@@ -123,6 +121,26 @@ private:
                 for (int c = 0; means != nullptr && c < count; ++c) means[plane + c] = sums[c] / static_cast<float>(out_pixels);
             }
         });
+    }
+
+    // A block's planes (h x w) interleaved into the padded buffer's interior: row by row where a row holds
+    // whole lanes x lanes blocks; small planes whole into `flat` first (a 7-pixel row would be all remainder),
+    // then copied row by row.
+    void interleave_into_padding(const float *const *from, int h, int w, int pitch, float *flat, float *padded) const
+    {
+        const int lanes = kernels_.narrow_pixels;
+        if (w >= 2 * lanes) {
+            const float *row[kMaxLanes];
+            for (int y = 0; y < h; ++y) {
+                for (int c = 0; c < lanes; ++c) row[c] = from[c] + static_cast<long>(y) * w;
+                kernels_.interleave(row, padded + ((static_cast<size_t>(y) + window_.top) * pitch + window_.left) * lanes, w);
+            }
+            return;
+        }
+        kernels_.interleave(from, flat, static_cast<long>(h) * w);
+        for (int y = 0; y < h; ++y)
+            std::memcpy(padded + ((static_cast<size_t>(y) + window_.top) * pitch + window_.left) * lanes,
+                        flat + static_cast<size_t>(y) * w * lanes, sizeof(float) * w * lanes);
     }
 
     // The zero-padded plane P (the input with pad_top rows above it, pad_left columns before it) split into
