@@ -58,7 +58,7 @@ public:
         float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
         if (static_cast<long>(out.size[2]) * out.size[3] <= kInterleavedPixels) return forward_interleaved(in, out, means);
         const Phases shape = phases_of(in.size[3], out.size[2]);
-        cv::parallel_for_(cv::Range(0, planes), [&](const cv::Range &range) {
+        parallel_tasks(planes, [&](const cv::Range &range) {
             // zeroed once: each plane then writes the input's places only, the padding's stay zero
             std::vector<float> phases(static_cast<size_t>(window_.stride) * window_.stride * shape.size, 0.0f), extended(shape.count);
             const long plane = static_cast<long>(out.size[2]) * out.size[3];
@@ -100,7 +100,7 @@ private:
         const int pitch = std::max(w + window_.left + window_.right, (out_w - 1) * window_.stride + window_.kernel);
         const int rows = std::max(h + window_.top + window_.bottom, (out_h - 1) * window_.stride + window_.kernel);
         const long out_pixels = static_cast<long>(out_h) * out_w;
-        cv::parallel_for_(cv::Range(0, in.size[0] * blocks), [&](const cv::Range &range) {
+        parallel_tasks(in.size[0] * blocks, [&](const cv::Range &range) {
             std::vector<float> padded(static_cast<size_t>(rows) * pitch * lanes, 0.0f),
                 flat(w >= 2 * lanes ? 0 : static_cast<size_t>(h) * w * lanes),
                 result(out_pixels * lanes), sums(lanes), unused(out_pixels);

@@ -37,6 +37,16 @@ inline void every_second(const float *__restrict src, float *__restrict dst, int
     for (int i = 0; i < n; ++i) dst[i] = src[2 * i];
 }
 
+// body(range) over the tasks [0, tasks) on OpenCV's threads, in four stripes a thread: with more than one thread,
+// OpenCV's default calls the body once per task, and each call makes its buffers anew (the depthwise layer's
+// padded planes, zeroed) and takes the pool's lock; four a thread leave room to even out unequal tasks.
+template <typename Body>
+void parallel_tasks(int tasks, const Body &body)
+{
+    const double stripes = std::min(static_cast<double>(tasks), 4.0 * std::max(1, cv::getNumThreads()));
+    cv::parallel_for_(cv::Range(0, tasks), body, stripes);
+}
+
 // The columns c in [0, count) whose input column c stride + offset lies in [0, w): [*first, *end)
 // (empty: *first == *end). A padded convolution's copies (the depthwise phases, the unfolded rows).
 inline void columns_inside(int offset, int w, int stride, int count, int *first, int *end)

@@ -85,7 +85,7 @@ public:
             if (unfold_.kernel > 1) src = unfold(src, in.size[2], in.size[3], out.size[2], out.size[3]);
             Image m{packed_.data(), src, out.ptr<float>() + static_cast<size_t>(image) * out_channels_ * pixels, pixels};
             if (t.in.size() == 2) apply_gate(t.in[1].ptr<float>() + static_cast<size_t>(image) * in_channels_, &m);
-            cv::parallel_for_(cv::Range(0, tasks.blocks * tasks.groups), [&](const cv::Range &range) {
+            parallel_tasks(tasks.blocks * tasks.groups, [&](const cv::Range &range) {
                 std::vector<float> tail;
                 for (int task = range.start; task < range.end; ++task) {
                     const int block = task / tasks.groups, first_row_tile = task % tasks.groups * tasks.rows_per_group;
@@ -112,7 +112,7 @@ private:
         const ConvWindow u = unfold_;
         const long out_pixels = static_cast<long>(out_h) * out_w;
         unfolded_.assign(static_cast<size_t>(in_channels_) * out_pixels, 0.0f);
-        cv::parallel_for_(cv::Range(0, in_channels_), [&](const cv::Range &range) {
+        parallel_tasks(in_channels_, [&](const cv::Range &range) {
             for (int row = range.start; row < range.end; ++row) {
                 const int c = row / (u.kernel * u.kernel), ky = row / u.kernel % u.kernel, kx = row % u.kernel;
                 int first, end;  // the output columns whose input column ox stride + kx - pad_left is inside [0, w)
