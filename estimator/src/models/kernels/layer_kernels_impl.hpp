@@ -145,11 +145,10 @@ void taps(const PhasePlanes &in, const float *weights, float bias, float *__rest
     }
 }
 
-// Outputs [ox, ox + R) of row oy: each tap's weights loaded once for the R outputs.
+// R outputs of a row, the first's window from `at`: each tap's weights loaded once for the R outputs.
 template <int R, int K, int STRIDE>
-inline void interleaved_outputs(const InterleavedPlanes &p, int k, int stride, int oy, int ox, Vector bias, float *out)
+inline void interleaved_outputs(const InterleavedPlanes &p, int k, int stride, const float *at, Vector bias, float *out)
 {
-    const float *at = p.in + (static_cast<long>(oy) * stride * p.pitch + static_cast<long>(ox) * stride) * HKF_LANES;
     Vector acc[R];
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) acc[r] = bias;
@@ -181,9 +180,12 @@ void interleaved_taps(const InterleavedPlanes &p)
     __builtin_memcpy(&bias, p.bias, sizeof bias);
     float *out = p.out;
     for (int oy = 0; oy < p.out_h; ++oy) {
+        const float *row = p.in + static_cast<long>(oy) * stride * p.pitch * HKF_LANES;
         int ox = 0;
-        for (; ox + 4 <= p.out_w; ox += 4, out += 4 * HKF_LANES) interleaved_outputs<4, K, STRIDE>(p, k, stride, oy, ox, bias, out);
-        for (; ox < p.out_w; ++ox, out += HKF_LANES) interleaved_outputs<1, K, STRIDE>(p, k, stride, oy, ox, bias, out);
+        for (; ox + 4 <= p.out_w; ox += 4, out += 4 * HKF_LANES)
+            interleaved_outputs<4, K, STRIDE>(p, k, stride, row + static_cast<long>(ox) * stride * HKF_LANES, bias, out);
+        for (; ox < p.out_w; ++ox, out += HKF_LANES)
+            interleaved_outputs<1, K, STRIDE>(p, k, stride, row + static_cast<long>(ox) * stride * HKF_LANES, bias, out);
     }
     Vector total = Vector{};
     for (float *v = p.out; v < out; v += HKF_LANES) {
