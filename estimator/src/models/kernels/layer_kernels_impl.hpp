@@ -14,6 +14,7 @@
 // header, which the linker might take from another level's file.
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 #include "layer_kernels.hpp"
 
@@ -200,21 +201,14 @@ void interleaved_taps(const InterleavedPlanes &p)
     __builtin_memcpy(p.sums, &total, sizeof total);
 }
 
-typedef std::int32_t Lanes __attribute__((vector_size(HKF_LANES * sizeof(float))));
-
 // The butterfly's step H on a pair of rows (a, b) of a lanes x lanes block: the H-wide pieces at odd places
-// of a and at even places of b swapped, each row one two-input shuffle; the steps H = lanes / 2, ..., 1
-// transpose the block.
-template <int H>
-inline void swap_pieces(Vector &a, Vector &b)
+// of a and at even places of b swapped, each row one two-input shuffle of constant lanes
+// (__builtin_shufflevector: GCC 12 and clang alike); the steps H = lanes / 2, ..., 1 transpose the block.
+template <int H, int... I>
+inline void swap_pieces(Vector &a, Vector &b, std::integer_sequence<int, I...>)
 {
-    Lanes low, high;
-#pragma GCC unroll 16
-    for (int i = 0; i < HKF_LANES; ++i) {
-        low[i] = (i & H) != 0 ? HKF_LANES + i - H : i;
-        high[i] = (i & H) != 0 ? HKF_LANES + i : i + H;
-    }
-    const Vector x = __builtin_shuffle(a, b, low), y = __builtin_shuffle(a, b, high);
+    const Vector x = __builtin_shufflevector(a, b, ((I & H) != 0 ? HKF_LANES + I - H : I)...);
+    const Vector y = __builtin_shufflevector(a, b, ((I & H) != 0 ? HKF_LANES + I : I + H)...);
     a = x;
     b = y;
 }
@@ -224,7 +218,7 @@ inline void butterfly(Vector (&rows)[HKF_LANES])
 {
 #pragma GCC unroll 16
     for (int r = 0; r < HKF_LANES; ++r)
-        if ((r & H) == 0) swap_pieces<H>(rows[r], rows[r + H]);
+        if ((r & H) == 0) swap_pieces<H>(rows[r], rows[r + H], std::make_integer_sequence<int, HKF_LANES>());
     if constexpr (H > 1) butterfly<H / 2>(rows);
 }
 
