@@ -146,8 +146,9 @@ void taps(const PhasePlanes &in, const float *weights, float bias, float *__rest
     }
 }
 
-// R outputs of a row, the first's window from `at`: each tap's weights loaded once for the R outputs.
-template <int R, int K, int STRIDE>
+// R outputs of a row, the first's window from `at`: each tap's weights loaded once for the R outputs (k and
+// stride constants once inlined into interleaved_taps<K, STRIDE>).
+template <int R>
 inline void interleaved_outputs(const InterleavedPlanes &p, int k, int stride, const float *at, Vector bias, float *out)
 {
     Vector acc[R];
@@ -184,9 +185,9 @@ void interleaved_taps(const InterleavedPlanes &p)
         const float *row = p.in + static_cast<long>(oy) * stride * p.pitch * HKF_LANES;
         int ox = 0;
         for (; ox + 4 <= p.out_w; ox += 4, out += 4 * HKF_LANES)
-            interleaved_outputs<4, K, STRIDE>(p, k, stride, row + static_cast<long>(ox) * stride * HKF_LANES, bias, out);
+            interleaved_outputs<4>(p, k, stride, row + static_cast<long>(ox) * stride * HKF_LANES, bias, out);
         for (; ox < p.out_w; ++ox, out += HKF_LANES)
-            interleaved_outputs<1, K, STRIDE>(p, k, stride, row + static_cast<long>(ox) * stride * HKF_LANES, bias, out);
+            interleaved_outputs<1>(p, k, stride, row + static_cast<long>(ox) * stride * HKF_LANES, bias, out);
     }
     Vector total = Vector{};
     for (float *v = p.out; v < out; v += HKF_LANES) {
