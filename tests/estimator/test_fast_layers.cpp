@@ -2,7 +2,7 @@
 // (estimator/src/models/layers/, registered by fast_layers.cpp), run inside cv::dnn::Net as a rewritten graph runs
 // them, against plain loops in double written here: the depthwise convolution at WHENet's
 // kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112, with its
-// planes' means; the pointwise convolution on planes that end in part of a tile, with output
+// planes' means; the pointwise convolution on planes that end in part of a tile or in columns, with output
 // channels that end in part of one, gated (the weights scaled, or the input), without a bias; the
 // k x k convolution unfolded onto it, at WHENet's first layer's shape and at odd strides and paddings; a
 // squeeze-and-excitation's gate from its means;
@@ -299,7 +299,10 @@ void test_pointwise_matches_the_loops(void **)
         {20, 21, 5, 4, 1, 0, 0},      // no bias; 21 outputs end in part of a tile, 20 pixels in part of one
         {9, 3, 33, 1, 0, 0, 1},
         {64, 13, 37, 37, 1, 1, 0},    // few inputs: blocks of pixel tiles, the last block ending in part of a tile
-        {64, 6, 41, 41, 0, 1, 0},     // the last block ending in one pixel (AVX2's narrow tile)
+        {64, 6, 41, 41, 0, 1, 0},     // the last block ending in one pixel: a column (after a narrow tile at AVX-512)
+        {40, 21, 5, 10, 1, 0, 0},     // 50 pixels: two columns after the tiles; outputs ending in part of a tile
+        {12, 7, 1, 2, 1, 1, 1},       // two pixels in all: columns alone
+        {30, 16, 1, 1, 0, 1, 0},      // one
     };
     for (const PointwiseCase &c : cases) {
         const double error = pointwise_error(c);

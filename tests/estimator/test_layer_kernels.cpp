@@ -62,6 +62,33 @@ void check_tile(const LayerKernels &k, int cin, bool swish, bool narrow = false)
     expect(worst / scale < 1e-5 && outside, k.name, what, worst / scale);
 }
 
+// count columns (a plane's last pixels, each its input channels repeated once per row) against the same packed
+// weights; cin chosen so that cin x rows ends in part of the kernel's span of sums, or does not.
+void check_columns(const LayerKernels &k, int cin, int count, bool swish)
+{
+    const int rows = k.tile_rows;
+    const std::vector<float> weights = noise(static_cast<size_t>(cin) * rows, 7, 0.3f), bias = noise(rows, 8, 0.5f);
+    const std::vector<float> in = noise(static_cast<size_t>(cin) * count, 9, 1.0f);  // [column][channel]
+    std::vector<float> columns;
+    for (int p = 0; p < count; ++p)
+        for (int c = 0; c < cin; ++c) columns.insert(columns.end(), rows, in[static_cast<size_t>(p) * cin + c]);
+    std::vector<float> sums(static_cast<size_t>(count) * rows + 3, -7.0f);
+    k.pointwise_columns(hkf_estimator::PointwiseColumns{weights.data(), cin, columns.data(), count, bias.data(), sums.data(), swish});
+    double worst = 0.0, scale = 1e-6;
+    for (int p = 0; p < count; ++p)
+        for (int r = 0; r < rows; ++r) {
+            double sum = bias[r];
+            for (int c = 0; c < cin; ++c) sum += static_cast<double>(weights[static_cast<size_t>(c) * rows + r]) * in[static_cast<size_t>(p) * cin + c];
+            if (swish) sum /= 1.0 + std::exp(-sum);
+            worst = std::fmax(worst, std::fabs(sums[static_cast<size_t>(p) * rows + r] - sum));
+            scale = std::fmax(scale, std::fabs(sum));
+        }
+    const bool outside = sums[sums.size() - 3] == -7.0f;
+    char what[80];
+    std::snprintf(what, sizeof what, "pointwise columns %d x %d, %d input channels%s", rows, count, cin, swish ? ", swish" : "");
+    expect(worst / scale < 1e-5 && outside, k.name, what, worst / scale);
+}
+
 void check_taps(const LayerKernels &k, int kernel, int stride, hkf_estimator::DepthwiseTaps *taps)
 {
     const int pitch = 23, count = 5 * pitch;
@@ -135,6 +162,8 @@ int main(int argc, char **argv)
         for (int cin : {1, 3, 16, 240}) check_tile(*k, cin, false);
         for (int cin : {3, 240}) check_tile(*k, cin, true);
         for (int cin : {1, 240}) check_tile(*k, cin, cin > 1, true);
+        for (int cin : {1, 5, 16, 1152, 1153}) check_columns(*k, cin, 1 + cin % 2, cin == 5);
+        check_columns(*k, 16, 1, true);
         check_taps(*k, 3, 1, k->taps_3x3_stride1);
         check_taps(*k, 3, 2, k->taps_3x3_stride2);
         check_taps(*k, 5, 1, k->taps_5x5_stride1);

@@ -23,6 +23,20 @@ struct PointwiseTile {
     bool swish;            // the output x / (1 + exp(-x)) of the sum x
 };
 
+// A plane's last one or two pixels past its tiles (7 x 7 = 49 pixels: 3 tiles of 16 and one pixel at AVX2),
+// each a dot product of a row tile's packed weights with the pixel's input column repeated tile_rows times, so
+// that no lane idles (a narrow tile for one pixel leaves all lanes but one idle, and waits on its few sums).
+constexpr int kMostPointwiseColumns = 2;
+struct PointwiseColumns {
+    const float *weights;  // packed [cin][tile_rows], as PointwiseTile's
+    int cin;
+    const float *columns;  // count x cin x tile_rows: column k's input channel c at (k cin + c) tile_rows + r, every r
+    int count;             // 1 .. kMostPointwiseColumns
+    const float *bias;     // tile_rows
+    float *sums;           // count x tile_rows: column k's output row r at k tile_rows + r
+    bool swish;
+};
+
 // A depthwise convolution's input plane, zero-padded and split by row and column modulo the stride
 // (layers/depthwise_conv_layer.cpp, convolve_plane; at stride 1 the padded plane itself): stride^2 phases of `size`
 // floats one after the other, rows of `pitch` floats.
@@ -57,6 +71,7 @@ struct LayerKernels {
     int narrow_pixels;           // the narrow tile's pixels: one vector
     void (*pointwise_tile)(const PointwiseTile &tile);
     void (*pointwise_tile_narrow)(const PointwiseTile &tile);  // tile_rows x narrow_pixels
+    void (*pointwise_columns)(const PointwiseColumns &columns);
     DepthwiseTaps *taps_3x3_stride1, *taps_3x3_stride2, *taps_5x5_stride1, *taps_5x5_stride2;
     void (*depthwise_interleaved)(const InterleavedPlanes &planes);  // narrow_pixels (one vector's) channels
     void (*interleave)(const float *const *planes, float *dst, long n);  // dst[i lanes + c] = planes[c][i], i < n

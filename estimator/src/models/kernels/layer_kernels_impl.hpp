@@ -8,8 +8,8 @@
 //   HKF_TILE_ROWS, HKF_TILE_VECTORS
 //                           the pointwise tile: rows x vectors of running sums, chosen to fill the level's
 //                           register file without spilling: AVX-512 8 x 2 (16 of 32 zmm), AVX2 6 x 2 (12 of
-//                           16 ymm, beside 2 inputs and a broadcast weight), SSE2 and NEON 6 x 2 (12 of 16 xmm,
-//                           or of 32 NEON registers)
+//                           16 ymm, beside 2 inputs and a broadcast weight), SSE2 4 x 3 (12 of 16 xmm), NEON
+//                           8 x 2 (16 of 32 registers)
 // Only this file's own functions and compiler built-ins are used here: no inline function of a shared
 // header, which the linker might take from another level's file.
 #include <cstdint>
@@ -126,6 +126,56 @@ void pointwise_tile(const PointwiseTile &t)
 #pragma GCC unroll 4
         for (int v = 0; v < VECTORS; ++v)
             __builtin_memcpy(t.out + r * t.out_pitch + v * HKF_LANES, &sum[r][v], sizeof sum[r][v]);
+}
+
+constexpr int greatest_common_divisor(int a, int b) { return b == 0 ? a : greatest_common_divisor(b, a % b); }
+
+// C columns (PointwiseColumns) over the packed weights at once, each weight vector loaded once for the C: the
+// weights and a column are both cin x kRows floats, so an output is their element-wise products summed over
+// every kRows-th float. Vector sums over spans of lcm(kRows, lanes) floats (each lane then always the same
+// row), enough spans that each column has four or more sums to wait on; the spans' lanes added by row at the end.
+template <int C>
+void columns_of(const PointwiseColumns &p)
+{
+    constexpr int span = kRows / greatest_common_divisor(kRows, HKF_LANES) * HKF_LANES;
+    constexpr int chunk = span * ((4 * HKF_LANES + span - 1) / span), vectors = chunk / HKF_LANES;
+    Vector sum[C][vectors];
+#pragma GCC unroll 8
+    for (int k = 0; k < C; ++k)
+#pragma GCC unroll 8
+        for (int v = 0; v < vectors; ++v) sum[k][v] = Vector{};
+    const long n = static_cast<long>(p.cin) * kRows;
+    long j = 0;
+    for (; j + chunk <= n; j += chunk) {
+#pragma GCC unroll 8
+        for (int v = 0; v < vectors; ++v) {
+            Vector w;
+            __builtin_memcpy(&w, p.weights + j + v * HKF_LANES, sizeof w);
+#pragma GCC unroll 8
+            for (int k = 0; k < C; ++k) {
+                Vector x;
+                __builtin_memcpy(&x, p.columns + k * n + j + v * HKF_LANES, sizeof x);
+                sum[k][v] += w * x;
+            }
+        }
+    }
+    for (int k = 0; k < C; ++k) {
+        float lanes[chunk];
+        __builtin_memcpy(lanes, sum[k], sizeof lanes);
+        for (long i = j; i < n; ++i) lanes[i - j] += p.weights[i] * p.columns[k * n + i];  // the last floats, fewer than a chunk
+        float *out = p.sums + k * kRows;
+        for (int r = 0; r < kRows; ++r) out[r] = p.bias[r];
+        for (int i = 0; i < chunk; ++i) out[i % kRows] += lanes[i];
+        if (p.swish)
+            for (int r = 0; r < kRows; ++r) out[r] = swish_of(out[r]);
+    }
+}
+
+void pointwise_columns(const PointwiseColumns &p)
+{
+    static_assert(kMostPointwiseColumns == 2, "one columns_of<C> for each count");
+    if (p.count == 2) return columns_of<2>(p);
+    columns_of<1>(p);
 }
 
 // All K^2 taps of one output summed in registers (one store per output), the loop over j vectorised:
@@ -302,6 +352,7 @@ extern const LayerKernels HKF_KERNELS_TABLE = {
     HKF_LANES,
     HKF_KERNELS_NAMESPACE::pointwise_tile<HKF_KERNELS_NAMESPACE::kVectors>,
     HKF_KERNELS_NAMESPACE::pointwise_tile<1>,
+    HKF_KERNELS_NAMESPACE::pointwise_columns,
     HKF_KERNELS_NAMESPACE::taps<3, 1>,
     HKF_KERNELS_NAMESPACE::taps<3, 2>,
     HKF_KERNELS_NAMESPACE::taps<5, 1>,

@@ -44,7 +44,7 @@ public:
                                                                  static_cast<int>(blobs[1].total()) != blobs[0].size[0])))
             CV_Error(cv::Error::StsBadArg, "hkf.PointwiseConv: wants a Cout x Cin x k x k kernel (k = 1 unless "
                                            "unfolded) and a bias of Cout");
-        CV_Assert(rows_ * pixels_ <= kLargestTile);
+        CV_Assert(rows_ * pixels_ <= kLargestTile && rows_ * kMostPointwiseColumns <= kLargestTile);
         out_channels_ = blobs[0].size[0];
         image_channels_ = blobs[0].size[1];
         in_channels_ = image_channels_ * k * k;  // the rows of the product's input: (c, ky, kx) when unfolded
@@ -190,30 +190,43 @@ private:
         return k;
     }
 
-    // Where one pixel tile's input is, and how it is multiplied: in place, or (a plane's last pixels, fewer
-    // than a tile) copied once into `tail`, zero-padded; a last piece that a narrow tile holds goes through
-    // one (7 x 7 = 49 pixels: 3 tiles of 16 and a narrow one of 8 on AVX2, not 4 tiles).
+    // Where one pixel tile's input is, and how it is multiplied: in place; or (a plane's last pixels, fewer than
+    // a tile) one or two pixels past a tile or a whole narrow tile's vector as columns (LayerKernels::
+    // pointwise_columns) from `tail`, after the narrow tile in place; or, any other last piece, copied once into
+    // `tail`, zero-padded, through a narrow tile where it holds them. 7 x 7 = 49 pixels: at AVX2 3 tiles of 16 and
+    // a column (a narrow tile for that one pixel took a fifth of the layer), at AVX-512 a tile of 32, a narrow
+    // one of 16 and a column.
     struct PixelTile {
         const float *in;
         long pitch;
-        int count, width;  // the pixels that are the plane's, and the tile's width
+        int count, width;  // the pixels taken as vectors (none: 0), and the tile's width
         void (*multiply)(const PointwiseTile &);
+        int columns;  // the pixels after them, as columns
     };
 
     PixelTile pixel_tile(const Image &m, int pixel, std::vector<float> &tail) const
     {
-        const int count = std::min(pixels_, m.pixels - pixel);
-        const bool narrow = count <= kernels_.narrow_pixels;
-        PixelTile p{m.src + pixel, m.pixels, count, narrow ? kernels_.narrow_pixels : pixels_,
-                    narrow ? kernels_.pointwise_tile_narrow : kernels_.pointwise_tile};
-        if (count < p.width) {
-            tail.assign(static_cast<size_t>(in_channels_) * p.width, 0.0f);
-            for (int c = 0; c < in_channels_; ++c)
-                std::memcpy(&tail[static_cast<size_t>(c) * p.width], m.src + static_cast<size_t>(c) * m.pixels + pixel,
-                            sizeof(float) * count);
-            p.in = tail.data();
-            p.pitch = p.width;
+        const int count = std::min(pixels_, m.pixels - pixel), lanes = kernels_.narrow_pixels;
+        if (count == pixels_) return PixelTile{m.src + pixel, m.pixels, count, count, kernels_.pointwise_tile, 0};
+        const int vector_pixels = count <= kMostPointwiseColumns ? 0 : lanes;
+        if (count >= vector_pixels && count - vector_pixels <= kMostPointwiseColumns) {
+            const PixelTile p{m.src + pixel, m.pixels, vector_pixels, vector_pixels, kernels_.pointwise_tile_narrow,
+                              count - vector_pixels};
+            tail.resize(static_cast<size_t>(p.columns) * in_channels_ * rows_);
+            float *column = tail.data();
+            for (int k = 0; k < p.columns; ++k)
+                for (int c = 0; c < in_channels_; ++c, column += rows_)
+                    std::fill(column, column + rows_, m.src[static_cast<size_t>(c) * m.pixels + pixel + vector_pixels + k]);
+            return p;
         }
+        const bool narrow = count <= lanes;
+        PixelTile p{tail.data(), narrow ? lanes : pixels_, count, narrow ? lanes : pixels_,
+                    narrow ? kernels_.pointwise_tile_narrow : kernels_.pointwise_tile, 0};
+        tail.assign(static_cast<size_t>(in_channels_) * p.width, 0.0f);
+        for (int c = 0; c < in_channels_; ++c)
+            std::memcpy(&tail[static_cast<size_t>(c) * p.width], m.src + static_cast<size_t>(c) * m.pixels + pixel,
+                        sizeof(float) * count);
+        p.in = tail.data();
         return p;
     }
 
@@ -228,14 +241,19 @@ private:
             const float *weights = m.weights + static_cast<size_t>(t) * in_channels_ * rows_;
             for (int tile = first_tile; tile < end_tile; ++tile) {
                 const int pixel = tile * pixels_;
-                const PixelTile p = tile + 1 == end_tile ? last : PixelTile{m.src + pixel, m.pixels, pixels_, pixels_, kernels_.pointwise_tile};
+                const PixelTile p = tile + 1 == end_tile ? last : PixelTile{m.src + pixel, m.pixels, pixels_, pixels_, kernels_.pointwise_tile, 0};
                 float *tile_out = m.dst + static_cast<size_t>(t) * rows_ * m.pixels + pixel;
-                if (p.count == p.width && rows == rows_) {
+                if (p.count > 0 && p.count == p.width && rows == rows_) {
                     p.multiply(PointwiseTile{weights, in_channels_, p.in, p.pitch, &bias_[t * rows_], tile_out, m.pixels, swish_});
-                } else {
+                } else if (p.count > 0) {
                     p.multiply(PointwiseTile{weights, in_channels_, p.in, p.pitch, &bias_[t * rows_], scratch, p.width, swish_});
                     for (int r = 0; r < rows; ++r)
                         std::memcpy(tile_out + static_cast<size_t>(r) * m.pixels, scratch + r * p.width, sizeof(float) * p.count);
+                }
+                if (p.columns > 0) {
+                    kernels_.pointwise_columns(PointwiseColumns{weights, in_channels_, tail.data(), p.columns, &bias_[t * rows_], scratch, swish_});
+                    for (int k = 0; k < p.columns; ++k)
+                        for (int r = 0; r < rows; ++r) tile_out[static_cast<size_t>(r) * m.pixels + p.count + k] = scratch[k * rows_ + r];
                 }
             }
         }
