@@ -92,6 +92,12 @@ T swish_of(T x)
     return x / (1.0f + exp_approx(-x));
 }
 
+// How far ahead of the tile's running weights (floats) they are asked for, for the second-level cache: the 7 x 7
+// layers' weights (up to 1.6 MB each, 10 MB in all) come from memory once a pass, and the hardware's own
+// prefetch left their tiles waiting on it (a 1152 -> 192 layer with its weights out of the caches 0.26 -> 0.23 ms,
+// 320 -> 1280 0.52 -> 0.41 ms at AVX2; 1024 and 2048 floats ahead alike, 256 too few).
+constexpr long kWeightsAhead = 1024;
+
 // The tile: kRows x VECTORS vector registers of running sums, one broadcast weight per row and input
 // channel (a fused multiply-add where the level has one); the swish, if asked, on the sums. VECTORS is
 // kVectors, or 1 for a plane's last few pixels (a narrow tile).
@@ -110,6 +116,7 @@ void pointwise_tile(const PointwiseTile &t)
 #pragma GCC unroll 4
         for (int v = 0; v < VECTORS; ++v) __builtin_memcpy(&x[v], t.in + c * t.in_pitch + v * HKF_LANES, sizeof x[v]);
         const float *w = t.weights + static_cast<long>(c) * kRows;
+        __builtin_prefetch(w + kWeightsAhead, 0, 1);
 #pragma GCC unroll 16
         for (int r = 0; r < kRows; ++r)
 #pragma GCC unroll 4
