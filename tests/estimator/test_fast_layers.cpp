@@ -313,7 +313,7 @@ void test_pointwise_matches_the_loops(void **)
 }
 
 // hkf.UnfoldedConv: a k x k convolution of every input channel (Case's channels: the input's; out_c
-// outputs) against the loops, relative to the output's largest magnitude.
+// outputs) against the loops, relative to the output's largest magnitude; after an image of another shape.
 double unfolded_error(const Case &c, int out_c)
 {
     const cv::Mat input = random_blob({1, c.channels, c.height, c.width}, 18, 1.0f);
@@ -324,6 +324,9 @@ double unfolded_error(const Case &c, int out_c)
     p.type = "hkf.UnfoldedConv";
     cv::dnn::Net net;
     net.addLayerToPrev(p.name, p.type, p);
+    // A larger image first: the layer's unfolded rows, zeroed once for a shape, must be zeroed anew for this one.
+    net.setInput(random_blob({1, c.channels, c.height + 4, c.width + 3}, 21, 1.0f));
+    net.forward();
     net.setInput(input);
     const cv::Mat out = net.forward();
     const int out_h = (c.height + c.top + c.bottom - c.kernel) / c.stride + 1;
