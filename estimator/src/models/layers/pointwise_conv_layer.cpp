@@ -141,21 +141,26 @@ private:
     }
 
     // The gate g (Cin values) applied: to a copy of the weights (Cout x Cin products) or of the input
-    // (Cin x pixels), whichever is fewer; m's weights or src then point at the copy.
+    // (Cin x pixels), whichever is fewer, shared among the threads (up to 1.6 MB of weights read and written);
+    // m's weights or src then point at the copy.
     void apply_gate(const float *gate, Image *m)
     {
-        const int pixels = m->pixels;
+        const size_t pixels = static_cast<size_t>(m->pixels), cin = static_cast<size_t>(in_channels_);
         if (static_cast<long>(pixels) <= out_channels_) {
-            gated_.resize(static_cast<size_t>(in_channels_) * pixels);
-            for (int c = 0; c < in_channels_; ++c)
-                for (int i = 0; i < pixels; ++i)
-                    gated_[static_cast<size_t>(c) * pixels + i] = m->src[static_cast<size_t>(c) * pixels + i] * gate[c];
+            gated_.resize(cin * pixels);
+            parallel_tasks(in_channels_, [&](const cv::Range &range) {
+                for (size_t c = range.start; c < static_cast<size_t>(range.end); ++c)
+                    for (size_t i = 0; i < pixels; ++i) gated_[c * pixels + i] = m->src[c * pixels + i] * gate[c];
+            });
             m->src = gated_.data();
         } else {
             gated_.resize(packed_.size());
-            const size_t tiles = packed_.size() / (static_cast<size_t>(in_channels_) * rows_);
-            for (size_t i = 0; i < tiles * in_channels_; ++i)  // [tile][Cin][rows_]: row i's input channel i % Cin
-                for (int r = 0; r < rows_; ++r) gated_[i * rows_ + r] = packed_[i * rows_ + r] * gate[i % in_channels_];
+            const size_t tile = cin * rows_;  // a row tile's packed weights: [Cin][rows_]
+            parallel_tasks(static_cast<int>(packed_.size() / tile), [&](const cv::Range &range) {
+                for (size_t t = range.start; t < static_cast<size_t>(range.end); ++t)
+                    for (size_t c = 0, i = t * tile; c < cin; ++c, i += rows_)
+                        for (int r = 0; r < rows_; ++r) gated_[i + r] = packed_[i + r] * gate[c];
+            });
             m->weights = gated_.data();
         }
     }
