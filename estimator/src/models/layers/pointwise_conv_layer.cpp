@@ -200,11 +200,11 @@ private:
         return k;
     }
 
-    // Where one pixel tile's input is, and how it is multiplied: in place; or (a plane's last pixels, fewer than
-    // a tile) one or two pixels past a tile or a whole narrow tile's vector as columns (LayerKernels::
-    // pointwise_columns) from `tail`, after the narrow tile in place; or, any other last piece, copied once into
+    // Where one pixel tile's input is, and how it is multiplied: in place; or, a plane's last pixels (fewer than a
+    // tile), one or two of them as columns (LayerKernels::pointwise_columns, their input copied into `tail`), alone
+    // or after a narrow tile in place that a vector of them fills; or, any other last piece, copied once into
     // `tail`, zero-padded, through a narrow tile where it holds them. 7 x 7 = 49 pixels: at AVX2 3 tiles of 16 and
-    // a column (a narrow tile for that one pixel took a fifth of the layer), at AVX-512 a tile of 32, a narrow
+    // a column (a narrow tile for that one pixel took a quarter of the layer), at AVX-512 a tile of 32, a narrow
     // one of 16 and a column.
     struct PixelTile {
         const float *in;
