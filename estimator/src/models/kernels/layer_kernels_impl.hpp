@@ -43,8 +43,9 @@ inline T absolute(T v)
 
 // t clamped to [-87, 88]. A float's as t + relu(-87 - t) and t - relu(t - 88), relu(d) = (d + |d|) / 2,
 // which leave a t inside exactly as it is (a comparison would be a branch GCC does not if-convert in a
-// loop over floats); a vector's by comparisons, each a compare and a blend (four operations where the
-// relu form takes eight).
+// loop over floats). A vector's by the x86 levels' min and max instructions (GCC makes a compare and a
+// blend of a comparison, two operations for one; the swish went from 1.16 to 0.95 ns a float at SSE2, from
+// 0.34 to 0.29 at AVX2 and from 0.26 to 0.25 at AVX-512), elsewhere (NEON) by comparisons.
 inline float clamp_exponent(float t)
 {
     const float below = -87.0f - t;
@@ -55,8 +56,19 @@ inline float clamp_exponent(float t)
 
 inline Vector clamp_exponent(Vector t)
 {
-    t = t < -87.0f ? Vector{} - 87.0f : t;
-    return t > 88.0f ? Vector{} + 88.0f : t;
+    const Vector low = Vector{} - 87.0f, high = Vector{} + 88.0f;
+#if HKF_LANES == 4 && defined(__SSE__)
+    return __builtin_ia32_minps(__builtin_ia32_maxps(t, low), high);
+#elif HKF_LANES == 16 && defined(__clang__)
+    return __builtin_ia32_minps512(__builtin_ia32_maxps512(t, low, 4), high, 4);  // 4: the current rounding
+#elif HKF_LANES == 16
+    return __builtin_ia32_minps512_mask(__builtin_ia32_maxps512_mask(t, low, t, 0xFFFF, 4), high, t, 0xFFFF, 4);
+#elif HKF_LANES == 8
+    return __builtin_ia32_minps256(__builtin_ia32_maxps256(t, low), high);
+#else
+    t = t < low ? low : t;
+    return t > high ? high : t;
+#endif
 }
 
 // exp(t) for t in [-87, 88] (clamped outside), of a float or lane by lane: t = k ln2 + r with
