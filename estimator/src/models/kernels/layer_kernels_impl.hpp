@@ -239,7 +239,8 @@ inline void interleaved_outputs(const InterleavedPlanes &p, int k, int stride, c
     for (int r = 0; r < R; ++r) __builtin_memcpy(out + r * HKF_LANES, &acc[r], sizeof acc[r]);
 }
 
-// One vector of channels, four output pixels of a row at a time: every tap a load of its weights and one of
+// One vector of channels, eight output pixels of a row at a time (then four, then one; eight against four, the
+// 14 x 14 to 56 x 56 layers 0.93x at SSE2 and AVX2, level at AVX-512): every tap a load of its weights and one of
 // the input per output (no plane split by phases, no copies: the row's few outputs need no long loop over j); then the
 // swish and the sums in a pass of their own (inside the loop, each output's exp and division waited on the
 // taps before it). K and STRIDE 0: the plane's own, at run time.
@@ -253,6 +254,8 @@ void interleaved_taps(const InterleavedPlanes &p)
     for (int oy = 0; oy < p.out_h; ++oy) {
         const float *row = p.in + static_cast<long>(oy) * stride * p.pitch * HKF_LANES;
         int ox = 0;
+        for (; ox + 8 <= p.out_w; ox += 8, out += 8 * HKF_LANES)
+            interleaved_outputs<8>(p, k, stride, row + static_cast<long>(ox) * stride * HKF_LANES, bias, out);
         for (; ox + 4 <= p.out_w; ox += 4, out += 4 * HKF_LANES)
             interleaved_outputs<4>(p, k, stride, row + static_cast<long>(ox) * stride * HKF_LANES, bias, out);
         for (; ox < p.out_w; ++ox, out += HKF_LANES)
