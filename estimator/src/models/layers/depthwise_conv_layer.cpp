@@ -201,7 +201,8 @@ private:
     // "extended" output j = oy pitch + ox, ox < pitch, which reads the phase of (ky, kx) at
     // j + (ky / stride) pitch + kx / stride, in one long loop over j: the compiler vectorises it whatever
     // the plane's width (on 7 x 7 planes a loop per output row would be as short as the vector), with
-    // contiguous loads at any stride. The columns ox >= the output's width are then dropped; last the swish.
+    // contiguous loads at any stride. The columns ox >= the output's width are then dropped, and the swish taken
+    // as the rows are copied out.
     void convolve_plane(const cv::Mat &in, cv::Mat &out, int plane, const Phases &shape, float *phases,
                         float *extended) const
     {
@@ -221,10 +222,13 @@ private:
         else
             any_taps(planes, weights, bias, extended, shape.count);
         float *dst = out.ptr<float>() + static_cast<size_t>(plane) * out_h * out_w;
-        for (int oy = 0; oy < out_h; ++oy)
-            std::memcpy(dst + static_cast<size_t>(oy) * out_w, extended + static_cast<size_t>(oy) * shape.pitch,
-                        sizeof(float) * out_w);
-        if (swish_) kernels_.swish(dst, dst, static_cast<long>(out_h) * out_w);
+        for (int oy = 0; oy < out_h; ++oy) {  // the swish on the way out: no second pass over the plane
+            const float *row = extended + static_cast<size_t>(oy) * shape.pitch;
+            if (swish_)
+                kernels_.swish(row, dst + static_cast<size_t>(oy) * out_w, out_w);
+            else
+                std::memcpy(dst + static_cast<size_t>(oy) * out_w, row, sizeof(float) * out_w);
+        }
     }
 
     const LayerKernels &kernels_;  // the level in use when the layer was made
