@@ -128,6 +128,11 @@ void test_depthwise_matches_the_loops(void **)
         {3, 73, 90, 5, 2, 2, 2, 2, 2, 0},     // the same at stride 2
         {2, 120, 100, 5, 1, 2, 2, 2, 2, 1},   // planes over 56 x 56 go plane by plane: 5 x 5 there
         {3, 150, 130, 5, 2, 2, 2, 2, 2, 0},
+        // small planes interleaved whole, their last pixels (fewer than a block) over more than a row: 5 x 6 at
+        // AVX-512 (14 of 30), 3 x 5 at AVX2 (7 of 15), 7 x 1 at SSE2 and NEON (3 of 7)
+        {3, 5, 6, 3, 1, 1, 1, 1, 1, 1},
+        {3, 3, 5, 3, 1, 1, 1, 1, 1, 0},
+        {3, 7, 1, 3, 1, 1, 1, 1, 1, 1},
     };
     for (const Case &c : cases) {
         const double error = depthwise_error(c);

@@ -74,7 +74,8 @@ struct LayerKernels {
     void (*pointwise_columns)(const PointwiseColumns &columns);
     DepthwiseTaps *taps_3x3_stride1, *taps_3x3_stride2, *taps_5x5_stride1, *taps_5x5_stride2;
     void (*depthwise_interleaved)(const InterleavedPlanes &planes);  // narrow_pixels (one vector's) channels
-    void (*interleave)(const float *const *planes, float *dst, long n);  // dst[i lanes + c] = planes[c][i], i < n
+    // dst[(i / w pitch + i % w) lanes + c] = planes[c][i], i < n: rows of w pixels, pitch pixels apart in dst
+    void (*interleave)(const float *const *planes, float *dst, long n, long w, long pitch);
     void (*deinterleave)(const float *src, float *const *planes, long n);  // the other way
     void (*swish)(const float *src, float *dst, long n);  // x / (1 + exp(-x)); dst may be src
     float (*plane_mean)(const float *plane, long n);      // n > 0

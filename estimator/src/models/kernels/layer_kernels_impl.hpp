@@ -295,20 +295,34 @@ inline void butterfly(Vector (&rows)[HKF_LANES])
     if constexpr (H > 1) butterfly<H / 2>(rows);
 }
 
-// dst[i lanes + c] = planes[c][i], i < n: lanes planes' pixels interleaved, a lanes x lanes block at a time.
-void interleave(const float *const *planes, float *dst, long n)
+// dst[(i / w pitch + i % w) lanes + c] = planes[c][i], i < n: lanes planes' pixels interleaved, a lanes x lanes
+// block at a time, each plane's rows of w pixels pitch pixels apart in dst (a padded plane's interior; pitch = w:
+// one after another).
+void interleave(const float *const *planes, float *dst, long n, long w, long pitch)
 {
-    long i = 0;
+    long i = 0, column = 0;  // pixel i's column; `row` its row's first float in dst
+    float *row = dst;
     for (; i + HKF_LANES <= n; i += HKF_LANES) {
         Vector rows[HKF_LANES];
 #pragma GCC unroll 16
         for (int c = 0; c < HKF_LANES; ++c) __builtin_memcpy(&rows[c], planes[c] + i, sizeof rows[c]);
         butterfly<HKF_LANES / 2>(rows);
 #pragma GCC unroll 16
-        for (int k = 0; k < HKF_LANES; ++k) __builtin_memcpy(dst + (i + k) * HKF_LANES, &rows[k], sizeof rows[k]);
+        for (int k = 0; k < HKF_LANES; ++k) {
+            __builtin_memcpy(row + column * HKF_LANES, &rows[k], sizeof rows[k]);
+            if (++column == w) {
+                column = 0;
+                row += pitch * HKF_LANES;
+            }
+        }
     }
-    for (; i < n; ++i)
-        for (int c = 0; c < HKF_LANES; ++c) dst[i * HKF_LANES + c] = planes[c][i];
+    for (; i < n; ++i) {
+        for (int c = 0; c < HKF_LANES; ++c) row[column * HKF_LANES + c] = planes[c][i];
+        if (++column == w) {
+            column = 0;
+            row += pitch * HKF_LANES;
+        }
+    }
 }
 
 // planes[c][i] = src[i lanes + c], i < n: the other way.

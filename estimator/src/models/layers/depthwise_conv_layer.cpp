@@ -101,9 +101,8 @@ private:
         const int rows = std::max(h + window_.top + window_.bottom, (out_h - 1) * window_.stride + window_.kernel);
         const long out_pixels = static_cast<long>(out_h) * out_w;
         parallel_tasks(in.size[0] * blocks, [&](const cv::Range &range) {
-            std::vector<float> padded(static_cast<size_t>(rows) * pitch * lanes, 0.0f),
-                flat(w >= 2 * lanes ? 0 : static_cast<size_t>(h) * w * lanes),
-                result(out_pixels * lanes), sums(lanes), unused(out_pixels);
+            std::vector<float> padded(static_cast<size_t>(rows) * pitch * lanes, 0.0f), result(out_pixels * lanes), sums(lanes),
+                unused(out_pixels);
             const float *from[kMaxLanes];
             float *to[kMaxLanes];
             for (int task = range.start; task < range.end; ++task) {
@@ -113,7 +112,7 @@ private:
                     from[c] = in.ptr<float>() + (plane + std::min(c, count - 1)) * h * w;
                     to[c] = c < count ? out.ptr<float>() + (plane + c) * out_pixels : unused.data();
                 }
-                interleave_into_padding(from, h, w, pitch, flat.data(), padded.data());
+                interleave_into_padding(from, h, w, pitch, padded.data());
                 const float *block = &interleaved_[static_cast<size_t>(task % blocks) * (taps + 1) * lanes];
                 kernels_.depthwise_interleaved(InterleavedPlanes{padded.data(), pitch, block, block + taps * lanes, window_.kernel,
                                                                  window_.stride, out_h, out_w, swish_, result.data(), sums.data()});
@@ -124,23 +123,17 @@ private:
     }
 
     // A block's planes (h x w) interleaved into the padded buffer's interior: row by row where a row holds
-    // whole lanes x lanes blocks; small planes whole into `flat` first (a 7-pixel row would be all remainder),
-    // then copied row by row.
-    void interleave_into_padding(const float *const *from, int h, int w, int pitch, float *flat, float *padded) const
+    // whole lanes x lanes blocks, small planes whole (a 7-pixel row would be all remainder).
+    void interleave_into_padding(const float *const *from, int h, int w, int pitch, float *padded) const
     {
         const int lanes = kernels_.narrow_pixels;
-        if (w >= 2 * lanes) {
-            const float *row[kMaxLanes];
-            for (int y = 0; y < h; ++y) {
-                for (int c = 0; c < lanes; ++c) row[c] = from[c] + static_cast<long>(y) * w;
-                kernels_.interleave(row, padded + ((static_cast<size_t>(y) + window_.top) * pitch + window_.left) * lanes, w);
-            }
-            return;
+        float *interior = padded + (static_cast<size_t>(window_.top) * pitch + window_.left) * lanes;
+        if (w < 2 * lanes) return kernels_.interleave(from, interior, static_cast<long>(h) * w, w, pitch);
+        const float *row[kMaxLanes];
+        for (int y = 0; y < h; ++y) {
+            for (int c = 0; c < lanes; ++c) row[c] = from[c] + static_cast<long>(y) * w;
+            kernels_.interleave(row, interior + static_cast<size_t>(y) * pitch * lanes, w, w, w);
         }
-        kernels_.interleave(from, flat, static_cast<long>(h) * w);
-        for (int y = 0; y < h; ++y)
-            std::memcpy(padded + ((static_cast<size_t>(y) + window_.top) * pitch + window_.left) * lanes,
-                        flat + static_cast<size_t>(y) * w * lanes, sizeof(float) * w * lanes);
     }
 
     // The zero-padded plane P (the input with pad_top rows above it, pad_left columns before it) split into
