@@ -3,7 +3,7 @@
 # AVX2 one): on one core (taskset), with stress-ng's CPU load beside it on that core, the estimator's layers and
 # OpenCV's own held to a lower instruction-set level (HKF_SIMD, OPENCV_CPU_DISABLE: dev/benchmarks/
 # opencv_cpu_levels.txt), and Mesa's software renderer as it is (LIBGL_ALWAYS_SOFTWARE=1).
-#   dev/slower_machine.sh [--level avx2|sse2] [--load WORKERS] [--core N] [--] COMMAND [ARGS...]
+#   dev/slower_machine.sh [--level avx2|avx|sse2] [--load WORKERS] [--core N] [--] COMMAND [ARGS...]
 # --level: the level played (default avx2); --load: stress-ng CPU workers on the core beside the command
 # (default 1; 0: none; stress-ng is installed with apt when missing and root); --core: the core (default 0),
 # or a list for taskset (0,1: a 2-core machine at the level).
@@ -14,7 +14,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 level=avx2 load=1 core=0
 while [ $# -gt 0 ]; do
   case $1 in
-    --level) level=${2:?--level wants avx2 or sse2}; shift 2 ;;
+    --level) level=${2:?--level wants avx2, avx or sse2}; shift 2 ;;
     --load) load=${2:?--load wants a number of workers}; shift 2 ;;
     --core) core=${2:?--core wants a core number or a list}; shift 2 ;;
     --help|-h) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
@@ -25,7 +25,7 @@ while [ $# -gt 0 ]; do
 done
 [ $# -gt 0 ] || { echo "slower_machine.sh: no command given (see --help)" >&2; exit 2; }
 disable=$(awk -v level="$level" '$1 == level { print $2; found = 1 } END { exit !found }' \
-  "$root/dev/benchmarks/opencv_cpu_levels.txt") || { echo "slower_machine.sh: --level is avx512, avx2 or sse2, not '$level'" >&2; exit 2; }
+  "$root/dev/benchmarks/opencv_cpu_levels.txt") || { echo "slower_machine.sh: --level is avx512, avx2, avx or sse2, not '$level'" >&2; exit 2; }
 case $load in ''|*[!0-9]*) echo "slower_machine.sh: --load wants a number of workers, not '$load'" >&2; exit 2 ;; esac
 case $core in ''|*[!0-9,-]*) echo "slower_machine.sh: --core wants a core number or a list (0,1), not '$core'" >&2; exit 2 ;; esac
 stress=""

@@ -1,6 +1,6 @@
 /* cpu_level_mask.c - plays a CPU of a lower instruction-set level to a program that asks the CPU itself
  * (the CPUID instruction) what it has, as onnxruntime's kernels do: preloaded (LD_PRELOAD) with
- * HKF_PLAY_CPUID_LEVEL=avx2 or sse4_2 (x86-64-v2: no AVX), it turns on the kernel's CPUID faulting (arch_prctl ARCH_SET_CPUID, on
+ * HKF_PLAY_CPUID_LEVEL=avx2, avx (AVX without AVX2, FMA or F16C: Sandy Bridge) or sse4_2 (x86-64-v2: no AVX), it turns on the kernel's CPUID faulting (arch_prctl ARCH_SET_CPUID, on
  * CPUs whose /proc/cpuinfo flags say cpuid_fault) before the program's own code runs, and answers each CPUID
  * the program then executes from the signal handler: the real answer with the features above the level
  * cleared. Threads inherit the faulting; an execve ends it (a program the preloaded one starts is preloaded
@@ -19,7 +19,7 @@
 #include <ucontext.h>
 #include <unistd.h>
 
-enum level { LEVEL_AVX2, LEVEL_SSE4_2 };
+enum level { LEVEL_AVX2, LEVEL_AVX, LEVEL_SSE4_2 };
 static enum level played;
 
 /* The features a CPU of the played level lacks, by leaf (Intel SDM vol. 2A, CPUID). */
@@ -30,9 +30,10 @@ static void clear_above_level(uint32_t leaf, uint32_t subleaf, uint32_t r[4] /* 
                   (1u << 31));  /* AVX512 F, DQ, IFMA, PF, ER, CD, BW, VL */
         r[2] &= ~((1u << 1) | (1u << 6) | (1u << 11) | (1u << 12) | (1u << 14));  /* VBMI, VBMI2, VNNI, BITALG, VPOPCNTDQ */
         r[3] &= ~((1u << 2) | (1u << 3) | (1u << 8) | (1u << 23));  /* 4VNNIW, 4FMAPS, VP2INTERSECT, FP16 */
-        if (played == LEVEL_SSE4_2) r[1] &= ~((1u << 5) | (1u << 3) | (1u << 8));  /* AVX2, BMI1, BMI2 */
+        if (played != LEVEL_AVX2) r[1] &= ~((1u << 5) | (1u << 3) | (1u << 8));  /* AVX2, BMI1, BMI2 */
     }
     if (leaf == 7 && subleaf == 1) r[0] &= ~((1u << 4) | (1u << 5));  /* AVX-VNNI, AVX512_BF16 */
+    if (leaf == 1 && played == LEVEL_AVX) r[2] &= ~((1u << 12) | (1u << 29));  /* FMA, F16C */
     if (leaf == 1 && played == LEVEL_SSE4_2)
         r[2] &= ~((1u << 12) | (1u << 28) | (1u << 29));  /* FMA, AVX, F16C */
 }
@@ -75,10 +76,12 @@ __attribute__((constructor)) static void start_masking(void)
     if (name == NULL || name[0] == '\0' || strcmp(name, "off") == 0) return;
     if (strcmp(name, "avx2") == 0)
         played = LEVEL_AVX2;
+    else if (strcmp(name, "avx") == 0)
+        played = LEVEL_AVX;
     else if (strcmp(name, "sse4_2") == 0)
         played = LEVEL_SSE4_2;
     else
-        refuse("HKF_PLAY_CPUID_LEVEL must be avx2, sse4_2 or off");
+        refuse("HKF_PLAY_CPUID_LEVEL must be avx2, avx, sse4_2 or off");
     struct sigaction action;
     memset(&action, 0, sizeof action);
     action.sa_sigaction = on_fault;

@@ -13,7 +13,7 @@ import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-MASK_LEVEL = {"avx512": "off", "avx2": "avx2", "sse2": "sse4_2"}  # onnxruntime's level for each of ours
+MASK_LEVEL = {"avx512": "off", "avx2": "avx2", "avx": "avx", "sse2": "sse4_2"}  # onnxruntime's level for each of ours
 
 
 def opencv_disable(level):
@@ -62,7 +62,7 @@ def main():
     mask = os.path.join(os.path.dirname(os.path.abspath(now)), "libhkf-cpu-level-mask.so")  # built beside it
     with open("/proc/cpuinfo") as f:
         flags = next((line.split(":")[1].split() for line in f if line.startswith("flags")), [])
-    levels = [level for level in ("avx512", "avx2", "sse2") if level != "avx512" or "avx512f" in flags]
+    levels = [level for level in ("avx512", "avx2", "avx", "sse2") if level != "avx512" or "avx512f" in flags]
     if "cpuid_fault" not in flags or not os.path.exists(mask):
         raise SystemExit(f"forward_side_by_side: onnxruntime cannot be held to a level here (no cpuid_fault, or no {mask})")
     times = {}

@@ -4,7 +4,8 @@
 # graph (.models/whenet.onnx) with OpenCV held to the same level (OPENCV_CPU_DISABLE: the features above
 # it), and onnxruntime on the plain graph held to the same level, so that each row is what a CPU of that level
 # would run. onnxruntime's kernels ask the CPU itself (CPUID), so it is held by cpu_level_mask.c (preloaded; the
-# kernel's CPUID faulting, flag cpuid_fault): at avx2 the CPU reports no AVX-512; at sse2, no AVX (x86-64-v2:
+# kernel's CPUID faulting, flag cpuid_fault): at avx2 the CPU reports no AVX-512; at avx, no AVX2, FMA or F16C
+# (Sandy Bridge); at sse2, no AVX (x86-64-v2:
 # NumPy's wheels refuse a CPU below it, so onnxruntime's Python cannot be played lower), and each figure is
 # checked against the features the process reported. Where it cannot be held (no faulting, no library), the row
 # says so. Medians of RUNS passes (default 40), on 1 and 2 threads, one level after another in one run, the
@@ -42,10 +43,12 @@ onnxruntime_ms() { # onnxruntime_ms LEVEL THREADS: the median pass held to LEVEL
   case $1 in
     avx512) want="1 1 1" ;;
     avx2) played=avx2 want="1 1 0" ;;
+    avx) played=avx want="1 0 0" ;;
     sse2) played=sse4_2 want="0 0 0" ;;
   esac
   # a CPU without the features above the level is that level already
   [ "$1" = avx2 ] && ! grep -qw avx512f /proc/cpuinfo && played=off
+  [ "$1" = avx ] && ! grep -qw avx2 /proc/cpuinfo && ! grep -qw fma /proc/cpuinfo && played=off
   [ "$1" = sse2 ] && ! grep -qw avx /proc/cpuinfo && played=off
   [ -x "$python" ] || { echo "(no .venv: ./run setup)"; return; }
   if [ "$played" != off ] && { [ ! -f "$mask" ] || ! grep -qw cpuid_fault /proc/cpuinfo; }; then
@@ -73,7 +76,7 @@ echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"
 slower=0
 machine=$(uname -m)
 levels="sse2"
-[ "$machine" = x86_64 ] && levels="avx512 avx2 sse2"
+[ "$machine" = x86_64 ] && levels="avx512 avx2 avx sse2"
 [ "$machine" = aarch64 ] && levels="neon"
 for level in $levels; do
   for threads in 1 2; do

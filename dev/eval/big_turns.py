@@ -23,7 +23,7 @@ Every frame of the clip has |yaw| >= 60 deg, so every figure is "while the head 
 and, for the defaults, where WHENet's capture->publish goes (the estimator's summary: until it was asked, waiting
 for the worker, its inference).
 
---simd LEVEL plays a CPU of that level (avx2, sse2): hkf's layers forced to it (HKF_SIMD) and OpenCV's own
+--simd LEVEL plays a CPU of that level (avx2, avx, sse2): hkf's layers forced to it (HKF_SIMD) and OpenCV's own
 held to it (OPENCV_CPU_DISABLE, dev/benchmarks/opencv_cpu_levels.txt), so an AVX-512 machine measures what
 an AVX2 one gives.
 
@@ -164,7 +164,7 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "e2e"))
     parser.add_argument("--faces", type=int, default=FACES)
-    parser.add_argument("--simd", help="the instruction-set level to play (avx512, avx2, sse2); default: this CPU's")
+    parser.add_argument("--simd", help="the instruction-set level to play (avx512, avx2, avx, sse2); default: this CPU's")
     args = parser.parse_args()
     if args.simd:
         levels = dict((line.split() + [""])[:2] for line in open(os.path.join(ROOT, "dev", "benchmarks", "opencv_cpu_levels.txt"))

@@ -164,8 +164,8 @@ void usage(std::ostream &out)
            "  --help, --version  this text; the version\n"
            "Environment:\n"
            "  HKF_SIMD           the instruction-set level of the estimator's own layers (WHENet's):\n"
-           "                     avx512, avx2 (with FMA), sse2 (x86-64; neon on aarch64) or default, the\n"
-           "                     best this CPU runs; the start-up line names the level in use\n"
+           "                     avx512, avx2 (with FMA), avx (no FMA), sse2 (x86-64; neon on aarch64) or\n"
+           "                     default, the best this CPU runs; the start-up line names the level in use\n"
            "  OPENCV_IO_MAX_IMAGE_PIXELS  the largest image decoded, 1 to 33177600 pixels (the default)\n";
 }
 

@@ -15,7 +15,7 @@ HKF_PLAY_CPU_LEVEL=avx2 "$script" "$build" 3 >"$work/out.txt" 2>&1 || status=$?
 cat "$work/out.txt"
 grep -q "Played as a CPU of level avx2" "$work/out.txt" || fail "the played level is not said"
 grep -q "^| avx512 | 1 | (this CPU cannot run it)" "$work/out.txt" || fail "no row for the level the CPU lacks"
-for level in avx2 sse2; do
+for level in avx2 avx sse2; do
   for threads in 1 2; do
     grep -Eq "^\| $level \| $threads \| [0-9.]+ ms \| [0-9.]+ ms \| [0-9.]+× \| ([0-9.]+ ms \| [0-9.]+×|\(cannot be held to this level here\) \|) \|$" "$work/out.txt" ||
       fail "no figures for $level on $threads thread(s)"

@@ -33,8 +33,10 @@ expect_error "region wants" "$est" --source x --region 1,2,3
 # the layers' instruction-set level: HKF_SIMD names one this CPU runs (OpenCV's OPENCV_CPU_DISABLE plays a CPU
 # without AVX-512 or AVX2), anything else is refused before a model is read
 expect_error "HKF_SIMD='bogus' is not a level (.*sse2 or default)" env HKF_SIMD=bogus "$est" --dataset "$data" --predictions "$work/simd.csv"
-expect_error "HKF_SIMD=avx2: this CPU cannot run it (it runs sse2 and below)" \
+expect_error "HKF_SIMD=avx2: this CPU cannot run it (it runs avx and below)" \
   env HKF_SIMD=avx2 OPENCV_CPU_DISABLE=AVX512F,AVX2 "$est" --dataset "$data" --predictions "$work/simd.csv"
+expect_error "HKF_SIMD=avx: this CPU cannot run it (it runs sse2 and below)" \
+  env HKF_SIMD=avx OPENCV_CPU_DISABLE=AVX512F,AVX2,FMA3,AVX "$est" --dataset "$data" --predictions "$work/simd.csv"
 [ ! -e "$work/simd.csv" ] || fail "a refused run wrote its predictions"
 "$est" --dataset "$data" --crop labels --predictions "$work/p.csv" --limit 20 --model whenet --second-model none >/dev/null 2>&1 ||
   fail "WHENet on 20 images at the CPU's best level"
@@ -47,7 +49,11 @@ paste -d, <(head -21 "$work/p.csv") "$work/sse2.csv" | awk -F, 'NR > 1 {
   for (i = 2; i <= 4; ++i) { d = $i - $(i + 4); if (d < 0) d = -d; if (d > worst) worst = d }
 } END { printf "sse2 against the best level: largest difference %.5f deg\n", worst; exit bad || worst > 0.001 }' ||
   fail "the sse2 layers' angles differ from the best level's"
-grep -q "own layers at $(OPENCV_CPU_DISABLE=AVX512F,AVX2 "$est" --dataset "$data" --predictions "$work/y.csv" --limit 1 2>&1 >/dev/null |
-  sed -n 's/.*own layers at \([a-z0-9]*\) .*/\1/p')" <<<"own layers at sse2" || fail "a CPU without AVX2 does not take sse2"
+level_taken() { # level_taken OPENCV_CPU_DISABLE: the level a CPU without those features takes
+  OPENCV_CPU_DISABLE=$1 "$est" --dataset "$data" --predictions "$work/y.csv" --limit 1 2>&1 >/dev/null |
+    sed -n 's/.*own layers at \([a-z0-9]*\) .*/\1/p'
+}
+[ "$(level_taken AVX512F,AVX2)" = avx ] || fail "a CPU with AVX but not AVX2 does not take avx"
+[ "$(level_taken AVX512F,AVX2,FMA3,AVX)" = sse2 ] || fail "a CPU without AVX does not take sse2"
 grep -q "usage: hkf-estimator" <<<"$("$est" --help)" || fail "--help"
 echo "estimator_cli_test: all checks passed"

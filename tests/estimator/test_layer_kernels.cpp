@@ -138,6 +138,7 @@ bool cpu_runs(const LayerKernels &k)
     __builtin_cpu_init();
     if (k.level == hkf_estimator::SimdLevel::avx512) return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma");
     if (k.level == hkf_estimator::SimdLevel::avx2) return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    if (k.level == hkf_estimator::SimdLevel::avx) return __builtin_cpu_supports("avx");
 #endif
     return k.level == hkf_estimator::SimdLevel::baseline;
 }
@@ -148,7 +149,7 @@ int main(int argc, char **argv)
 {
     std::vector<const LayerKernels *> levels = {&hkf_estimator::kBaselineKernels};
 #if defined(__x86_64__)
-    levels.insert(levels.begin(), {&hkf_estimator::kAvx512Kernels, &hkf_estimator::kAvx2Kernels});
+    levels.insert(levels.begin(), {&hkf_estimator::kAvx512Kernels, &hkf_estimator::kAvx2Kernels, &hkf_estimator::kAvxKernels});
 #endif
     int tested = 0;
     for (const LayerKernels *k : levels) {

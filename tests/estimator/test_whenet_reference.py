@@ -4,7 +4,7 @@
 2. our converted ONNX model run by onnxruntime;
 3. the same ONNX model run by the estimator's C++ code on OpenCV DNN
    (test_pose_model_reference, fed the exact input tensors), once per instruction-set level of the
-   estimator's own layers (HKF_SIMD: avx512, avx2, sse2; a level this CPU lacks is skipped, said).
+   estimator's own layers (HKF_SIMD: avx512, avx2, avx, sse2; a level this CPU lacks is skipped, said).
 usage: test_whenet_reference.py BUILD_DIR SOURCE_DIR DATA_DIR MODELS_DIR
 """
 import csv
@@ -69,7 +69,7 @@ with tempfile.NamedTemporaryFile(suffix=".bin", delete=False) as f:
         f.write(np.array(e, "<f4").tobytes())
     path = f.name
 levels_run, levels_failed = [], 0
-for level in ("avx512", "avx2", "sse2"):
+for level in ("avx512", "avx2", "avx", "sse2"):
     run = subprocess.run([os.path.join(build, "tests", "test_pose_model_reference"), path, models,
                           os.path.join(source, "estimator", "models")], capture_output=True, text=True,
                          env=dict(os.environ, HKF_SIMD=level))

@@ -16,7 +16,7 @@ namespace {
 
 // The levels this build has, best first.
 #if defined(__x86_64__)
-constexpr SimdLevel kLevels[] = {SimdLevel::avx512, SimdLevel::avx2, SimdLevel::baseline};
+constexpr SimdLevel kLevels[] = {SimdLevel::avx512, SimdLevel::avx2, SimdLevel::avx, SimdLevel::baseline};
 #else
 constexpr SimdLevel kLevels[] = {SimdLevel::baseline};
 #endif
@@ -27,6 +27,8 @@ bool cpu_runs(SimdLevel level)
     case SimdLevel::baseline:
         return true;
 #if defined(__x86_64__)
+    case SimdLevel::avx:
+        return cv::checkHardwareSupport(CV_CPU_AVX);
     case SimdLevel::avx2:
         return cv::checkHardwareSupport(CV_CPU_AVX2) && cv::checkHardwareSupport(CV_CPU_FMA3);
     case SimdLevel::avx512:
@@ -76,6 +78,7 @@ const LayerKernels &layer_kernels_of(SimdLevel level)
 #if defined(__x86_64__)
     if (level == SimdLevel::avx512) return kAvx512Kernels;
     if (level == SimdLevel::avx2) return kAvx2Kernels;
+    if (level == SimdLevel::avx) return kAvxKernels;
 #endif
     (void)level;
     return kBaselineKernels;

@@ -1,5 +1,5 @@
 // simd_level.hpp - which instruction-set level the estimator's own layers (layers/) run at:
-// the best this CPU runs, or the one HKF_SIMD names (avx512, avx2, sse2 on x86-64; neon on aarch64;
+// the best this CPU runs, or the one HKF_SIMD names (avx512, avx2, avx, sse2 on x86-64; neon on aarch64;
 // default: the best), so that any machine can measure and test the levels below its own. The CPU's
 // features are read through OpenCV, so OPENCV_CPU_DISABLE (for example AVX512_SKX) lowers OpenCV's own
 // layers and ours alike: a machine can play a CPU with fewer features.

@@ -8,7 +8,7 @@
 
 namespace hkf_estimator {
 
-enum class SimdLevel { baseline, avx2, avx512 };  // baseline: SSE2 on x86-64, NEON on aarch64
+enum class SimdLevel { baseline, avx, avx2, avx512 };  // baseline: SSE2 on x86-64, NEON on aarch64
 
 // One tile of a 1x1 convolution: tile_rows output channels x tile_pixels pixels, summed over cin input
 // channels, and the swish after it if asked.
@@ -66,7 +66,7 @@ struct InterleavedPlanes {
 
 struct LayerKernels {
     SimdLevel level;
-    const char *name;            // as HKF_SIMD spells it: avx512, avx2, sse2 or neon
+    const char *name;            // as HKF_SIMD spells it: avx512, avx2, avx, sse2 or neon
     int tile_rows, tile_pixels;  // the pointwise tile: output channels x pixels
     int narrow_pixels;           // the narrow tile's pixels: one vector
     void (*pointwise_tile)(const PointwiseTile &tile);
@@ -83,6 +83,7 @@ struct LayerKernels {
 
 extern const LayerKernels kBaselineKernels;
 #if defined(__x86_64__)
+extern const LayerKernels kAvxKernels;     // AVX without FMA (Sandy and Ivy Bridge, Bulldozer)
 extern const LayerKernels kAvx2Kernels;    // AVX2 with FMA
 extern const LayerKernels kAvx512Kernels;  // AVX-512F
 #endif
