@@ -2,8 +2,10 @@
 """The second model's forward pass of two builds side by side, with onnxruntime held to the same level, at every
 level and on 1 and 2 threads: in each of ROUNDS rounds, for each level and thread count, BEFORE's hkf-bench-layers,
 NOW's, then onnxruntime_pass.py (through cpu_level_mask.c below this CPU's full level), one after another, so that a
-neighbour's load falls on all three alike. Prints a markdown table: the median over the rounds and, in brackets, the
-fastest round (the best estimate of the pass on an idle machine); ratios of the fastest rounds. Figures as in
+neighbour's load falls on all three alike. A build without a level (BEFORE, older than the avx level) runs the best
+it has below it, as it did on such a CPU; the cell says at which. Prints a markdown table: the median over the
+rounds and, in brackets, the fastest round (the best estimate of the pass on an idle machine); ratios of the
+fastest rounds. Figures as in
 layer_levels.sh (WHENet 224x224, medians of 40 passes); the CPU must run AVX-512 for its row (else it is skipped).
 usage: forward_side_by_side.py BEFORE_BENCH NOW_BENCH [ROUNDS]   (BENCH: a build's hkf-bench-layers)"""
 import os
@@ -13,6 +15,7 @@ import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+LEVELS = ("avx512", "avx2", "avx", "sse2")  # best first
 MASK_LEVEL = {"avx512": "off", "avx2": "avx2", "avx": "avx", "sse2": "sse4_2"}  # onnxruntime's level for each of ours
 
 
@@ -26,13 +29,19 @@ def opencv_disable(level):
 
 
 def ours(bench, level, threads):
-    env = dict(os.environ, HKF_SIMD=level, OPENCV_CPU_DISABLE=opencv_disable(level))
-    run = subprocess.run([bench, os.path.join(ROOT, ".models", "whenet_fast.onnx"), "224", "224", "40", threads],
-                         capture_output=True, text=True, env=env)
-    found = re.search(r"forward pass ([0-9.]+) ms", run.stdout)
-    if run.returncode != 0 or not found:
-        raise SystemExit(f"forward_side_by_side: {bench} failed at {level} (exit {run.returncode}): {run.stderr.strip()}")
-    return float(found.group(1))
+    """The pass of a build on a CPU of `level`, and the level its layers ran at: a build without that level (an older
+    one) runs the best it has below it, as it did on such a CPU."""
+    for taken in LEVELS[LEVELS.index(level):]:
+        env = dict(os.environ, HKF_SIMD=taken, OPENCV_CPU_DISABLE=opencv_disable(level))
+        run = subprocess.run([bench, os.path.join(ROOT, ".models", "whenet_fast.onnx"), "224", "224", "40", threads],
+                             capture_output=True, text=True, env=env)
+        if run.returncode == 2 and "is not a level" in run.stderr:
+            continue
+        found = re.search(r"forward pass ([0-9.]+) ms", run.stdout)
+        if run.returncode != 0 or not found:
+            raise SystemExit(f"forward_side_by_side: {bench} failed at {taken} (exit {run.returncode}): {run.stderr.strip()}")
+        return float(found.group(1)), taken
+    raise SystemExit(f"forward_side_by_side: {bench} has no level at or below {level}")
 
 
 def onnxruntime(level, threads, mask):
@@ -62,15 +71,16 @@ def main():
     mask = os.path.join(os.path.dirname(os.path.abspath(now)), "libhkf-cpu-level-mask.so")  # built beside it
     with open("/proc/cpuinfo") as f:
         flags = next((line.split(":")[1].split() for line in f if line.startswith("flags")), [])
-    levels = [level for level in ("avx512", "avx2", "avx", "sse2") if level != "avx512" or "avx512f" in flags]
+    levels = [level for level in LEVELS if level != "avx512" or "avx512f" in flags]
     if "cpuid_fault" not in flags or not os.path.exists(mask):
         raise SystemExit(f"forward_side_by_side: onnxruntime cannot be held to a level here (no cpuid_fault, or no {mask})")
-    times = {}
+    times, taken = {}, {}
     for r in range(rounds):
         for level in levels:
             for threads in ("1", "2"):
-                times.setdefault((level, threads, "before"), []).append(ours(before, level, threads))
-                times.setdefault((level, threads, "now"), []).append(ours(now, level, threads))
+                for build, bench in (("before", before), ("now", now)):
+                    ms, taken[(level, build)] = ours(bench, level, threads)
+                    times.setdefault((level, threads, build), []).append(ms)
                 times.setdefault((level, threads, "ort"), []).append(onnxruntime(level, threads, mask))
         print(f"round {r + 1} of {rounds} done", file=sys.stderr, flush=True)
     print("| level | threads | before | now | onnxruntime, same level | now / before | now / onnxruntime |")
@@ -78,7 +88,9 @@ def main():
     for level in levels:
         for threads in ("1", "2"):
             b, n, o = (times[(level, threads, k)] for k in ("before", "now", "ort"))
-            print(f"| {level} | {threads} | {cell(b)} ms | {cell(n)} ms | {cell(o)} ms | {min(n) / min(b):.2f}× | {min(n) / min(o):.2f}× |")
+            at = {k: "" if taken[(level, k)] == level else f" at {taken[(level, k)]}" for k in ("before", "now")}
+            print(f"| {level} | {threads} | {cell(b)} ms{at['before']} | {cell(n)} ms{at['now']} | {cell(o)} ms | "
+                  f"{min(n) / min(b):.2f}× | {min(n) / min(o):.2f}× |")
     return 0
 
 
