@@ -76,8 +76,9 @@ inline Vector clamp_exponent(Vector t)
 // (dev/fit/exp_polynomial.py: 2.1e-7 in float arithmetic, as the Taylor series to r^6 with one
 // multiply-add more), 2^k by the float's exponent bits; k from the round-to-nearest trick (adding
 // 1.5 * 2^23 leaves k in the low mantissa bits), so no float-to-int conversion is made. The polynomial in
-// Horner's form where multiply and add are one instruction; without (SSE2) as Estrin's pairs, whose shorter chain
-// of dependent steps ran the pass at SSE2 1-3 % faster (alternating runs).
+// Horner's form where multiply and add are one instruction; without (SSE2, AVX) as Estrin's pairs, whose shorter
+// chain of dependent steps ran the pass at SSE2 1-3 % faster (alternating runs) and the swish at AVX 0.59 -> 0.55 ns
+// a float (at AVX2, with FMA, Estrin's was 6 % slower).
 template <typename T>
 T exp_approx(T t)
 {
@@ -248,7 +249,8 @@ inline void interleaved_outputs(const InterleavedPlanes &p, int k, int stride, c
 }
 
 // One vector of channels, eight output pixels of a row at a time (then four, then one; eight against four, the
-// 14 x 14 to 56 x 56 layers about 0.96x at SSE2 and AVX2, level at AVX-512): every tap a load of its weights and one of
+// 14 x 14 to 56 x 56 layers about 0.96x at SSE2 and AVX2, level at AVX-512; sixteen, slower at every level, the
+// 28 x 28 layers 1.13-1.24x): every tap a load of its weights and one of
 // the input per output (no plane split by phases, no copies: the row's few outputs need no long loop over j); then the
 // swish and the sums in a pass of their own (inside the loop, each output's exp and division waited on the
 // taps before it). K and STRIDE 0: the plane's own, at run time.
@@ -310,6 +312,12 @@ void interleave(const float *const *planes, float *dst, long n, long w, long pit
 {
     long i = 0, column = 0;  // pixel i's column; `row` its row's first float in dst
     float *row = dst;
+    const auto next_pixel = [&] {
+        if (++column == w) {
+            column = 0;
+            row += pitch * HKF_LANES;
+        }
+    };
     for (; i + HKF_LANES <= n; i += HKF_LANES) {
         Vector rows[HKF_LANES];
 #pragma GCC unroll 16
@@ -318,19 +326,11 @@ void interleave(const float *const *planes, float *dst, long n, long w, long pit
 #pragma GCC unroll 16
         for (int k = 0; k < HKF_LANES; ++k) {
             __builtin_memcpy(row + column * HKF_LANES, &rows[k], sizeof rows[k]);
-            if (++column == w) {
-                column = 0;
-                row += pitch * HKF_LANES;
-            }
+            next_pixel();
         }
     }
-    for (; i < n; ++i) {
+    for (; i < n; ++i, next_pixel())
         for (int c = 0; c < HKF_LANES; ++c) row[column * HKF_LANES + c] = planes[c][i];
-        if (++column == w) {
-            column = 0;
-            row += pitch * HKF_LANES;
-        }
-    }
 }
 
 // planes[c][i] = src[i lanes + c], i < n: the other way.

@@ -1,5 +1,6 @@
 // pointwise_conv_layer.cpp - "hkf.PointwiseConv" and "hkf.UnfoldedConv" (see fast_layers.hpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -115,7 +116,7 @@ private:
     {
         const ConvWindow u = unfold_;
         const long out_pixels = static_cast<long>(out_h) * out_w;
-        const std::vector<int> shape = {h, w, out_h, out_w};
+        const std::array<int, 4> shape = {h, w, out_h, out_w};
         if (shape != unfolded_shape_) {  // zeroed once for a shape: the places outside the input are never written
             unfolded_.assign(static_cast<size_t>(in_channels_) * out_pixels, 0.0f);
             unfolded_shape_ = shape;
@@ -230,14 +231,12 @@ private:
             return p;
         }
         const bool narrow = count <= lanes;
-        PixelTile p{tail.data(), narrow ? lanes : pixels_, count, narrow ? lanes : pixels_,
-                    narrow ? kernels_.pointwise_tile_narrow : kernels_.pointwise_tile, 0};
-        tail.assign(static_cast<size_t>(in_channels_) * p.width, 0.0f);
+        const int width = narrow ? lanes : pixels_;
+        tail.assign(static_cast<size_t>(in_channels_) * width, 0.0f);
         for (int c = 0; c < in_channels_; ++c)
-            std::memcpy(&tail[static_cast<size_t>(c) * p.width], m.src + static_cast<size_t>(c) * m.pixels + pixel,
+            std::memcpy(&tail[static_cast<size_t>(c) * width], m.src + static_cast<size_t>(c) * m.pixels + pixel,
                         sizeof(float) * count);
-        p.in = tail.data();
-        return p;
+        return PixelTile{tail.data(), width, count, width, narrow ? kernels_.pointwise_tile_narrow : kernels_.pointwise_tile, 0};
     }
 
     // The output row tiles [first_row, last_row), each over the pixel tiles [first_tile, end_tile).
@@ -277,7 +276,7 @@ private:
     std::vector<float> packed_, bias_;  // weights as [tile][Cin][rows_]; the bias padded to whole tiles
     std::vector<float> gated_;          // the gated weights or input of the image being run
     std::vector<float> unfolded_;       // hkf.UnfoldedConv's input of the image being run
-    std::vector<int> unfolded_shape_;   // the input's and output's heights and widths it was zeroed for
+    std::array<int, 4> unfolded_shape_{};  // the input's and output's heights and widths it was zeroed for (none: 0s)
 };
 
 }  // namespace
