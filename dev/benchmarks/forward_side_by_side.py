@@ -15,6 +15,8 @@ import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "dev", "eval"))
+import evaluate  # noqa: E402  (cpu_named)
 LEVELS = ("avx512", "avx2", "avx", "sse2")  # best first
 MASK_LEVEL = {"avx512": "off", "avx2": "avx2", "avx": "avx", "sse2": "sse4_2"}  # onnxruntime's level for each of ours
 
@@ -83,6 +85,7 @@ def main():
                     times.setdefault((level, threads, build), []).append(ms)
                 times.setdefault((level, threads, "ort"), []).append(onnxruntime(level, threads, mask))
         print(f"round {r + 1} of {rounds} done", file=sys.stderr, flush=True)
+    print(f"On {evaluate.cpu_named()}; {rounds} rounds.\n")
     print("| level | threads | before | now | onnxruntime, same level | now / before | now / onnxruntime |")
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     for level in levels:

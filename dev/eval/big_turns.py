@@ -183,7 +183,7 @@ def main():
     faces = turned_faces(args.faces)
     lines = [f"Big turns: {len(faces)} AFLW2000 dev-split faces at |yaw| >= {MIN_YAW:g} deg, each held "
              f"{HOLD_S:g} s, played as a camera through the live chain (big_turns.py); hkf's layers at "
-             f"{os.environ.get('HKF_SIMD') or 'the best this CPU runs'}.\n",
+             f"{os.environ.get('HKF_SIMD') or 'the best this CPU runs'}; on {evaluate.cpu_named()}.\n",
              "| estimator | fps | frames | dropped | WHENet /s | measured (yaw within 20 deg) | capture->publish p50 / p99 "
              "| capture->datagram p50 / p99 | mesh not run |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     verdicts, breakdown = [], []

@@ -78,6 +78,24 @@ def fail(message):
     sys.exit(1)
 
 
+def cpu_named():
+    """This CPU as a figure must name it: the model, the cores this process may use, and the vector features the
+    estimator's levels go by (/proc/cpuinfo)."""
+    name, flags = "", []
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                key, _, value = line.partition(":")
+                if key.strip() == "model name" and not name:
+                    name = value.strip()
+                elif key.strip() in ("flags", "Features") and not flags:
+                    flags = value.split()
+    except OSError:
+        pass
+    shown = [f for f in ("sse2", "sse4_2", "avx", "fma", "avx2", "avx512f", "avx512bw", "avx512vl", "asimd") if f in flags]
+    return f"{name or 'a CPU without a model name'}, {len(os.sched_getaffinity(0))} cores, flags {' '.join(shown) or 'unknown'}"
+
+
 def wait_started(procs_and_logs, limit_s=30.0):
     """Waits until each live program (a Popen, its log file object) has printed its start line, which hkf-filter
     and hkf-opentrack print once subscribed ("... -> ..."): paced by the programs, not by a fast machine's clock.

@@ -133,6 +133,9 @@ void test_depthwise_matches_the_loops(void **)
         {3, 5, 6, 3, 1, 1, 1, 1, 1, 1},
         {3, 3, 5, 3, 1, 1, 1, 1, 1, 0},
         {3, 7, 1, 3, 1, 1, 1, 1, 1, 1},
+        // inputs of 56 x 56 and more interleaved 8 channels at a time at AVX-512: 19 channels end a block part way
+        {19, 56, 56, 3, 1, 1, 1, 1, 1, 1},
+        {19, 112, 112, 3, 2, 0, 0, 1, 1, 1},
     };
     for (const Case &c : cases) {
         const double error = depthwise_error(c);
@@ -217,7 +220,8 @@ void test_swish_as_a_layer(void **)
 }
 
 // The depthwise layer's second output (means = 1): each output plane's mean, plane by plane (60 x 60) and a
-// vector's channels at once (14 x 14; 7 x 7 in two images of 11 channels, so that a block ends part way).
+// vector's channels at once (14 x 14; 7 x 7 in two images of 11 channels, so that a block ends part way; 56 x 56 at
+// stride 2, 8 channels a block at AVX-512).
 void check_depthwise_means(const Case &c, int images)
 {
     const cv::Mat input = random_blob({images, c.channels, c.height, c.width}, 10, 1.0f);
@@ -245,6 +249,7 @@ void test_depthwise_means(void **)
     check_depthwise_means(Case{3, 60, 60, 3, 1, 1, 1, 1, 1, 1}, 1);
     check_depthwise_means(Case{6, 14, 14, 5, 1, 2, 2, 2, 2, 1}, 1);
     check_depthwise_means(Case{11, 7, 7, 3, 1, 1, 1, 1, 1, 1}, 2);
+    check_depthwise_means(Case{10, 56, 56, 5, 2, 1, 1, 2, 2, 1}, 2);  // 8 channels a block at AVX-512 (56 x 56 and more)
 }
 
 struct PointwiseCase {

@@ -22,7 +22,9 @@ namespace {
 // of the squeeze-and-excitation that reads it, taken while the plane is in cache).
 class DepthwiseConvLayer : public cv::dnn::Layer {
 public:
-    explicit DepthwiseConvLayer(const cv::dnn::LayerParams &params) : kernels_(layer_kernels_in_use())
+    explicit DepthwiseConvLayer(const cv::dnn::LayerParams &params)
+        : kernels_(layer_kernels_in_use()),
+          wide_kernels_(kernels_.level == SimdLevel::avx512 ? layer_kernels_of(SimdLevel::avx2) : kernels_)
     {
         setParamsFrom(params);
         window_ = ConvWindow::read(params);
@@ -34,8 +36,9 @@ public:
             CV_Error(cv::Error::StsBadArg, "hkf.DepthwiseConv: wants a C x 1 x k x k kernel and a bias of C");
         blobs[0] = blobs[0].clone();  // continuous, owned
         blobs[1] = blobs[1].clone();
-        CV_Assert(kernels_.narrow_pixels <= kMaxLanes);
-        interleave_weights();
+        CV_Assert(kernels_.narrow_pixels <= kMaxLanes && wide_kernels_.narrow_pixels <= kMaxLanes);
+        interleaved_ = interleave_weights(kernels_.narrow_pixels);
+        wide_interleaved_ = &wide_kernels_ == &kernels_ ? interleaved_ : interleave_weights(wide_kernels_.narrow_pixels);
     }
 
 
@@ -56,7 +59,10 @@ public:
         cv::Mat &out = t.out[0];
         const int planes = in.size[0] * in.size[1];
         float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
-        if (static_cast<long>(out.size[2]) * out.size[3] <= kInterleavedPixels) return forward_interleaved(in, out, means);
+        if (static_cast<long>(out.size[2]) * out.size[3] <= kInterleavedPixels) {
+            const bool wide = static_cast<long>(in.size[2]) * in.size[3] >= kWidePixels;
+            return forward_interleaved(wide ? wide_kernels_ : kernels_, wide ? wide_interleaved_ : interleaved_, in, out, means);
+        }
         const Phases shape = phases_of(in.size[3], out.size[2]);
         parallel_tasks(planes, [&](const cv::Range &range) {
             // zeroed once: each plane then writes the input's places only, the padding's stay zero
@@ -76,26 +82,34 @@ private:
     // 0.43-0.51x, 14 x 14 0.7x, 28 x 28 0.7x, 56 x 56 0.77x; 112 x 112 1.0x and 1.2x, so those stay plane by plane).
     static constexpr long kInterleavedPixels = 56 * 56;
     static constexpr int kMaxLanes = 16;  // AVX-512's
+    // At AVX-512, inputs of this many pixels (56 x 56) or more are interleaved a block of 8 channels at a time (AVX2's
+    // loops, wide_kernels_): 16 planes of that size read and written at once ran slower than 8 on an Intel Xeon
+    // (AMX, 2 cores), and 144 channels made 9 blocks for two threads. WHENet's three such layers, per-layer minima,
+    // 0.82-0.84x on two threads and 0.81-0.93x on one; its smaller planes stay at 16 (8 there: up to 1.18x).
+    static constexpr long kWidePixels = 56 * 56;
 
     // The kernels and bias as depthwise_interleaved reads them: per block of `lanes` channels, each tap's
     // weights of the block's channels, then the block's bias (zero for channels past the last).
-    void interleave_weights()
+    std::vector<float> interleave_weights(int lanes) const
     {
-        const int lanes = kernels_.narrow_pixels, channels = blobs[0].size[0], taps = window_.kernel * window_.kernel;
+        const int channels = blobs[0].size[0], taps = window_.kernel * window_.kernel;
         const int blocks = (channels + lanes - 1) / lanes;
-        interleaved_.assign(static_cast<size_t>(blocks) * (taps + 1) * lanes, 0.0f);
+        std::vector<float> weights(static_cast<size_t>(blocks) * (taps + 1) * lanes, 0.0f);
         for (int c = 0; c < channels; ++c) {
-            float *block = &interleaved_[static_cast<size_t>(c / lanes) * (taps + 1) * lanes];
+            float *block = &weights[static_cast<size_t>(c / lanes) * (taps + 1) * lanes];
             for (int t = 0; t < taps; ++t) block[t * lanes + c % lanes] = blobs[0].ptr<float>()[static_cast<size_t>(c) * taps + t];
             block[taps * lanes + c % lanes] = blobs[1].ptr<float>()[c];
         }
+        return weights;
     }
 
-    // Every image's planes, a block of `lanes` channels a task: interleaved into a zero-padded buffer (the
-    // padding zeroed once per thread), convolved, and written back plane by plane with their means.
-    void forward_interleaved(const cv::Mat &in, cv::Mat &out, float *means) const
+    // Every image's planes, a block of `lanes` channels (k's vector) a task: interleaved into a zero-padded buffer
+    // (the padding zeroed once per thread), convolved, and written back plane by plane with their means; `weights`
+    // interleaved for k.
+    void forward_interleaved(const LayerKernels &k, const std::vector<float> &weights, const cv::Mat &in, cv::Mat &out,
+                             float *means) const
     {
-        const int lanes = kernels_.narrow_pixels, channels = in.size[1], blocks = (channels + lanes - 1) / lanes;
+        const int lanes = k.narrow_pixels, channels = in.size[1], blocks = (channels + lanes - 1) / lanes;
         const int h = in.size[2], w = in.size[3], out_h = out.size[2], out_w = out.size[3], taps = window_.kernel * window_.kernel;
         const int pitch = std::max(w + window_.left + window_.right, (out_w - 1) * window_.stride + window_.kernel);
         const int rows = std::max(h + window_.top + window_.bottom, (out_h - 1) * window_.stride + window_.kernel);
@@ -112,11 +126,11 @@ private:
                     from[c] = in.ptr<float>() + (plane + std::min(c, count - 1)) * h * w;
                     to[c] = c < count ? out.ptr<float>() + (plane + c) * out_pixels : unused.data();
                 }
-                interleave_into_padding(from, h, w, pitch, padded.data());
-                const float *block = &interleaved_[static_cast<size_t>(task % blocks) * (taps + 1) * lanes];
-                kernels_.depthwise_interleaved(InterleavedPlanes{padded.data(), pitch, block, block + taps * lanes, window_.kernel,
-                                                                 window_.stride, out_h, out_w, swish_, result.data(), sums.data()});
-                kernels_.deinterleave(result.data(), to, out_pixels);
+                interleave_into_padding(k, from, h, w, pitch, padded.data());
+                const float *block = &weights[static_cast<size_t>(task % blocks) * (taps + 1) * lanes];
+                k.depthwise_interleaved(InterleavedPlanes{padded.data(), pitch, block, block + taps * lanes, window_.kernel,
+                                                          window_.stride, out_h, out_w, swish_, result.data(), sums.data()});
+                k.deinterleave(result.data(), to, out_pixels);
                 for (int c = 0; means != nullptr && c < count; ++c) means[plane + c] = sums[c] / static_cast<float>(out_pixels);
             }
         });
@@ -124,15 +138,15 @@ private:
 
     // A block's planes (h x w) interleaved into the padded buffer's interior: row by row where a row holds
     // whole lanes x lanes blocks, small planes whole (a 7-pixel row would be all remainder).
-    void interleave_into_padding(const float *const *from, int h, int w, int pitch, float *padded) const
+    void interleave_into_padding(const LayerKernels &k, const float *const *from, int h, int w, int pitch, float *padded) const
     {
-        const int lanes = kernels_.narrow_pixels;
+        const int lanes = k.narrow_pixels;
         float *interior = padded + (static_cast<size_t>(window_.top) * pitch + window_.left) * lanes;
-        if (w < 2 * lanes) return kernels_.interleave(from, interior, static_cast<long>(h) * w, w, pitch);
+        if (w < 2 * lanes) return k.interleave(from, interior, static_cast<long>(h) * w, w, pitch);
         const float *row[kMaxLanes];
         for (int y = 0; y < h; ++y) {
             for (int c = 0; c < lanes; ++c) row[c] = from[c] + static_cast<long>(y) * w;
-            kernels_.interleave(row, interior + static_cast<size_t>(y) * pitch * lanes, w, w, w);
+            k.interleave(row, interior + static_cast<size_t>(y) * pitch * lanes, w, w, w);
         }
     }
 
@@ -224,10 +238,11 @@ private:
         }
     }
 
-    const LayerKernels &kernels_;  // the level in use when the layer was made
+    const LayerKernels &kernels_;       // the level in use when the layer was made
+    const LayerKernels &wide_kernels_;  // its table for inputs of kWidePixels or more (AVX-512: AVX2's)
     ConvWindow window_;
     bool swish_ = false, means_ = false;
-    std::vector<float> interleaved_;  // interleave_weights()
+    std::vector<float> interleaved_, wide_interleaved_;  // interleave_weights() for each
 };
 
 }  // namespace
