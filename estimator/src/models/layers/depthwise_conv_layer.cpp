@@ -24,7 +24,7 @@ class DepthwiseConvLayer : public cv::dnn::Layer {
 public:
     explicit DepthwiseConvLayer(const cv::dnn::LayerParams &params)
         : kernels_(layer_kernels_in_use()),
-          wide_kernels_(kernels_.level == SimdLevel::avx512 ? layer_kernels_of(SimdLevel::avx2) : kernels_)
+          large_plane_kernels_(kernels_.level == SimdLevel::avx512 ? layer_kernels_of(SimdLevel::avx2) : kernels_)
     {
         setParamsFrom(params);
         window_ = ConvWindow::read(params);
@@ -36,9 +36,10 @@ public:
             CV_Error(cv::Error::StsBadArg, "hkf.DepthwiseConv: wants a C x 1 x k x k kernel and a bias of C");
         blobs[0] = blobs[0].clone();  // continuous, owned
         blobs[1] = blobs[1].clone();
-        CV_Assert(kernels_.narrow_pixels <= kMaxLanes && wide_kernels_.narrow_pixels <= kMaxLanes);
+        CV_Assert(kernels_.narrow_pixels <= kMaxLanes && large_plane_kernels_.narrow_pixels <= kMaxLanes);
         interleaved_ = interleave_weights(kernels_.narrow_pixels);
-        wide_interleaved_ = &wide_kernels_ == &kernels_ ? interleaved_ : interleave_weights(wide_kernels_.narrow_pixels);
+        large_plane_interleaved_ =
+            &large_plane_kernels_ == &kernels_ ? interleaved_ : interleave_weights(large_plane_kernels_.narrow_pixels);
     }
 
 
@@ -60,8 +61,9 @@ public:
         const int planes = in.size[0] * in.size[1];
         float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
         if (static_cast<long>(out.size[2]) * out.size[3] <= kInterleavedPixels) {
-            const bool wide = static_cast<long>(in.size[2]) * in.size[3] >= kWidePixels;
-            return forward_interleaved(wide ? wide_kernels_ : kernels_, wide ? wide_interleaved_ : interleaved_, in, out, means);
+            const bool large = static_cast<long>(in.size[2]) * in.size[3] >= kLargePlanePixels;
+            return forward_interleaved(large ? large_plane_kernels_ : kernels_,
+                                       large ? large_plane_interleaved_ : interleaved_, in, out, means);
         }
         const Phases shape = phases_of(in.size[3], out.size[2]);
         parallel_tasks(planes, [&](const cv::Range &range) {
@@ -82,11 +84,11 @@ private:
     // 0.43-0.51x, 14 x 14 0.7x, 28 x 28 0.7x, 56 x 56 0.77x; 112 x 112 1.0x and 1.2x, so those stay plane by plane).
     static constexpr long kInterleavedPixels = 56 * 56;
     static constexpr int kMaxLanes = 16;  // AVX-512's
-    // At AVX-512, inputs of this many pixels (56 x 56) or more are interleaved a block of 8 channels at a time (AVX2's
-    // loops, wide_kernels_): 16 planes of that size read and written at once ran slower than 8 on an Intel Xeon
-    // (AMX, 2 cores), and 144 channels made 9 blocks for two threads. WHENet's three such layers, per-layer minima,
-    // 0.82-0.84x on two threads and 0.81-0.93x on one; its smaller planes stay at 16 (8 there: up to 1.18x).
-    static constexpr long kWidePixels = 56 * 56;
+    // At AVX-512, inputs of this many pixels (56 x 56) or more are interleaved a block of 8 channels at a time
+    // (AVX2's loops, large_plane_kernels_): 16 planes of that size read and written at once ran slower than 8 on an
+    // Intel Xeon (AMX, 2 cores), and 144 channels made 9 blocks for two threads. WHENet's three such layers, per-layer
+    // minima, 0.82-0.84x on two threads and 0.81-0.93x on one; its smaller planes stay at 16 (8 there: up to 1.18x).
+    static constexpr long kLargePlanePixels = 56 * 56;
 
     // The kernels and bias as depthwise_interleaved reads them: per block of `lanes` channels, each tap's
     // weights of the block's channels, then the block's bias (zero for channels past the last).
@@ -239,10 +241,10 @@ private:
     }
 
     const LayerKernels &kernels_;       // the level in use when the layer was made
-    const LayerKernels &wide_kernels_;  // its table for inputs of kWidePixels or more (AVX-512: AVX2's)
+    const LayerKernels &large_plane_kernels_;  // its table for inputs of kLargePlanePixels or more (AVX-512: AVX2's)
     ConvWindow window_;
     bool swish_ = false, means_ = false;
-    std::vector<float> interleaved_, wide_interleaved_;  // interleave_weights() for each
+    std::vector<float> interleaved_, large_plane_interleaved_;  // interleave_weights() for each
 };
 
 }  // namespace
