@@ -16,7 +16,7 @@ import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "dev", "eval"))
-import evaluate  # noqa: E402  (cpu_named)
+import evaluate  # noqa: E402  (cpu_info, cpu_named)
 LEVELS = ("avx512", "avx2", "avx", "sse2")  # best first
 MASK_LEVEL = {"avx512": "off", "avx2": "avx2", "avx": "avx", "sse2": "sse4_2"}  # onnxruntime's level for each of ours
 
@@ -71,8 +71,7 @@ def main():
     before, now = sys.argv[1], sys.argv[2]
     rounds = int(sys.argv[3]) if len(sys.argv) == 4 else 5
     mask = os.path.join(os.path.dirname(os.path.abspath(now)), "libhkf-cpu-level-mask.so")  # built beside it
-    with open("/proc/cpuinfo") as f:
-        flags = next((line.split(":")[1].split() for line in f if line.startswith("flags")), [])
+    flags = evaluate.cpu_info()[1]
     levels = [level for level in LEVELS if level != "avx512" or "avx512f" in flags]
     if "cpuid_fault" not in flags or not os.path.exists(mask):
         raise SystemExit(f"forward_side_by_side: onnxruntime cannot be held to a level here (no cpuid_fault, or no {mask})")

@@ -78,9 +78,8 @@ def fail(message):
     sys.exit(1)
 
 
-def cpu_named():
-    """This CPU as a figure must name it: the model, the cores this process may use, and the vector features the
-    estimator's levels go by (/proc/cpuinfo)."""
+def cpu_info():
+    """This CPU's model name ("" where /proc/cpuinfo gives none) and its feature flags (x86 "flags", ARM "Features")."""
     name, flags = "", []
     try:
         with open("/proc/cpuinfo") as f:
@@ -92,6 +91,13 @@ def cpu_named():
                     flags = value.split()
     except OSError:
         pass
+    return name, flags
+
+
+def cpu_named():
+    """This CPU as a figure must name it: the model, the cores this process may use, and the vector features the
+    estimator's levels go by."""
+    name, flags = cpu_info()
     shown = [f for f in ("sse2", "sse4_2", "avx", "fma", "avx2", "avx512f", "avx512bw", "avx512vl", "asimd") if f in flags]
     return f"{name or 'a CPU without a model name'}, {len(os.sched_getaffinity(0))} cores, flags {' '.join(shown) or 'unknown'}"
 

@@ -38,8 +38,8 @@ public:
         blobs[1] = blobs[1].clone();
         CV_Assert(kernels_.narrow_pixels <= kMaxLanes && large_plane_kernels_.narrow_pixels <= kMaxLanes);
         interleaved_ = interleave_weights(kernels_.narrow_pixels);
-        large_plane_interleaved_ =
-            &large_plane_kernels_ == &kernels_ ? interleaved_ : interleave_weights(large_plane_kernels_.narrow_pixels);
+        if (&large_plane_kernels_ != &kernels_)
+            large_plane_interleaved_ = interleave_weights(large_plane_kernels_.narrow_pixels);
     }
 
 
@@ -61,7 +61,8 @@ public:
         const int planes = in.size[0] * in.size[1];
         float *means = means_ && t.out.size() == 2 ? t.out[1].ptr<float>() : nullptr;
         if (static_cast<long>(out.size[2]) * out.size[3] <= kInterleavedPixels) {
-            const bool large = static_cast<long>(in.size[2]) * in.size[3] >= kLargePlanePixels;
+            const bool large =
+                &large_plane_kernels_ != &kernels_ && static_cast<long>(in.size[2]) * in.size[3] >= kLargePlanePixels;
             return forward_interleaved(large ? large_plane_kernels_ : kernels_,
                                        large ? large_plane_interleaved_ : interleaved_, in, out, means);
         }
@@ -240,11 +241,12 @@ private:
         }
     }
 
-    const LayerKernels &kernels_;       // the level in use when the layer was made
+    const LayerKernels &kernels_;              // the level in use when the layer was made
     const LayerKernels &large_plane_kernels_;  // its table for inputs of kLargePlanePixels or more (AVX-512: AVX2's)
     ConvWindow window_;
     bool swish_ = false, means_ = false;
-    std::vector<float> interleaved_, large_plane_interleaved_;  // interleave_weights() for each
+    std::vector<float> interleaved_;              // interleave_weights() for kernels_
+    std::vector<float> large_plane_interleaved_;  // for large_plane_kernels_, where it is another table (else empty)
 };
 
 }  // namespace
