@@ -9,6 +9,9 @@ set -euo pipefail
 build=$(cd "$1" && pwd)
 seconds=$2 interval=${3:-60} out=${4:-}
 source "$(dirname "$0")/live_filter.sh"
+# 2 MB of receive buffer (about 1.5 s of answers at 1 kHz): a stall of this process on a loaded machine (156 ms once,
+# 2 cores, tests beside it) overflowed the default 208 kB and lost answers the node had published
+url="$url&recv_buf_size=2097152"
 start_live_filter "$build"
 csv=()
 if [ -n "$out" ]; then
