@@ -3,8 +3,8 @@
 // them, against plain loops in double written here: the depthwise convolution at WHENet's
 // kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112, with its
 // planes' means; the pointwise convolution on planes that end in part of a tile or in columns, with output
-// channels that end in part of one, gated (the weights scaled, or the input), without a bias; the
-// k x k convolution unfolded onto it, at WHENet's first layer's shape and at odd strides and paddings; a
+// channels that end in part of one, gated (the weights scaled, the input, or each pixel tile's input), without a
+// bias; the k x k convolution unfolded onto it, at WHENet's first layer's shape and at odd strides and paddings; a
 // squeeze-and-excitation's gate from its means;
 // the swish alone, fused by OpenCV into a convolution before it, and over its whole range; bad
 // attributes and weights refused when the layer is made. All of it once per instruction-set level this
@@ -306,6 +306,8 @@ void test_pointwise_matches_the_loops(void **)
         {32, 16, 56, 56, 0, 1, 1},    // gated, more pixels than outputs: the weights scaled
         {240, 80, 14, 14, 1, 1, 0},   // 196 pixels: six tiles and 4 pixels
         {1152, 320, 7, 7, 0, 1, 1},   // gated, fewer pixels than outputs: the input scaled
+        {672, 112, 14, 14, 1, 1, 1},  // gated, many inputs, more pixels than outputs: each pixel tile's input scaled
+        {200, 40, 7, 7, 0, 1, 1},     // the same, the last tile ending in a column
         {20, 21, 5, 4, 1, 0, 0},      // no bias; 21 outputs end in part of a tile, 20 pixels in part of one
         {9, 3, 33, 1, 0, 0, 1},
         {64, 13, 37, 37, 1, 1, 0},    // few inputs: blocks of pixel tiles, the last block ending in part of a tile

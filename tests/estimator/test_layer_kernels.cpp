@@ -2,7 +2,7 @@
 // loops in double, without OpenCV, so that the same file is built for another architecture (aarch64's
 // NEON, run under qemu-user: tests/estimator/kernels_aarch64_test.sh) as well as for this one. The tile on
 // every shape a layer gives it (whole and cut at either edge: the layer pads those to a whole tile), the
-// depthwise taps of WHENet's kernels and strides, the swish over +-200 and beyond, a plane's mean.
+// depthwise taps of WHENet's kernels and strides, the swish over +-200 and beyond, a plane's mean, scaled rows.
 // usage: test_layer_kernels [LEVEL...]   (default: every level built in; a level this CPU lacks: skip it)
 #include <cmath>
 #include <cstdio>
@@ -132,6 +132,23 @@ void check_swish_and_mean(const LayerKernels &k)
     expect(mean_error < 1e-6, k.name, "a plane's mean (152 floats)", mean_error);
 }
 
+// Rows of n floats scaled, one factor a row, from one pitch to another (a gated pixel tile): each product
+// exactly the float product, and nothing written past a row's n floats.
+void check_scale_rows(const LayerKernels &k, long n)
+{
+    const long rows = 5, src_pitch = 53, dst_pitch = n + 3;
+    const std::vector<float> src = noise(rows * src_pitch, 7, 1.0f), scales = noise(rows, 8, 1.0f);
+    std::vector<float> dst(rows * dst_pitch, -7.0f);
+    k.scale_rows(src.data(), src_pitch, scales.data(), dst.data(), dst_pitch, rows, n);
+    long wrong = 0;
+    for (long r = 0; r < rows; ++r)
+        for (long i = 0; i < dst_pitch; ++i)
+            wrong += dst[r * dst_pitch + i] != (i < n ? src[r * src_pitch + i] * scales[r] : -7.0f);
+    char what[80];
+    std::snprintf(what, sizeof what, "scaled rows of %ld floats", n);
+    expect(wrong == 0, k.name, what, static_cast<double>(wrong));
+}
+
 bool cpu_runs(const LayerKernels &k)
 {
 #if defined(__x86_64__)
@@ -170,6 +187,7 @@ int main(int argc, char **argv)
         check_taps(*k, 5, 1, k->taps_5x5_stride1);
         check_taps(*k, 5, 2, k->taps_5x5_stride2);
         check_swish_and_mean(*k);
+        for (long n : {3L, 32L, 37L}) check_scale_rows(*k, n);
         ++tested;
     }
     std::printf("test_layer_kernels: %d levels tested, %d failures\n", tested, failures);

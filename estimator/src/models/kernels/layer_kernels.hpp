@@ -79,6 +79,8 @@ struct LayerKernels {
     void (*deinterleave)(const float *src, float *const *planes, long n);  // the other way
     void (*swish)(const float *src, float *dst, long n);  // x / (1 + exp(-x)); dst may be src
     float (*plane_mean)(const float *plane, long n);      // n > 0
+    // dst[r dst_pitch + i] = src[r src_pitch + i] scales[r], r < rows, i < n (a gate on a pixel tile's input rows)
+    void (*scale_rows)(const float *src, long src_pitch, const float *scales, float *dst, long dst_pitch, long rows, long n);
 };
 
 extern const LayerKernels kBaselineKernels;

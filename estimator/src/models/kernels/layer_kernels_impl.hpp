@@ -385,6 +385,22 @@ float plane_mean(const float *plane, long n)
     return static_cast<float>(sum / static_cast<double>(n));
 }
 
+// Row by row: vector by vector, the last floats of a row one by one.
+void scale_rows(const float *src, long src_pitch, const float *scales, float *dst, long dst_pitch, long rows, long n)
+{
+    for (long r = 0; r < rows; ++r, src += src_pitch, dst += dst_pitch) {
+        const float s = scales[r];
+        long i = 0;
+        for (; i + HKF_LANES <= n; i += HKF_LANES) {
+            Vector x;
+            __builtin_memcpy(&x, src + i, sizeof x);
+            x *= s;
+            __builtin_memcpy(dst + i, &x, sizeof x);
+        }
+        for (; i < n; ++i) dst[i] = src[i] * s;
+    }
+}
+
 }  // namespace
 }  // namespace HKF_KERNELS_NAMESPACE
 
@@ -406,6 +422,7 @@ extern const LayerKernels HKF_KERNELS_TABLE = {
     HKF_KERNELS_NAMESPACE::deinterleave,
     HKF_KERNELS_NAMESPACE::swish,
     HKF_KERNELS_NAMESPACE::plane_mean,
+    HKF_KERNELS_NAMESPACE::scale_rows,
 };
 
 }  // namespace hkf_estimator
