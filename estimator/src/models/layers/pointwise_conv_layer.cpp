@@ -182,8 +182,9 @@ private:
     // planes, hundreds of input channels), one pixel tile per task, its input reused from the first-level cache by
     // every row tile (blocks there measured 5-9 % slower), and the output rows in groups of at most 256 kB of
     // weights, a group's pixel tiles one after another, so that its weights are read from the second level after
-    // the first tile (7 x 7 layers, whose weights are up to 1.6 MB, 0.8x on two threads). Groups so that there
-    // are at least 8 tasks to share.
+    // the first tile (7 x 7 layers, whose weights are up to 1.6 MB, 0.8x on two threads). At least 8 tasks to share:
+    // blocks no larger than an eighth of the plane, and groups only where there are fewer blocks than that (so that
+    // a core reads only its own blocks' input: groups over 3-5 blocks of 320 kB had both cores read all of it).
     struct Tasks {
         int pixel_tiles, row_tiles, tiles_per_block, blocks, groups, rows_per_group;
     };
@@ -193,15 +194,18 @@ private:
         constexpr long kBlockBytes = 320 * 1024;  // of Zen 4's 1 MB and Zen 3's 512 kB second level
         constexpr long kSmallTileBytes = 8 * 1024;  // a pixel tile's input of up to 128 channels at AVX2
         constexpr long kGroupWeightBytes = 256 * 1024;
+        constexpr int kLeastTasks = 8;
         Tasks k;
         k.pixel_tiles = (pixels + pixels_ - 1) / pixels_;
         k.row_tiles = (out_channels_ + rows_ - 1) / rows_;
         const long tile_bytes = static_cast<long>(in_channels_) * pixels_ * sizeof(float);
+        const long shared_tiles = (k.pixel_tiles + kLeastTasks - 1) / kLeastTasks;  // blocks enough for the tasks
         k.tiles_per_block = tile_bytes > kSmallTileBytes
                                 ? 1
-                                : static_cast<int>(std::max(1L, std::min<long>(k.pixel_tiles, kBlockBytes / tile_bytes)));
+                                : static_cast<int>(std::max(1L, std::min({static_cast<long>(k.pixel_tiles),
+                                                                          kBlockBytes / tile_bytes, shared_tiles})));
         k.blocks = (k.pixel_tiles + k.tiles_per_block - 1) / k.tiles_per_block;
-        k.groups = std::min(k.row_tiles, std::max(1, (8 + k.blocks - 1) / k.blocks));
+        k.groups = std::min(k.row_tiles, std::max(1, (kLeastTasks + k.blocks - 1) / k.blocks));
         if (k.tiles_per_block == 1) {  // a group's weights small enough to stay in the second level over its pixel tiles
             const long weight_bytes = static_cast<long>(out_channels_) * in_channels_ * sizeof(float);
             k.groups = std::min<long>(k.row_tiles, std::max<long>(k.groups, (weight_bytes + kGroupWeightBytes - 1) / kGroupWeightBytes));
