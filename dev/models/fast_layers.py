@@ -14,7 +14,9 @@ gives OpenCV's DNN module (estimator/src/models/fast_layers.hpp), with onnx alon
   hkf.SqueezeExcite (sixty tiny OpenCV layers fewer, each a parallel region of its own);
 - a squeeze-and-excitation's gate, Mul(x, Sigmoid(s)) read only by such a pointwise convolution, becomes
   that convolution's second input (it scales the weights); its global average pooling of a depthwise
-  convolution's output becomes that convolution's second output.
+  convolution's output becomes that convolution's second output;
+- a residual Add(y, skip) of a pointwise convolution's output y that only it reads becomes that
+  convolution's last input (attribute residual = 1): the sum is taken as each output tile is written.
 The weights and every other node stay as they are, so the network computes the same function
 (up to float rounding: the swish's exp is a polynomial, the sums' order differs).
 Usage: fast_layers.py IN.onnx OUT.onnx
@@ -179,6 +181,27 @@ def fuse_gates(nodes):
     return [n for n in nodes if id(n) not in drop], count
 
 
+def fuse_residuals(nodes):
+    """Add(y, skip), y an hkf.PointwiseConv's output that only the Add reads -> skip as that convolution's
+    last input (attribute residual = 1), its output the Add's; returns the nodes and how many."""
+    producers, consumers = producers_of(nodes), consumers_of(nodes)
+    drop, count = set(), 0
+    for node in nodes:
+        if node.op_type != "Add" or len(node.input) != 2 or node.input[0] == node.input[1]:
+            continue
+        for y, skip in (node.input, list(reversed(node.input))):
+            conv = producers.get(y)
+            if (conv is not None and conv.op_type == "PointwiseConv" and conv.domain == DOMAIN and
+                    len(consumers.get(y, [])) == 1 and attribute(conv, "residual", 0) == 0):
+                conv.input.append(skip)
+                conv.output[0] = node.output[0]
+                conv.attribute.append(helper.make_attribute("residual", 1))
+                drop.add(id(node))
+                count += 1
+                break
+    return [n for n in nodes if id(n) not in drop], count
+
+
 def fuse_excitations(nodes, weights):
     """A squeeze-and-excitation's two 1x1 convolutions on its means, Conv -> hkf.Swish -> Conv -> Sigmoid,
     each read only by the next -> one hkf.SqueezeExcite (its four weights as inputs); returns the nodes
@@ -232,6 +255,7 @@ def rewrite(model):
     nodes, swishes = fuse_swish(nodes)
     nodes, counts = fuse_convolutions(nodes, weights, pixels)
     nodes, counts["gates"] = fuse_gates(nodes)
+    nodes, counts["residuals"] = fuse_residuals(nodes)
     nodes, counts["means"] = fuse_means(nodes)
     nodes, counts["excitations"] = fuse_excitations(nodes, weights)
     del model.graph.node[:]
@@ -255,7 +279,7 @@ def main():
         return 1
     print(f"fast_layers: wrote {args.target}: {swishes} swishes, {counts['DepthwiseConv']} depthwise, "
           f"{counts['PointwiseConv']} pointwise and {counts['UnfoldedConv']} unfolded convolutions, {counts['gates']} gates, "
-          f"{counts['means']} means and {counts['excitations']} excitations "
+          f"{counts['residuals']} residuals, {counts['means']} means and {counts['excitations']} excitations "
           f"taken in ({len(model.graph.node)} nodes)")
     return 0
 

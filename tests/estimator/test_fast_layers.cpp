@@ -3,9 +3,9 @@
 // them, against plain loops in double written here: the depthwise convolution at WHENet's
 // kernel sizes, strides and asymmetric paddings, on planes from 7 x 7 to 112 x 112, with its
 // planes' means; the pointwise convolution on planes that end in part of a tile or in columns, with output
-// channels that end in part of one, gated (the weights scaled, the input, or each pixel tile's input), without a
-// bias; the k x k convolution unfolded onto it, at WHENet's first layer's shape and at odd strides and paddings; a
-// squeeze-and-excitation's gate from its means;
+// channels that end in part of one, gated (the weights scaled, the input, or each pixel tile's input), with a
+// residual added, without a bias; the k x k convolution unfolded onto it, at WHENet's first layer's shape and at odd
+// strides and paddings; a squeeze-and-excitation's gate from its means;
 // the swish alone, fused by OpenCV into a convolution before it, and over its whole range; bad
 // attributes and weights refused when the layer is made. All of it once per instruction-set level this
 // CPU runs (simd_level.hpp), each level's layers against the same loops; and HKF_SIMD's values read.
@@ -253,7 +253,7 @@ void test_depthwise_means(void **)
 }
 
 struct PointwiseCase {
-    int in_c, out_c, height, width, swish, bias, gate;
+    int in_c, out_c, height, width, swish, bias, gate, residual;
 };
 
 // The largest |layer - reference| of a 1x1 convolution, relative to the output's largest magnitude.
@@ -263,24 +263,25 @@ double pointwise_error(const PointwiseCase &c)
     const cv::Mat weights = random_blob({c.out_c, c.in_c, 1, 1}, 14, 0.3f);
     const cv::Mat bias = random_blob({c.out_c}, 15, 0.5f);
     cv::Mat gate = random_blob({1, c.in_c, 1, 1}, 16, 1.0f);
+    const cv::Mat skip = random_blob({1, c.out_c, c.height, c.width}, 17, 1.0f);
     for (size_t i = 0; i < gate.total(); ++i) gate.ptr<float>()[i] = 1.0f / (1.0f + std::exp(-gate.ptr<float>()[i]));
     cv::dnn::LayerParams p;
     p.name = "pw";
     p.type = "hkf.PointwiseConv";
     p.set("swish", c.swish);
+    p.set("residual", c.residual);
     p.blobs = {weights};
     if (c.bias) p.blobs.push_back(bias);
     cv::dnn::Net net;
     const int id = net.addLayer(p.name, p.type, p);
-    net.connect(0, 0, id, 0);
-    if (c.gate) {
-        net.setInputsNames({"x", "g"});
-        net.connect(0, 1, id, 1);
-        net.setInput(input, "x");
-        net.setInput(gate, "g");
-    } else {
-        net.setInput(input);
-    }
+    std::vector<cv::String> names = {"x"};  // the layer's inputs: x, the gate, the residual
+    if (c.gate) names.push_back("g");
+    if (c.residual) names.push_back("r");
+    net.setInputsNames(names);
+    for (int k = 0; k < static_cast<int>(names.size()); ++k) net.connect(0, k, id, k);
+    net.setInput(input, "x");
+    if (c.gate) net.setInput(gate, "g");
+    if (c.residual) net.setInput(skip, "r");
     const cv::Mat out = net.forward("pw");
     const int pixels = c.height * c.width;
     assert_int_equal(static_cast<int>(out.total()), c.out_c * pixels);
@@ -291,7 +292,7 @@ double pointwise_error(const PointwiseCase &c)
             for (int k = 0; k < c.in_c; ++k)
                 sum += static_cast<double>(weights.ptr<float>()[o * c.in_c + k]) * input.ptr<float>()[k * pixels + i] *
                        (c.gate ? gate.ptr<float>()[k] : 1.0f);
-            const double expected = c.swish ? swish_reference(sum) : sum;
+            const double expected = (c.swish ? swish_reference(sum) : sum) + (c.residual ? skip.ptr<float>()[o * pixels + i] : 0.0);
             worst = std::max(worst, std::fabs(out.ptr<float>()[o * pixels + i] - expected));
             scale = std::max(scale, std::fabs(expected));
         }
@@ -302,24 +303,27 @@ double pointwise_error(const PointwiseCase &c)
 void test_pointwise_matches_the_loops(void **)
 {
     const PointwiseCase cases[] = {
-        {16, 96, 112, 112, 1, 1, 0},  // WHENet's first expansion: whole tiles
-        {32, 16, 56, 56, 0, 1, 1},    // gated, more pixels than outputs: the weights scaled
-        {240, 80, 14, 14, 1, 1, 0},   // 196 pixels: six tiles and 4 pixels
-        {1152, 320, 7, 7, 0, 1, 1},   // gated, fewer pixels than outputs: the input scaled
-        {672, 112, 14, 14, 1, 1, 1},  // gated, many inputs, more pixels than outputs: each pixel tile's input scaled
-        {200, 40, 7, 7, 0, 1, 1},     // the same, the last tile ending in a column
-        {20, 21, 5, 4, 1, 0, 0},      // no bias; 21 outputs end in part of a tile, 20 pixels in part of one
-        {9, 3, 33, 1, 0, 0, 1},
-        {64, 13, 37, 37, 1, 1, 0},    // few inputs: blocks of pixel tiles, the last block ending in part of a tile
-        {64, 6, 41, 41, 0, 1, 0},     // the last block ending in one pixel: a column (after a narrow tile at AVX-512)
-        {40, 21, 5, 10, 1, 0, 0},     // 50 pixels: two columns after the tiles; outputs ending in part of a tile
-        {12, 7, 1, 2, 1, 1, 1},       // two pixels in all: columns alone
-        {30, 16, 1, 1, 0, 1, 0},      // one
+        {16, 96, 112, 112, 1, 1, 0, 0},  // WHENet's first expansion: whole tiles
+        {32, 16, 56, 56, 0, 1, 1, 0},    // gated, more pixels than outputs: the weights scaled
+        {240, 80, 14, 14, 1, 1, 0, 0},   // 196 pixels: six tiles and 4 pixels
+        {1152, 320, 7, 7, 0, 1, 1, 0},   // gated, fewer pixels than outputs: the input scaled
+        {672, 112, 14, 14, 1, 1, 1, 0},  // gated, many inputs, more pixels than outputs: each pixel tile's input scaled
+        {200, 40, 7, 7, 0, 1, 1, 0},     // the same, the last tile ending in a column
+        {20, 21, 5, 4, 1, 0, 0, 0},      // no bias; 21 outputs end in part of a tile, 20 pixels in part of one
+        {9, 3, 33, 1, 0, 0, 1, 0},
+        {64, 13, 37, 37, 1, 1, 0, 0},    // few inputs: blocks of pixel tiles, the last block ending in part of a tile
+        {64, 6, 41, 41, 0, 1, 0, 0},     // the last block ending in one pixel: a column (after a narrow tile at AVX-512)
+        {40, 21, 5, 10, 1, 0, 0, 0},     // 50 pixels: two columns after the tiles; outputs ending in part of a tile
+        {12, 7, 1, 2, 1, 1, 1, 0},       // two pixels in all: columns alone
+        {30, 16, 1, 1, 0, 1, 0, 0},      // one
+        {672, 112, 14, 14, 0, 1, 1, 1},  // gated in the pixel tiles, a residual added (a projection of WHENet's)
+        {40, 21, 5, 10, 1, 0, 1, 1},     // a residual after the swish, on tiles, columns and outputs that end in part of one
+        {24, 40, 56, 56, 0, 1, 0, 1},    // on blocks of pixel tiles
     };
     for (const PointwiseCase &c : cases) {
         const double error = pointwise_error(c);
-        print_message("pointwise %d -> %d on %dx%d, swish %d, bias %d, gate %d: relative error %.2e\n", c.in_c, c.out_c,
-                      c.height, c.width, c.swish, c.bias, c.gate, error);
+        print_message("pointwise %d -> %d on %dx%d, swish %d, bias %d, gate %d, residual %d: relative error %.2e\n",
+                      c.in_c, c.out_c, c.height, c.width, c.swish, c.bias, c.gate, c.residual, error);
         assert_true(error < 1e-5);
     }
 }
@@ -438,6 +442,29 @@ bool refused(Case c, int weight_kernel, int bias_size)
     return creation_refused(depthwise_params(c, weights, bias));
 }
 
+// A 3 -> 5 pointwise convolution on 4 x 4 with a residual of skip_channels channels refused when the net is run.
+bool residual_refused(int skip_channels)
+{
+    cv::dnn::LayerParams p;
+    p.name = "pw";
+    p.type = "hkf.PointwiseConv";
+    p.set("residual", 1);
+    p.blobs = {random_blob({5, 3, 1, 1}, 33, 1.0f)};
+    cv::dnn::Net net;
+    const int id = net.addLayer(p.name, p.type, p);
+    net.setInputsNames({"x", "r"});
+    net.connect(0, 0, id, 0);
+    net.connect(0, 1, id, 1);
+    net.setInput(random_blob({1, 3, 4, 4}, 34, 1.0f), "x");
+    net.setInput(random_blob({1, skip_channels, 4, 4}, 35, 1.0f), "r");
+    try {
+        net.forward("pw");
+    } catch (const cv::Exception &) {
+        return true;
+    }
+    return false;
+}
+
 void test_bad_layers_refused(void **)
 {
     const Case good = {4, 8, 8, 3, 1, 1, 1, 1, 1, 1};
@@ -460,6 +487,8 @@ void test_bad_layers_refused(void **)
     p.type = "hkf.PointwiseConv";
     p.blobs = {random_blob({4, 3, 3, 3}, 17, 1.0f)};  // not 1x1
     assert_true(creation_refused(p));
+    assert_false(residual_refused(5));  // good: taken
+    assert_true(residual_refused(4));   // a residual of another shape than the output
     p = depthwise_params(good, random_blob({4, 3, 3, 3}, 21, 1.0f), random_blob({4}, 22, 1.0f));
     p.type = "hkf.UnfoldedConv";
     assert_false(creation_refused(p));  // good: taken

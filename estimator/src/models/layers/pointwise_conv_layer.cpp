@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <vector>
 
@@ -24,7 +25,8 @@ constexpr int kLargestTile = 256;  // floats in the largest level's pointwise ti
 // multiplies each input channel first (squeeze-and-excitation's: W (g x) = (W diag g) x, so it scales
 // the weights, or the input where that is fewer products, or each pixel tile's input as a task copies it:
 // gates_in_tiles); blobs[0] the weights Cout x Cin x 1 x 1, blobs[1] the bias (Cout; none: 0); attribute swish
-// (0 or 1). The weights are packed into tiles once, when the layer is made, for the tile of the level in use. A
+// (0 or 1); attribute residual (0 or 1): with 1 a last input shaped as the output, added to it as each output tile is
+// written (a residual connection's sum, after the swish if any). The weights are packed into tiles once, when the layer is made, for the tile of the level in use. A
 // plane's last pixels, fewer than a tile, are copied into a zero-padded tile.
 // "hkf.UnfoldedConv": a k x k convolution (attributes kernel, stride, pad_top, pad_left, pad_bottom,
 // pad_right, as hkf.DepthwiseConv's; blobs[0] Cout x Cin x k x k) as the same product over its unfolded
@@ -38,6 +40,7 @@ public:
     {
         setParamsFrom(params);
         swish_ = params.get<int>("swish", 0) != 0;
+        residual_ = params.get<int>("residual", 0) != 0;
         if (params.type == "hkf.UnfoldedConv") unfold_ = ConvWindow::read(params);  // else 1 x 1, no padding
         const int k = unfold_.kernel;
         if (blobs.empty() || blobs.size() > 2 || blobs[0].dims != 4 || blobs[0].size[2] != k || blobs[0].size[3] != k ||
@@ -65,11 +68,13 @@ public:
     bool getMemoryShapes(const std::vector<cv::dnn::MatShape> &inputs, const int,
                          std::vector<cv::dnn::MatShape> &outputs, std::vector<cv::dnn::MatShape> &) const override
     {
-        CV_Assert((inputs.size() == 1 || inputs.size() == 2) && inputs[0].size() == 4 && inputs[0][1] == image_channels_);
-        if (inputs.size() == 2)  // the gate: one value per image and input channel
+        const size_t gated = inputs.size() - (residual_ ? 1 : 0);  // 2: x and a gate
+        CV_Assert((gated == 1 || gated == 2) && inputs[0].size() == 4 && inputs[0][1] == image_channels_);
+        if (gated == 2)  // the gate: one value per image and input channel
             CV_Assert(unfold_.kernel == 1 && inputs[1].size() >= 2 && inputs[1][0] == inputs[0][0] &&
                       inputs[1][1] == in_channels_ && cv::dnn::total(inputs[1]) == inputs[0][0] * in_channels_);
         outputs.assign(1, unfold_.output_shape(inputs[0], out_channels_));
+        if (residual_) CV_Assert(inputs.back() == outputs[0]);
         return false;
     }
 
@@ -84,8 +89,10 @@ public:
         for (int image = 0; image < batch; ++image) {
             const float *src = in.ptr<float>() + static_cast<size_t>(image) * image_channels_ * in.size[2] * in.size[3];
             if (unfold_.kernel > 1) src = unfold(src, in.size[2], in.size[3], out.size[2], out.size[3]);
-            Image m{packed_.data(), src, out.ptr<float>() + static_cast<size_t>(image) * out_channels_ * pixels, pixels, nullptr};
-            if (t.in.size() == 2) {
+            const size_t offset = static_cast<size_t>(image) * out_channels_ * pixels;  // the image's output
+            Image m{packed_.data(), src, out.ptr<float>() + offset, pixels, nullptr,
+                    residual_ ? t.in.back().ptr<float>() + offset : nullptr};
+            if (t.in.size() == (residual_ ? 3u : 2u)) {
                 const float *gate = t.in[1].ptr<float>() + static_cast<size_t>(image) * in_channels_;
                 if (gates_in_tiles(tasks, pixels))
                     m.gate = gate;
@@ -116,6 +123,7 @@ private:
         float *dst;
         int pixels;
         const float *gate;  // Cin values that scale each pixel tile's input rows as they are copied (none: nullptr)
+        const float *residual;  // added to dst, laid out as it (none: nullptr)
     };
 
     // One image's input unfolded into unfolded_: row (c, ky, kx) holds, at output pixel (oy, ox), the input
@@ -301,7 +309,18 @@ private:
                     for (int k = 0; k < p.columns; ++k)
                         for (int r = 0; r < rows; ++r) tile_out[static_cast<size_t>(r) * m.pixels + p.count + k] = scratch[k * rows_ + r];
                 }
+                if (m.residual != nullptr) add_residual(m, tile_out - m.dst, rows, p.count + p.columns);
             }
+        }
+    }
+
+    // m.residual added to the output tile just written: `rows` rows of `count` pixels from dst + at (in the first level).
+    static void add_residual(const Image &m, std::ptrdiff_t at, int rows, int count)
+    {
+        for (int r = 0; r < rows; ++r) {
+            float *__restrict out = m.dst + at + static_cast<std::ptrdiff_t>(r) * m.pixels;
+            const float *__restrict add = m.residual + at + static_cast<std::ptrdiff_t>(r) * m.pixels;
+            for (int i = 0; i < count; ++i) out[i] += add[i];
         }
     }
 
@@ -309,7 +328,7 @@ private:
     const int rows_, pixels_;      // its tile's shape
     ConvWindow unfold_;  // hkf.PointwiseConv's: 1 x 1, no padding
     int out_channels_ = 0, in_channels_ = 0, image_channels_ = 0;  // in_channels_: image_channels_ k^2
-    bool swish_ = false;
+    bool swish_ = false, residual_ = false;
     std::vector<float> packed_, bias_;  // weights as [tile][Cin][rows_]; the bias padded to whole tiles
     std::vector<float> gated_;          // the gated weights or input of the image being run
     std::vector<float> unfolded_;       // hkf.UnfoldedConv's input of the image being run
