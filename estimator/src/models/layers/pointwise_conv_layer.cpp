@@ -1,6 +1,5 @@
 // pointwise_conv_layer.cpp - "hkf.PointwiseConv" and "hkf.UnfoldedConv" (see fast_layers.hpp).
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -88,10 +87,13 @@ public:
         const Tasks tasks = tasks_of(pixels);
         for (int image = 0; image < batch; ++image) {
             const float *src = in.ptr<float>() + static_cast<size_t>(image) * image_channels_ * in.size[2] * in.size[3];
-            if (unfold_.kernel > 1) src = unfold(src, in.size[2], in.size[3], out.size[2], out.size[3]);
             const size_t offset = static_cast<size_t>(image) * out_channels_ * pixels;  // the image's output
-            Image m{packed_.data(), src, out.ptr<float>() + offset, pixels, nullptr,
-                    residual_ ? t.in.back().ptr<float>() + offset : nullptr};
+            Image m{packed_.data(), src, pixels, 0, out.ptr<float>() + offset, pixels, nullptr,
+                    residual_ ? t.in.back().ptr<float>() + offset : nullptr, Unfolding{}};
+            if (unfold_.kernel > 1) {  // each block unfolds its own pixels (multiply_block)
+                m.src = nullptr;
+                m.unfold = Unfolding{src, in.size[2], in.size[3], out.size[3]};
+            }
             if (t.in.size() == (residual_ ? 3u : 2u)) {
                 const float *gate = t.in[1].ptr<float>() + static_cast<size_t>(image) * in_channels_;
                 if (gates_in_tiles(tasks, pixels))
@@ -101,7 +103,8 @@ public:
             }
             parallel_tasks(tasks.blocks * tasks.groups, [&](const cv::Range &range) {
                 std::vector<float> tail;
-                thread_local std::vector<float> gated_tile;  // the thread's, kept from task to task: in its own cache
+                thread_local std::vector<float> copied;  // a gated tile or an unfolded block: the thread's, kept from
+                                                         // task to task in its own core's cache
                 for (int task = range.start; task < range.end; ++task) {
                     // one pixel tile a task: a group's tasks one after another, its weights kept in the second level
                     const bool by_group = tasks.tiles_per_block == 1;
@@ -110,52 +113,62 @@ public:
                     const int first_tile = block * tasks.tiles_per_block;
                     multiply_block(m, first_tile, std::min(tasks.pixel_tiles, first_tile + tasks.tiles_per_block),
                                    first_row_tile, std::min(tasks.row_tiles, first_row_tile + tasks.rows_per_group), tail,
-                                   gated_tile);
+                                   copied);
                 }
             });
         }
     }
 
 private:
-    // One image's product: the packed weights, its input and output planes of `pixels` floats.
-    struct Image {
-        const float *weights, *src;
-        float *dst;
-        int pixels;
-        const float *gate;  // Cin values that scale each pixel tile's input rows as they are copied (none: nullptr)
-        const float *residual;  // added to dst, laid out as it (none: nullptr)
+    // hkf.UnfoldedConv's image (Cin / k^2 planes of h x w) and its output's width; none: image nullptr.
+    struct Unfolding {
+        const float *image;
+        int h, w, out_w;
     };
 
-    // One image's input unfolded into unfolded_: row (c, ky, kx) holds, at output pixel (oy, ox), the input
-    // at (oy stride + ky - pad_top, ox stride + kx - pad_left), zero outside it (the zeros written when the shape
-    // is new, not for every image: a serial 1.35 MB memset for WHENet's first layer). Returns the rows.
-    const float *unfold(const float *src, int h, int w, int out_h, int out_w)
+    // One image's product: the packed weights; its input, Cin rows src_pitch floats apart, pixel p at
+    // src[p - src_first]; its output planes of `pixels` floats.
+    struct Image {
+        const float *weights, *src;
+        long src_pitch;
+        int src_first;
+        float *dst;
+        int pixels;
+        const float *gate;      // Cin values that scale each pixel tile's input rows as they are copied (none: nullptr)
+        const float *residual;  // added to dst, laid out as it (none: nullptr)
+        Unfolding unfold;       // src unfolded block by block from this (none: image nullptr; src is the input)
+    };
+
+    // The unfolded input of the output pixels [first, end) into rows (Cin of them, `pitch` floats apart, pixel p at
+    // p - first): row (c, ky, kx) holds, at output pixel (oy, ox), the input at (oy stride + ky - pad_top,
+    // ox stride + kx - pad_left), zero outside it, and zero from end - first to pitch.
+    void unfold_pixels(const Unfolding &u, int first, int end, float *rows, long pitch) const
     {
-        const ConvWindow u = unfold_;
-        const long out_pixels = static_cast<long>(out_h) * out_w;
-        const std::array<int, 4> shape = {h, w, out_h, out_w};
-        if (shape != unfolded_shape_) {  // zeroed once for a shape: the places outside the input are never written
-            unfolded_.assign(static_cast<size_t>(in_channels_) * out_pixels, 0.0f);
-            unfolded_shape_ = shape;
-        }
-        parallel_tasks(in_channels_, [&](const cv::Range &range) {
-            for (int row = range.start; row < range.end; ++row) {
-                const int c = row / (u.kernel * u.kernel), ky = row / u.kernel % u.kernel, kx = row % u.kernel;
-                int first, end;  // the output columns whose input column ox stride + kx - pad_left is inside [0, w)
-                columns_inside(kx - u.left, w, u.stride, out_w, &first, &end);
-                for (int oy = 0; oy < out_h; ++oy) {
-                    const int y = oy * u.stride + ky - u.top;
-                    if (y < 0 || y >= h) continue;
-                    const float *from = src + (static_cast<long>(c) * h + y) * w + first * u.stride + kx - u.left;
-                    float *to = &unfolded_[static_cast<size_t>(row) * out_pixels + static_cast<size_t>(oy) * out_w + first];
-                    if (u.stride == 2)
-                        every_second(from, to, end - first);
+        const ConvWindow &k = unfold_;
+        for (int row = 0; row < in_channels_; ++row) {
+            const int c = row / (k.kernel * k.kernel), ky = row / k.kernel % k.kernel, kx = row % k.kernel;
+            int inside, outside;  // the output columns whose input column ox stride + kx - pad_left is inside [0, w)
+            columns_inside(kx - k.left, u.w, k.stride, u.out_w, &inside, &outside);
+            float *dst = rows + static_cast<long>(row) * pitch;
+            std::fill(dst + (end - first), dst + pitch, 0.0f);
+            for (int p = first; p < end;) {  // output row by output row
+                const int oy = p / u.out_w, from_x = p % u.out_w, to_x = std::min(u.out_w, from_x + (end - p));
+                const int y = oy * k.stride + ky - k.top;
+                float *to = dst + (p - first) - from_x;  // to[ox]: pixel (oy, ox)
+                const int a = y < 0 || y >= u.h ? to_x : std::min(to_x, std::max(from_x, inside));
+                const int b = y < 0 || y >= u.h ? to_x : std::max(a, std::min(to_x, outside));
+                std::fill(to + from_x, to + a, 0.0f);
+                if (b > a) {  // input column ox stride + kx - pad_left of row y
+                    const float *from = u.image + (static_cast<long>(c) * u.h + y) * u.w + a * k.stride + kx - k.left;
+                    if (k.stride == 2)
+                        every_second(from, to + a, b - a);
                     else
-                        for (int i = 0; i < end - first; ++i) to[i] = from[i * u.stride];
+                        for (int i = 0; i < b - a; ++i) to[a + i] = from[i * k.stride];
                 }
+                std::fill(to + b, to + to_x, 0.0f);
+                p += to_x - from_x;
             }
-        });
-        return unfolded_.data();
+        }
     }
 
     // The gate g (Cin values) applied: to a copy of the weights (Cout x Cin products) or of the input
@@ -253,9 +266,10 @@ private:
     PixelTile pixel_tile(const Image &m, int pixel, std::vector<float> &tail, std::vector<float> &gated) const
     {
         const int count = std::min(pixels_, m.pixels - pixel);
-        if (m.gate == nullptr) return tile_at(m.src + pixel, m.pixels, count, tail);
+        const float *in = m.src + (pixel - m.src_first);
+        if (m.gate == nullptr) return tile_at(in, m.src_pitch, count, tail);
         gated.resize(static_cast<size_t>(in_channels_) * pixels_);
-        kernels_.scale_rows(m.src + pixel, m.pixels, m.gate, gated.data(), pixels_, in_channels_, count);
+        kernels_.scale_rows(in, m.src_pitch, m.gate, gated.data(), pixels_, in_channels_, count);
         return tile_at(gated.data(), pixels_, count, tail);
     }
 
@@ -283,19 +297,30 @@ private:
         return PixelTile{tail.data(), width, count, width, narrow ? kernels_.pointwise_tile_narrow : kernels_.pointwise_tile, 0};
     }
 
-    // The output row tiles [first_row, last_row), each over the pixel tiles [first_tile, end_tile) (one, with m.gate).
-    void multiply_block(const Image &m, int first_tile, int end_tile, int first_row, int last_row,
-                        std::vector<float> &tail, std::vector<float> &gated) const
+    // The output row tiles [first_row, last_row), each over the pixel tiles [first_tile, end_tile) (one, with m.gate);
+    // `copied` holds the block's unfolded input (m.unfold) or the tile's gated one.
+    void multiply_block(Image m, int first_tile, int end_tile, int first_row, int last_row, std::vector<float> &tail,
+                        std::vector<float> &copied) const
     {
         CV_DbgAssert(m.gate == nullptr || end_tile - first_tile == 1);
-        PixelTile last = pixel_tile(m, (end_tile - 1) * pixels_, tail, gated);  // the block's last: maybe the tail
+        if (m.unfold.image != nullptr) {  // the block's pixels unfolded in this core's cache, whole tiles wide
+            const long width = static_cast<long>(end_tile - first_tile) * pixels_;
+            copied.resize(static_cast<size_t>(in_channels_) * width);
+            m.src_first = first_tile * pixels_;
+            unfold_pixels(m.unfold, m.src_first, std::min(m.pixels, end_tile * pixels_), copied.data(), width);
+            m.src = copied.data();
+            m.src_pitch = width;
+        }
+        PixelTile last = pixel_tile(m, (end_tile - 1) * pixels_, tail, copied);  // the block's last: maybe the tail
         float scratch[kLargestTile];  // a tile that ends past the plane or the output channels
         for (int t = first_row; t < last_row; ++t) {
             const int rows = std::min(rows_, out_channels_ - t * rows_);
             const float *weights = m.weights + static_cast<size_t>(t) * in_channels_ * rows_;
             for (int tile = first_tile; tile < end_tile; ++tile) {
                 const int pixel = tile * pixels_;
-                const PixelTile p = tile + 1 == end_tile ? last : PixelTile{m.src + pixel, m.pixels, pixels_, pixels_, kernels_.pointwise_tile, 0};
+                const PixelTile p = tile + 1 == end_tile ? last
+                                                         : PixelTile{m.src + (pixel - m.src_first), m.src_pitch, pixels_, pixels_,
+                                                                     kernels_.pointwise_tile, 0};
                 float *tile_out = m.dst + static_cast<size_t>(t) * rows_ * m.pixels + pixel;
                 if (p.count > 0 && p.count == p.width && rows == rows_) {
                     p.multiply(PointwiseTile{weights, in_channels_, p.in, p.pitch, &bias_[t * rows_], tile_out, m.pixels, swish_});
@@ -331,8 +356,6 @@ private:
     bool swish_ = false, residual_ = false;
     std::vector<float> packed_, bias_;  // weights as [tile][Cin][rows_]; the bias padded to whole tiles
     std::vector<float> gated_;          // the gated weights or input of the image being run
-    std::vector<float> unfolded_;       // hkf.UnfoldedConv's input of the image being run
-    std::array<int, 4> unfolded_shape_{};  // the input's and output's heights and widths it was zeroed for (none: 0s)
 };
 
 }  // namespace
