@@ -2,7 +2,8 @@
 // loops in double, without OpenCV, so that the same file is built for another architecture (aarch64's
 // NEON, run under qemu-user: tests/estimator/kernels_aarch64_test.sh) as well as for this one. The tile on
 // every shape a layer gives it (whole and cut at either edge: the layer pads those to a whole tile), the
-// depthwise taps of WHENet's kernels and strides, the swish over +-200 and beyond, a plane's mean, scaled rows.
+// depthwise taps of WHENet's kernels and strides, the swish and the sigmoid over +-200 and beyond, a plane's mean,
+// scaled rows, rows accumulated.
 // usage: test_layer_kernels [LEVEL...]   (default: every level built in; a level this CPU lacks: skip it)
 #include <cmath>
 #include <cstdio>
@@ -149,6 +150,41 @@ void check_scale_rows(const LayerKernels &k, long n)
     expect(wrong == 0, k.name, what, static_cast<double>(wrong));
 }
 
+// y += x's rows of a summed (a squeeze-and-excitation's product: 1152 -> 48 and 48 -> 1152, 5 -> 37 past the vectors)
+// against a sum in double, relative to y's largest magnitude.
+void check_accumulate_rows(const LayerKernels &k, long rows, long n)
+{
+    const std::vector<float> a = noise(rows * n, 9, 0.3f), x = noise(rows, 10, 1.0f), start = noise(n, 11, 0.5f);
+    std::vector<float> y = start;
+    k.accumulate_rows(a.data(), x.data(), rows, n, y.data());
+    double worst = 0.0, scale = 1e-6;
+    for (long j = 0; j < n; ++j) {
+        double sum = start[j];
+        for (long i = 0; i < rows; ++i) sum += static_cast<double>(a[i * n + j]) * x[i];
+        worst = std::fmax(worst, std::fabs(y[j] - sum));
+        scale = std::fmax(scale, std::fabs(sum));
+    }
+    char what[80];
+    std::snprintf(what, sizeof what, "rows accumulated, %ld x %ld", rows, n);
+    expect(worst / scale < 1e-5, k.name, what, worst / scale);
+}
+
+void check_sigmoid(const LayerKernels &k)
+{
+    std::vector<float> x;
+    for (int i = -20000; i <= 20000; ++i) x.push_back(static_cast<float>(i) * 0.01f);
+    x.push_back(-1e5f);
+    x.push_back(1e5f);
+    std::vector<float> y(x.size());
+    k.sigmoid(x.data(), y.data(), static_cast<long>(x.size()));
+    double worst = 0.0;  // relative; absolute below 1e-30, where a float's exp is clamped (about 6e-39 for x < -88)
+    for (size_t i = 0; i < x.size(); ++i) {
+        const double expected = 1.0 / (1.0 + std::exp(-static_cast<double>(x[i])));
+        worst = std::fmax(worst, std::fabs(y[i] - expected) / std::fmax(expected, 1e-30));
+    }
+    expect(worst < 5e-7, k.name, "sigmoid on [-200, 200] and +-1e5", worst);
+}
+
 bool cpu_runs(const LayerKernels &k)
 {
 #if defined(__x86_64__)
@@ -188,6 +224,10 @@ int main(int argc, char **argv)
         check_taps(*k, 5, 2, k->taps_5x5_stride2);
         check_swish_and_mean(*k);
         for (long n : {3L, 32L, 37L}) check_scale_rows(*k, n);
+        check_accumulate_rows(*k, 1152, 48);
+        check_accumulate_rows(*k, 48, 1152);
+        check_accumulate_rows(*k, 5, 37);
+        check_sigmoid(*k);
         ++tested;
     }
     std::printf("test_layer_kernels: %d levels tested, %d failures\n", tested, failures);

@@ -401,6 +401,42 @@ void scale_rows(const float *src, long src_pitch, const float *scales, float *ds
     }
 }
 
+// Row by row: vector by vector, the last floats of a row one by one.
+void accumulate_rows(const float *a, const float *x, long rows, long n, float *y)
+{
+    for (long i = 0; i < rows; ++i, a += n) {
+        const float s = x[i];
+        long j = 0;
+        for (; j + HKF_LANES <= n; j += HKF_LANES) {
+            Vector sum, row;
+            __builtin_memcpy(&sum, y + j, sizeof sum);
+            __builtin_memcpy(&row, a + j, sizeof row);
+            sum += row * s;
+            __builtin_memcpy(y + j, &sum, sizeof sum);
+        }
+        for (; j < n; ++j) y[j] += a[j] * s;
+    }
+}
+
+// As the swish: vector by vector, the last floats one by one.
+template <typename T>
+T sigmoid_of(T x)
+{
+    return 1.0f / (1.0f + exp_approx(-x));
+}
+
+void sigmoid(const float *src, float *dst, long n)
+{
+    long i = 0;
+    for (; i + HKF_LANES <= n; i += HKF_LANES) {
+        Vector x;
+        __builtin_memcpy(&x, src + i, sizeof x);
+        x = sigmoid_of(x);
+        __builtin_memcpy(dst + i, &x, sizeof x);
+    }
+    for (; i < n; ++i) dst[i] = sigmoid_of(src[i]);
+}
+
 }  // namespace
 }  // namespace HKF_KERNELS_NAMESPACE
 
@@ -423,6 +459,8 @@ extern const LayerKernels HKF_KERNELS_TABLE = {
     HKF_KERNELS_NAMESPACE::swish,
     HKF_KERNELS_NAMESPACE::plane_mean,
     HKF_KERNELS_NAMESPACE::scale_rows,
+    HKF_KERNELS_NAMESPACE::accumulate_rows,
+    HKF_KERNELS_NAMESPACE::sigmoid,
 };
 
 }  // namespace hkf_estimator

@@ -1,6 +1,5 @@
 // squeeze_excite_layer.cpp - "hkf.SqueezeExcite" (see fast_layers.hpp).
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -18,8 +17,8 @@ namespace {
 
 // "hkf.SqueezeExcite": a squeeze-and-excitation's gate from its means, g = sigmoid(W2 swish(W1 m + b1) + b2);
 // input N x C x 1 x 1 (the means), blobs W1 (R x C x 1 x 1), b1 (R), W2 (C x R x 1 x 1), b2 (C); output
-// N x C x 1 x 1. A few thousand products per image: one thread, plain loops (OpenCV ran it as two 1x1
-// convolutions and two activations, each with a parallel region of its own).
+// N x C x 1 x 1. A few thousand products per image: one thread, the level's loops (LayerKernels::accumulate_rows,
+// swish, sigmoid; OpenCV ran it as two 1x1 convolutions and two activations, each with a parallel region of its own).
 class SqueezeExciteLayer : public cv::dnn::Layer {
 public:
     explicit SqueezeExciteLayer(const cv::dnn::LayerParams &params) : kernels_(layer_kernels_in_use())
@@ -65,13 +64,11 @@ public:
             const float *m = t.in[0].ptr<float>() + static_cast<size_t>(image) * channels_;
             float *g = t.out[0].ptr<float>() + static_cast<size_t>(image) * channels_;
             std::copy(b1, b1 + reduced_, hidden.begin());
-            for (int c = 0; c < channels_; ++c)
-                for (int r = 0; r < reduced_; ++r) hidden[r] += w1_by_channel_[static_cast<size_t>(c) * reduced_ + r] * m[c];
+            kernels_.accumulate_rows(w1_by_channel_.data(), m, channels_, reduced_, hidden.data());
             kernels_.swish(hidden.data(), hidden.data(), reduced_);
             std::copy(b2, b2 + channels_, g);
-            for (int r = 0; r < reduced_; ++r)
-                for (int c = 0; c < channels_; ++c) g[c] += w2_by_reduced_[static_cast<size_t>(r) * channels_ + c] * hidden[r];
-            for (int c = 0; c < channels_; ++c) g[c] = 1.0f / (1.0f + std::exp(-g[c]));
+            kernels_.accumulate_rows(w2_by_reduced_.data(), hidden.data(), reduced_, channels_, g);
+            kernels_.sigmoid(g, g, channels_);
         }
     }
 
