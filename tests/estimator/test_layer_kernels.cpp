@@ -156,7 +156,7 @@ void check_accumulate_rows(const LayerKernels &k, long rows, long n)
 {
     const std::vector<float> a = noise(rows * n, 9, 0.3f), x = noise(rows, 10, 1.0f), start = noise(n, 11, 0.5f);
     std::vector<float> y = start;
-    k.accumulate_rows(a.data(), x.data(), rows, n, y.data());
+    k.accumulate_rows(a.data(), n, x.data(), rows, n, y.data());
     double worst = 0.0, scale = 1e-6;
     for (long j = 0; j < n; ++j) {
         double sum = start[j];

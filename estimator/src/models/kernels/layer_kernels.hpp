@@ -81,9 +81,9 @@ struct LayerKernels {
     float (*plane_mean)(const float *plane, long n);      // n > 0
     // dst[r dst_pitch + i] = src[r src_pitch + i] scales[r], r < rows, i < n (a gate on a pixel tile's input rows)
     void (*scale_rows)(const float *src, long src_pitch, const float *scales, float *dst, long dst_pitch, long rows, long n);
-    // y[j] += sum over i < rows of x[i] a[i n + j], j < n: row by row, each row of a read once and in order (the
+    // y[j] += sum over i < rows of x[i] a[i pitch + j], j < n: row by row, each row of a read once and in order (the
     // squeeze-and-excitation's two products, whose weights come from the last-level cache); y in the first level
-    void (*accumulate_rows)(const float *a, const float *x, long rows, long n, float *y);
+    void (*accumulate_rows)(const float *a, long pitch, const float *x, long rows, long n, float *y);
     void (*sigmoid)(const float *src, float *dst, long n);  // 1 / (1 + exp(-x)); dst may be src
 };
 

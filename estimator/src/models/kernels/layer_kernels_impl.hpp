@@ -402,9 +402,9 @@ void scale_rows(const float *src, long src_pitch, const float *scales, float *ds
 }
 
 // Row by row: vector by vector, the last floats of a row one by one.
-void accumulate_rows(const float *a, const float *x, long rows, long n, float *y)
+void accumulate_rows(const float *a, long pitch, const float *x, long rows, long n, float *y)
 {
-    for (long i = 0; i < rows; ++i, a += n) {
+    for (long i = 0; i < rows; ++i, a += pitch) {
         const float s = x[i];
         long j = 0;
         for (; j + HKF_LANES <= n; j += HKF_LANES) {
