@@ -7,7 +7,9 @@ it has below it, as it did on such a CPU; the cell says at which. Prints a markd
 rounds and, in brackets, the fastest round (the best estimate of the pass on an idle machine); ratios of the
 fastest rounds. Figures as in
 layer_levels.sh (WHENet 224x224, medians of 40 passes); the CPU must run AVX-512 for its row (else it is skipped).
-usage: forward_side_by_side.py BEFORE_BENCH NOW_BENCH [ROUNDS]   (BENCH: a build's hkf-bench-layers)"""
+usage: forward_side_by_side.py BEFORE_BENCH NOW_BENCH [ROUNDS]   (BENCH: a build's hkf-bench-layers, or
+BENCH=GRAPH: with the rewritten graph that build reads, where dev/models/fast_layers.py changed between the two;
+default .models/whenet_fast.onnx)"""
 import os
 import re
 import statistics
@@ -30,12 +32,13 @@ def opencv_disable(level):
     raise SystemExit(f"forward_side_by_side: no level {level} in opencv_cpu_levels.txt")
 
 
-def ours(bench, level, threads):
-    """The pass of a build on a CPU of `level`, and the level its layers ran at: a build without that level (an older
-    one) runs the best it has below it, as it did on such a CPU."""
+def ours(build, level, threads):
+    """The pass of a build (BENCH or BENCH=GRAPH) on a CPU of `level`, and the level its layers ran at: a build
+    without that level (an older one) runs the best it has below it, as it did on such a CPU."""
+    bench, _, graph = build.partition("=")
     for taken in LEVELS[LEVELS.index(level):]:
         env = dict(os.environ, HKF_SIMD=taken, OPENCV_CPU_DISABLE=opencv_disable(level))
-        run = subprocess.run([bench, os.path.join(ROOT, ".models", "whenet_fast.onnx"), "224", "224", "40", threads],
+        run = subprocess.run([bench, graph or os.path.join(ROOT, ".models", "whenet_fast.onnx"), "224", "224", "40", threads],
                              capture_output=True, text=True, env=env)
         if run.returncode == 2 and "is not a level" in run.stderr:
             continue
@@ -70,7 +73,7 @@ def main():
         return 2
     before, now = sys.argv[1], sys.argv[2]
     rounds = int(sys.argv[3]) if len(sys.argv) == 4 else 5
-    mask = os.path.join(os.path.dirname(os.path.abspath(now)), "libhkf-cpu-level-mask.so")  # built beside it
+    mask = os.path.join(os.path.dirname(os.path.abspath(now.partition("=")[0])), "libhkf-cpu-level-mask.so")  # beside it
     flags = evaluate.cpu_info()[1]
     levels = [level for level in LEVELS if level != "avx512" or "avx512f" in flags]
     if "cpuid_fault" not in flags or not os.path.exists(mask):
