@@ -28,7 +28,7 @@ import onnx
 from onnx import helper, numpy_helper
 
 DOMAIN = "hkf"
-MIN_PIXELS = 16  # below, a pointwise tile (32 pixels) would be mostly padding
+MIN_PIXELS = 16  # below, a pointwise tile (16-48 pixels) would be mostly padding
 
 
 def attribute(node, name, default=None):

@@ -312,7 +312,9 @@ void test_pointwise_matches_the_loops(void **)
         {20, 21, 5, 4, 1, 0, 0, 0},      // no bias; 21 outputs end in part of a tile, 20 pixels in part of one
         {9, 3, 33, 1, 0, 0, 1, 0},
         {64, 13, 37, 37, 1, 1, 0, 0},    // few inputs: blocks of pixel tiles, the last block ending in part of a tile
-        {64, 6, 41, 41, 0, 1, 0, 0},     // the last block ending in one pixel: a column (after a narrow tile at AVX-512)
+        {64, 6, 41, 41, 0, 1, 0, 0},     // the last block ending in one pixel: a column
+        {24, 10, 5, 13, 1, 1, 0, 0},     // 65 pixels: a narrow tile and a column after a tile (AVX-512's 48 pixels)
+        {200, 40, 5, 13, 0, 1, 1, 0},    // the same, gated in the pixel tiles
         {40, 21, 5, 10, 1, 0, 0, 0},     // 50 pixels: two columns after the tiles; outputs ending in part of a tile
         {12, 7, 1, 2, 1, 1, 1, 0},       // two pixels in all: columns alone
         {30, 16, 1, 1, 0, 1, 0, 0},      // one

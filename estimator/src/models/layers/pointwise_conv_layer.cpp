@@ -17,7 +17,7 @@ namespace hkf_estimator {
 
 namespace {
 
-constexpr int kLargestTile = 256;  // floats in the largest level's pointwise tile (8 x 32)
+constexpr int kLargestTile = 384;  // floats in the largest level's pointwise tile (8 x 48)
 
 // "hkf.PointwiseConv": a 1x1 convolution (stride 1, no padding) as a matrix product in the level's
 // tiles (LayerKernels::pointwise_tile); input N x Cin x H x W, and optionally a second one, a gate N x Cin x 1 x 1 that
@@ -252,8 +252,8 @@ private:
     // tile), one or two of them as columns (LayerKernels::pointwise_columns, their input copied into `tail`), alone
     // or after a narrow tile in place that a vector of them fills; or, any other last piece, copied once into
     // `tail`, zero-padded, through a narrow tile where it holds them. 7 x 7 = 49 pixels: at AVX2 3 tiles of 16 and
-    // a column (a narrow tile for that one pixel took a quarter of the layer), at AVX-512 a tile of 32, a narrow
-    // one of 16 and a column. With m.gate, the tile's input is first copied, gated, into `gated` (then a tile in
+    // a column (a narrow tile for that one pixel took a quarter of the layer), at AVX-512 a tile of 48 and a
+    // column. With m.gate, the tile's input is first copied, gated, into `gated` (then a tile in
     // place there).
     struct PixelTile {
         const float *in;
