@@ -140,7 +140,7 @@ void check_scale_rows(const LayerKernels &k, long n)
     const long rows = 5, src_pitch = 53, dst_pitch = n + 3;
     const std::vector<float> src = noise(rows * src_pitch, 7, 1.0f), scales = noise(rows, 8, 1.0f);
     std::vector<float> dst(rows * dst_pitch, -7.0f);
-    k.scale_rows(src.data(), src_pitch, scales.data(), dst.data(), dst_pitch, rows, n);
+    k.scale_rows(hkf_estimator::ScaledRows{src.data(), src_pitch, scales.data(), dst.data(), dst_pitch, rows, n});
     long wrong = 0;
     for (long r = 0; r < rows; ++r)
         for (long i = 0; i < dst_pitch; ++i)

@@ -64,6 +64,15 @@ struct InterleavedPlanes {
     float *out, *sums;
 };
 
+// dst[r dst_pitch + i] = src[r src_pitch + i] scales[r], r < rows, i < n (a gate on a pixel tile's input rows).
+struct ScaledRows {
+    const float *src;
+    long src_pitch;
+    const float *scales;
+    float *dst;
+    long dst_pitch, rows, n;
+};
+
 struct LayerKernels {
     SimdLevel level;
     const char *name;            // as HKF_SIMD spells it: avx512, avx2, avx, sse2 or neon
@@ -79,8 +88,7 @@ struct LayerKernels {
     void (*deinterleave)(const float *src, float *const *planes, long n);  // the other way
     void (*swish)(const float *src, float *dst, long n);  // x / (1 + exp(-x)); dst may be src
     float (*plane_mean)(const float *plane, long n);      // n > 0
-    // dst[r dst_pitch + i] = src[r src_pitch + i] scales[r], r < rows, i < n (a gate on a pixel tile's input rows)
-    void (*scale_rows)(const float *src, long src_pitch, const float *scales, float *dst, long dst_pitch, long rows, long n);
+    void (*scale_rows)(const ScaledRows &rows);
     // y[j] += sum over i < rows of x[i] a[i pitch + j], j < n: row by row, each row of a read once and in order (the
     // squeeze-and-excitation's two products, whose weights come from the last-level cache); y in the first level
     void (*accumulate_rows)(const float *a, long pitch, const float *x, long rows, long n, float *y);

@@ -389,10 +389,13 @@ float plane_mean(const float *plane, long n)
 }
 
 // Row by row: vector by vector, the last floats of a row one by one.
-void scale_rows(const float *src, long src_pitch, const float *scales, float *dst, long dst_pitch, long rows, long n)
+void scale_rows(const ScaledRows &p)
 {
-    for (long r = 0; r < rows; ++r, src += src_pitch, dst += dst_pitch) {
-        const float s = scales[r];
+    const float *src = p.src;
+    float *dst = p.dst;
+    const long n = p.n;
+    for (long r = 0; r < p.rows; ++r, src += p.src_pitch, dst += p.dst_pitch) {
+        const float s = p.scales[r];
         long i = 0;
         for (; i + HKF_LANES <= n; i += HKF_LANES) {
             Vector x;

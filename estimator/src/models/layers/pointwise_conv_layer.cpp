@@ -102,9 +102,7 @@ public:
                     apply_gate(gate, &m);
             }
             parallel_tasks(tasks.blocks * tasks.groups, [&](const cv::Range &range) {
-                std::vector<float> tail;
-                thread_local std::vector<float> copied;  // a gated tile or an unfolded block: the thread's, kept from
-                                                         // task to task in its own core's cache
+                thread_local TaskBuffers buffers;  // the thread's, kept from task to task in its own core's cache
                 for (int task = range.start; task < range.end; ++task) {
                     // one pixel tile a task: a group's tasks one after another, its weights kept in the second level
                     const bool by_group = tasks.tiles_per_block == 1;
@@ -112,8 +110,8 @@ public:
                     const int first_row_tile = (by_group ? task / tasks.blocks : task % tasks.groups) * tasks.rows_per_group;
                     const int first_tile = block * tasks.tiles_per_block;
                     multiply_block(m, first_tile, std::min(tasks.pixel_tiles, first_tile + tasks.tiles_per_block),
-                                   first_row_tile, std::min(tasks.row_tiles, first_row_tile + tasks.rows_per_group), tail,
-                                   copied);
+                                   first_row_tile, std::min(tasks.row_tiles, first_row_tile + tasks.rows_per_group),
+                                   buffers);
                 }
             });
         }
@@ -124,6 +122,11 @@ private:
     struct Unfolding {
         const float *image;
         int h, w, out_w;
+    };
+
+    // A task's copies of its input: a plane's last pixels (pixel_tile), a gated pixel tile or an unfolded block.
+    struct TaskBuffers {
+        std::vector<float> tail, copied;
     };
 
     // One image's product: the packed weights; its input, Cin rows src_pitch floats apart, pixel p at
@@ -269,7 +272,7 @@ private:
         const float *in = m.src + (pixel - m.src_first);
         if (m.gate == nullptr) return tile_at(in, m.src_pitch, count, tail);
         gated.resize(static_cast<size_t>(in_channels_) * pixels_);
-        kernels_.scale_rows(in, m.src_pitch, m.gate, gated.data(), pixels_, in_channels_, count);
+        kernels_.scale_rows(ScaledRows{in, m.src_pitch, m.gate, gated.data(), pixels_, in_channels_, count});
         return tile_at(gated.data(), pixels_, count, tail);
     }
 
@@ -298,10 +301,10 @@ private:
     }
 
     // The output row tiles [first_row, last_row), each over the pixel tiles [first_tile, end_tile) (one, with m.gate);
-    // `copied` holds the block's unfolded input (m.unfold) or the tile's gated one.
-    void multiply_block(Image m, int first_tile, int end_tile, int first_row, int last_row, std::vector<float> &tail,
-                        std::vector<float> &copied) const
+    // b.copied holds the block's unfolded input (m.unfold) or the tile's gated one.
+    void multiply_block(Image m, int first_tile, int end_tile, int first_row, int last_row, TaskBuffers &b) const
     {
+        std::vector<float> &tail = b.tail, &copied = b.copied;
         CV_DbgAssert(m.gate == nullptr || end_tile - first_tile == 1);
         if (m.unfold.image != nullptr) {  // the block's pixels unfolded in this core's cache, whole tiles wide
             const long width = static_cast<long>(end_tile - first_tile) * pixels_;
