@@ -36,10 +36,10 @@ def ours(build, level, threads):
     """The pass of a build (BENCH or BENCH=GRAPH) on a CPU of `level`, and the level its layers ran at: a build
     without that level (an older one) runs the best it has below it, as it did on such a CPU."""
     bench, _, graph = build.partition("=")
+    graph = graph or os.path.join(ROOT, ".models", "whenet_fast.onnx")
     for taken in LEVELS[LEVELS.index(level):]:
         env = dict(os.environ, HKF_SIMD=taken, OPENCV_CPU_DISABLE=opencv_disable(level))
-        run = subprocess.run([bench, graph or os.path.join(ROOT, ".models", "whenet_fast.onnx"), "224", "224", "40", threads],
-                             capture_output=True, text=True, env=env)
+        run = subprocess.run([bench, graph, "224", "224", "40", threads], capture_output=True, text=True, env=env)
         if run.returncode == 2 and "is not a level" in run.stderr:
             continue
         found = re.search(r"forward pass ([0-9.]+) ms", run.stdout)
@@ -73,7 +73,8 @@ def main():
         return 2
     before, now = sys.argv[1], sys.argv[2]
     rounds = int(sys.argv[3]) if len(sys.argv) == 4 else 5
-    mask = os.path.join(os.path.dirname(os.path.abspath(now.partition("=")[0])), "libhkf-cpu-level-mask.so")  # beside it
+    now_bench = now.partition("=")[0]
+    mask = os.path.join(os.path.dirname(os.path.abspath(now_bench)), "libhkf-cpu-level-mask.so")  # built beside it
     flags = evaluate.cpu_info()[1]
     levels = [level for level in LEVELS if level != "avx512" or "avx512f" in flags]
     if "cpuid_fault" not in flags or not os.path.exists(mask):

@@ -112,12 +112,19 @@ void check_taps(const LayerKernels &k, int kernel, int stride, hkf_estimator::De
     expect(worst < 1e-5, k.name, what, worst);
 }
 
-void check_swish_and_mean(const LayerKernels &k)
+// An activation's inputs: [-200, 200] in steps of 0.01, and +-1e5.
+std::vector<float> activation_inputs()
 {
     std::vector<float> x;
     for (int i = -20000; i <= 20000; ++i) x.push_back(static_cast<float>(i) * 0.01f);
     x.push_back(-1e5f);
     x.push_back(1e5f);
+    return x;
+}
+
+void check_swish_and_mean(const LayerKernels &k)
+{
+    const std::vector<float> x = activation_inputs();
     std::vector<float> y(x.size());
     k.swish(x.data(), y.data(), static_cast<long>(x.size()));
     double worst = 0.0;
@@ -171,10 +178,7 @@ void check_accumulate_rows(const LayerKernels &k, long rows, long n)
 
 void check_sigmoid(const LayerKernels &k)
 {
-    std::vector<float> x;
-    for (int i = -20000; i <= 20000; ++i) x.push_back(static_cast<float>(i) * 0.01f);
-    x.push_back(-1e5f);
-    x.push_back(1e5f);
+    const std::vector<float> x = activation_inputs();
     std::vector<float> y(x.size());
     k.sigmoid(x.data(), y.data(), static_cast<long>(x.size()));
     double worst = 0.0;  // relative; absolute below 1e-30, where a float's exp is clamped (about 6e-39 for x < -88)

@@ -8,8 +8,8 @@
 //   HKF_TILE_ROWS, HKF_TILE_VECTORS
 //                           the pointwise tile: rows x vectors of running sums, chosen to fill the level's
 //                           register file without spilling: AVX-512 8 x 3 (24 of 32 zmm: 49 pixels a tile of
-//                           48 and a column; against 8 x 2, on an Intel Xeon, the 7 x 7 layers 0.79-0.92x on one
-//                           thread and 0.88-0.96x on two, the pass 0.94x and 0.98x; 12 x 2 gained on one thread
+//                           48 and a column; against 8 x 2, on an Intel Xeon, the 7 x 7 layers 0.78-0.94x on one
+//                           thread and 0.87-0.96x on two, every layer 0.94x and 0.98x; 12 x 2 gained on one thread
 //                           only), AVX2 6 x 2 (12 of
 //                           16 ymm, beside 2 inputs and a broadcast weight), SSE2 4 x 3 (12 of 16 xmm), NEON
 //                           8 x 2 (16 of 32 registers)
@@ -361,17 +361,24 @@ void depthwise_interleaved(const InterleavedPlanes &p)
     interleaved_taps<0, 0>(p);
 }
 
-// Vector by vector; the last floats, fewer than a vector, one by one.
-void swish(const float *src, float *dst, long n)
+// dst[i] = f(src[i]), i < n: vector by vector, the last floats, fewer than a vector, one by one (f of a Vector
+// and of a float: a generic lambda).
+template <typename F>
+inline void each_float(const float *src, float *dst, long n, F f)
 {
     long i = 0;
     for (; i + HKF_LANES <= n; i += HKF_LANES) {
         Vector x;
         __builtin_memcpy(&x, src + i, sizeof x);
-        x = swish_of(x);
+        x = f(x);
         __builtin_memcpy(dst + i, &x, sizeof x);
     }
-    for (; i < n; ++i) dst[i] = swish_of(src[i]);
+    for (; i < n; ++i) dst[i] = f(src[i]);
+}
+
+void swish(const float *src, float *dst, long n)
+{
+    each_float(src, dst, n, [](auto x) { return swish_of(x); });
 }
 
 // 16 running sums (a loop the compiler vectorises; one sum would be a chain of dependent additions),
@@ -424,7 +431,7 @@ void accumulate_rows(const float *a, long pitch, const float *x, long rows, long
     }
 }
 
-// As the swish: vector by vector, the last floats one by one.
+// 1 / (1 + exp(-x)), of a float or of a vector's lanes.
 template <typename T>
 T sigmoid_of(T x)
 {
@@ -433,14 +440,7 @@ T sigmoid_of(T x)
 
 void sigmoid(const float *src, float *dst, long n)
 {
-    long i = 0;
-    for (; i + HKF_LANES <= n; i += HKF_LANES) {
-        Vector x;
-        __builtin_memcpy(&x, src + i, sizeof x);
-        x = sigmoid_of(x);
-        __builtin_memcpy(dst + i, &x, sizeof x);
-    }
-    for (; i < n; ++i) dst[i] = sigmoid_of(src[i]);
+    each_float(src, dst, n, [](auto x) { return sigmoid_of(x); });
 }
 
 }  // namespace

@@ -242,7 +242,7 @@ private:
     // with one pixel tile a task (many input channels), where the weights' copy is the fewer products but its tiles'
     // copies (one per pixel tile and group) are at most kTileCopies times as many. The weights' copy is shared by
     // the threads and read from the last level (up to 300 kB written for each 14 x 14 projection of WHENet); a task's
-    // tile is copied into its own core's cache (Intel Xeon, AVX-512: those layers 0.84-0.88x on two threads, 0.88-0.97x
+    // tile is copied into its own core's cache (Intel Xeon, AVX-512: those layers 0.85-0.90x on two threads, 0.90-0.99x
     // on one; 28 x 28 ones, at 20 times, 1.07x).
     bool gates_in_tiles(const Tasks &tasks, int pixels) const
     {
