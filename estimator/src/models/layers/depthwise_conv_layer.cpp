@@ -90,6 +90,11 @@ private:
     // Intel Xeon (AMX, 2 cores), and 144 channels made 9 blocks for two threads. WHENet's three such layers, per-layer
     // minima, 0.82-0.84x on two threads and 0.81-0.93x on one; its smaller planes stay at 16 (8 there: up to 1.18x).
     static constexpr long kLargePlanePixels = 56 * 56;
+    // A task's band of output rows: as many as keep its padded input rows within this (an Intel Xeon's first level is
+    // 48 kB). WHENet's 56 x 56 and 28 x 28 layers then run in 3-19 bands, its smaller planes whole; against whole
+    // planes, those layers 0.77-0.92x on two threads (more tasks to share, the buffer in the first level), every layer
+    // 0.96x; bands of 12 and 32 kB alike, of 48 kB less, of 96 kB no gain.
+    static constexpr long kBandBytes = 24 * 1024;
 
     // The kernels and bias as depthwise_interleaved reads them: per block of `lanes` channels, each tap's
     // weights of the block's channels, then the block's bias (zero for channels past the last).
@@ -106,50 +111,81 @@ private:
         return weights;
     }
 
-    // Every image's planes, a block of `lanes` channels (k's vector) a task: interleaved into a zero-padded buffer
-    // (the padding zeroed once per thread), convolved, and written back plane by plane with their means; `weights`
-    // interleaved for k.
+    // Every image's planes, a block of `lanes` channels (k's vector) and a band of output rows a task: the band's input
+    // rows interleaved into a zero-padded buffer (its left and right padding zeroed once per thread, rows above and
+    // below the input zeroed by the bands that take them), convolved, and written back plane by plane; each band's
+    // sums added up into the planes' means at the end. `weights` interleaved for k.
     void forward_interleaved(const LayerKernels &k, const std::vector<float> &weights, const cv::Mat &in, cv::Mat &out,
                              float *means) const
     {
         const int lanes = k.narrow_pixels, channels = in.size[1], blocks = (channels + lanes - 1) / lanes;
         const int h = in.size[2], w = in.size[3], out_h = out.size[2], out_w = out.size[3], taps = window_.kernel * window_.kernel;
         const int pitch = std::max(w + window_.left + window_.right, (out_w - 1) * window_.stride + window_.kernel);
-        const int rows = std::max(h + window_.top + window_.bottom, (out_h - 1) * window_.stride + window_.kernel);
+        // the padded input of an output row, and as many rows a band as keep it within kBandBytes
+        const long band_row_bytes = static_cast<long>(pitch) * lanes * sizeof(float) * window_.stride;
+        const int band = static_cast<int>(std::clamp<long>(kBandBytes / band_row_bytes, 1, out_h));
+        const int bands = (out_h + band - 1) / band;
         const long out_pixels = static_cast<long>(out_h) * out_w;
-        parallel_tasks(in.size[0] * blocks, [&](const cv::Range &range) {
-            std::vector<float> padded(static_cast<size_t>(rows) * pitch * lanes, 0.0f), result(out_pixels * lanes), sums(lanes),
+        std::vector<float> sums(static_cast<size_t>(in.size[0]) * blocks * bands * lanes);  // a task's lanes each
+        parallel_tasks(in.size[0] * blocks * bands, [&](const cv::Range &range) {
+            const size_t padded_rows = static_cast<size_t>((band - 1) * window_.stride + window_.kernel);
+            std::vector<float> padded(padded_rows * pitch * lanes, 0.0f), result(static_cast<size_t>(band) * out_w * lanes),
                 unused(out_pixels);
             const float *from[kMaxLanes];
             float *to[kMaxLanes];
             for (int task = range.start; task < range.end; ++task) {
-                const int first = task % blocks * lanes, count = std::min(lanes, channels - first);
-                const long plane = static_cast<long>(task / blocks) * channels + first;  // the block's first plane
+                const int first = task / bands % blocks * lanes, count = std::min(lanes, channels - first);
+                const long plane = static_cast<long>(task / bands / blocks) * channels + first;  // its first plane
+                const int first_row = task % bands * band, rows = std::min(band, out_h - first_row);
                 for (int c = 0; c < lanes; ++c) {  // a block's missing channels: read any plane, written nowhere
                     from[c] = in.ptr<float>() + (plane + std::min(c, count - 1)) * h * w;
-                    to[c] = c < count ? out.ptr<float>() + (plane + c) * out_pixels : unused.data();
+                    float *band_out = out.ptr<float>() + (plane + c) * out_pixels + static_cast<long>(first_row) * out_w;
+                    to[c] = c < count ? band_out : unused.data();
                 }
-                interleave_into_padding(k, from, h, w, pitch, padded.data());
-                const float *block = &weights[static_cast<size_t>(task % blocks) * (taps + 1) * lanes];
+                const int first_padded = first_row * window_.stride;
+                interleave_band(k, from, BandRows{h, w, pitch, first_padded, (rows - 1) * window_.stride + window_.kernel},
+                                padded.data());
+                const float *block = &weights[static_cast<size_t>(task / bands % blocks) * (taps + 1) * lanes];
                 k.depthwise_interleaved(InterleavedPlanes{padded.data(), pitch, block, block + taps * lanes, window_.kernel,
-                                                          window_.stride, out_h, out_w, swish_, result.data(), sums.data()});
-                k.deinterleave(result.data(), to, out_pixels);
-                for (int c = 0; means != nullptr && c < count; ++c) means[plane + c] = sums[c] / static_cast<float>(out_pixels);
+                                                          window_.stride, rows, out_w, swish_, result.data(),
+                                                          &sums[static_cast<size_t>(task) * lanes]});
+                k.deinterleave(result.data(), to, static_cast<long>(rows) * out_w);
             }
         });
+        for (long p = 0; means != nullptr && p < static_cast<long>(in.size[0]) * channels; ++p) {
+            const long image = p / channels, c = p % channels, task = (image * blocks + c / lanes) * bands;
+            double sum = 0.0;
+            for (int part = 0; part < bands; ++part) sum += sums[static_cast<size_t>(task + part) * lanes + c % lanes];
+            means[p] = static_cast<float>(sum / static_cast<double>(out_pixels));
+        }
     }
 
-    // A block's planes (h x w) interleaved into the padded buffer's interior: row by row where a row holds
-    // whole lanes x lanes blocks, small planes whole (a 7-pixel row would be all remainder).
-    void interleave_into_padding(const LayerKernels &k, const float *const *from, int h, int w, int pitch, float *padded) const
+    // Planes of h x w, padded rows of `pitch` pixels; the padded rows [first, first + rows) (padded row r is input
+    // row r - pad_top).
+    struct BandRows {
+        int h, w, pitch, first, rows;
+    };
+
+    // A band's rows of a block's planes interleaved into `padded`: the rows outside the input zeroed; row by row where
+    // a row holds whole lanes x lanes blocks, small planes whole (a 7-pixel row would be all remainder).
+    void interleave_band(const LayerKernels &k, const float *const *from, const BandRows &b, float *padded) const
     {
-        const int lanes = k.narrow_pixels;
-        float *interior = padded + (static_cast<size_t>(window_.top) * pitch + window_.left) * lanes;
-        if (w < 2 * lanes) return k.interleave(from, interior, static_cast<long>(h) * w, w, pitch);
+        const int lanes = k.narrow_pixels, first = b.first, rows = b.rows, w = b.w;
+        const int y0 = std::max(0, first - window_.top), y1 = std::min(b.h, first + rows - window_.top);
+        const size_t row_floats = static_cast<size_t>(b.pitch) * lanes;
+        for (int r = 0; r < rows; ++r)
+            if (r + first - window_.top < y0 || r + first - window_.top >= y1)
+                std::fill_n(padded + r * row_floats, row_floats, 0.0f);
+        if (y1 <= y0) return;
+        float *interior = padded + (static_cast<size_t>(y0 + window_.top - first) * b.pitch + window_.left) * lanes;
         const float *row[kMaxLanes];
-        for (int y = 0; y < h; ++y) {
+        if (w < 2 * lanes) {
+            for (int c = 0; c < lanes; ++c) row[c] = from[c] + static_cast<long>(y0) * w;
+            return k.interleave(row, interior, static_cast<long>(y1 - y0) * w, w, b.pitch);
+        }
+        for (int y = y0; y < y1; ++y) {
             for (int c = 0; c < lanes; ++c) row[c] = from[c] + static_cast<long>(y) * w;
-            k.interleave(row, interior + static_cast<size_t>(y) * pitch * lanes, w, w, w);
+            k.interleave(row, interior + static_cast<size_t>(y - y0) * row_floats, w, w, w);
         }
     }
 
