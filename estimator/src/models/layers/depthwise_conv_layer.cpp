@@ -170,14 +170,14 @@ private:
     // a row holds whole lanes x lanes blocks, small planes whole (a 7-pixel row would be all remainder).
     void interleave_band(const LayerKernels &k, const float *const *from, const BandRows &b, float *padded) const
     {
-        const int lanes = k.narrow_pixels, first = b.first, rows = b.rows, w = b.w;
-        const int y0 = std::max(0, first - window_.top), y1 = std::min(b.h, first + rows - window_.top);
+        const int lanes = k.narrow_pixels, w = b.w;
+        const int y0 = std::max(0, b.first - window_.top), y1 = std::max(y0, std::min(b.h, b.first + b.rows - window_.top));
         const size_t row_floats = static_cast<size_t>(b.pitch) * lanes;
-        for (int r = 0; r < rows; ++r)
-            if (r + first - window_.top < y0 || r + first - window_.top >= y1)
-                std::fill_n(padded + r * row_floats, row_floats, 0.0f);
-        if (y1 <= y0) return;
-        float *interior = padded + (static_cast<size_t>(y0 + window_.top - first) * b.pitch + window_.left) * lanes;
+        const size_t above = y0 + window_.top - b.first, below = y1 + window_.top - b.first;  // the input's band rows
+        std::fill(padded, padded + above * row_floats, 0.0f);
+        std::fill(padded + below * row_floats, padded + static_cast<size_t>(b.rows) * row_floats, 0.0f);
+        if (y1 == y0) return;
+        float *interior = padded + above * row_floats + static_cast<size_t>(window_.left) * lanes;
         const float *row[kMaxLanes];
         if (w < 2 * lanes) {
             for (int c = 0; c < lanes; ++c) row[c] = from[c] + static_cast<long>(y0) * w;

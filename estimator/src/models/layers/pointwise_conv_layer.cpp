@@ -25,8 +25,9 @@ constexpr int kLargestTile = 384;  // floats in the largest level's pointwise ti
 // the weights, or the input where that is fewer products, or each pixel tile's input as a task copies it:
 // gates_in_tiles); blobs[0] the weights Cout x Cin x 1 x 1, blobs[1] the bias (Cout; none: 0); attribute swish
 // (0 or 1); attribute residual (0 or 1): with 1 a last input shaped as the output, added to it as each output tile is
-// written (a residual connection's sum, after the swish if any). The weights are packed into tiles once, when the layer is made, for the tile of the level in use. A
-// plane's last pixels, fewer than a tile, are copied into a zero-padded tile.
+// written (a residual connection's sum, after the swish if any). The weights are packed into tiles once, when the
+// layer is made, for the tile of the level in use. A plane's last pixels, fewer than a tile, are copied into a
+// zero-padded tile.
 // "hkf.UnfoldedConv": a k x k convolution (attributes kernel, stride, pad_top, pad_left, pad_bottom,
 // pad_right, as hkf.DepthwiseConv's; blobs[0] Cout x Cin x k x k) as the same product over its unfolded
 // input, Cin k^2 rows of the output's pixels (im2col), made for each image; no gate (WHENet's first
@@ -67,9 +68,8 @@ public:
     bool getMemoryShapes(const std::vector<cv::dnn::MatShape> &inputs, const int,
                          std::vector<cv::dnn::MatShape> &outputs, std::vector<cv::dnn::MatShape> &) const override
     {
-        const size_t gated = inputs.size() - (residual_ ? 1 : 0);  // 2: x and a gate
-        CV_Assert((gated == 1 || gated == 2) && inputs[0].size() == 4 && inputs[0][1] == image_channels_);
-        if (gated == 2)  // the gate: one value per image and input channel
+        CV_Assert(inputs.size() - (residual_ ? 1 : 0) <= 2 && inputs[0].size() == 4 && inputs[0][1] == image_channels_);
+        if (gated(inputs.size()))  // the gate: one value per image and input channel
             CV_Assert(unfold_.kernel == 1 && inputs[1].size() >= 2 && inputs[1][0] == inputs[0][0] &&
                       inputs[1][1] == in_channels_ && cv::dnn::total(inputs[1]) == inputs[0][0] * in_channels_);
         outputs.assign(1, unfold_.output_shape(inputs[0], out_channels_));
@@ -94,7 +94,7 @@ public:
                 m.src = nullptr;
                 m.unfold = Unfolding{src, in.size[2], in.size[3], out.size[3]};
             }
-            if (t.in.size() == (residual_ ? 3u : 2u)) {
+            if (gated(t.in.size())) {
                 const float *gate = t.in[1].ptr<float>() + static_cast<size_t>(image) * in_channels_;
                 if (gates_in_tiles(tasks, pixels))
                     m.gate = gate;
@@ -237,6 +237,9 @@ private:
         k.rows_per_group = (k.row_tiles + k.groups - 1) / k.groups;
         return k;
     }
+
+    // Whether a layer given this many inputs has a gate (its second; a residual is the last).
+    bool gated(size_t inputs) const { return inputs == (residual_ ? 3u : 2u); }
 
     // Whether the gate goes into each task's pixel tile (Image::gate) rather than into a copy of the weights:
     // with one pixel tile a task (many input channels), where the weights' copy is the fewer products but its tiles'
