@@ -93,7 +93,8 @@ private:
     // A task's band of output rows: as many as keep its padded input rows within this (an Intel Xeon's first level is
     // 48 kB). WHENet's 56 x 56 and 28 x 28 layers then run in 3-19 bands, its smaller planes whole; against whole
     // planes, those layers 0.77-0.92x on two threads (more tasks to share, the buffer in the first level), every layer
-    // 0.96x; bands of 12 and 32 kB alike, of 48 kB less, of 96 kB no gain.
+    // 0.96x; bands of 12 and 32 kB alike, of 48 kB less, of 96 kB no gain, of 6 and 3 kB slower (those layers
+    // 1.03-1.24x).
     static constexpr long kBandBytes = 24 * 1024;
 
     // The kernels and bias as depthwise_interleaved reads them: per block of `lanes` channels, each tap's
