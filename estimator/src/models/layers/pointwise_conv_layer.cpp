@@ -158,8 +158,9 @@ private:
                 const int oy = p / u.out_w, from_x = p % u.out_w, to_x = std::min(u.out_w, from_x + (end - p));
                 const int y = oy * k.stride + ky - k.top;
                 float *to = dst + (p - first) - from_x;  // to[ox]: pixel (oy, ox)
-                const int a = y < 0 || y >= u.h ? to_x : std::min(to_x, std::max(from_x, inside));
-                const int b = y < 0 || y >= u.h ? to_x : std::max(a, std::min(to_x, outside));
+                const bool row_inside = y >= 0 && y < u.h;
+                const int a = row_inside ? std::min(to_x, std::max(from_x, inside)) : to_x;
+                const int b = row_inside ? std::max(a, std::min(to_x, outside)) : to_x;
                 std::fill(to + from_x, to + a, 0.0f);
                 if (b > a) {  // input column ox stride + kx - pad_left of row y
                     const float *from = u.image + (static_cast<long>(c) * u.h + y) * u.w + a * k.stride + kx - k.left;

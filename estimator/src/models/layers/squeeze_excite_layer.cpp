@@ -73,7 +73,11 @@ public:
                                              end - first, reduced_, hidden.data() + static_cast<size_t>(part) * reduced_);
                 }
             }, parts);
-            for (int r = 0; r < reduced_; ++r) hidden[r] += b1[r] + (parts == 2 ? hidden[reduced_ + r] : 0.0f);
+            for (int r = 0; r < reduced_; ++r) {  // the bias and the other parts' sums into the first's
+                float rest = b1[r];
+                for (int part = 1; part < parts; ++part) rest += hidden[static_cast<size_t>(part) * reduced_ + r];
+                hidden[r] += rest;
+            }
             kernels_.swish(hidden.data(), hidden.data(), reduced_);
             std::copy(b2, b2 + channels_, g);
             cv::parallel_for_(cv::Range(0, parts), [&](const cv::Range &range) {
